@@ -1,0 +1,50 @@
+// surfcert::algebra inertia of real symmetric 4x4 matrices, exactly.
+//
+// Inertia (p, n) = numbers of positive / negative eigenvalues; rank = p + n. Two independent
+// exact routes: Descartes' rule of signs on the characteristic polynomial (all its roots are
+// real, so sign variations count positive roots exactly) and a congruence diagonalisation
+// (LDL^T with symmetric pivoting, Sylvester's law of inertia). Also exact numbers in Q(sqrt d)
+// for the inertia at quadratic-irrational double roots of a pencil.
+#pragma once
+
+#include "surfcert/algebra/upoly.hpp"
+#include "surfcert/core/quadric.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace surfcert::algebra {
+
+struct Inertia {
+  int p = 0;
+  int n = 0;
+  int rank() const { return p + n; }
+  bool semidefinite() const { return std::min(p, n) == 0; }
+  std::string to_string() const { return "(" + std::to_string(p) + "," + std::to_string(n) + ")"; }
+  friend bool operator==(const Inertia& a, const Inertia& b) { return a.p == b.p && a.n == b.n; }
+};
+
+/// Descartes on mu^4 + c3 mu^3 + c2 mu^2 + c1 mu + c0 given the signs s[k] = sign(c_k).
+Inertia inertia_from_charpoly_signs(const int s[4]);
+
+/// Exact, by Descartes on the characteristic polynomial (FLINT fmpz_mat_charpoly).
+Inertia inertia_descartes(const core::Mat4& m);
+
+/// Exact, by symmetric congruence elimination over Q (independent second route).
+Inertia inertia_ldlt(const core::Mat4& m);
+
+/// Exact rank over Q (FLINT).
+int rank_exact(const core::Mat4& m);
+
+/// A number a + b*sqrt(d) with a, b rational and d a positive non-square integer (or b = 0).
+struct QuadraticNumber {
+  Rational a, b;
+  core::Integer d;
+  /// Exact sign (research §1.5 step 6).
+  int sign() const;
+  double to_double_approx() const;
+  /// "a + b*sqrt(d)" in exact text.
+  std::string to_string() const;
+};
+
+} // namespace surfcert::algebra

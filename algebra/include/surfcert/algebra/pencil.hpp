@@ -1,0 +1,73 @@
+// surfcert::algebra::PencilFacts: everything the QSIC decision rules need about the pencil
+// l*A - B of two quadrics, computed exactly over Q (analyze_pencil_exact).
+//
+// Invariants of an exact analysis of a regular pencil: det(A) != 0 in the basis used (the
+// pencil is re-based to (tA - B, -A) when the given A is singular, research §1.1); real roots
+// are listed in increasing order, root i lies in (samples[i], samples[i+1]) and nowhere else;
+// indices[j] = number of positive eigenvalues of samples[j]*A - B; every multiple root carries
+// its exact value (rational, or a + b sqrt(d)) and its exact rank and inertia.
+// Cost: one 4x4 closed-form determinant over Z, one square-free factorisation, an isolation
+// of a quartic, k+1 Descartes counts; exact work in Q(sqrt d) only at conjugate double roots.
+#pragma once
+
+#include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/upoly.hpp"
+#include "surfcert/core/quadric.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace surfcert::algebra {
+
+enum class PencilKind {
+  Regular,    ///< f(l) = det(lA - B) is not identically zero
+  Degenerate, ///< f == 0: every member singular (e.g. two cones with a common apex)
+  Coincident  ///< B is a multiple of A: the same quadric
+};
+
+struct RootFacts {
+  int multiplicity = 1;
+  int rank = 3;      ///< rank of theta*A - B
+  Inertia sigma;     ///< inertia of theta*A - B
+  int index_left = 0;  ///< index on the interval left of theta
+  int index_right = 0; ///< index on the interval right of theta
+  Rational lo, hi;     ///< the root is the unique root of `factor` in (lo, hi) (or lo == hi)
+  UPolyZ factor;       ///< square-free factor of f with this root (primitive, lead > 0)
+  std::optional<Rational> rational_value;   ///< set when theta is rational
+  std::optional<QuadraticNumber> quadratic; ///< set when theta = a + b sqrt(d), d not a square
+  bool jump() const { return index_left != index_right; }
+};
+
+struct PencilFacts {
+  PencilKind kind = PencilKind::Regular;
+  core::Mat4 a, b;        ///< the basis used (after re-basing)
+  bool rebased = false;   ///< true when the given A was singular
+  long rebase_t = 0;      ///< then a = t*A0 - B0, b = -A0, l0 = t + 1/l
+  UPolyQ f;               ///< det(l*a - b)
+  Rational d2, d3, d4, e; ///< seed 002 Lemma 1 quantities of f
+  std::string root_pattern; ///< "R1".."R9"
+  std::vector<RootFacts> real_roots;
+  std::vector<Rational> samples; ///< rational points between the real roots (size k+1)
+  std::vector<int> indices;      ///< index at each sample point
+  int complex_roots = 0;         ///< number of non-real roots, with multiplicity
+  bool complex_double_pair = false; ///< f = c*g^2, g irreducible with complex roots
+  bool minimal_poly_split = false;  ///< g(A^-1 B) == 0 for that g (or for a real conjugate pair)
+  bool quadruple_n2_zero = false;   ///< (A^-1 B - theta I)^2 == 0 at a quadruple root of rank 2
+  bool definite_member = false;     ///< some index is 0 or 4 (Finsler: empty real QSIC)
+  bool isolation_fallback = false;  ///< root isolation needed the CGAL fallback
+};
+
+/// Exact analysis. Precondition: a, b symmetric.
+PencilFacts analyze_pencil_exact(const core::Mat4& a, const core::Mat4& b);
+
+/// Root pattern label R1..R9 from the exact signs of D2, D3, D4, E (research §3.1).
+std::string root_pattern_from_signs(int sd2, int sd3, int sd4, int se);
+
+/// det(l*A - B) exactly.
+UPolyQ pencil_char_poly(const core::Mat4& a, const core::Mat4& b);
+
+/// True when B = c*A for some rational c (A nonzero).
+bool proportional(const core::Mat4& a, const core::Mat4& b);
+
+} // namespace surfcert::algebra

@@ -1,0 +1,112 @@
+// surfcert::algebra closed forms for a 4x4 pencil, generic in the number type.
+//
+// pencil_char_coeffs: the coefficients (constant term first) of f(l) = det(l*A - B) by a
+// Laplace expansion over the 2x2 minors of rows {0,1} and {2,3}. quartic_invariants: the
+// quantities D2, D3, D4 (= discriminant), E of seed 002 Lemma 1 (research §3.1).
+// charpoly_coeffs: c3..c0 of det(mu*I - M) for a symmetric 4x4 M.
+// The template is instantiated for exact integers (core::Integer), for interval arithmetic
+// (the filter; caller must hold CGAL::Protect_FPU_rounding) and for plain double (float mode).
+// T must support +, -, * and construction from int.
+#pragma once
+
+#include <array>
+
+namespace surfcert::algebra {
+
+template <class T> using Mat4T = std::array<std::array<T, 4>, 4>;
+
+namespace detail {
+// Coefficients [q0, q1, q2] of the 2x2 minor (rows r1, r2; cols c1, c2) of l*A - B.
+template <class T>
+std::array<T, 3> pencil_minor2(const Mat4T<T>& a, const Mat4T<T>& b, int r1, int r2, int c1,
+                               int c2) {
+  auto A = [&](int i, int j) -> const T& { return a[static_cast<size_t>(i)][static_cast<size_t>(j)]; };
+  auto B = [&](int i, int j) -> const T& { return b[static_cast<size_t>(i)][static_cast<size_t>(j)]; };
+  // (l*a11 - b11)(l*a22 - b22) - (l*a12 - b12)(l*a21 - b21)
+  T q2 = A(r1, c1) * A(r2, c2) - A(r1, c2) * A(r2, c1);
+  T q1 = (A(r1, c2) * B(r2, c1) + B(r1, c2) * A(r2, c1)) -
+         (A(r1, c1) * B(r2, c2) + B(r1, c1) * A(r2, c2));
+  T q0 = B(r1, c1) * B(r2, c2) - B(r1, c2) * B(r2, c1);
+  return {q0, q1, q2};
+}
+} // namespace detail
+
+/// det(l*A - B) = sum_{i} coeffs[i] l^i.
+template <class T> std::array<T, 5> pencil_char_coeffs(const Mat4T<T>& a, const Mat4T<T>& b) {
+  static const int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  std::array<T, 5> f{T(0), T(0), T(0), T(0), T(0)};
+  for (int p = 0; p < 6; ++p) {
+    int i = pairs[p][0], j = pairs[p][1];
+    int k = pairs[5 - p][0], l = pairs[5 - p][1]; // complementary columns
+    auto top = detail::pencil_minor2(a, b, 0, 1, i, j);
+    auto bot = detail::pencil_minor2(a, b, 2, 3, k, l);
+    bool negative = ((i + j + 1) % 2) != 0;
+    for (size_t s = 0; s < 3; ++s)
+      for (size_t t = 0; t < 3; ++t) {
+        if (negative)
+          f[s + t] = f[s + t] - top[s] * bot[t];
+        else
+          f[s + t] = f[s + t] + top[s] * bot[t];
+      }
+  }
+  return f;
+}
+
+/// D2, D3, D4, E of f = a l^4 + b l^3 + c l^2 + d l + e (seed 002 Lemma 1, repaired).
+template <class T> struct QuarticInvariants {
+  T d2, d3, d4, e;
+};
+
+template <class T> QuarticInvariants<T> quartic_invariants(const std::array<T, 5>& f) {
+  const T& a = f[4];
+  const T& b = f[3];
+  const T& c = f[2];
+  const T& d = f[1];
+  const T& e = f[0];
+  T b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e, a2 = a * a;
+  QuarticInvariants<T> q;
+  q.d2 = T(3) * b2 - T(8) * a * c;
+  q.d3 = b2 * c2 - T(3) * b2 * b * d - T(6) * a * b2 * e + T(14) * a * b * c * d -
+         T(4) * a * c2 * c + T(16) * a2 * c * e - T(18) * a2 * d2;
+  q.d4 = b2 * c2 * d2 - T(4) * b2 * c2 * c * e + T(18) * b2 * b * c * d * e +
+         T(144) * a * b2 * c * e2 - T(6) * a * b2 * d2 * e - T(4) * b2 * b * d2 * d -
+         T(27) * b2 * b2 * e2 - T(80) * a * b * c2 * d * e + T(18) * a * b * c * d2 * d -
+         T(192) * a2 * b * d * e2 - T(4) * a * c2 * c * d2 - T(128) * a2 * c2 * e2 +
+         T(16) * a * c2 * c2 * e + T(144) * a2 * c * d2 * e - T(27) * a2 * d2 * d2 +
+         T(256) * a2 * a * e2 * e;
+  q.e = T(8) * a2 * d + b2 * b - T(4) * a * b * c;
+  return q;
+}
+
+/// c3, c2, c1, c0 (as [0]=c0 ... [3]=c3) of det(mu*I - M) = mu^4 + c3 mu^3 + ... + c0.
+template <class T> std::array<T, 4> charpoly_coeffs(const Mat4T<T>& m) {
+  auto M = [&](int i, int j) -> const T& { return m[static_cast<size_t>(i)][static_cast<size_t>(j)]; };
+  T tr = M(0, 0) + M(1, 1) + M(2, 2) + M(3, 3);
+  T s2(0);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) s2 = s2 + (M(i, i) * M(j, j) - M(i, j) * M(j, i));
+  // Sum of principal 3x3 minors and the determinant via 2x2 minors of rows {0,1}, {2,3}.
+  T s3(0);
+  for (int skip = 0; skip < 4; ++skip) {
+    int r[3], n = 0;
+    for (int i = 0; i < 4; ++i)
+      if (i != skip) r[n++] = i;
+    s3 = s3 + M(r[0], r[0]) * (M(r[1], r[1]) * M(r[2], r[2]) - M(r[1], r[2]) * M(r[2], r[1])) -
+         M(r[0], r[1]) * (M(r[1], r[0]) * M(r[2], r[2]) - M(r[1], r[2]) * M(r[2], r[0])) +
+         M(r[0], r[2]) * (M(r[1], r[0]) * M(r[2], r[1]) - M(r[1], r[1]) * M(r[2], r[0]));
+  }
+  static const int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  T det(0);
+  for (int p = 0; p < 6; ++p) {
+    int i = pairs[p][0], j = pairs[p][1], k = pairs[5 - p][0], l = pairs[5 - p][1];
+    T top = M(0, i) * M(1, j) - M(0, j) * M(1, i);
+    T bot = M(2, k) * M(3, l) - M(2, l) * M(3, k);
+    if ((i + j + 1) % 2)
+      det = det - top * bot;
+    else
+      det = det + top * bot;
+  }
+  return {det, T(0) - s3, s2, T(0) - tr};
+}
+
+} // namespace surfcert::algebra

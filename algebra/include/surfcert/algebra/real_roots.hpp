@@ -1,0 +1,48 @@
+// surfcert::algebra real-root isolation for square-free integer polynomials.
+//
+// What it represents: RootSeparation = rational separators s_0 < s_1 < ... < s_k such that
+// the square-free polynomial p has no root outside (s_0, s_k), exactly one root in each gap
+// (s_{i-1}, s_i), and p(s_i) != 0 with alternating signs. That is the certificate: with k the
+// exact number of real roots (Sturm count) and k+1 points of alternating nonzero sign, every
+// gap holds an odd number of roots, hence exactly one. With no real root, separators = {0}.
+//
+// How: a float guess first (Aberth iteration on the complex roots, separators at midpoints of
+// the k real-most guesses, converted exactly to dyadic rationals), checked with exact signs;
+// if the check fails (clustered roots, a separator landing on a root), CGAL's Descartes
+// isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead.
+#pragma once
+
+#include "surfcert/algebra/upoly.hpp"
+
+#include <complex>
+#include <vector>
+
+namespace surfcert::algebra {
+
+struct RootSeparation {
+  std::vector<Rational> separators;
+  bool used_fallback = false; ///< true when the float guess failed and CGAL was used
+  size_t num_roots() const { return separators.size() - 1; }
+};
+
+/// Exact number of distinct real roots of a square-free polynomial (Sturm, FLINT).
+long count_real_roots(const UPolyZ& squarefree);
+
+/// Separators for a square-free, nonzero polynomial (degree >= 0). Exact.
+RootSeparation isolate_real_roots(const UPolyZ& squarefree);
+
+/// The same from CGAL only (the fallback, and a second isolator for tests). Exact.
+RootSeparation isolate_real_roots_cgal(const UPolyZ& squarefree);
+
+/// Float guesses of all complex roots (Aberth iteration; no guarantee). coeffs: constant first,
+/// leading coefficient nonzero.
+std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>& coeffs);
+
+/// The `count` guesses closest to the real axis, real parts sorted increasingly (no guarantee).
+std::vector<double> approx_real_roots(const std::vector<double>& coeffs, size_t count);
+
+/// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, by exact
+/// bisection until hi - lo <= width (or the root is hit exactly, then lo == hi).
+void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width);
+
+} // namespace surfcert::algebra

@@ -1,0 +1,138 @@
+#include "surfcert/algebra/inertia.hpp"
+
+#include "surfcert/algebra/upoly.hpp"
+
+#include <flint/fmpq_mat.h>
+#include <flint/fmpz_mat.h>
+
+#include <cmath>
+
+namespace surfcert::algebra {
+
+using core::Mat4;
+
+static int variations(const int* s, int n) {
+  int v = 0, prev = 0;
+  for (int i = 0; i < n; ++i) {
+    if (s[i] == 0) continue;
+    if (prev != 0 && s[i] != prev) ++v;
+    prev = s[i];
+  }
+  return v;
+}
+
+Inertia inertia_from_charpoly_signs(const int s[4]) {
+  // Coefficients from the leading one: 1, c3, c2, c1, c0; for chi(-mu): 1, -c3, c2, -c1, c0.
+  int pos[5] = {1, s[3], s[2], s[1], s[0]};
+  int neg[5] = {1, -s[3], s[2], -s[1], s[0]};
+  return Inertia{variations(pos, 5), variations(neg, 5)};
+}
+
+Inertia inertia_descartes(const Mat4& m) {
+  // Scale to an integer matrix by the lcm of the denominators (a positive factor keeps signs).
+  core::Integer l(1);
+  for (const auto& row : m)
+    for (const auto& v : row) fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
+  fmpz_mat_t z;
+  fmpz_mat_init(z, 4, 4);
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      fmpz* e = fmpz_mat_entry(z, static_cast<slong>(i), static_cast<slong>(j));
+      fmpz_divexact(e, l.raw(), fmpq_denref(m[i][j].raw()));
+      fmpz_mul(e, e, fmpq_numref(m[i][j].raw()));
+    }
+  fmpz_poly_t cp;
+  fmpz_poly_init(cp);
+  fmpz_mat_charpoly(cp, z);
+  int s[4];
+  for (slong k = 0; k < 4; ++k) {
+    fmpz_t c;
+    fmpz_init(c);
+    fmpz_poly_get_coeff_fmpz(c, cp, k);
+    s[k] = fmpz_sgn(c);
+    fmpz_clear(c);
+  }
+  fmpz_poly_clear(cp);
+  fmpz_mat_clear(z);
+  return inertia_from_charpoly_signs(s);
+}
+
+Inertia inertia_ldlt(const Mat4& m0) {
+  Mat4 m = m0;
+  Inertia r;
+  bool active[4] = {true, true, true, true};
+  for (int step = 0; step < 4; ++step) {
+    int piv = -1;
+    for (int i = 0; i < 4 && piv < 0; ++i)
+      if (active[i] && !m[static_cast<size_t>(i)][static_cast<size_t>(i)].is_zero()) piv = i;
+    if (piv < 0) {
+      // All active diagonal entries vanish: a nonzero off-diagonal m_ij lets the congruence
+      // e_i <- e_i + e_j create the diagonal entry 2 m_ij != 0.
+      int pi = -1, pj = -1;
+      for (int i = 0; i < 4 && pi < 0; ++i)
+        for (int j = 0; j < 4; ++j)
+          if (i != j && active[i] && active[j] &&
+              !m[static_cast<size_t>(i)][static_cast<size_t>(j)].is_zero()) {
+            pi = i;
+            pj = j;
+            break;
+          }
+      if (pi < 0) break; // the remaining block is zero
+      auto I = static_cast<size_t>(pi), J = static_cast<size_t>(pj);
+      for (size_t k = 0; k < 4; ++k) m[I][k] += m[J][k]; // row i += row j
+      for (size_t k = 0; k < 4; ++k) m[k][I] += m[k][J]; // column i += column j
+      piv = pi;
+    }
+    auto P = static_cast<size_t>(piv);
+    Rational d = m[P][P];
+    (d.sign() > 0 ? r.p : r.n)++;
+    active[piv] = false;
+    for (size_t i = 0; i < 4; ++i) {
+      if (!active[i] || m[i][P].is_zero()) continue;
+      Rational f = m[i][P] / d;
+      for (size_t j = 0; j < 4; ++j)
+        if (active[j]) m[i][j] -= f * m[P][j];
+    }
+    for (size_t i = 0; i < 4; ++i) m[i][P] = m[P][i] = Rational(0);
+  }
+  return r;
+}
+
+int rank_exact(const Mat4& m) {
+  fmpq_mat_t t;
+  fmpq_mat_init(t, 4, 4);
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      fmpq_set(fmpq_mat_entry(t, static_cast<slong>(i), static_cast<slong>(j)), m[i][j].raw());
+  fmpq_mat_t e;
+  fmpq_mat_init(e, 4, 4);
+  int r = static_cast<int>(fmpq_mat_rref(e, t));
+  fmpq_mat_clear(e);
+  fmpq_mat_clear(t);
+  return r;
+}
+
+int QuadraticNumber::sign() const {
+  int sa = a.sign(), sb = b.sign();
+  if (sb == 0 || d.is_zero()) return sa;
+  if (sa == 0) return sb;
+  if (sa == sb) return sa;
+  // a and b*sqrt(d) have opposite signs: compare a^2 with b^2 d.
+  Rational diff = a * a - b * b * Rational(d);
+  return sa * diff.sign();
+}
+
+double QuadraticNumber::to_double_approx() const {
+  return a.to_double_approx() + b.to_double_approx() * std::sqrt(d.to_double_approx());
+}
+
+std::string QuadraticNumber::to_string() const {
+  if (b.is_zero() || d.is_zero()) return a.to_string();
+  std::string s = a.is_zero() ? "" : a.to_string() + (b.sign() < 0 ? " - " : " + ");
+  if (a.is_zero() && b.sign() < 0) s += "-";
+  Rational mb = core::abs(b);
+  if (mb != Rational(1)) s += mb.to_string() + "*";
+  return s + "sqrt(" + d.to_string() + ")";
+}
+
+} // namespace surfcert::algebra

@@ -1,0 +1,296 @@
+#include "surfcert/algebra/pencil.hpp"
+
+#include "surfcert/algebra/pencil_poly.hpp"
+#include "surfcert/algebra/real_roots.hpp"
+
+#include <flint/fmpq_mat.h>
+#include <flint/fmpz_poly_factor.h>
+
+#include <stdexcept>
+
+namespace surfcert::algebra {
+
+using core::Integer;
+using core::Mat4;
+
+bool proportional(const Mat4& a, const Mat4& b) {
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      if (!a[i][j].is_zero()) {
+        Rational c = b[i][j] / a[i][j];
+        for (size_t k = 0; k < 4; ++k)
+          for (size_t l = 0; l < 4; ++l)
+            if (b[k][l] != c * a[k][l]) return false;
+        return true;
+      }
+  return core::is_zero(b);
+}
+
+UPolyQ pencil_char_poly(const Mat4& a, const Mat4& b) {
+  // Clear denominators once with a common factor L: det(l*LA - LB) = L^4 f(l).
+  Integer l(1);
+  for (const Mat4* m : {&a, &b})
+    for (const auto& row : *m)
+      for (const auto& v : row) fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
+  Mat4T<Integer> ai, bi;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      Integer t;
+      fmpz_divexact(t.raw_mut(), l.raw(), fmpq_denref(a[i][j].raw()));
+      ai[i][j] = t * a[i][j].num();
+      fmpz_divexact(t.raw_mut(), l.raw(), fmpq_denref(b[i][j].raw()));
+      bi[i][j] = t * b[i][j].num();
+    }
+  auto c = pencil_char_coeffs(ai, bi);
+  Integer l4 = l * l * l * l;
+  std::vector<Rational> q;
+  for (const auto& x : c) q.emplace_back(x, l4);
+  return UPolyQ::from_coeffs(q);
+}
+
+std::string root_pattern_from_signs(int sd2, int sd3, int sd4, int se) {
+  if (sd4 > 0) return (sd3 > 0 && sd2 > 0) ? "R1" : "R2";
+  if (sd4 < 0) return "R3";
+  if (sd3 > 0) return "R4";
+  if (sd3 < 0) return "R5";
+  if (sd2 > 0) return se == 0 ? "R6" : "R7";
+  if (sd2 < 0) return "R8";
+  return "R9";
+}
+
+namespace {
+
+Mat4 member(const Rational& t, const Mat4& a, const Mat4& b) {
+  Mat4 m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) m[i][j] = t * a[i][j] - b[i][j];
+  return m;
+}
+
+struct QMat {
+  fmpq_mat_t m;
+  QMat() { fmpq_mat_init(m, 4, 4); }
+  explicit QMat(const Mat4& x) : QMat() {
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        fmpq_set(fmpq_mat_entry(m, static_cast<slong>(i), static_cast<slong>(j)), x[i][j].raw());
+  }
+  QMat(const QMat&) = delete;
+  QMat& operator=(const QMat&) = delete;
+  ~QMat() { fmpq_mat_clear(m); }
+};
+
+// X = A^-1 B (A invertible).
+void a_inv_b(QMat& x, const Mat4& a, const Mat4& b) {
+  QMat qa(a), qb(b);
+  if (!fmpq_mat_solve_fraction_free(x.m, qa.m, qb.m))
+    throw std::logic_error("A is singular after re-basing");
+}
+
+// g2 X^2 + g1 X + g0 I == 0 ?
+bool quadratic_annihilates(const QMat& x, const UPolyZ& g) {
+  QMat x2, acc;
+  fmpq_mat_mul(x2.m, x.m, x.m);
+  fmpq_t c;
+  fmpq_init(c);
+  fmpz_poly_get_coeff_fmpz(fmpq_numref(c), g.raw(), 2);
+  fmpz_one(fmpq_denref(c));
+  fmpq_mat_scalar_mul_fmpz(acc.m, x2.m, fmpq_numref(c));
+  QMat t;
+  fmpz_poly_get_coeff_fmpz(fmpq_numref(c), g.raw(), 1);
+  fmpq_mat_scalar_mul_fmpz(t.m, x.m, fmpq_numref(c));
+  fmpq_mat_add(acc.m, acc.m, t.m);
+  fmpz_poly_get_coeff_fmpz(fmpq_numref(c), g.raw(), 0);
+  for (slong i = 0; i < 4; ++i) fmpq_add(fmpq_mat_entry(acc.m, i, i), fmpq_mat_entry(acc.m, i, i), c);
+  bool zero = fmpq_mat_is_zero(acc.m);
+  fmpq_clear(c);
+  return zero;
+}
+
+// (X - theta I)^2 == 0 ?
+bool nilpotent_square_zero(const QMat& x, const Rational& theta) {
+  QMat n, n2;
+  fmpq_mat_set(n.m, x.m);
+  for (slong i = 0; i < 4; ++i)
+    fmpq_sub(fmpq_mat_entry(n.m, i, i), fmpq_mat_entry(n.m, i, i), theta.raw());
+  fmpq_mat_mul(n2.m, n.m, n.m);
+  return fmpq_mat_is_zero(n2.m);
+}
+
+// Inertia of theta*A - B at theta = a + b sqrt(d) (root of the irreducible quadratic g):
+// the charpoly coefficients c_k(l) of l*A - B as polynomials, reduced mod g, evaluated in
+// Q(sqrt d) with exact signs.
+Inertia inertia_at_quadratic(const Mat4& a, const Mat4& b, const UPolyZ& g,
+                             const QuadraticNumber& theta) {
+  Mat4T<UPolyQ> m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) m[i][j] = UPolyQ::linear(a[i][j], -b[i][j]);
+  auto c = charpoly_coeffs(m);
+  UPolyQ gq;
+  fmpq_poly_set_fmpz_poly(gq.raw_mut(), g.raw());
+  int s[4];
+  for (size_t k = 0; k < 4; ++k) {
+    UPolyQ r = c[k].rem(gq); // alpha + beta*l
+    Rational alpha = r.coeff(0), beta = r.coeff(1);
+    QuadraticNumber v{alpha + beta * theta.a, beta * theta.b, theta.d};
+    s[k] = v.sign();
+  }
+  return inertia_from_charpoly_signs(s);
+}
+
+// The real root of the quadratic g = c2 l^2 + c1 l + c0 lying in (lo, hi).
+void locate_in_quadratic(const UPolyZ& g, const Rational& lo, const Rational& hi, RootFacts& r) {
+  Rational c2(g.coeff(2)), c1(g.coeff(1)), c0(g.coeff(0));
+  Rational disc = c1 * c1 - Rational(4) * c2 * c0;
+  // disc is an integer here (g has integer coefficients).
+  Integer dn = disc.num();
+  Integer s;
+  fmpz_sqrt(s.raw_mut(), dn.raw());
+  Rational mid = -c1 / (Rational(2) * c2);
+  if (s * s == dn) {
+    Rational r1 = (-c1 - Rational(s)) / (Rational(2) * c2), r2 = (-c1 + Rational(s)) / (Rational(2) * c2);
+    r.rational_value = (lo < r1 && r1 < hi) ? r1 : r2;
+    return;
+  }
+  // Irrational: theta = mid + sgn * sqrt(disc) / (2 c2); the side of `mid` tells the sign.
+  Rational l = lo, h = hi;
+  int side;
+  if (h <= mid)
+    side = -1;
+  else if (mid <= l)
+    side = 1;
+  else
+    side = (g.sign_at(mid) == g.sign_at(h)) ? -1 : 1; // the root is in (l, mid) or (mid, h)
+  Rational coef = Rational(1) / (Rational(2) * c2);
+  if (c2.sign() < 0) coef = -coef;
+  r.quadratic = QuadraticNumber{mid, side > 0 ? coef : -coef, dn};
+}
+
+} // namespace
+
+PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
+  PencilFacts out;
+  out.a = a0;
+  out.b = b0;
+  if (proportional(a0, b0) || proportional(b0, a0)) {
+    out.kind = PencilKind::Coincident;
+    return out;
+  }
+  out.f = pencil_char_poly(a0, b0);
+  if (out.f.is_zero()) {
+    out.kind = PencilKind::Degenerate;
+    return out;
+  }
+  if (out.f.degree() < 4) {
+    // lambda = infinity is a root: move it to a finite place (research §1.1).
+    for (long k = 0;; ++k) {
+      long t = (k % 2 == 0) ? k / 2 : -(k + 1) / 2; // 0, -1, 1, -2, 2, ...
+      if (!out.f.evaluate(Rational(t)).is_zero()) {
+        out.rebased = true;
+        out.rebase_t = t;
+        out.a = member(Rational(t), a0, b0);
+        out.b = core::scaled(a0, Rational(-1));
+        break;
+      }
+    }
+    out.f = pencil_char_poly(out.a, out.b);
+  }
+  // Seed 002 Lemma 1 quantities, exact.
+  std::array<Rational, 5> fc;
+  for (size_t i = 0; i < 5; ++i) fc[i] = out.f.coeff(static_cast<long>(i));
+  auto inv = quartic_invariants(fc);
+  out.d2 = inv.d2;
+  out.d3 = inv.d3;
+  out.d4 = inv.d4;
+  out.e = inv.e;
+  out.root_pattern = root_pattern_from_signs(inv.d2.sign(), inv.d3.sign(), inv.d4.sign(), inv.e.sign());
+
+  // Square-free decomposition f = c * prod g_m^m; isolate the real roots of prod g_m.
+  UPolyZ fz = out.f.primitive_integer();
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor_squarefree(fac, fz.raw());
+  std::vector<UPolyZ> parts;
+  std::vector<int> exps;
+  UPolyZ sqfree;
+  fmpz_poly_set_si(sqfree.raw_mut(), 1);
+  for (slong i = 0; i < fac->num; ++i) {
+    UPolyZ g;
+    fmpz_poly_set(g.raw_mut(), fac->p + i);
+    g = g.primitive_part();
+    if (g.degree() < 1) continue;
+    fmpz_poly_mul(sqfree.raw_mut(), sqfree.raw(), g.raw());
+    parts.push_back(g);
+    exps.push_back(static_cast<int>(fac->exp[i]));
+  }
+  fmpz_poly_factor_clear(fac);
+
+  RootSeparation sep = isolate_real_roots(sqfree);
+  out.isolation_fallback = sep.used_fallback;
+  out.samples = sep.separators;
+  int real_with_mult = 0;
+  for (size_t i = 0; i + 1 < sep.separators.size(); ++i) {
+    RootFacts r;
+    r.lo = sep.separators[i];
+    r.hi = sep.separators[i + 1];
+    for (size_t j = 0; j < parts.size(); ++j)
+      if (parts[j].sign_at(r.lo) != parts[j].sign_at(r.hi)) {
+        r.multiplicity = exps[j];
+        r.factor = parts[j];
+        break;
+      }
+    if (r.factor.degree() == 1)
+      r.rational_value = Rational(-r.factor.coeff(0), r.factor.coeff(1));
+    else if (r.multiplicity >= 2) // then deg <= 2 (4 = sum of m * deg)
+      locate_in_quadratic(r.factor, r.lo, r.hi, r);
+    real_with_mult += r.multiplicity;
+    out.real_roots.push_back(std::move(r));
+  }
+  out.complex_roots = 4 - real_with_mult;
+  for (size_t j = 0; j < parts.size(); ++j)
+    if (exps[j] == 2 && parts[j].degree() == 2 && count_real_roots(parts[j]) == 0)
+      out.complex_double_pair = true;
+
+  // Index on every interval between real roots.
+  for (const auto& s : out.samples) out.indices.push_back(inertia_descartes(member(s, out.a, out.b)).p);
+  for (size_t i = 0; i < out.indices.size(); ++i)
+    if (out.indices[i] == 0 || out.indices[i] == 4) out.definite_member = true;
+
+  std::optional<QMat> x; // A^-1 B, computed only when a test needs it
+  auto need_x = [&]() -> const QMat& {
+    if (!x) {
+      x.emplace();
+      a_inv_b(*x, out.a, out.b);
+    }
+    return *x;
+  };
+  for (size_t i = 0; i < out.real_roots.size(); ++i) {
+    RootFacts& r = out.real_roots[i];
+    r.index_left = out.indices[i];
+    r.index_right = out.indices[i + 1];
+    if (r.multiplicity == 1) {
+      r.rank = 3;
+      r.sigma = Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
+    } else if (r.rational_value) {
+      Mat4 m = member(*r.rational_value, out.a, out.b);
+      r.rank = rank_exact(m);
+      r.sigma = inertia_descartes(m);
+      if (r.multiplicity == 4 && r.rank == 2)
+        out.quadruple_n2_zero = nilpotent_square_zero(need_x(), *r.rational_value);
+    } else {
+      // Conjugate real double roots: f = c g^2; rank 2 iff A^-1 B is annihilated by g.
+      bool split = quadratic_annihilates(need_x(), r.factor);
+      out.minimal_poly_split = split;
+      r.rank = split ? 2 : 3;
+      r.sigma = inertia_at_quadratic(out.a, out.b, r.factor, *r.quadratic);
+    }
+  }
+  if (out.complex_double_pair) {
+    for (size_t j = 0; j < parts.size(); ++j)
+      if (exps[j] == 2 && parts[j].degree() == 2)
+        out.minimal_poly_split = quadratic_annihilates(need_x(), parts[j]);
+  }
+  return out;
+}
+
+} // namespace surfcert::algebra

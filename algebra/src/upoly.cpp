@@ -1,0 +1,108 @@
+#include "surfcert/algebra/upoly.hpp"
+
+namespace surfcert::algebra {
+
+UPolyZ UPolyZ::from_coeffs(const std::vector<Integer>& c) {
+  UPolyZ p;
+  for (size_t i = 0; i < c.size(); ++i)
+    fmpz_poly_set_coeff_fmpz(p.v_, static_cast<slong>(i), c[i].raw());
+  return p;
+}
+
+Integer UPolyZ::coeff(long i) const {
+  Integer r;
+  fmpz_poly_get_coeff_fmpz(r.raw_mut(), v_, i);
+  return r;
+}
+
+int UPolyZ::sign_at(const Rational& x) const {
+  Rational r;
+  fmpz_poly_evaluate_fmpq(r.raw_mut(), v_, x.raw());
+  return r.sign();
+}
+
+UPolyZ UPolyZ::primitive_part() const {
+  UPolyZ r;
+  fmpz_poly_primitive_part(r.v_, v_);
+  if (fmpz_poly_length(r.v_) > 0 && fmpz_sgn(fmpz_poly_lead(r.v_)) < 0) fmpz_poly_neg(r.v_, r.v_);
+  return r;
+}
+
+UPolyZ UPolyZ::derivative() const {
+  UPolyZ r;
+  fmpz_poly_derivative(r.v_, v_);
+  return r;
+}
+
+static std::string poly_text(const std::vector<Rational>& c, const char* var) {
+  std::string s;
+  for (long i = static_cast<long>(c.size()) - 1; i >= 0; --i) {
+    const Rational& a = c[static_cast<size_t>(i)];
+    if (a.is_zero()) continue;
+    Rational m = core::abs(a);
+    if (s.empty())
+      s += a.sign() < 0 ? "-" : "";
+    else
+      s += a.sign() < 0 ? " - " : " + ";
+    std::string mono = i == 0 ? "" : (i == 1 ? std::string(var) : std::string(var) + "^" + std::to_string(i));
+    if (mono.empty())
+      s += m.to_string();
+    else if (m == Rational(1))
+      s += mono;
+    else
+      s += m.to_string() + "*" + mono;
+  }
+  return s.empty() ? "0" : s;
+}
+
+std::string UPolyZ::to_string(const char* var) const {
+  std::vector<Rational> c;
+  for (long i = 0; i <= degree(); ++i) c.emplace_back(coeff(i));
+  return poly_text(c, var);
+}
+
+UPolyQ UPolyQ::from_coeffs(const std::vector<Rational>& c) {
+  UPolyQ p;
+  for (size_t i = 0; i < c.size(); ++i)
+    fmpq_poly_set_coeff_fmpq(p.v_, static_cast<slong>(i), c[i].raw());
+  return p;
+}
+
+Rational UPolyQ::coeff(long i) const {
+  Rational r;
+  fmpq_poly_get_coeff_fmpq(r.raw_mut(), v_, i);
+  return r;
+}
+
+Rational UPolyQ::evaluate(const Rational& x) const {
+  Rational r;
+  fmpq_poly_evaluate_fmpq(r.raw_mut(), v_, x.raw());
+  return r;
+}
+
+UPolyQ UPolyQ::linear(const Rational& a, const Rational& b) {
+  UPolyQ p;
+  fmpq_poly_set_coeff_fmpq(p.v_, 1, a.raw());
+  fmpq_poly_set_coeff_fmpq(p.v_, 0, b.raw());
+  return p;
+}
+
+UPolyQ UPolyQ::rem(const UPolyQ& g) const {
+  UPolyQ r;
+  fmpq_poly_rem(r.v_, v_, g.v_);
+  return r;
+}
+
+UPolyZ UPolyQ::primitive_integer() const {
+  UPolyZ z;
+  fmpq_poly_get_numerator(z.raw_mut(), v_);
+  return z.primitive_part();
+}
+
+std::string UPolyQ::to_string(const char* var) const {
+  std::vector<Rational> c;
+  for (long i = 0; i <= degree(); ++i) c.push_back(coeff(i));
+  return poly_text(c, var);
+}
+
+} // namespace surfcert::algebra

@@ -1,0 +1,63 @@
+// surfcert::core::QuadricMatrix: a quadric X^T A X = 0 as a symmetric 4x4 rational matrix.
+//
+// X = (x, y, z, w) homogeneous. For an affine equation the upper-left 3x3 block holds the
+// quadratic part, the last row/column half the linear coefficients, A[3][3] the constant.
+// Invariants: symmetric, not identically zero. The matrix is exactly the one of the given
+// equation (no rescaling), so a caller can compare it with its own reading of the input.
+#pragma once
+
+#include "surfcert/core/poly3.hpp"
+#include "surfcert/core/rational.hpp"
+
+#include <array>
+#include <string>
+
+namespace surfcert::core {
+
+using Mat4 = std::array<std::array<Rational, 4>, 4>;
+
+/// Affine kind of a real quadric, decided exactly (used for labels and for the ellipsoid
+/// relation; the QSIC classification itself works on the projective pencil).
+enum class QuadricKind {
+  Ellipsoid,      ///< real ellipsoid (spheres included)
+  ImaginaryEllipsoid, ///< no real point
+  Other           ///< any other quadric (cones, cylinders, paraboloids, hyperboloids, planes ...)
+};
+
+class QuadricMatrix {
+public:
+  /// From a symmetric, nonzero matrix; throws std::invalid_argument otherwise (callers that
+  /// read user input check first and report an InputError with a location).
+  explicit QuadricMatrix(const Mat4& m);
+  /// From a polynomial of total degree 1 or 2 (a plane counts as a degenerate quadric).
+  /// Throws std::invalid_argument if the degree is not 1 or 2.
+  static QuadricMatrix from_poly(const Poly3& p);
+
+  const Mat4& matrix() const { return m_; }
+  const Rational& operator()(int i, int j) const {
+    return m_[static_cast<size_t>(i)][static_cast<size_t>(j)];
+  }
+  Poly3 to_poly() const;
+  /// P^T A P (a change of homogeneous coordinates X = P X').
+  QuadricMatrix congruent(const Mat4& p) const;
+  QuadricKind kind() const;
+  /// True when the upper 3x3 block is a nonzero multiple of the identity and the quadric is
+  /// a real ellipsoid.
+  bool is_sphere() const;
+
+private:
+  Mat4 m_;
+};
+
+bool is_symmetric(const Mat4& m);
+bool is_zero(const Mat4& m);
+Mat4 identity4();
+Mat4 transpose(const Mat4& m);
+Mat4 operator*(const Mat4& a, const Mat4& b);
+Mat4 operator+(const Mat4& a, const Mat4& b);
+Mat4 scaled(const Mat4& a, const Rational& c);
+Rational det(const Mat4& m);
+/// Determinant of the leading k x k block (k = 1..4).
+Rational leading_minor(const Mat4& m, int k);
+
+} // namespace surfcert::core

@@ -1,0 +1,140 @@
+#include "surfcert/core/quadric.hpp"
+
+#include <flint/fmpq_mat.h>
+
+#include <stdexcept>
+
+namespace surfcert::core {
+
+bool is_symmetric(const Mat4& m) {
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i + 1; j < 4; ++j)
+      if (m[i][j] != m[j][i]) return false;
+  return true;
+}
+
+bool is_zero(const Mat4& m) {
+  for (const auto& row : m)
+    for (const auto& v : row)
+      if (!v.is_zero()) return false;
+  return true;
+}
+
+Mat4 identity4() {
+  Mat4 m;
+  for (size_t i = 0; i < 4; ++i) m[i][i] = Rational(1);
+  return m;
+}
+
+Mat4 transpose(const Mat4& m) {
+  Mat4 t;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) t[i][j] = m[j][i];
+  return t;
+}
+
+Mat4 operator*(const Mat4& a, const Mat4& b) {
+  Mat4 r;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      Rational s;
+      for (size_t k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
+      r[i][j] = s;
+    }
+  return r;
+}
+
+Mat4 operator+(const Mat4& a, const Mat4& b) {
+  Mat4 r;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) r[i][j] = a[i][j] + b[i][j];
+  return r;
+}
+
+Mat4 scaled(const Mat4& a, const Rational& c) {
+  Mat4 r;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) r[i][j] = a[i][j] * c;
+  return r;
+}
+
+Rational leading_minor(const Mat4& m, int k) {
+  fmpq_mat_t t;
+  fmpq_mat_init(t, k, k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j)
+      fmpq_set(fmpq_mat_entry(t, i, j), m[static_cast<size_t>(i)][static_cast<size_t>(j)].raw());
+  Rational d;
+  fmpq_mat_det(d.raw_mut(), t);
+  fmpq_mat_clear(t);
+  return d;
+}
+
+Rational det(const Mat4& m) { return leading_minor(m, 4); }
+
+QuadricMatrix::QuadricMatrix(const Mat4& m) : m_(m) {
+  if (!is_symmetric(m)) throw std::invalid_argument("quadric matrix is not symmetric");
+  if (is_zero(m)) throw std::invalid_argument("quadric matrix is zero");
+}
+
+QuadricMatrix QuadricMatrix::from_poly(const Poly3& p) {
+  int d = p.total_degree();
+  if (d < 1 || d > 2) throw std::invalid_argument("quadric needs total degree 1 or 2");
+  Mat4 m;
+  const Rational half(1, 2);
+  for (const auto& [e, c] : p.terms()) {
+    // Index of each variable occurrence: x=0, y=1, z=2, w (missing degree) = 3.
+    int idx[2];
+    int n = 0;
+    for (int v = 0; v < 3; ++v)
+      for (int k = 0; k < e[static_cast<size_t>(v)]; ++k) idx[n++] = v;
+    while (n < 2) idx[n++] = 3;
+    auto i = static_cast<size_t>(idx[0]), j = static_cast<size_t>(idx[1]);
+    if (i == j) {
+      m[i][i] += c;
+    } else {
+      m[i][j] += c * half;
+      m[j][i] += c * half;
+    }
+  }
+  return QuadricMatrix(m);
+}
+
+Poly3 QuadricMatrix::to_poly() const {
+  Poly3 p;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      Poly3::Exponent e{0, 0, 0};
+      if (i < 3) ++e[i];
+      if (j < 3) ++e[j];
+      p.add_term(e, m_[i][j]);
+    }
+  return p;
+}
+
+QuadricMatrix QuadricMatrix::congruent(const Mat4& p) const {
+  return QuadricMatrix(transpose(p) * m_ * p);
+}
+
+QuadricKind QuadricMatrix::kind() const {
+  // Upper 3x3 block definite (up to sign) <=> ellipsoid-like; then real iff det has the
+  // opposite sign of the definite block's sign (e.g. diag(1,1,1,-1): det < 0).
+  Rational d1 = leading_minor(m_, 1), d2 = leading_minor(m_, 2), d3 = leading_minor(m_, 3);
+  int s = d1.sign();
+  bool definite = s != 0 && d2.sign() > 0 && d3.sign() == s;
+  if (!definite) return QuadricKind::Other;
+  // Normalise to a positive definite block: det scales by s^4 = 1, so the real-point test is
+  // det(A) < 0 for both signs.
+  int sd = det(m_).sign();
+  if (sd < 0) return QuadricKind::Ellipsoid;
+  if (sd > 0) return QuadricKind::ImaginaryEllipsoid;
+  return QuadricKind::Other; // a single point (imaginary cone with real vertex)
+}
+
+bool QuadricMatrix::is_sphere() const {
+  if (kind() != QuadricKind::Ellipsoid) return false;
+  return m_[0][1].is_zero() && m_[0][2].is_zero() && m_[1][2].is_zero() && m_[0][0] == m_[1][1] &&
+         m_[1][1] == m_[2][2];
+}
+
+} // namespace surfcert::core

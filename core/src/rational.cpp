@@ -1,0 +1,162 @@
+#include "surfcert/core/rational.hpp"
+
+#include <mpfr.h>
+
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+
+namespace surfcert::core {
+
+std::optional<Integer> Integer::from_string(const std::string& s) {
+  size_t i = 0;
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+  if (i == s.size()) return std::nullopt;
+  for (size_t j = i; j < s.size(); ++j)
+    if (!std::isdigit(static_cast<unsigned char>(s[j]))) return std::nullopt;
+  Integer r;
+  // fmpz_set_str accepts a leading '-' but not '+'.
+  std::string t = s[0] == '+' ? s.substr(1) : s;
+  if (fmpz_set_str(r.raw_mut(), t.c_str(), 10) != 0) return std::nullopt;
+  return r;
+}
+
+std::string Integer::to_string() const {
+  char* c = fmpz_get_str(nullptr, 10, v_);
+  std::string s(c);
+  flint_free(c);
+  return s;
+}
+
+Rational::Rational(const Integer& num, const Integer& den) {
+  fmpq_init(v_);
+  if (den.is_zero()) {
+    fmpq_clear(v_);
+    throw std::domain_error("rational with zero denominator");
+  }
+  fmpq_set_fmpz_frac(v_, num.raw(), den.raw());
+}
+
+Rational Rational::exact_from_double(double d) {
+  if (!std::isfinite(d)) throw std::domain_error("exact_from_double: non-finite double");
+  int e = 0;
+  double m = std::frexp(d, &e); // d = m * 2^e, 0.5 <= |m| < 1
+  // m * 2^53 is an integer exactly (53-bit significand).
+  auto mi = static_cast<long>(std::ldexp(m, 53));
+  Rational r(mi);
+  return r * pow2(static_cast<long>(e) - 53);
+}
+
+std::optional<Rational> Rational::from_string(const std::string& s) {
+  if (s.empty()) return std::nullopt;
+  auto slash = s.find('/');
+  if (slash != std::string::npos) {
+    auto n = Integer::from_string(s.substr(0, slash));
+    std::string ds = s.substr(slash + 1);
+    if (!ds.empty() && (ds[0] == '+' || ds[0] == '-')) return std::nullopt;
+    auto d = Integer::from_string(ds);
+    if (!n || !d || d->is_zero()) return std::nullopt;
+    return Rational(*n, *d);
+  }
+  // Decimal: [sign] digits [. digits] [e|E [sign] digits]
+  size_t i = 0;
+  bool neg = false;
+  if (s[i] == '+' || s[i] == '-') neg = s[i++] == '-';
+  std::string digits;
+  long frac_len = 0;
+  bool any = false;
+  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) {
+    digits += s[i++];
+    any = true;
+  }
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) {
+      digits += s[i++];
+      ++frac_len;
+      any = true;
+    }
+  }
+  if (!any) return std::nullopt;
+  long exp10 = 0;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    std::string es;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) es += s[i++];
+    size_t start = i;
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) es += s[i++];
+    if (i == start || es.size() > 7) return std::nullopt; // |exponent| < 10^6: bounded work
+    exp10 = std::stol(es);
+  }
+  if (i != s.size()) return std::nullopt;
+  auto mant = Integer::from_string(digits);
+  if (!mant) return std::nullopt;
+  long e = exp10 - frac_len;
+  Integer p;
+  fmpz_set_ui(p.raw_mut(), 10);
+  fmpz_pow_ui(p.raw_mut(), p.raw(), static_cast<unsigned long>(e < 0 ? -e : e));
+  Rational r = e < 0 ? Rational(*mant, p) : Rational(*mant * p);
+  return neg ? -r : r;
+}
+
+Integer Rational::num() const {
+  Integer r;
+  fmpz_set(r.raw_mut(), fmpq_numref(v_));
+  return r;
+}
+
+Integer Rational::den() const {
+  Integer r;
+  fmpz_set(r.raw_mut(), fmpq_denref(v_));
+  return r;
+}
+
+std::string Rational::to_string() const {
+  char* c = fmpq_get_str(nullptr, 10, v_);
+  std::string s(c);
+  flint_free(c);
+  return s;
+}
+
+double Rational::to_double_approx() const {
+  mpfr_t t;
+  mpfr_init2(t, 53);
+  fmpq_get_mpfr(t, v_, MPFR_RNDN);
+  double d = mpfr_get_d(t, MPFR_RNDN);
+  mpfr_clear(t);
+  return d;
+}
+
+std::string Rational::to_decimal_approx(int digits) const {
+  if (digits < 1) digits = 1;
+  mpfr_t t;
+  mpfr_init2(t, static_cast<mpfr_prec_t>(digits * 3.33 + 16));
+  fmpq_get_mpfr(t, v_, MPFR_RNDN);
+  std::string fmt = "%." + std::to_string(digits) + "Rg";
+  int n = mpfr_snprintf(nullptr, 0, fmt.c_str(), t);
+  std::string out(static_cast<size_t>(n) + 1, '\0');
+  mpfr_snprintf(out.data(), out.size(), fmt.c_str(), t);
+  out.resize(static_cast<size_t>(n));
+  mpfr_clear(t);
+  return out;
+}
+
+Rational operator/(const Rational& a, const Rational& b) {
+  if (b.is_zero()) throw std::domain_error("rational division by zero");
+  Rational r;
+  fmpq_div(r.v_, a.v_, b.v_);
+  return r;
+}
+
+Rational pow2(long e) {
+  Rational r(1);
+  if (e >= 0)
+    fmpq_mul_2exp(r.raw_mut(), r.raw(), static_cast<ulong>(e));
+  else
+    fmpq_div_2exp(r.raw_mut(), r.raw(), static_cast<ulong>(-e));
+  return r;
+}
+
+Rational abs(const Rational& x) { return x.sign() < 0 ? -x : x; }
+
+} // namespace surfcert::core

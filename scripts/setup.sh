@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs surfcert's build and test dependencies (Debian 12 packages only) and builds it.
+# Usage: scripts/setup.sh [build-dir] [extra cmake args...]   (run as root on a fresh machine)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+pkgs="build-essential cmake libgmp-dev libmpfr-dev libmpfi-dev libflint-dev libflint-arb-dev
+      libcalcium-dev libcgal-dev libboost-dev libgtest-dev librsvg2-bin"
+missing=""
+for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
+if [ -n "$missing" ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  # shellcheck disable=SC2086
+  apt-get install -y -qq $missing >/dev/null
+fi
+build="${1:-build}"; shift || true
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build "$build" -j"$(nproc)"
