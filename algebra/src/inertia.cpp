@@ -32,7 +32,8 @@ Inertia inertia_descartes(const Mat4& m) {
   // Scale to an integer matrix by the lcm of the denominators (a positive factor keeps signs).
   core::Integer l(1);
   for (const auto& row : m)
-    for (const auto& v : row) fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
+    for (const auto& v : row)
+      fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
   fmpz_mat_t z;
   fmpz_mat_init(z, 4, 4);
   for (size_t i = 0; i < 4; ++i)
@@ -79,8 +80,10 @@ Inertia inertia_ldlt(const Mat4& m0) {
           }
       if (pi < 0) break; // the remaining block is zero
       auto I = static_cast<size_t>(pi), J = static_cast<size_t>(pj);
-      for (size_t k = 0; k < 4; ++k) m[I][k] += m[J][k]; // row i += row j
-      for (size_t k = 0; k < 4; ++k) m[k][I] += m[k][J]; // column i += column j
+      for (size_t k = 0; k < 4; ++k)
+        m[I][k] += m[J][k]; // row i += row j
+      for (size_t k = 0; k < 4; ++k)
+        m[k][I] += m[k][J]; // column i += column j
       piv = pi;
     }
     auto P = static_cast<size_t>(piv);
@@ -93,7 +96,8 @@ Inertia inertia_ldlt(const Mat4& m0) {
       for (size_t j = 0; j < 4; ++j)
         if (active[j]) m[i][j] -= f * m[P][j];
     }
-    for (size_t i = 0; i < 4; ++i) m[i][P] = m[P][i] = Rational(0);
+    for (size_t i = 0; i < 4; ++i)
+      m[i][P] = m[P][i] = Rational(0);
   }
   return r;
 }

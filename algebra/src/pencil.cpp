@@ -31,7 +31,8 @@ UPolyQ pencil_char_poly(const Mat4& a, const Mat4& b) {
   Integer l(1);
   for (const Mat4* m : {&a, &b})
     for (const auto& row : *m)
-      for (const auto& v : row) fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
+      for (const auto& v : row)
+        fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
   Mat4T<Integer> ai, bi;
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j) {
@@ -44,7 +45,8 @@ UPolyQ pencil_char_poly(const Mat4& a, const Mat4& b) {
   auto c = pencil_char_coeffs(ai, bi);
   Integer l4 = l * l * l * l;
   std::vector<Rational> q;
-  for (const auto& x : c) q.emplace_back(x, l4);
+  for (const auto& x : c)
+    q.emplace_back(x, l4);
   return UPolyQ::from_coeffs(q);
 }
 
@@ -63,7 +65,8 @@ namespace {
 Mat4 member(const Rational& t, const Mat4& a, const Mat4& b) {
   Mat4 m;
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) m[i][j] = t * a[i][j] - b[i][j];
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = t * a[i][j] - b[i][j];
   return m;
 }
 
@@ -101,7 +104,8 @@ bool quadratic_annihilates(const QMat& x, const UPolyZ& g) {
   fmpq_mat_scalar_mul_fmpz(t.m, x.m, fmpq_numref(c));
   fmpq_mat_add(acc.m, acc.m, t.m);
   fmpz_poly_get_coeff_fmpz(fmpq_numref(c), g.raw(), 0);
-  for (slong i = 0; i < 4; ++i) fmpq_add(fmpq_mat_entry(acc.m, i, i), fmpq_mat_entry(acc.m, i, i), c);
+  for (slong i = 0; i < 4; ++i)
+    fmpq_add(fmpq_mat_entry(acc.m, i, i), fmpq_mat_entry(acc.m, i, i), c);
   bool zero = fmpq_mat_is_zero(acc.m);
   fmpq_clear(c);
   return zero;
@@ -124,7 +128,8 @@ Inertia inertia_at_quadratic(const Mat4& a, const Mat4& b, const UPolyZ& g,
                              const QuadraticNumber& theta) {
   Mat4T<UPolyQ> m;
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) m[i][j] = UPolyQ::linear(a[i][j], -b[i][j]);
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = UPolyQ::linear(a[i][j], -b[i][j]);
   auto c = charpoly_coeffs(m);
   UPolyQ gq;
   fmpq_poly_set_fmpz_poly(gq.raw_mut(), g.raw());
@@ -148,7 +153,8 @@ void locate_in_quadratic(const UPolyZ& g, const Rational& lo, const Rational& hi
   fmpz_sqrt(s.raw_mut(), dn.raw());
   Rational mid = -c1 / (Rational(2) * c2);
   if (s * s == dn) {
-    Rational r1 = (-c1 - Rational(s)) / (Rational(2) * c2), r2 = (-c1 + Rational(s)) / (Rational(2) * c2);
+    Rational r1 = (-c1 - Rational(s)) / (Rational(2) * c2),
+             r2 = (-c1 + Rational(s)) / (Rational(2) * c2);
     r.rational_value = (lo < r1 && r1 < hi) ? r1 : r2;
     return;
   }
@@ -197,13 +203,15 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
   }
   // Seed 002 Lemma 1 quantities, exact.
   std::array<Rational, 5> fc;
-  for (size_t i = 0; i < 5; ++i) fc[i] = out.f.coeff(static_cast<long>(i));
+  for (size_t i = 0; i < 5; ++i)
+    fc[i] = out.f.coeff(static_cast<long>(i));
   auto inv = quartic_invariants(fc);
   out.d2 = inv.d2;
   out.d3 = inv.d3;
   out.d4 = inv.d4;
   out.e = inv.e;
-  out.root_pattern = root_pattern_from_signs(inv.d2.sign(), inv.d3.sign(), inv.d4.sign(), inv.e.sign());
+  out.root_pattern =
+      root_pattern_from_signs(inv.d2.sign(), inv.d3.sign(), inv.d4.sign(), inv.e.sign());
 
   // Square-free decomposition f = c * prod g_m^m; isolate the real roots of prod g_m.
   UPolyZ fz = out.f.primitive_integer();
@@ -252,7 +260,8 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
       out.complex_double_pair = true;
 
   // Index on every interval between real roots.
-  for (const auto& s : out.samples) out.indices.push_back(inertia_descartes(member(s, out.a, out.b)).p);
+  for (const auto& s : out.samples)
+    out.indices.push_back(inertia_descartes(member(s, out.a, out.b)).p);
   for (size_t i = 0; i < out.indices.size(); ++i)
     if (out.indices[i] == 0 || out.indices[i] == 4) out.definite_member = true;
 
@@ -270,7 +279,8 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
     r.index_right = out.indices[i + 1];
     if (r.multiplicity == 1) {
       r.rank = 3;
-      r.sigma = Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
+      r.sigma =
+          Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
     } else if (r.rational_value) {
       Mat4 m = member(*r.rational_value, out.a, out.b);
       r.rank = rank_exact(m);

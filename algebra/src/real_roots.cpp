@@ -50,7 +50,8 @@ std::vector<double> approx_real_roots(const std::vector<double>& coeffs, size_t 
     return std::fabs(a.imag()) / (1 + std::abs(a)) < std::fabs(b.imag()) / (1 + std::abs(b));
   });
   std::vector<double> r;
-  for (size_t i = 0; i < std::min(count, z.size()); ++i) r.push_back(z[i].real());
+  for (size_t i = 0; i < std::min(count, z.size()); ++i)
+    r.push_back(z[i].real());
   std::sort(r.begin(), r.end());
   return r;
 }
@@ -81,7 +82,8 @@ Rational root_bound(const UPolyZ& p) {
     if (m < q) m = q;
   }
   Rational b(1);
-  while (b <= m + Rational(1)) b *= Rational(2);
+  while (b <= m + Rational(1))
+    b *= Rational(2);
   return b;
 }
 
@@ -96,7 +98,8 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     return out;
   }
   std::vector<double> c;
-  for (long i = 0; i <= p.degree(); ++i) c.push_back(p.coeff(i).to_double_approx());
+  for (long i = 0; i <= p.degree(); ++i)
+    c.push_back(p.coeff(i).to_double_approx());
   bool finite = std::all_of(c.begin(), c.end(), [](double x) { return std::isfinite(x); });
   if (finite && c.back() != 0) {
     auto r = approx_real_roots(c, static_cast<size_t>(k));
@@ -105,8 +108,10 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     bool ok = true;
     for (size_t i = 0; i + 1 < r.size() && ok; ++i) {
       double mid = 0.5 * (r[i] + r[i + 1]);
-      if (!std::isfinite(mid)) ok = false;
-      else s.push_back(Rational::exact_from_double(mid));
+      if (!std::isfinite(mid))
+        ok = false;
+      else
+        s.push_back(Rational::exact_from_double(mid));
     }
     s.push_back(bound);
     if (ok && separators_certify(p, s, k)) {

@@ -7,10 +7,12 @@
 namespace surfcert::algebra {
 
 std::string segre_text(std::vector<std::vector<int>> groups) {
-  for (auto& g : groups) std::sort(g.rbegin(), g.rend());
+  for (auto& g : groups)
+    std::sort(g.rbegin(), g.rend());
   auto total = [](const std::vector<int>& g) {
     int s = 0;
-    for (int x : g) s += x;
+    for (int x : g)
+      s += x;
     return s;
   };
   std::stable_sort(groups.begin(), groups.end(), [&](const auto& x, const auto& y) {
@@ -21,7 +23,8 @@ std::string segre_text(std::vector<std::vector<int>> groups) {
   std::string s = "[";
   for (const auto& g : groups) {
     if (g.size() > 1) s += "(";
-    for (int x : g) s += std::to_string(x);
+    for (int x : g)
+      s += std::to_string(x);
     if (g.size() > 1) s += ")";
   }
   return s + "]";
@@ -32,7 +35,7 @@ static std::vector<int> blocks_from_rank(int m, int r, bool n2_zero) {
   int nblocks = 4 - r; // geometric multiplicity
   if (nblocks <= 1) return {m};
   if (nblocks == m) return std::vector<int>(static_cast<size_t>(m), 1);
-  if (m == 3) return {2, 1};                                  // 2 blocks
+  if (m == 3) return {2, 1}; // 2 blocks
   if (m == 4 && nblocks == 2) return n2_zero ? std::vector<int>{2, 2} : std::vector<int>{3, 1};
   return {2, 1, 1}; // m = 4, 3 blocks
 }
@@ -45,7 +48,8 @@ std::string segre_from_facts(const PencilFacts& facts) {
     for (int k = 0; k < 2; ++k)
       groups.push_back(facts.minimal_poly_split ? std::vector<int>{1, 1} : std::vector<int>{2});
   } else {
-    for (int k = 0; k < facts.complex_roots; ++k) groups.push_back({1});
+    for (int k = 0; k < facts.complex_roots; ++k)
+      groups.push_back({1});
   }
   return segre_text(groups);
 }
@@ -113,12 +117,15 @@ int multiplicity_in(const UPolyQ& q, const UPolyZ& p) {
 std::string segre_by_invariant_factors(const core::Mat4& a, const core::Mat4& b) {
   PMat m(4, std::vector<UPolyQ>(4));
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) m[i][j] = UPolyQ::linear(a[i][j], -b[i][j]);
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = UPolyQ::linear(a[i][j], -b[i][j]);
   UPolyQ d[5];
   d[0] = UPolyQ(1);
-  for (int k = 1; k <= 4; ++k) d[k] = minors_gcd(m, k);
+  for (int k = 1; k <= 4; ++k)
+    d[k] = minors_gcd(m, k);
   UPolyQ inv[5]; // inv[k] = d_k / d_(k-1)
-  for (int k = 1; k <= 4; ++k) fmpq_poly_div(inv[k].raw_mut(), d[k].raw(), d[k - 1].raw());
+  for (int k = 1; k <= 4; ++k)
+    fmpq_poly_div(inv[k].raw_mut(), d[k].raw(), d[k - 1].raw());
   // Irreducible factors of f = d_4 (up to a constant).
   UPolyZ fz = d[4].primitive_integer();
   fmpz_poly_factor_t fac;
@@ -133,7 +140,8 @@ std::string segre_by_invariant_factors(const core::Mat4& a, const core::Mat4& b)
       int e = multiplicity_in(inv[k], p);
       if (e > 0) g.push_back(e);
     }
-    for (long r = 0; r < p.degree(); ++r) groups.push_back(g); // every root of p alike
+    for (long r = 0; r < p.degree(); ++r)
+      groups.push_back(g); // every root of p alike
   }
   fmpz_poly_factor_clear(fac);
   // The degree of f may be < 4 (root at infinity): the missing blocks belong to l = infinity,
@@ -143,10 +151,12 @@ std::string segre_by_invariant_factors(const core::Mat4& a, const core::Mat4& b)
     // Apply the same computation to the reversed pencil A - l B at its root l = 0.
     PMat r(4, std::vector<UPolyQ>(4));
     for (size_t i = 0; i < 4; ++i)
-      for (size_t j = 0; j < 4; ++j) r[i][j] = UPolyQ::linear(-b[i][j], a[i][j]);
+      for (size_t j = 0; j < 4; ++j)
+        r[i][j] = UPolyQ::linear(-b[i][j], a[i][j]);
     UPolyQ e[5];
     e[0] = UPolyQ(1);
-    for (int k = 1; k <= 4; ++k) e[k] = minors_gcd(r, k);
+    for (int k = 1; k <= 4; ++k)
+      e[k] = minors_gcd(r, k);
     UPolyZ lin = UPolyZ::from_coeffs({Integer(0), Integer(1)});
     std::vector<int> g;
     for (int k = 4; k >= 1; --k) {

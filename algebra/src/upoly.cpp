@@ -44,7 +44,8 @@ static std::string poly_text(const std::vector<Rational>& c, const char* var) {
       s += a.sign() < 0 ? "-" : "";
     else
       s += a.sign() < 0 ? " - " : " + ";
-    std::string mono = i == 0 ? "" : (i == 1 ? std::string(var) : std::string(var) + "^" + std::to_string(i));
+    std::string mono =
+        i == 0 ? "" : (i == 1 ? std::string(var) : std::string(var) + "^" + std::to_string(i));
     if (mono.empty())
       s += m.to_string();
     else if (m == Rational(1))
@@ -57,7 +58,8 @@ static std::string poly_text(const std::vector<Rational>& c, const char* var) {
 
 std::string UPolyZ::to_string(const char* var) const {
   std::vector<Rational> c;
-  for (long i = 0; i <= degree(); ++i) c.emplace_back(coeff(i));
+  for (long i = 0; i <= degree(); ++i)
+    c.emplace_back(coeff(i));
   return poly_text(c, var);
 }
 
@@ -101,7 +103,8 @@ UPolyZ UPolyQ::primitive_integer() const {
 
 std::string UPolyQ::to_string(const char* var) const {
   std::vector<Rational> c;
-  for (long i = 0; i <= degree(); ++i) c.push_back(coeff(i));
+  for (long i = 0; i <= degree(); ++i)
+    c.push_back(coeff(i));
   return poly_text(c, var);
 }
 

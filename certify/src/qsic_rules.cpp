@@ -18,10 +18,14 @@ int decide_tu_case(const PencilFacts& f) {
   if (multiple.empty() && !f.complex_double_pair) {
     // All roots simple: [1111].
     switch (roots.size()) {
-    case 4: return def ? 2 : 1;
-    case 2: return 3;
-    case 0: return 4;
-    default: return fail("a quartic with simple roots has 0, 2 or 4 real roots");
+    case 4:
+      return def ? 2 : 1;
+    case 2:
+      return 3;
+    case 0:
+      return 4;
+    default:
+      return fail("a quartic with simple roots has 0, 2 or 4 real roots");
     }
   }
   if (f.complex_double_pair) return f.minimal_poly_split ? 31 : 11;
@@ -30,7 +34,8 @@ int decide_tu_case(const PencilFacts& f) {
     // Two real double roots (rational, or conjugate in Q(sqrt d)).
     const RootFacts& x = *multiple[0];
     const RootFacts& y = *multiple[1];
-    if (x.multiplicity != 2 || y.multiplicity != 2) return fail("two multiple roots must be double");
+    if (x.multiplicity != 2 || y.multiplicity != 2)
+      return fail("two multiple roots must be double");
     if (x.rank == 3 && y.rank == 3) return 10;
     if (x.rank == 2 && y.rank == 2) {
       int semi = (x.sigma.semidefinite() ? 1 : 0) + (y.sigma.semidefinite() ? 1 : 0);

@@ -19,7 +19,8 @@ Poly3 Poly3::variable(int var) {
 
 int Poly3::total_degree() const {
   int d = -1;
-  for (const auto& [e, c] : terms_) d = std::max(d, e[0] + e[1] + e[2]);
+  for (const auto& [e, c] : terms_)
+    d = std::max(d, e[0] + e[1] + e[2]);
   return d;
 }
 
@@ -41,11 +42,14 @@ void Poly3::add_term(const Exponent& e, const Rational& c) {
 
 Poly3 operator+(const Poly3& a, const Poly3& b) {
   Poly3 r = a;
-  for (const auto& [e, c] : b.terms_) r.add_term(e, c);
+  for (const auto& [e, c] : b.terms_)
+    r.add_term(e, c);
   return r;
 }
 
-Poly3 operator-(const Poly3& a, const Poly3& b) { return a + (-b); }
+Poly3 operator-(const Poly3& a, const Poly3& b) {
+  return a + (-b);
+}
 
 Poly3 operator*(const Poly3& a, const Poly3& b) {
   Poly3 r;
@@ -57,14 +61,16 @@ Poly3 operator*(const Poly3& a, const Poly3& b) {
 
 Poly3 Poly3::operator-() const {
   Poly3 r = *this;
-  for (auto& [e, c] : r.terms_) c = -c;
+  for (auto& [e, c] : r.terms_)
+    c = -c;
   return r;
 }
 
 Poly3 Poly3::scaled(const Rational& s) const {
   if (s.is_zero()) return Poly3();
   Poly3 r = *this;
-  for (auto& [e, c] : r.terms_) c *= s;
+  for (auto& [e, c] : r.terms_)
+    c *= s;
   return r;
 }
 
@@ -84,7 +90,8 @@ Rational Poly3::evaluate(const Rational& x, const Rational& y, const Rational& z
   for (const auto& [e, c] : terms_) {
     Rational t = c;
     for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < e[static_cast<size_t>(i)]; ++k) t *= *v[i];
+      for (int k = 0; k < e[static_cast<size_t>(i)]; ++k)
+        t *= *v[i];
     s += t;
   }
   return s;

@@ -22,14 +22,16 @@ bool is_zero(const Mat4& m) {
 
 Mat4 identity4() {
   Mat4 m;
-  for (size_t i = 0; i < 4; ++i) m[i][i] = Rational(1);
+  for (size_t i = 0; i < 4; ++i)
+    m[i][i] = Rational(1);
   return m;
 }
 
 Mat4 transpose(const Mat4& m) {
   Mat4 t;
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) t[i][j] = m[j][i];
+    for (size_t j = 0; j < 4; ++j)
+      t[i][j] = m[j][i];
   return t;
 }
 
@@ -38,7 +40,8 @@ Mat4 operator*(const Mat4& a, const Mat4& b) {
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j) {
       Rational s;
-      for (size_t k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
+      for (size_t k = 0; k < 4; ++k)
+        s += a[i][k] * b[k][j];
       r[i][j] = s;
     }
   return r;
@@ -47,14 +50,16 @@ Mat4 operator*(const Mat4& a, const Mat4& b) {
 Mat4 operator+(const Mat4& a, const Mat4& b) {
   Mat4 r;
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) r[i][j] = a[i][j] + b[i][j];
+    for (size_t j = 0; j < 4; ++j)
+      r[i][j] = a[i][j] + b[i][j];
   return r;
 }
 
 Mat4 scaled(const Mat4& a, const Rational& c) {
   Mat4 r;
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) r[i][j] = a[i][j] * c;
+    for (size_t j = 0; j < 4; ++j)
+      r[i][j] = a[i][j] * c;
   return r;
 }
 
@@ -70,7 +75,9 @@ Rational leading_minor(const Mat4& m, int k) {
   return d;
 }
 
-Rational det(const Mat4& m) { return leading_minor(m, 4); }
+Rational det(const Mat4& m) {
+  return leading_minor(m, 4);
+}
 
 QuadricMatrix::QuadricMatrix(const Mat4& m) : m_(m) {
   if (!is_symmetric(m)) throw std::invalid_argument("quadric matrix is not symmetric");
@@ -87,8 +94,10 @@ QuadricMatrix QuadricMatrix::from_poly(const Poly3& p) {
     int idx[2];
     int n = 0;
     for (int v = 0; v < 3; ++v)
-      for (int k = 0; k < e[static_cast<size_t>(v)]; ++k) idx[n++] = v;
-    while (n < 2) idx[n++] = 3;
+      for (int k = 0; k < e[static_cast<size_t>(v)]; ++k)
+        idx[n++] = v;
+    while (n < 2)
+      idx[n++] = 3;
     auto i = static_cast<size_t>(idx[0]), j = static_cast<size_t>(idx[1]);
     if (i == j) {
       m[i][i] += c;

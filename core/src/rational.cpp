@@ -84,7 +84,8 @@ std::optional<Rational> Rational::from_string(const std::string& s) {
     std::string es;
     if (i < s.size() && (s[i] == '+' || s[i] == '-')) es += s[i++];
     size_t start = i;
-    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) es += s[i++];
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+      es += s[i++];
     if (i == start || es.size() > 7) return std::nullopt; // |exponent| < 10^6: bounded work
     exp10 = std::stol(es);
   }
@@ -157,6 +158,8 @@ Rational pow2(long e) {
   return r;
 }
 
-Rational abs(const Rational& x) { return x.sign() < 0 ? -x : x; }
+Rational abs(const Rational& x) {
+  return x.sign() < 0 ? -x : x;
+}
 
 } // namespace surfcert::core

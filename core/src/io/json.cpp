@@ -443,10 +443,15 @@ void dump_string(std::string& out, const std::string& s) {
       out += "\\t";
       break;
     default:
-      if (b < 0x20)
-        out += "\\u00" + hex_byte(b);
-      else
+      if (b < 0x20) {
+        // Lower-case hex, as JSON.stringify and Python's json.dumps write it.
+        static const char* const hex = "0123456789abcdef";
+        out += "\\u00";
+        out += hex[b >> 4];
+        out += hex[b & 0xF];
+      } else {
         out += static_cast<char>(b);
+      }
     }
     ++i;
   }

@@ -28,8 +28,8 @@ enum class PencilKind {
 
 struct RootFacts {
   int multiplicity = 1;
-  int rank = 3;      ///< rank of theta*A - B
-  Inertia sigma;     ///< inertia of theta*A - B
+  int rank = 3;        ///< rank of theta*A - B
+  Inertia sigma;       ///< inertia of theta*A - B
   int index_left = 0;  ///< index on the interval left of theta
   int index_right = 0; ///< index on the interval right of theta
   Rational lo, hi;     ///< the root is the unique root of `factor` in (lo, hi) (or lo == hi)
@@ -41,16 +41,16 @@ struct RootFacts {
 
 struct PencilFacts {
   PencilKind kind = PencilKind::Regular;
-  core::Mat4 a, b;        ///< the basis used (after re-basing)
-  bool rebased = false;   ///< true when the given A was singular
-  long rebase_t = 0;      ///< then a = t*A0 - B0, b = -A0, l0 = t + 1/l
-  UPolyQ f;               ///< det(l*a - b)
-  Rational d2, d3, d4, e; ///< seed 002 Lemma 1 quantities of f
+  core::Mat4 a, b;          ///< the basis used (after re-basing)
+  bool rebased = false;     ///< true when the given A was singular
+  long rebase_t = 0;        ///< then a = t*A0 - B0, b = -A0, l0 = t + 1/l
+  UPolyQ f;                 ///< det(l*a - b)
+  Rational d2, d3, d4, e;   ///< seed 002 Lemma 1 quantities of f
   std::string root_pattern; ///< "R1".."R9"
   std::vector<RootFacts> real_roots;
-  std::vector<Rational> samples; ///< rational points between the real roots (size k+1)
-  std::vector<int> indices;      ///< index at each sample point
-  int complex_roots = 0;         ///< number of non-real roots, with multiplicity
+  std::vector<Rational> samples;    ///< rational points between the real roots (size k+1)
+  std::vector<int> indices;         ///< index at each sample point
+  int complex_roots = 0;            ///< number of non-real roots, with multiplicity
   bool complex_double_pair = false; ///< f = c*g^2, g irreducible with complex roots
   bool minimal_poly_split = false;  ///< g(A^-1 B) == 0 for that g (or for a real conjugate pair)
   bool quadruple_n2_zero = false;   ///< (A^-1 B - theta I)^2 == 0 at a quadruple root of rank 2

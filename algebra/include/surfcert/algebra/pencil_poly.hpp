@@ -20,8 +20,12 @@ namespace detail {
 template <class T>
 std::array<T, 3> pencil_minor2(const Mat4T<T>& a, const Mat4T<T>& b, int r1, int r2, int c1,
                                int c2) {
-  auto A = [&](int i, int j) -> const T& { return a[static_cast<size_t>(i)][static_cast<size_t>(j)]; };
-  auto B = [&](int i, int j) -> const T& { return b[static_cast<size_t>(i)][static_cast<size_t>(j)]; };
+  auto A = [&](int i, int j) -> const T& {
+    return a[static_cast<size_t>(i)][static_cast<size_t>(j)];
+  };
+  auto B = [&](int i, int j) -> const T& {
+    return b[static_cast<size_t>(i)][static_cast<size_t>(j)];
+  };
   // (l*a11 - b11)(l*a22 - b22) - (l*a12 - b12)(l*a21 - b21)
   T q2 = A(r1, c1) * A(r2, c2) - A(r1, c2) * A(r2, c1);
   T q1 = (A(r1, c2) * B(r2, c1) + B(r1, c2) * A(r2, c1)) -
@@ -53,9 +57,7 @@ template <class T> std::array<T, 5> pencil_char_coeffs(const Mat4T<T>& a, const 
 }
 
 /// D2, D3, D4, E of f = a l^4 + b l^3 + c l^2 + d l + e (seed 002 Lemma 1, repaired).
-template <class T> struct QuarticInvariants {
-  T d2, d3, d4, e;
-};
+template <class T> struct QuarticInvariants { T d2, d3, d4, e; };
 
 template <class T> QuarticInvariants<T> quartic_invariants(const std::array<T, 5>& f) {
   const T& a = f[4];
@@ -80,11 +82,14 @@ template <class T> QuarticInvariants<T> quartic_invariants(const std::array<T, 5
 
 /// c3, c2, c1, c0 (as [0]=c0 ... [3]=c3) of det(mu*I - M) = mu^4 + c3 mu^3 + ... + c0.
 template <class T> std::array<T, 4> charpoly_coeffs(const Mat4T<T>& m) {
-  auto M = [&](int i, int j) -> const T& { return m[static_cast<size_t>(i)][static_cast<size_t>(j)]; };
+  auto M = [&](int i, int j) -> const T& {
+    return m[static_cast<size_t>(i)][static_cast<size_t>(j)];
+  };
   T tr = M(0, 0) + M(1, 1) + M(2, 2) + M(3, 3);
   T s2(0);
   for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) s2 = s2 + (M(i, i) * M(j, j) - M(i, j) * M(j, i));
+    for (int j = i + 1; j < 4; ++j)
+      s2 = s2 + (M(i, i) * M(j, j) - M(i, j) * M(j, i));
   // Sum of principal 3x3 minors and the determinant via 2x2 minors of rows {0,1}, {2,3}.
   T s3(0);
   for (int skip = 0; skip < 4; ++skip) {

@@ -19,7 +19,7 @@ struct Morphology {
   const char* id;
   const char* segre;
   const char* description;
-  int loops;            ///< quartic branches (smooth or singular closed curves)
+  int loops; ///< quartic branches (smooth or singular closed curves)
   int isolated_points;
   int lines;
   int conics;

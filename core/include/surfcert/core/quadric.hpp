@@ -19,9 +19,9 @@ using Mat4 = std::array<std::array<Rational, 4>, 4>;
 /// Affine kind of a real quadric, decided exactly (used for labels and for the ellipsoid
 /// relation; the QSIC classification itself works on the projective pencil).
 enum class QuadricKind {
-  Ellipsoid,      ///< real ellipsoid (spheres included)
+  Ellipsoid,          ///< real ellipsoid (spheres included)
   ImaginaryEllipsoid, ///< no real point
-  Other           ///< any other quadric (cones, cylinders, paraboloids, hyperboloids, planes ...)
+  Other ///< any other quadric (cones, cylinders, paraboloids, hyperboloids, planes ...)
 };
 
 class QuadricMatrix {

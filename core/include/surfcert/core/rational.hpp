@@ -173,7 +173,11 @@ private:
 Rational pow2(long e);
 Rational abs(const Rational& x);
 
-inline std::ostream& operator<<(std::ostream& os, const Integer& x) { return os << x.to_string(); }
-inline std::ostream& operator<<(std::ostream& os, const Rational& x) { return os << x.to_string(); }
+inline std::ostream& operator<<(std::ostream& os, const Integer& x) {
+  return os << x.to_string();
+}
+inline std::ostream& operator<<(std::ostream& os, const Rational& x) {
+  return os << x.to_string();
+}
 
 } // namespace surfcert::core

@@ -1,0 +1,65 @@
+// surfcert::certify::classify_qsic: the certified topology of the intersection of two quadrics.
+//
+// What a QsicResult represents: the morphology (one of 35, morphology.hpp) of the real
+// intersection curve of two quadrics, the pencil facts that decide it, and how certain it is.
+// Invariants: status Certified only when every sign used was decided exactly (mode exact) or
+// by an interval filter that proved it (mode filtered; otherwise the exact path ran and
+// exact_fallback is true). Mode float never yields Certified (status Uncertified).
+// Degenerate pencils (det(lA - B) == 0) and coincident quadrics are certified outcomes of
+// their own (pencil != Regular, tu_case == 0), never errors.
+#pragma once
+
+#include "surfcert/algebra/pencil.hpp"
+#include "surfcert/certify/morphology.hpp"
+#include "surfcert/certify/pencil_filter.hpp"
+#include "surfcert/core/quadric.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+enum class Mode { Exact, Filtered, Float };
+enum class Status { Certified, Undecided, Uncertified, Error };
+
+const char* to_string(Mode m);
+const char* to_string(Status s);
+std::optional<Mode> parse_mode(const std::string& s);
+
+/// A real singular or tangency point of the QSIC, exact when `exact` is set.
+struct SpecialPoint {
+  std::string kind;                  ///< "node", "acnode", "cusp", "crossing", "contact", ...
+  bool exact = false;                ///< coordinates below are exact
+  bool at_infinity = false;          ///< projective point with w = 0 (direction given)
+  std::array<std::string, 3> coords; ///< exact text (rational or a + b*sqrt(d))
+  std::array<double, 3> approx{};    ///< decimal approximations
+};
+
+struct QsicResult {
+  Status status = Status::Error;
+  Mode mode = Mode::Filtered;
+  algebra::PencilKind pencil = algebra::PencilKind::Regular;
+  int tu_case = 0;
+  const Morphology* morphology = nullptr;
+  std::string segre;
+  algebra::PencilFacts facts;                      ///< exact (or, in float mode, approximate) facts
+  bool exact_fallback = false;                     ///< filtered mode needed exact arithmetic
+  std::optional<FloatInvariants> float_invariants; ///< float mode only
+  std::string note;                                ///< why undecided / error
+  std::string ellipsoid_relation; ///< empty unless both quadrics are real ellipsoids
+  std::string containment;        ///< "a_inside_b" / "b_inside_a" when nested/touching inside
+  std::vector<SpecialPoint> special_points;
+  bool special_points_complete = true; ///< false when some were not computed exactly
+};
+
+/// Decision only (what the benchmark times): pencil facts, Tu case, Segre characteristic.
+QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode);
+
+/// Everything a report shows beyond the decision: exact invariants (filtered mode), special
+/// points, the ellipsoid relation. Idempotent.
+void complete_report_data(QsicResult& r, const core::QuadricMatrix& a,
+                          const core::QuadricMatrix& b);
+
+} // namespace surfcert::certify

@@ -1,0 +1,50 @@
+// surfcert::certify scenes and batches: the `run` and `batch` front ends.
+//
+// A Scene names surfaces and lists queries; read_scene validates the whole document before
+// anything is computed (so a bad scene produces an error and no report). run_query computes
+// only what its op needs: "classify" builds the pencil and decides the topology, nothing else.
+// process_batch reads JSON lines and writes one JSON line per input line, in input order,
+// using N worker threads; a bad line yields an error line and the batch goes on.
+#pragma once
+
+#include "surfcert/certify/qsic.hpp"
+#include "surfcert/core/io/json.hpp"
+
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surfcert::certify {
+
+struct Query {
+  core::io::Json id; ///< as given (null when absent)
+  std::string op;    ///< "classify"
+  std::string a, b;  ///< surface names
+  Mode mode = Mode::Filtered;
+};
+
+struct Scene {
+  std::vector<std::pair<std::string, core::QuadricMatrix>> surfaces;
+  std::vector<Query> queries;
+  const core::QuadricMatrix& surface(const std::string& name) const;
+};
+
+/// Throws core::InputError on any problem (with JSON path, line, column).
+Scene read_scene(const core::io::Json& doc, const std::string& source, Mode default_mode);
+
+/// One result object: {"id", "op", "a", "b", "status", "mode", "result" | "error"}.
+core::io::Json run_query(const Scene& s, const Query& q, std::string* text_summary = nullptr);
+
+struct BatchStats {
+  long lines = 0, errors = 0, fallbacks = 0, undecided = 0;
+};
+
+/// Reads JSON lines from `in`, writes result lines to `out` in input order.
+BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads);
+
+/// One batch line -> one result line (exposed for tests). line_no is 1-based.
+core::io::Json process_batch_line(const std::string& line, long line_no, Mode default_mode,
+                                  bool* fallback = nullptr);
+
+} // namespace surfcert::certify

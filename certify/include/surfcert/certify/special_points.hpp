@@ -1,0 +1,21 @@
+// surfcert::certify::special_points: the real singular / tangency points of the QSIC, exactly.
+//
+// A real point X is singular on the QSIC iff (theta*A - B) X = 0 and X^T A X = 0 for a root
+// theta of f (research §2.2). At a rational multiple root the kernel of theta*A - B is
+// computed over Q: rank 3 gives one point (cone vertex: node, acnode, cusp, crossing of two
+// lines), rank 2 a line meeting Q_A in at most two points (crossings of conics, contact
+// points, vertices of line quadrilaterals), rank 1 a plane whose pole is the crossing point
+// of two double lines. Coordinates are rational or in Q(sqrt d). Points from roots in
+// Q(sqrt d) (conjugate double roots) are not computed: `complete` is then set to false.
+#pragma once
+
+#include "surfcert/certify/qsic.hpp"
+
+#include <vector>
+
+namespace surfcert::certify {
+
+std::vector<SpecialPoint> special_points(const algebra::PencilFacts& facts, int tu_case,
+                                         bool& complete);
+
+} // namespace surfcert::certify

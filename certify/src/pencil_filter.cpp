@@ -1,0 +1,426 @@
+// Interval filter and float analysis of a pencil. Compiled with -frounding-math
+// -ffp-contract=off (see the top-level CMakeLists): CGAL::Interval_nt relies on them.
+#include "surfcert/certify/pencil_filter.hpp"
+
+#include "surfcert/algebra/pencil_poly.hpp"
+#include "surfcert/algebra/real_roots.hpp"
+
+#include <CGAL/FPU.h>
+#include <CGAL/Interval_nt.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace surfcert::certify {
+
+using algebra::Inertia;
+using algebra::Mat4T;
+using algebra::PencilFacts;
+using algebra::RootFacts;
+using core::Mat4;
+using core::Rational;
+
+namespace {
+
+using I = CGAL::Interval_nt<false>; // requires rounding towards +infinity (Protect_FPU_rounding)
+
+// Interval enclosing an integer: exact when it has at most 53 bits, else widened by 2 ulps.
+I enclose(const fmpz* z) {
+  double x = fmpz_get_d(z);
+  if (fmpz_bits(z) <= 53) return I(x);
+  double lo = std::nextafter(std::nextafter(x, -INFINITY), -INFINITY);
+  double hi = std::nextafter(std::nextafter(x, INFINITY), INFINITY);
+  return I(lo, hi);
+}
+
+I enclose(const Rational& q) {
+  I n = enclose(fmpq_numref(q.raw()));
+  if (fmpz_is_one(fmpq_denref(q.raw()))) return n;
+  return n / enclose(fmpq_denref(q.raw()));
+}
+
+// -1, 0, +1 when certain, 2 when the interval straddles zero without being {0}.
+int isign(const I& x) {
+  if (x.inf() > 0) return 1;
+  if (x.sup() < 0) return -1;
+  if (x.inf() == 0 && x.sup() == 0) return 0;
+  return 2;
+}
+
+I horner(const std::array<I, 5>& f, double x) {
+  I r = f[4];
+  for (int i = 3; i >= 0; --i)
+    r = r * x + f[static_cast<size_t>(i)];
+  return r;
+}
+
+} // namespace
+
+std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b0) {
+  CGAL::Protect_FPU_rounding<true> guard; // interval arithmetic needs rounding upwards
+  Mat4T<I> a, b;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j) {
+      a[i][j] = a[j][i] = enclose(a0[i][j]);
+      b[i][j] = b[j][i] = enclose(b0[i][j]);
+    }
+  auto f = algebra::pencil_char_coeffs(a, b);
+  if (isign(f[4]) == 2 || isign(f[4]) == 0) return std::nullopt; // det A ~ 0: exact path re-bases
+  auto q = algebra::quartic_invariants(f);
+  int s4 = isign(q.d4);
+  if (s4 == 0 || s4 == 2) return std::nullopt; // possibly a multiple root: exact path
+  int k;
+  if (s4 < 0) {
+    k = 2;
+  } else {
+    int s3 = isign(q.d3), s2 = isign(q.d2);
+    if (s3 == 2 || s2 == 2) return std::nullopt;
+    k = (s3 > 0 && s2 > 0) ? 4 : 0;
+  }
+  // Separators from float root guesses, certified by alternating certain signs of f.
+  std::vector<double> seps;
+  if (k == 0) {
+    seps.push_back(0.0);
+  } else {
+    std::vector<double> c(5);
+    for (size_t i = 0; i < 5; ++i)
+      c[i] = CGAL::to_double(f[i]);
+    auto r = algebra::approx_real_roots(c, static_cast<size_t>(k));
+    double span = std::max(1.0, std::fabs(r.back() - r.front()));
+    seps.push_back(r.front() - span);
+    for (size_t i = 0; i + 1 < r.size(); ++i)
+      seps.push_back(0.5 * (r[i] + r[i + 1]));
+    seps.push_back(r.back() + span);
+  }
+  int prev = 0;
+  for (size_t i = 0; i < seps.size(); ++i) {
+    if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return std::nullopt;
+    int sg = isign(horner(f, seps[i]));
+    if (sg == 0 || sg == 2 || (i > 0 && sg == prev)) return std::nullopt;
+    prev = sg;
+  }
+  // Indices: Descartes on the interval charpoly of s*A - B (all signs must be certain).
+  PencilFacts out;
+  out.a = a0;
+  out.b = b0;
+  for (double s : seps) {
+    Mat4T<I> m;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        m[i][j] = a[i][j] * s - b[i][j];
+    auto c = algebra::charpoly_coeffs(m);
+    int sg[4];
+    for (size_t t = 0; t < 4; ++t) {
+      sg[t] = isign(c[t]);
+      if (sg[t] == 2) return std::nullopt;
+    }
+    out.indices.push_back(algebra::inertia_from_charpoly_signs(sg).p);
+    out.samples.push_back(Rational::exact_from_double(s));
+  }
+  for (int idx : out.indices)
+    if (idx == 0 || idx == 4) out.definite_member = true;
+  for (int i = 0; i < k; ++i) {
+    RootFacts r;
+    r.lo = out.samples[static_cast<size_t>(i)];
+    r.hi = out.samples[static_cast<size_t>(i) + 1];
+    r.index_left = out.indices[static_cast<size_t>(i)];
+    r.index_right = out.indices[static_cast<size_t>(i) + 1];
+    r.sigma =
+        Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
+    out.real_roots.push_back(std::move(r));
+  }
+  out.complex_roots = 4 - k;
+  out.root_pattern = k == 4 ? "R1" : (k == 2 ? "R3" : "R2");
+  return out;
+}
+
+void complete_exact_invariants(PencilFacts& facts) {
+  facts.f = algebra::pencil_char_poly(facts.a, facts.b);
+  std::array<Rational, 5> fc;
+  for (size_t i = 0; i < 5; ++i)
+    fc[i] = facts.f.coeff(static_cast<long>(i));
+  auto q = algebra::quartic_invariants(fc);
+  facts.d2 = q.d2;
+  facts.d3 = q.d3;
+  facts.d4 = q.d4;
+  facts.e = q.e;
+  facts.root_pattern =
+      algebra::root_pattern_from_signs(q.d2.sign(), q.d3.sign(), q.d4.sign(), q.e.sign());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Float mode (uncertified).
+
+namespace {
+
+// Eigenvalues of a symmetric 4x4 matrix by cyclic Jacobi rotations.
+std::array<double, 4> eigenvalues(Mat4T<double> m) {
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    double off = 0;
+    for (size_t p = 0; p < 4; ++p)
+      for (size_t q = p + 1; q < 4; ++q)
+        off += m[p][q] * m[p][q];
+    if (off < 1e-300) break;
+    for (size_t p = 0; p < 4; ++p)
+      for (size_t q = p + 1; q < 4; ++q) {
+        if (m[p][q] == 0) continue;
+        double theta = (m[q][q] - m[p][p]) / (2 * m[p][q]);
+        double t = (theta >= 0 ? 1 : -1) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
+        double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (size_t k = 0; k < 4; ++k) {
+          double mkp = m[k][p], mkq = m[k][q];
+          m[k][p] = c * mkp - s * mkq;
+          m[k][q] = s * mkp + c * mkq;
+        }
+        for (size_t k = 0; k < 4; ++k) {
+          double mpk = m[p][k], mqk = m[q][k];
+          m[p][k] = c * mpk - s * mqk;
+          m[q][k] = s * mpk + c * mqk;
+        }
+      }
+  }
+  return {m[0][0], m[1][1], m[2][2], m[3][3]};
+}
+
+Inertia float_inertia(const Mat4T<double>& m, double tol) {
+  auto ev = eigenvalues(m);
+  double scale = 0;
+  for (double e : ev)
+    scale = std::max(scale, std::fabs(e));
+  Inertia r;
+  for (double e : ev) {
+    if (e > tol * scale)
+      ++r.p;
+    else if (e < -tol * scale)
+      ++r.n;
+  }
+  return r;
+}
+
+Mat4T<double> member(double t, const Mat4T<double>& a, const Mat4T<double>& b) {
+  Mat4T<double> m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = t * a[i][j] - b[i][j];
+  return m;
+}
+
+// X = A^-1 B by Gaussian elimination with partial pivoting.
+Mat4T<double> solve(Mat4T<double> a, Mat4T<double> b) {
+  for (size_t c = 0; c < 4; ++c) {
+    size_t p = c;
+    for (size_t r = c + 1; r < 4; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
+    std::swap(a[c], a[p]);
+    std::swap(b[c], b[p]);
+    for (size_t r = 0; r < 4; ++r) {
+      if (r == c || a[c][c] == 0) continue;
+      double f = a[r][c] / a[c][c];
+      for (size_t k = 0; k < 4; ++k) {
+        a[r][k] -= f * a[c][k];
+        b[r][k] -= f * b[c][k];
+      }
+    }
+  }
+  for (size_t r = 0; r < 4; ++r)
+    for (size_t k = 0; k < 4; ++k)
+      b[r][k] /= a[r][r];
+  return b;
+}
+
+Mat4T<double> mul(const Mat4T<double>& x, const Mat4T<double>& y) {
+  Mat4T<double> r{};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      for (size_t k = 0; k < 4; ++k)
+        r[i][j] += x[i][k] * y[k][j];
+  return r;
+}
+
+double max_abs(const Mat4T<double>& x) {
+  double s = 0;
+  for (const auto& row : x)
+    for (double v : row)
+      s = std::max(s, std::fabs(v));
+  return s;
+}
+
+} // namespace
+
+PencilFacts analyze_pencil_float(const Mat4& a0, const Mat4& b0, FloatInvariants& inv, double tol) {
+  PencilFacts out;
+  out.a = a0;
+  out.b = b0;
+  Mat4T<double> a, b;
+  double sa = 0, sb = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      a[i][j] = a0[i][j].to_double_approx();
+      b[i][j] = b0[i][j].to_double_approx();
+      sa = std::max(sa, std::fabs(a[i][j]));
+      sb = std::max(sb, std::fabs(b[i][j]));
+    }
+  // Normalise both matrices (positive scalings do not change the pencil's topology).
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      a[i][j] /= sa;
+      b[i][j] /= sb;
+    }
+  auto f = algebra::pencil_char_coeffs(a, b);
+  double fs = 0;
+  for (double c : f)
+    fs = std::max(fs, std::fabs(c));
+  if (fs <= tol) {
+    out.kind = algebra::PencilKind::Degenerate;
+    return out;
+  }
+  if (std::fabs(f[4]) <= tol * fs) {
+    // Re-base as the exact path does: a' = t a - b, b' = -a.
+    for (long k = 0;; ++k) {
+      long t = (k % 2 == 0) ? k / 2 : -(k + 1) / 2;
+      double v = f[4];
+      for (int i = 3; i >= 0; --i)
+        v = v * static_cast<double>(t) + f[static_cast<size_t>(i)];
+      if (std::fabs(v) > tol * fs || k > 20) {
+        auto na = member(static_cast<double>(t), a, b);
+        for (auto& row : a)
+          for (auto& x : row)
+            x = -x;
+        b = a;  // b' = -a
+        a = na; // a' = t a - b
+        out.rebased = true;
+        out.rebase_t = t;
+        break;
+      }
+    }
+    f = algebra::pencil_char_coeffs(a, b);
+    fs = 0;
+    for (double c : f)
+      fs = std::max(fs, std::fabs(c));
+  }
+  std::array<double, 5> fn;
+  for (size_t i = 0; i < 5; ++i)
+    fn[i] = f[i] / fs;
+  auto q = algebra::quartic_invariants(fn);
+  for (size_t i = 0; i < 5; ++i)
+    inv.f[i] = f[i];
+  inv.d2 = q.d2;
+  inv.d3 = q.d3;
+  inv.d4 = q.d4;
+  inv.e = q.e;
+  auto z = [&](double x) { return std::fabs(x) <= tol ? 0 : (x > 0 ? 1 : -1); };
+  out.root_pattern = algebra::root_pattern_from_signs(z(q.d2), z(q.d3), z(q.d4), z(q.e));
+  // Root multiplicities the pattern implies (real ones listed with their multiplicity).
+  const std::string& rp = out.root_pattern;
+  std::vector<int> mults; // multiplicities of the real roots, in increasing root order later
+  int complex_roots = 0;
+  if (rp == "R1")
+    mults = {1, 1, 1, 1};
+  else if (rp == "R2")
+    complex_roots = 4;
+  else if (rp == "R3")
+    mults = {1, 1}, complex_roots = 2;
+  else if (rp == "R4")
+    mults = {2, 1, 1};
+  else if (rp == "R5")
+    mults = {2}, complex_roots = 2;
+  else if (rp == "R6")
+    mults = {2, 2};
+  else if (rp == "R7")
+    mults = {3, 1};
+  else if (rp == "R8")
+    complex_roots = 4, out.complex_double_pair = true;
+  else
+    mults = {4};
+  // Approximate roots: cluster the float roots closest to the real axis.
+  std::vector<double> coeffs(fn.begin(), fn.end());
+  int nreal = 0;
+  for (int m : mults)
+    nreal += m;
+  auto r = algebra::approx_real_roots(coeffs, static_cast<size_t>(nreal));
+  // Group sorted real roots into clusters whose sizes are the multiplicities: try every order
+  // of the multiplicity list and keep the grouping with the smallest spread.
+  std::vector<int> best;
+  double best_spread = INFINITY;
+  std::sort(mults.begin(), mults.end());
+  do {
+    double spread = 0;
+    size_t pos = 0;
+    for (int m : mults) {
+      spread += r[pos + static_cast<size_t>(m) - 1] - r[pos];
+      pos += static_cast<size_t>(m);
+    }
+    if (spread < best_spread) {
+      best_spread = spread;
+      best = mults;
+    }
+  } while (std::next_permutation(mults.begin(), mults.end()));
+  std::vector<double> roots;
+  size_t pos = 0;
+  for (int m : best) {
+    double s = 0;
+    for (int i = 0; i < m; ++i)
+      s += r[pos + static_cast<size_t>(i)];
+    roots.push_back(s / m);
+    pos += static_cast<size_t>(m);
+  }
+  std::vector<double> seps;
+  if (roots.empty()) {
+    seps.push_back(0.0);
+  } else {
+    double span = std::max(1.0, roots.back() - roots.front());
+    seps.push_back(roots.front() - span);
+    for (size_t i = 0; i + 1 < roots.size(); ++i)
+      seps.push_back(0.5 * (roots[i] + roots[i + 1]));
+    seps.push_back(roots.back() + span);
+  }
+  for (double s : seps) {
+    out.indices.push_back(float_inertia(member(s, a, b), tol).p);
+    out.samples.push_back(Rational::exact_from_double(s));
+  }
+  for (int idx : out.indices)
+    if (idx == 0 || idx == 4) out.definite_member = true;
+  Mat4T<double> x = solve(a, b);
+  for (size_t i = 0; i < roots.size(); ++i) {
+    RootFacts rf;
+    rf.multiplicity = best[i];
+    rf.lo = out.samples[i];
+    rf.hi = out.samples[i + 1];
+    rf.index_left = out.indices[i];
+    rf.index_right = out.indices[i + 1];
+    if (rf.multiplicity == 1) {
+      rf.rank = 3;
+      rf.sigma = Inertia{std::min(rf.index_left, rf.index_right),
+                         4 - std::max(rf.index_left, rf.index_right)};
+    } else {
+      rf.sigma = float_inertia(member(roots[i], a, b), tol);
+      rf.rank = rf.sigma.rank();
+      if (rf.multiplicity == 4 && rf.rank == 2) {
+        auto n = x;
+        for (size_t d = 0; d < 4; ++d)
+          n[d][d] -= roots[i];
+        out.quadruple_n2_zero = max_abs(mul(n, n)) <= tol * std::max(1.0, max_abs(x) * max_abs(x));
+      }
+    }
+    out.real_roots.push_back(std::move(rf));
+  }
+  if (out.complex_double_pair) {
+    // g = l^2 - s l + p from the clustered complex roots; test g(X) = 0.
+    auto zc = algebra::approx_complex_roots(coeffs);
+    double re = 0, absq = 0;
+    for (auto c : zc) {
+      re += c.real();
+      absq += std::norm(c);
+    }
+    double s = re / 2, p = absq / 4; // sum and product of the two distinct conjugate roots
+    auto x2 = mul(x, x);
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        x2[i][j] += -s * x[i][j] + (i == j ? p : 0.0);
+    out.minimal_poly_split = max_abs(x2) <= tol * std::max(1.0, max_abs(x) * max_abs(x));
+  }
+  out.complex_roots = complex_roots;
+  return out;
+}
+
+} // namespace surfcert::certify

@@ -1,0 +1,252 @@
+#include "surfcert/certify/scene.hpp"
+
+#include "surfcert/certify/report.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
+
+#include <flint/flint.h>
+
+#include <atomic>
+#include <istream>
+#include <ostream>
+#include <set>
+#include <thread>
+
+namespace surfcert::certify {
+
+using core::InputError;
+using core::Location;
+using core::io::Json;
+using core::io::json_path_child;
+using core::io::json_path_index;
+
+namespace {
+
+Location at(const Json& v, const std::string& source, const std::string& path) {
+  return Location{source, v.line(), v.column(), path};
+}
+
+Mode read_mode(const Json& v, const std::string& source, const std::string& path) {
+  auto m = v.is_string() ? parse_mode(v.text()) : std::nullopt;
+  if (!m)
+    throw InputError(at(v, source, path), "a mode: \"exact\", \"filtered\" or \"float\"",
+                     v.is_string() ? "\"" + v.text() + "\"" : core::io::type_name(v.type()));
+  return *m;
+}
+
+void check_fields(const Json& v, const std::set<std::string>& allowed, const std::string& source,
+                  const std::string& path) {
+  for (const auto& [k, val] : v.members())
+    if (!allowed.count(k)) {
+      std::string list;
+      for (const auto& x : allowed)
+        list += (list.empty() ? "" : ", ") + x;
+      throw InputError(at(val, source, json_path_child(path, k)), "one of the fields " + list,
+                       "unknown field \"" + k + "\"");
+    }
+}
+
+const char* kSupportedOps = "\"classify\"";
+
+} // namespace
+
+const core::QuadricMatrix& Scene::surface(const std::string& name) const {
+  for (const auto& [n, q] : surfaces)
+    if (n == name) return q;
+  throw std::out_of_range("no surface " + name);
+}
+
+Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) {
+  Scene s;
+  if (!doc.is_object())
+    throw InputError(at(doc, source, "$"),
+                     "a scene object {\"surfaces\": {...}, \"queries\": [...]}",
+                     core::io::type_name(doc.type()));
+  check_fields(doc, {"surfaces", "queries", "mode", "description"}, source, "$");
+  if (const Json* m = doc.find("mode")) default_mode = read_mode(*m, source, "$.mode");
+  const Json* surf = doc.find("surfaces");
+  if (!surf || !surf->is_object())
+    throw InputError(at(surf ? *surf : doc, source, "$.surfaces"),
+                     "an object mapping names to surfaces",
+                     surf ? core::io::type_name(surf->type()) : "no \"surfaces\" field");
+  for (const auto& [name, v] : surf->members())
+    s.surfaces.emplace_back(name,
+                            core::io::read_quadric(v, source, json_path_child("$.surfaces", name)));
+  const Json* qs = doc.find("queries");
+  if (!qs || !qs->is_array())
+    throw InputError(at(qs ? *qs : doc, source, "$.queries"), "an array of queries",
+                     qs ? core::io::type_name(qs->type()) : "no \"queries\" field");
+  for (size_t i = 0; i < qs->size(); ++i) {
+    const Json& q = qs->items()[i];
+    std::string path = json_path_index("$.queries", i);
+    if (!q.is_object())
+      throw InputError(at(q, source, path), "a query object", core::io::type_name(q.type()));
+    check_fields(q, {"id", "op", "a", "b", "mode"}, source, path);
+    Query query;
+    query.mode = default_mode;
+    if (const Json* id = q.find("id")) query.id = *id;
+    const Json* op = q.find("op");
+    if (!op || !op->is_string() || op->text() != "classify")
+      throw InputError(
+          at(op ? *op : q, source, json_path_child(path, "op")),
+          std::string("an op: ") + kSupportedOps,
+          op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))
+             : "none");
+    query.op = op->text();
+    for (const char* key : {"a", "b"}) {
+      const Json* n = q.find(key);
+      std::string kp = json_path_child(path, key);
+      if (!n || !n->is_string())
+        throw InputError(at(n ? *n : q, source, kp), "the name of a surface of $.surfaces",
+                         n ? core::io::type_name(n->type()) : "none");
+      bool known = false;
+      for (const auto& sf : s.surfaces)
+        known = known || sf.first == n->text();
+      if (!known)
+        throw InputError(at(*n, source, kp), "the name of a surface of $.surfaces",
+                         "\"" + n->text() + "\"");
+      (std::string(key) == "a" ? query.a : query.b) = n->text();
+    }
+    if (const Json* m = q.find("mode"))
+      query.mode = read_mode(*m, source, json_path_child(path, "mode"));
+    s.queries.push_back(std::move(query));
+  }
+  return s;
+}
+
+Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
+  const auto& a = s.surface(q.a);
+  const auto& b = s.surface(q.b);
+  QsicResult r = classify_qsic(a, b, q.mode);
+  complete_report_data(r, a, b);
+  Json env = qsic_envelope_json(r, a, b);
+  Json o = Json::object();
+  o.set("id", q.id);
+  o.set("op", Json::string(q.op));
+  o.set("a", Json::string(q.a));
+  o.set("b", Json::string(q.b));
+  for (const auto& [k, v] : env.members())
+    o.set(k, v);
+  if (text_summary) *text_summary = qsic_result_text(r, a, b);
+  return o;
+}
+
+Json process_batch_line(const std::string& line, long line_no, Mode default_mode, bool* fallback) {
+  Json out = Json::object();
+  out.set("id", Json::null());
+  const std::string source = "<stdin>";
+  try {
+    Json doc;
+    try {
+      doc = core::io::parse_json(line, source);
+    } catch (const InputError& e) {
+      Location w = e.where();
+      w.line = static_cast<int>(line_no);
+      throw InputError(w, e.expected(), e.found());
+    }
+    if (const Json* id = doc.is_object() ? doc.find("id") : nullptr) out.set("id", *id);
+    auto fix = [&](const InputError& e) {
+      Location w = e.where();
+      w.line = static_cast<int>(line_no);
+      return InputError(w, e.expected(), e.found());
+    };
+    try {
+      if (!doc.is_object())
+        throw InputError(at(doc, source, "$"), "a JSON object {\"id\", \"op\", \"a\", \"b\"}",
+                         core::io::type_name(doc.type()));
+      check_fields(doc, {"id", "op", "a", "b", "mode"}, source, "$");
+      const Json* op = doc.find("op");
+      if (!op || !op->is_string() || op->text() != "classify")
+        throw InputError(
+            at(op ? *op : doc, source, "$.op"), std::string("an op: ") + kSupportedOps,
+            op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))
+               : "none");
+      Mode mode = default_mode;
+      if (const Json* m = doc.find("mode")) mode = read_mode(*m, source, "$.mode");
+      const Json* ja = doc.find("a");
+      const Json* jb = doc.find("b");
+      if (!ja) throw InputError(at(doc, source, "$.a"), "a surface \"a\"", "none");
+      if (!jb) throw InputError(at(doc, source, "$.b"), "a surface \"b\"", "none");
+      auto a = core::io::read_quadric(*ja, source, "$.a");
+      auto b = core::io::read_quadric(*jb, source, "$.b");
+      QsicResult r = classify_qsic(a, b, mode);
+      complete_report_data(r, a, b);
+      if (fallback) *fallback = r.exact_fallback;
+      Json env = qsic_envelope_json(r, a, b);
+      for (const auto& [k, v] : env.members())
+        out.set(k, v);
+    } catch (const InputError& e) {
+      throw fix(e);
+    }
+  } catch (const InputError& e) {
+    out.set("status", Json::string("error"));
+    out.set("error", input_error_json(e));
+  } catch (const std::exception& e) {
+    out.set("status", Json::string("error"));
+    Json err = Json::object();
+    err.set("kind", Json::string("internal"));
+    err.set("message", Json::string(e.what()));
+    out.set("error", err);
+  }
+  return out;
+}
+
+BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads) {
+  BatchStats st;
+  if (threads < 1) threads = 1;
+  const size_t chunk = 4096;
+  std::vector<std::string> lines;
+  std::vector<std::string> results;
+  std::vector<char> fb;
+  std::vector<std::string> status;
+  long first_line = 1;
+  bool eof = false;
+  while (!eof) {
+    lines.clear();
+    std::string l;
+    while (lines.size() < chunk) {
+      if (!std::getline(in, l)) {
+        eof = true;
+        break;
+      }
+      lines.push_back(l);
+    }
+    if (lines.empty()) break;
+    results.assign(lines.size(), std::string());
+    fb.assign(lines.size(), 0);
+    status.assign(lines.size(), std::string());
+    std::atomic<size_t> next{0};
+    auto work = [&]() {
+      for (size_t i; (i = next++) < lines.size();) {
+        bool f = false;
+        Json r = process_batch_line(lines[i], first_line + static_cast<long>(i), default_mode, &f);
+        fb[i] = f ? 1 : 0;
+        if (const Json* s = r.find("status")) status[i] = s->text();
+        results[i] = core::io::dump(r);
+      }
+    };
+    if (threads == 1) {
+      work();
+    } else {
+      std::vector<std::thread> pool;
+      for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&]() {
+          work();
+          flint_cleanup(); // free this thread's FLINT caches
+        });
+      for (auto& t : pool)
+        t.join();
+    }
+    for (size_t i = 0; i < results.size(); ++i) {
+      out << results[i] << '\n';
+      ++st.lines;
+      if (status[i] == "error") ++st.errors;
+      if (status[i] == "undecided") ++st.undecided;
+      st.fallbacks += fb[i];
+    }
+    out.flush();
+    first_line += static_cast<long>(lines.size());
+  }
+  return st;
+}
+
+} // namespace surfcert::certify

@@ -1,0 +1,238 @@
+#include "surfcert/certify/special_points.hpp"
+
+#include <flint/fmpq_mat.h>
+#include <flint/fmpz_mat.h>
+
+namespace surfcert::certify {
+
+using algebra::QuadraticNumber;
+using core::Integer;
+using core::Mat4;
+using core::Rational;
+
+namespace {
+
+using Vec4 = std::array<Rational, 4>;
+using QVec4 = std::array<QuadraticNumber, 4>;
+
+// Basis of the kernel of a rational 4x4 matrix (FLINT nullspace over Z after scaling).
+std::vector<Vec4> kernel(const Mat4& m) {
+  Integer l(1);
+  for (const auto& row : m)
+    for (const auto& v : row)
+      fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
+  fmpz_mat_t z, n;
+  fmpz_mat_init(z, 4, 4);
+  fmpz_mat_init(n, 4, 4);
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      fmpz* e = fmpz_mat_entry(z, static_cast<slong>(i), static_cast<slong>(j));
+      fmpz_divexact(e, l.raw(), fmpq_denref(m[i][j].raw()));
+      fmpz_mul(e, e, fmpq_numref(m[i][j].raw()));
+    }
+  slong nullity = fmpz_mat_nullspace(n, z);
+  std::vector<Vec4> out;
+  for (slong c = 0; c < nullity; ++c) {
+    Vec4 v;
+    for (size_t i = 0; i < 4; ++i) {
+      Integer t;
+      fmpz_set(t.raw_mut(), fmpz_mat_entry(n, static_cast<slong>(i), c));
+      v[i] = Rational(t);
+    }
+    out.push_back(v);
+  }
+  fmpz_mat_clear(z);
+  fmpz_mat_clear(n);
+  return out;
+}
+
+Rational form(const Mat4& a, const Vec4& u, const Vec4& v) {
+  Rational s;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      s += u[i] * a[i][j] * v[j];
+  return s;
+}
+
+QuadraticNumber qmul(const QuadraticNumber& x, const QuadraticNumber& y, const Integer& d) {
+  Rational dd(d);
+  return {x.a * y.a + x.b * y.b * dd, x.a * y.b + x.b * y.a, d};
+}
+
+QuadraticNumber qdiv(const QuadraticNumber& x, const QuadraticNumber& y, const Integer& d) {
+  Rational dd(d);
+  QuadraticNumber conj{y.a, -y.b, d};
+  Rational n = y.a * y.a - y.b * y.b * dd; // nonzero: y != 0 and d is not a square (or b = 0)
+  QuadraticNumber p = qmul(x, conj, d);
+  return {p.a / n, p.b / n, d};
+}
+
+SpecialPoint make_point(const std::string& kind, const QVec4& x, const Integer& d) {
+  SpecialPoint p;
+  p.kind = kind;
+  p.exact = true;
+  bool w_zero = x[3].a.is_zero() && x[3].b.is_zero();
+  p.at_infinity = w_zero;
+  for (size_t i = 0; i < 3; ++i) {
+    QuadraticNumber c = w_zero ? x[i] : qdiv(x[i], x[3], d);
+    c.d = d;
+    p.coords[i] = c.to_string();
+    p.approx[i] = c.to_double_approx();
+  }
+  return p;
+}
+
+QVec4 lift(const Vec4& v, const Integer& d) {
+  QVec4 r;
+  for (size_t i = 0; i < 4; ++i)
+    r[i] = QuadraticNumber{v[i], Rational(0), d};
+  return r;
+}
+
+const char* vertex_kind(int c) {
+  switch (c) {
+  case 5:
+  case 8:
+    return "crunode";
+  case 6:
+  case 7:
+    return "acnode";
+  case 9:
+    return "cusp";
+  case 10:
+    return "line_meets_cubic";
+  case 12:
+    return "tangency_point";
+  case 23:
+    return "lines_crossing";
+  case 24:
+  case 25:
+    return "isolated_point";
+  default:
+    return "singular_point";
+  }
+}
+
+const char* line_kind(int c) {
+  switch (c) {
+  case 13:
+  case 18:
+    return "crossing";
+  case 15:
+    return "isolated_point";
+  case 19:
+    return "contact";
+  case 20:
+    return "isolated_point";
+  case 23:
+  case 24:
+  case 25:
+    return "line_meets_conic";
+  case 26:
+    return "lines_cross_on_conic";
+  case 27:
+    return "tangency_point";
+  case 28:
+    return "vertex";
+  case 30:
+    return "isolated_point";
+  default:
+    return "singular_point";
+  }
+}
+
+} // namespace
+
+std::vector<SpecialPoint> special_points(const algebra::PencilFacts& f, int tu_case,
+                                         bool& complete) {
+  std::vector<SpecialPoint> out;
+  complete = true;
+  const Integer one(1);
+  for (const auto& root : f.real_roots) {
+    if (root.multiplicity < 2) continue;
+    if (!root.rational_value) {
+      complete = false;
+      continue;
+    }
+    Mat4 m;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        m[i][j] = *root.rational_value * f.a[i][j] - f.b[i][j];
+    auto ker = kernel(m);
+    if (ker.size() == 1) {
+      if (form(f.a, ker[0], ker[0]).is_zero())
+        out.push_back(make_point(vertex_kind(tu_case), lift(ker[0], one), one));
+    } else if (ker.size() == 2) {
+      const Vec4& u = ker[0];
+      const Vec4& v = ker[1];
+      Rational al = form(f.a, u, u), be = form(f.a, u, v), ga = form(f.a, v, v);
+      if (al.is_zero() && be.is_zero() && ga.is_zero()) continue; // the line is a component
+      const char* kind = line_kind(tu_case);
+      if (al.is_zero()) {
+        // q(s, t) = t (2 be s + ga t): points u, and (if be != 0) s = -ga / (2 be), t = 1.
+        out.push_back(make_point(kind, lift(u, one), one));
+        if (!be.is_zero()) {
+          Rational s = -ga / (Rational(2) * be);
+          Vec4 x;
+          for (size_t i = 0; i < 4; ++i)
+            x[i] = s * u[i] + v[i];
+          out.push_back(make_point(kind, lift(x, one), one));
+        }
+        continue;
+      }
+      // al s^2 + 2 be s + ga = 0 (t = 1): s = (-be +- sqrt(disc)) / al, disc = be^2 - al ga.
+      Rational disc = be * be - al * ga;
+      if (disc.sign() < 0) continue;
+      Integer dn = (disc.num() * disc.den()); // sqrt(p/q) = sqrt(p q) / q
+      Integer root_int;
+      fmpz_sqrt(root_int.raw_mut(), dn.raw());
+      bool square = root_int * root_int == dn;
+      for (int sg : {1, -1}) {
+        if (disc.is_zero() && sg < 0) break;
+        QuadraticNumber s;
+        if (square) {
+          Rational sq = Rational(root_int, disc.den());
+          s = {(-be + Rational(sg) * sq) / al, Rational(0), one};
+        } else {
+          s = {-be / al, Rational(sg) / (al * Rational(disc.den())), dn};
+        }
+        Integer d = square ? one : dn;
+        QVec4 x;
+        for (size_t i = 0; i < 4; ++i)
+          x[i] = QuadraticNumber{s.a * u[i] + v[i], s.b * u[i], d};
+        out.push_back(make_point(kind, x, d));
+      }
+    } else if (ker.size() == 3) {
+      // theta*A - B = c n n^T: the pole of the plane n.X = 0 w.r.t. A is where the two
+      // (double) lines of Q_A in that plane cross (cases 32, 33); none for a double conic.
+      Vec4 n;
+      for (size_t i = 0;
+           i < 4 && n[0].is_zero() && n[1].is_zero() && n[2].is_zero() && n[3].is_zero(); ++i)
+        if (!(m[i][0].is_zero() && m[i][1].is_zero() && m[i][2].is_zero() && m[i][3].is_zero()))
+          n = {m[i][0], m[i][1], m[i][2], m[i][3]};
+      fmpq_mat_t qa, qn, qx;
+      fmpq_mat_init(qa, 4, 4);
+      fmpq_mat_init(qn, 4, 1);
+      fmpq_mat_init(qx, 4, 1);
+      for (slong i = 0; i < 4; ++i) {
+        for (slong j = 0; j < 4; ++j)
+          fmpq_set(fmpq_mat_entry(qa, i, j),
+                   f.a[static_cast<size_t>(i)][static_cast<size_t>(j)].raw());
+        fmpq_set(fmpq_mat_entry(qn, i, 0), n[static_cast<size_t>(i)].raw());
+      }
+      fmpq_mat_solve_fraction_free(qx, qa, qn);
+      Vec4 p;
+      for (size_t i = 0; i < 4; ++i)
+        fmpq_set(p[i].raw_mut(), fmpq_mat_entry(qx, static_cast<slong>(i), 0));
+      fmpq_mat_clear(qa);
+      fmpq_mat_clear(qn);
+      fmpq_mat_clear(qx);
+      if (form(f.a, p, p).is_zero())
+        out.push_back(make_point(tu_case == 33 ? "isolated_point" : "double_lines_crossing",
+                                 lift(p, one), one));
+    }
+  }
+  return out;
+}
+
+} // namespace surfcert::certify

@@ -1,0 +1,51 @@
+// surfcert::core::io::parse_polynomial: reads an equation string such as "x^2 + y^2 = 1".
+//
+// What it represents: the reader of the human-written form of a surface, turning text into an
+// exact Poly3. Decimals are read exactly ("0.1" is 1/10, never the binary double near it), so
+// the polynomial is exactly the one written. An equation "lhs = rhs" becomes lhs - rhs.
+//
+// Grammar (whitespace allowed between tokens):
+//   input        = expr [ '=' expr ]
+//   expr         = signed_term { ('+' | '-') signed_term }
+//   signed_term  = [ '+' | '-' ] term
+//   term         = power { ('*' | '/') signed_power | power }   (juxtaposition multiplies:
+//                  "2x", "2(x+1)", "x y", "3x^2y"; a run of x/y/z letters such as "xy" is x*y)
+//   signed_power = [ '+' | '-' ] power
+//   power        = primary [ ('^' | '**') exponent ]   ("-x^2" is -(x^2); "x^2^3" is rejected)
+//   exponent     = integer | '(' integer ')'            (0 <= exponent <= 64)
+//   primary      = number | 'x' | 'y' | 'z' | 'X' | 'Y' | 'Z' | '(' expr ')'
+//   number       = digits [ '.' digits ] [ exponent part ] | '.' digits [ exponent part ]
+// where an 'e'/'E' after a number is an exponent part only when a digit, or a sign and a digit,
+// follows. '*' and '/' (and juxtaposition) associate left to right: "x^2/1/4" is x^2/4 and
+// "1/2x" is x/2. Division is only by a nonzero constant.
+//
+// Invariants of the result: exactly the polynomial written; total degree <= 64, at most 100000
+// terms and coefficients of at most 131072 bits (numerator and denominator) at every
+// intermediate step, and a bounded number of coefficient products in all, so hostile input
+// cannot exhaust time or memory.
+#pragma once
+
+#include "surfcert/core/error.hpp"
+#include "surfcert/core/poly3.hpp"
+
+#include <string>
+
+namespace surfcert::core::io {
+
+/// Limits on every intermediate result of parse_polynomial.
+constexpr int kMaxExpressionDegree = 64;
+constexpr long kMaxExpressionTerms = 100000;
+constexpr long kMaxExpressionCoefficientBits = 131072;
+/// Limit on the term operations (coefficient products, and terms scaled by a division) spent
+/// expanding one expression: about two seconds of work; (1+x+y+z)^64 needs 3 million.
+constexpr long kMaxExpressionWork = 10000000;
+/// Limit on nested parentheses (the reader is recursive).
+constexpr int kMaxExpressionNesting = 256;
+
+/// Parses `text` (grammar above). `where` locates the text: its column is that of the text's
+/// first character. Errors throw InputError at `where` with the column moved to the offending
+/// character (where.column + its 0-based offset in code points, or offset + 1 when where.column
+/// is 0); the line is kept. Empty input is an error.
+Poly3 parse_polynomial(const std::string& text, const Location& where);
+
+} // namespace surfcert::core::io

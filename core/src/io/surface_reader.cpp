@@ -1,0 +1,289 @@
+#include "surfcert/core/io/surface_reader.hpp"
+
+#include "surfcert/core/io/expression.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+namespace surfcert::core::io {
+
+namespace {
+
+Location at(const Json& v, const std::string& source, const std::string& path) {
+  return Location{source, v.line(), v.column(), path};
+}
+
+std::string describe(const Json& v) {
+  switch (v.type()) {
+  case Json::Type::String:
+    return "string \"" + v.text() + "\"";
+  case Json::Type::Number:
+    return "number " + v.text();
+  default:
+    return type_name(v.type());
+  }
+}
+
+void check_fields(const Json& v, const std::set<std::string>& allowed, const std::string& source,
+                  const std::string& path) {
+  for (const auto& [k, val] : v.members())
+    if (!allowed.count(k)) {
+      std::string list;
+      for (const auto& a : allowed)
+        list += (list.empty() ? "" : ", ") + a;
+      throw InputError(at(val, source, json_path_child(path, k)), "one of the fields " + list,
+                       "unknown field \"" + k + "\"");
+    }
+}
+
+const Json& require(const Json& v, const std::string& key, const std::string& source,
+                    const std::string& path) {
+  const Json* f = v.find(key);
+  if (!f) throw InputError(at(v, source, path), "a field \"" + key + "\"", "none");
+  return *f;
+}
+
+std::vector<Rational> read_vector(const Json& v, size_t n, const std::string& source,
+                                  const std::string& path) {
+  if (!v.is_array() || v.size() != n)
+    throw InputError(at(v, source, path), "an array of " + std::to_string(n) + " numbers",
+                     describe(v) + (v.is_array() ? " of length " + std::to_string(v.size()) : ""));
+  std::vector<Rational> out;
+  for (size_t i = 0; i < n; ++i)
+    out.push_back(read_number(v.items()[i], source, json_path_index(path, i)));
+  return out;
+}
+
+std::vector<std::vector<Rational>> read_matrix(const Json& v, size_t n, const std::string& source,
+                                               const std::string& path) {
+  if (!v.is_array() || v.size() != n)
+    throw InputError(at(v, source, path),
+                     "a " + std::to_string(n) + "x" + std::to_string(n) + " matrix (array of " +
+                         std::to_string(n) + " rows)",
+                     describe(v));
+  std::vector<std::vector<Rational>> rows;
+  for (size_t i = 0; i < n; ++i)
+    rows.push_back(read_vector(v.items()[i], n, source, json_path_index(path, i)));
+  return rows;
+}
+
+Rational read_positive(const Json& v, const std::string& source, const std::string& path) {
+  Rational r = read_number(v, source, path);
+  if (r.sign() <= 0) throw InputError(at(v, source, path), "a positive length", r.to_string());
+  return r;
+}
+
+// Rotation (local -> world) from {"quaternion": [w,x,y,z]} or {"matrix": 3x3}.
+std::array<std::array<Rational, 3>, 3> read_rotation(const Json& v, const std::string& source,
+                                                     const std::string& path) {
+  std::array<std::array<Rational, 3>, 3> r;
+  if (!v.is_object())
+    throw InputError(at(v, source, path),
+                     "an object {\"quaternion\": [w,x,y,z]} or {\"matrix\": 3x3}", describe(v));
+  check_fields(v, {"quaternion", "matrix"}, source, path);
+  if (const Json* q = v.find("quaternion")) {
+    auto c = read_vector(*q, 4, source, json_path_child(path, "quaternion"));
+    const Rational &w = c[0], &x = c[1], &y = c[2], &z = c[3];
+    Rational n = w * w + x * x + y * y + z * z;
+    if (n.is_zero())
+      throw InputError(at(*q, source, json_path_child(path, "quaternion")), "a nonzero quaternion",
+                       "[0,0,0,0]");
+    const Rational two(2);
+    r = {{{w * w + x * x - y * y - z * z, two * (x * y - w * z), two * (x * z + w * y)},
+          {two * (x * y + w * z), w * w - x * x + y * y - z * z, two * (y * z - w * x)},
+          {two * (x * z - w * y), two * (y * z + w * x), w * w - x * x - y * y + z * z}}};
+    for (auto& row : r)
+      for (auto& e : row)
+        e = e / n;
+    return r;
+  }
+  if (const Json* m = v.find("matrix")) {
+    std::string mp = json_path_child(path, "matrix");
+    auto rows = read_matrix(*m, 3, source, mp);
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        r[i][j] = rows[i][j];
+    // Exact check: R^T R = I and det R = 1.
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        Rational s;
+        for (size_t k = 0; k < 3; ++k)
+          s += r[k][i] * r[k][j];
+        if (s != Rational(i == j ? 1 : 0))
+          throw InputError(at(*m, source, mp), "an orthogonal rotation matrix (R^T R = I exactly)",
+                           "(R^T R)[" + std::to_string(i) + "][" + std::to_string(j) +
+                               "] = " + s.to_string());
+      }
+    Rational d = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
+                 r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                 r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+    if (d != Rational(1))
+      throw InputError(at(*m, source, mp), "a proper rotation (det = 1)", "det = " + d.to_string());
+    return r;
+  }
+  throw InputError(at(v, source, path), "a field \"quaternion\" or \"matrix\"", "neither");
+}
+
+QuadricMatrix read_shape(const Json& v, const std::string& source, const std::string& path) {
+  const Json& tj = require(v, "type", source, path);
+  std::string tpath = json_path_child(path, "type");
+  if (!tj.is_string()) throw InputError(at(tj, source, tpath), "a shape name string", describe(tj));
+  const std::string& type = tj.text();
+  // Local quadratic form diag(q0, q1, q2) + linear term lz*z + constant k, in local coordinates.
+  Rational q[3], lz, k;
+  bool takes_radius = type == "sphere";
+  size_t nradii = 0;
+  if (type == "ellipsoid" || type == "hyperboloid_one_sheet" || type == "hyperboloid_two_sheets" ||
+      type == "cone")
+    nradii = 3;
+  else if (type == "cylinder" || type == "elliptic_paraboloid" || type == "hyperbolic_paraboloid")
+    nradii = 2;
+  else if (!takes_radius)
+    throw InputError(at(tj, source, tpath),
+                     "one of sphere, ellipsoid, cylinder, cone, elliptic_paraboloid, "
+                     "hyperbolic_paraboloid, hyperboloid_one_sheet, hyperboloid_two_sheets",
+                     "\"" + type + "\"");
+  std::set<std::string> allowed{"type", "center", "rotation"};
+  allowed.insert(takes_radius ? "radius" : "radii");
+  if (type == "cylinder") allowed.insert("radius");
+  check_fields(v, allowed, source, path);
+  std::vector<Rational> radii;
+  if (takes_radius || (type == "cylinder" && v.find("radius"))) {
+    std::string rp = json_path_child(path, "radius");
+    Rational r = read_positive(require(v, "radius", source, path), source, rp);
+    radii.assign(takes_radius ? 3 : 2, r);
+  } else {
+    std::string rp = json_path_child(path, "radii");
+    const Json& rj = require(v, "radii", source, path);
+    radii = read_vector(rj, nradii, source, rp);
+    for (size_t i = 0; i < nradii; ++i)
+      if (radii[i].sign() <= 0)
+        throw InputError(at(rj.items()[i], source, json_path_index(rp, i)), "a positive length",
+                         radii[i].to_string());
+  }
+  auto inv2 = [](const Rational& r) { return Rational(1) / (r * r); };
+  if (type == "sphere" || type == "ellipsoid") {
+    for (size_t i = 0; i < 3; ++i)
+      q[i] = inv2(radii[i]);
+    k = Rational(-1);
+  } else if (type == "cylinder") {
+    q[0] = inv2(radii[0]);
+    q[1] = inv2(radii[1]);
+    k = Rational(-1);
+  } else if (type == "cone") {
+    q[0] = inv2(radii[0]);
+    q[1] = inv2(radii[1]);
+    q[2] = -inv2(radii[2]);
+  } else if (type == "elliptic_paraboloid" || type == "hyperbolic_paraboloid") {
+    q[0] = inv2(radii[0]);
+    q[1] = type == "elliptic_paraboloid" ? inv2(radii[1]) : -inv2(radii[1]);
+    lz = Rational(-1);
+  } else { // hyperboloids
+    q[0] = inv2(radii[0]);
+    q[1] = inv2(radii[1]);
+    q[2] = -inv2(radii[2]);
+    k = type == "hyperboloid_one_sheet" ? Rational(-1) : Rational(1);
+  }
+  Mat4 local;
+  for (size_t i = 0; i < 3; ++i)
+    local[i][i] = q[i];
+  local[2][3] = local[3][2] = lz * Rational(1, 2);
+  local[3][3] = k;
+  std::vector<Rational> c(3);
+  if (const Json* cj = v.find("center"))
+    c = read_vector(*cj, 3, source, json_path_child(path, "center"));
+  std::array<std::array<Rational, 3>, 3> rot{};
+  for (size_t i = 0; i < 3; ++i)
+    rot[i][i] = Rational(1);
+  if (const Json* rj = v.find("rotation"))
+    rot = read_rotation(*rj, source, json_path_child(path, "rotation"));
+  // World point x = R u + c, so u = R^T (x - c): T = [[R^T, -R^T c], [0, 1]], M = T^T L T.
+  Mat4 t;
+  for (size_t i = 0; i < 3; ++i) {
+    Rational s;
+    for (size_t j = 0; j < 3; ++j) {
+      t[i][j] = rot[j][i];
+      s += rot[j][i] * c[j];
+    }
+    t[i][3] = -s;
+  }
+  t[3][3] = Rational(1);
+  return QuadricMatrix(transpose(t) * local * t);
+}
+
+} // namespace
+
+Rational read_number(const Json& v, const std::string& source, const std::string& path) {
+  if (v.is_number()) {
+    const std::string& s = v.text();
+    if (s.find_first_of(".eE") == std::string::npos) {
+      auto r = Rational::from_string(s);
+      if (r) return *r;
+    }
+    // A JSON non-integer literal stands for a binary double: read it as that double, exactly.
+    double d = std::strtod(s.c_str(), nullptr);
+    if (!std::isfinite(d)) throw InputError(at(v, source, path), "a finite number", s);
+    return Rational::exact_from_double(d);
+  }
+  if (v.is_string()) {
+    auto r = Rational::from_string(v.text());
+    if (!r)
+      throw InputError(at(v, source, path), "an exact number such as \"3\", \"-7/4\" or \"0.125\"",
+                       "\"" + v.text() + "\"");
+    return *r;
+  }
+  throw InputError(at(v, source, path), "a number or a numeric string", describe(v));
+}
+
+QuadricMatrix quadric_from_equation(const std::string& text, const Location& where) {
+  Poly3 p = parse_polynomial(text, where);
+  int d = p.total_degree();
+  if (d < 1 || d > 2)
+    throw InputError(where, "a quadric equation (total degree 1 or 2)",
+                     d < 0 ? "the zero polynomial" : "total degree " + std::to_string(d));
+  return QuadricMatrix::from_poly(p);
+}
+
+QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::string& path) {
+  if (v.is_string()) {
+    Location w = at(v, source, path);
+    if (w.column > 0) ++w.column; // past the opening quote
+    return quadric_from_equation(v.text(), w);
+  }
+  if (!v.is_object())
+    throw InputError(
+        at(v, source, path),
+        "a surface: an equation string, {\"matrix\": ...}, {\"equation\": ...} or a shape object",
+        describe(v));
+  if (const Json* e = v.find("equation")) {
+    check_fields(v, {"equation"}, source, path);
+    std::string ep = json_path_child(path, "equation");
+    if (!e->is_string()) throw InputError(at(*e, source, ep), "an equation string", describe(*e));
+    return read_quadric(*e, source, ep);
+  }
+  if (const Json* m = v.find("matrix")) {
+    check_fields(v, {"matrix"}, source, path);
+    std::string mp = json_path_child(path, "matrix");
+    auto rows = read_matrix(*m, 4, source, mp);
+    Mat4 a;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        a[i][j] = rows[i][j];
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i + 1; j < 4; ++j)
+        if (a[i][j] != a[j][i])
+          throw InputError(
+              at(m->items()[i].items()[j], source, json_path_index(json_path_index(mp, i), j)),
+              "a symmetric matrix (entry equal to [" + std::to_string(j) + "][" +
+                  std::to_string(i) + "] = " + a[j][i].to_string() + ")",
+              a[i][j].to_string());
+    if (is_zero(a)) throw InputError(at(*m, source, mp), "a nonzero matrix", "all entries zero");
+    return QuadricMatrix(a);
+  }
+  if (v.find("type")) return read_shape(v, source, path);
+  throw InputError(at(v, source, path), "a field \"matrix\", \"equation\" or \"type\"",
+                   "an object without them");
+}
+
+} // namespace surfcert::core::io
