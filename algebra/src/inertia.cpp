@@ -126,6 +126,34 @@ int QuadraticNumber::sign() const {
   return sa * diff.sign();
 }
 
+QuadraticNumber QuadraticNumber::normalized() const {
+  QuadraticNumber r = *this;
+  if (r.b.is_zero() || r.d.sign() <= 0) return r;
+  core::Integer out(1), rest = r.d, q, rem;
+  for (long p = 2; p < 2000; p += (p == 2 ? 1 : 2)) {
+    core::Integer p2(p * p);
+    for (;;) {
+      fmpz_fdiv_qr(q.raw_mut(), rem.raw_mut(), rest.raw(), p2.raw());
+      if (!rem.is_zero()) break;
+      rest = q;
+      out = out * core::Integer(p);
+    }
+  }
+  core::Integer s;
+  fmpz_sqrt(s.raw_mut(), rest.raw());
+  if (s * s == rest) {
+    out = out * s;
+    rest = core::Integer(1);
+  }
+  r.b = r.b * Rational(out);
+  r.d = rest;
+  if (rest == core::Integer(1)) {
+    r.a = r.a + r.b;
+    r.b = Rational(0);
+  }
+  return r;
+}
+
 double QuadraticNumber::to_double_approx() const {
   return a.to_double_approx() + b.to_double_approx() * std::sqrt(d.to_double_approx());
 }

@@ -76,6 +76,7 @@ SpecialPoint make_point(const std::string& kind, const QVec4& x, const Integer& 
   for (size_t i = 0; i < 3; ++i) {
     QuadraticNumber c = w_zero ? x[i] : qdiv(x[i], x[3], d);
     c.d = d;
+    c = c.normalized();
     p.coords[i] = c.to_string();
     p.approx[i] = c.to_double_approx();
   }

@@ -43,6 +43,9 @@ struct QuadraticNumber {
   /// Exact sign (research §1.5 step 6).
   int sign() const;
   double to_double_approx() const;
+  /// The same number with square factors moved out of d (trial division by small primes and
+  /// a perfect-square test of the rest; d stays correct if a large square factor survives).
+  QuadraticNumber normalized() const;
   /// "a + b*sqrt(d)" in exact text.
   std::string to_string() const;
 };
