@@ -1,0 +1,190 @@
+// Building blocks against independent routes: root isolation (float-guess + exact check vs
+// CGAL's Descartes isolator vs Arb's complex root enclosures vs a Sturm count), inertia
+// (Descartes vs exact LDL^T vs Sylvester's law on P^T D P), the closed-form pencil
+// determinant vs FLINT's fmpq_mat_det, D4 vs FLINT's discriminant, signs in Q(sqrt d).
+#include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/pencil.hpp"
+#include "surfcert/algebra/pencil_poly.hpp"
+#include "surfcert/algebra/real_roots.hpp"
+
+#include <acb.h>
+#include <arb_fmpz_poly.h>
+#include <flint/fmpq_mat.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <random>
+
+using namespace surfcert;
+using algebra::UPolyZ;
+using core::Integer;
+using core::Rational;
+
+namespace {
+
+unsigned long test_seed() {
+  const char* s = std::getenv("SURFCERT_TEST_SEED");
+  return s ? std::strtoul(s, nullptr, 10) : 20261122UL;
+}
+
+UPolyZ squarefree_part(const UPolyZ& p) {
+  UPolyZ d, g, q;
+  fmpz_poly_derivative(d.raw_mut(), p.raw());
+  fmpz_poly_gcd(g.raw_mut(), p.raw(), d.raw());
+  fmpz_poly_div(q.raw_mut(), p.raw(), g.raw());
+  return q.primitive_part();
+}
+
+// Checks the separators against Arb's certified complex roots: same number of real roots and
+// each real root's ball lies strictly inside exactly one gap.
+void check_against_arb(const UPolyZ& p, const algebra::RootSeparation& sep, const std::string& ctx) {
+  long n = p.degree();
+  acb_ptr roots = _acb_vec_init(n);
+  arb_fmpz_poly_complex_roots(roots, p.raw(), 0, 128);
+  long real = 0;
+  for (long i = 0; i < n; ++i) {
+    if (!acb_is_real(roots + i)) continue;
+    ++real;
+    int inside = 0;
+    for (size_t g = 0; g + 1 < sep.separators.size(); ++g) {
+      arb_t lo, hi;
+      arb_init(lo);
+      arb_init(hi);
+      arb_set_fmpq(lo, sep.separators[g].raw(), 256);
+      arb_set_fmpq(hi, sep.separators[g + 1].raw(), 256);
+      if (arb_lt(lo, acb_realref(roots + i)) && arb_lt(acb_realref(roots + i), hi)) ++inside;
+      arb_clear(lo);
+      arb_clear(hi);
+    }
+    EXPECT_EQ(inside, 1) << ctx;
+  }
+  EXPECT_EQ(real, static_cast<long>(sep.num_roots())) << ctx;
+  _acb_vec_clear(roots, n);
+}
+
+} // namespace
+
+TEST(RealRoots, RandomPolynomialsThreeIsolators) {
+  std::mt19937_64 rng(test_seed());
+  std::uniform_int_distribution<long> coef(-1000, 1000), deg(1, 12);
+  int fallbacks = 0;
+  for (int it = 0; it < 300; ++it) {
+    std::vector<Integer> c;
+    long d = deg(rng);
+    for (long i = 0; i <= d; ++i) c.emplace_back(coef(rng));
+    if (c.back().is_zero()) c.back() = Integer(1);
+    UPolyZ p = squarefree_part(UPolyZ::from_coeffs(c));
+    if (p.degree() < 1) continue;
+    std::string ctx = "seed " + std::to_string(test_seed()) + " poly " + p.to_string();
+    auto a = algebra::isolate_real_roots(p);
+    auto b = algebra::isolate_real_roots_cgal(p);
+    fallbacks += a.used_fallback;
+    EXPECT_EQ(a.num_roots(), b.num_roots()) << ctx;
+    EXPECT_EQ(static_cast<long>(a.num_roots()), algebra::count_real_roots(p)) << ctx;
+    check_against_arb(p, a, ctx);
+    check_against_arb(p, b, ctx);
+  }
+  EXPECT_LT(fallbacks, 30); // the float guess should do almost all of the work
+}
+
+TEST(RealRoots, ClusteredAndDyadicRoots) {
+  // Mignotte-like x^8 - 2(2^20 x - 1)^2: two roots within 2^-40 of 2^-20 (forces the fallback).
+  Integer a;
+  fmpz_set_ui(a.raw_mut(), 1UL << 20);
+  UPolyZ lin = UPolyZ::from_coeffs({Integer(-1), a});
+  UPolyZ sq, p;
+  fmpz_poly_mul(sq.raw_mut(), lin.raw(), lin.raw());
+  fmpz_poly_scalar_mul_si(sq.raw_mut(), sq.raw(), -2);
+  fmpz_poly_set_coeff_si(sq.raw_mut(), 8, 1);
+  p = sq;
+  auto s = algebra::isolate_real_roots(p);
+  EXPECT_EQ(static_cast<long>(s.num_roots()), algebra::count_real_roots(p));
+  check_against_arb(p, s, "mignotte");
+  // Roots exactly at dyadic points where a midpoint separator could land: (2x-1)(4x-1)(4x+1)x.
+  UPolyZ q = UPolyZ::from_coeffs({Integer(0), Integer(1)});
+  for (auto [c0, c1] : {std::pair<long, long>{-1, 2}, {-1, 4}, {1, 4}}) {
+    UPolyZ f = UPolyZ::from_coeffs({Integer(c0), Integer(c1)});
+    fmpz_poly_mul(q.raw_mut(), q.raw(), f.raw());
+  }
+  auto t = algebra::isolate_real_roots(q);
+  EXPECT_EQ(t.num_roots(), 4u);
+  check_against_arb(q, t, "dyadic");
+}
+
+TEST(RealRoots, RefineNarrowsToTheRoot) {
+  UPolyZ p = UPolyZ::from_coeffs({Integer(-2), Integer(0), Integer(1)}); // x^2 - 2
+  auto s = algebra::isolate_real_roots(p);
+  ASSERT_EQ(s.num_roots(), 2u);
+  Rational lo = s.separators[1], hi = s.separators[2];
+  algebra::refine_root(p, lo, hi, core::pow2(-100));
+  EXPECT_LE(hi - lo, core::pow2(-100));
+  // sqrt(2) squared is bracketed: lo^2 < 2 < hi^2.
+  EXPECT_LT(lo * lo, Rational(2));
+  EXPECT_GT(hi * hi, Rational(2));
+}
+
+TEST(Inertia, DescartesLdltAndSylvesterAgree) {
+  std::mt19937_64 rng(test_seed() + 1);
+  std::uniform_int_distribution<long> e(-3, 3), dsign(-1, 1), den(1, 7);
+  for (int it = 0; it < 500; ++it) {
+    // M = P^T D P with P invertible: inertia = signs of D (Sylvester's law of inertia).
+    core::Mat4 p, d;
+    do {
+      for (auto& row : p)
+        for (auto& v : row) v = Rational(e(rng), static_cast<unsigned long>(den(rng)));
+    } while (core::det(p).is_zero());
+    algebra::Inertia expect;
+    for (size_t i = 0; i < 4; ++i) {
+      long s = dsign(rng);
+      d[i][i] = Rational(s * den(rng), static_cast<unsigned long>(den(rng)));
+      if (s > 0) ++expect.p;
+      if (s < 0) ++expect.n;
+    }
+    core::Mat4 m = core::transpose(p) * d * p;
+    EXPECT_EQ(algebra::inertia_descartes(m), expect) << "seed " << test_seed() << " it " << it;
+    EXPECT_EQ(algebra::inertia_ldlt(m), expect) << "seed " << test_seed() << " it " << it;
+    EXPECT_EQ(algebra::rank_exact(m), expect.rank());
+  }
+}
+
+TEST(Pencil, ClosedFormDeterminantMatchesFlint) {
+  std::mt19937_64 rng(test_seed() + 2);
+  std::uniform_int_distribution<long> e(-50, 50), den(1, 9);
+  for (int it = 0; it < 200; ++it) {
+    core::Mat4 a, b;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j) {
+        a[i][j] = a[j][i] = Rational(e(rng), static_cast<unsigned long>(den(rng)));
+        b[i][j] = b[j][i] = Rational(e(rng), static_cast<unsigned long>(den(rng)));
+      }
+    auto f = algebra::pencil_char_poly(a, b);
+    for (long t : {-3L, 0L, 2L, 7L}) {
+      core::Mat4 m;
+      for (size_t i = 0; i < 4; ++i)
+        for (size_t j = 0; j < 4; ++j) m[i][j] = Rational(t) * a[i][j] - b[i][j];
+      EXPECT_EQ(f.evaluate(Rational(t)), core::det(m)); // core::det is fmpq_mat_det
+    }
+    // D4 equals the discriminant of f (FLINT), for an integer multiple of f.
+    UPolyZ fz;
+    fmpq_poly_get_numerator(fz.raw_mut(), f.raw());
+    std::array<Integer, 5> c;
+    for (size_t i = 0; i < 5; ++i) c[i] = fz.coeff(static_cast<long>(i));
+    auto inv = algebra::quartic_invariants(c);
+    Integer disc;
+    fmpz_poly_discriminant(disc.raw_mut(), fz.raw());
+    if (fz.degree() == 4) EXPECT_EQ(inv.d4, disc);
+  }
+}
+
+TEST(QuadraticNumbers, ExactSigns) {
+  using algebra::QuadraticNumber;
+  // 3 - 2 sqrt(2) > 0, 2 - sqrt(5) < 0 , 1 - sqrt(1)... d must be a non-square, so use an
+  // exact zero from b = 0; and a near-cancelling pair: 99 - 70 sqrt(2) = 1/(99 + 70 sqrt 2) > 0.
+  EXPECT_EQ((QuadraticNumber{Rational(3), Rational(-2), Integer(2)}).sign(), 1);
+  EXPECT_EQ((QuadraticNumber{Rational(2), Rational(-1), Integer(5)}).sign(), -1);
+  EXPECT_EQ((QuadraticNumber{Rational(0), Rational(0), Integer(5)}).sign(), 0);
+  EXPECT_EQ((QuadraticNumber{Rational(99), Rational(-70), Integer(2)}).sign(), 1);
+  EXPECT_EQ((QuadraticNumber{Rational(-99), Rational(70), Integer(2)}).sign(), -1);
+  auto n = QuadraticNumber{Rational(0), Rational(1), Integer(72)}.normalized();
+  EXPECT_EQ(n.to_string(), "6*sqrt(2)");
+}

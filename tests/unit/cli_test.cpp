@@ -1,0 +1,196 @@
+// The surfcert executable end to end: every bad-input class gives exit code 2, a message with
+// its location, and no output file; batch keeps going after a bad line, answers in input order
+// with any thread count, and follows the JSON contract documented in README.md.
+#include "surfcert/core/io/json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+using surfcert::core::io::Json;
+
+namespace {
+
+struct Run {
+  int code;
+  std::string out, err;
+};
+
+std::string tmp_path(const std::string& name) {
+  return (::testing::TempDir().empty() ? std::string("/tmp/") : ::testing::TempDir()) + "surfcert_cli_" + std::to_string(getpid()) + "_" + name;
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+Run run(const std::string& args, const std::string& stdin_text = "") {
+  std::string in = tmp_path("stdin"), out = tmp_path("stdout"), err = tmp_path("stderr");
+  std::ofstream(in) << stdin_text;
+  std::string cmd = std::string(SURFCERT_BINARY) + " " + args + " <" + in + " >" + out + " 2>" + err;
+  int st = std::system(cmd.c_str());
+  auto slurp = [](const std::string& p) {
+    std::ifstream f(p);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  };
+  Run r{WIFEXITED(st) ? WEXITSTATUS(st) : -1, slurp(out), slurp(err)};
+  std::remove(in.c_str());
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+bool exists(const std::string& p) { return std::ifstream(p).good(); }
+
+} // namespace
+
+TEST(Cli, ClassifyHumanAndJson) {
+  auto r = run("classify 'x^2+y^2+z^2=1' '(x-1)^2+y^2+z^2=1'");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("one_conic"), std::string::npos) << r.out;
+  auto j = run("classify --json --mode exact 'x^2+y^2+z^2=1' '(x-1)^2+y^2+z^2=1'");
+  ASSERT_EQ(j.code, 0);
+  Json doc = surfcert::core::io::parse_json(j.out, "stdout");
+  EXPECT_EQ(doc.find("status")->text(), "certified");
+  EXPECT_EQ(doc.find("result")->find("tu_case")->text(), "17");
+  EXPECT_EQ(doc.find("result")->find("morphology")->text(), "one_conic");
+  // The normalized matrix is echoed: (x-1)^2 + y^2 + z^2 - 1 has A[0][3] = -1, A[3][3] = 0.
+  const Json& b = *doc.find("result")->find("matrices")->find("b");
+  EXPECT_EQ(b.items()[0].items()[3].text(), "-1");
+  EXPECT_EQ(b.items()[3].items()[3].text(), "0");
+}
+
+TEST(Cli, BadEquationsExitTwoWithLocation) {
+  struct Bad {
+    const char* a;
+    const char* needle;
+  } cases[] = {
+      {"x^2 + * y", "<argument 1>:1:"},   // malformed expression
+      {"x^3 + y^2 - 1", "degree"},        // degree > 2
+      {"x^2 + w^2 - 1", "'w'"},           // unknown variable
+      {"x^2 / (y - y)", "<argument 1>"},  // division by zero
+      {"", "<argument 1>"},               // empty
+  };
+  for (const auto& c : cases) {
+    auto r = run(std::string("classify ") + quote(c.a) + " 'x^2+y^2+z^2=1'");
+    EXPECT_EQ(r.code, 2) << c.a;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.a << " -> " << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.a;
+  }
+}
+
+TEST(Cli, BadScenesExitTwoAndWriteNothing) {
+  struct Bad {
+    const char* scene;
+    const char* needle;
+  } cases[] = {
+      {R"({"surfaces": {"A": {"matrix": [[1,2,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]}, "B": "x^2+y^2+z^2=4"}, "queries": [{"op": "classify", "a": "A", "b": "B"}]})", "$.surfaces.A.matrix[0][1]"},
+      {R"({"surfaces": {"A": {"type": "sphere", "radius": 0}, "B": "x^2=1"}, "queries": []})", "$.surfaces.A.radius"},
+      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1, -2, 1]}, "B": "x^2=1"}, "queries": []})", "$.surfaces.A.radii[1]"},
+      {R"({"surfaces": {"A": {"type": "sphere", "radius": 1e999}, "B": "x^2=1"}, "queries": []})", "finite"},
+      {R"({"surfaces": {"A": {"type": "sphere", "radius": 1, "colour": "red"}, "B": "x^2=1"}, "queries": []})", "unknown field \"colour\""},
+      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "classify", "a": "A", "b": "C"}]})", "$.queries[0].b"},
+      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "distance", "a": "A", "b": "B"}]})", "$.queries[0].op"},
+      {"{\"surfaces\": {\"A\": \"x^2+y^2=1\",\n \"B\": \"x^2 + + = 1\"}, \"queries\": []}", ":2:"},
+      {"{\"surfaces\": {}, \n\n  \"queries\": [,]}", ":3:"},
+      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1,1,1], "rotation": {"matrix": [[1,0,0],[0,1,0],[0,1,1]]}}, "B": "x^2=1"}, "queries": []})", "orthogonal"},
+  };
+  for (const auto& c : cases) {
+    std::string scene = tmp_path("scene.json"), report = tmp_path("report.json");
+    std::ofstream(scene) << c.scene;
+    std::remove(report.c_str());
+    auto r = run("run " + scene + " -o " + report);
+    EXPECT_EQ(r.code, 2) << c.scene;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.scene << " -> " << r.err;
+    EXPECT_NE(r.err.find(scene), std::string::npos) << "message names the file: " << r.err;
+    EXPECT_FALSE(exists(report)) << "a report was written for a bad scene";
+    EXPECT_FALSE(exists(report + ".tmp"));
+    std::remove(scene.c_str());
+  }
+}
+
+TEST(Cli, RunWritesReportAtomically) {
+  std::string scene = tmp_path("good.json"), report = tmp_path("good_report.json");
+  std::ofstream(scene) << R"({"surfaces": {"S": {"type": "sphere", "center": [0,0,0], "radius": 1},
+    "E": {"type": "ellipsoid", "center": ["1/2", 0, 0], "radii": [2, 1, 1], "rotation": {"quaternion": [1, 0, 0, 1]}}},
+    "queries": [{"id": "q1", "op": "classify", "a": "S", "b": "E", "mode": "exact"}]})";
+  auto r = run("run " + scene + " -o " + report);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(report);
+  std::stringstream s;
+  s << f.rdbuf();
+  Json doc = surfcert::core::io::parse_json(s.str(), report);
+  const Json& q = doc.find("results")->items()[0];
+  EXPECT_EQ(q.find("id")->text(), "q1");
+  EXPECT_EQ(q.find("status")->text(), "certified");
+  // quaternion (1,0,0,1) is a quarter turn about z: the long axis 2 lies along y.
+  const Json& b = *q.find("result")->find("matrices")->find("b");
+  EXPECT_EQ(b.items()[0].items()[0].text(), "1");
+  EXPECT_EQ(b.items()[1].items()[1].text(), "1/4");
+  std::remove(scene.c_str());
+  std::remove(report.c_str());
+}
+
+TEST(Cli, BatchKeepsOrderAndSurvivesBadLines) {
+  std::string in;
+  std::vector<std::string> ids;
+  const char* pairs[][2] = {{"x^2+y^2+z^2=1", "(x-3)^2+y^2+z^2=1"},
+                            {"x^2+y^2+z^2=1", "(x-2)^2+y^2+z^2=1"},
+                            {"x^2+y^2+z^2=1", "(x-1)^2+y^2+z^2=1"}};
+  for (int i = 0; i < 60; ++i) {
+    if (i % 7 == 3) {
+      in += "{\"id\": " + std::to_string(i) + ", \"op\": \"classify\", \"a\": \"x^2+\", \"b\": \"y=1\"}\n";
+    } else if (i % 11 == 5) {
+      in += "this is not json\n";
+    } else {
+      in += "{\"id\": " + std::to_string(i) + ", \"op\": \"classify\", \"a\": \"" + pairs[i % 3][0] +
+            "\", \"b\": {\"equation\": \"" + pairs[i % 3][1] + "\"}}\n";
+    }
+  }
+  auto one = run("batch --threads 1", in);
+  auto two = run("batch --threads 2 --mode filtered", in);
+  ASSERT_EQ(one.code, 0);
+  ASSERT_EQ(two.code, 0);
+  EXPECT_EQ(one.out, two.out);
+  std::istringstream lines(one.out);
+  std::string l;
+  int n = 0;
+  while (std::getline(lines, l)) {
+    Json o = surfcert::core::io::parse_json(l, "out");
+    const std::string status = o.find("status")->text();
+    if (n % 11 == 5 && n % 7 != 3) {
+      EXPECT_EQ(status, "error");
+      EXPECT_EQ(o.find("error")->find("line")->text(), std::to_string(n + 1)); // stdin line number
+    } else if (n % 7 == 3) {
+      EXPECT_EQ(status, "error");
+      EXPECT_EQ(o.find("id")->text(), std::to_string(n));
+      EXPECT_EQ(o.find("error")->find("json_path")->text(), "$.a");
+    } else {
+      EXPECT_EQ(status, "certified");
+      EXPECT_EQ(o.find("id")->text(), std::to_string(n));
+      int expect = n % 3 == 0 ? 16 : (n % 3 == 1 ? 25 : 17);
+      EXPECT_EQ(o.find("result")->find("tu_case")->text(), std::to_string(expect));
+      EXPECT_TRUE(o.find("result")->find("segre") && o.find("result")->find("root_pattern"));
+    }
+    ++n;
+  }
+  EXPECT_EQ(n, 60);
+}
+
+TEST(Cli, DefaultSceneRuns) {
+  auto r = run(std::string("run ") + SURFCERT_DATA_DIR + "/scenes/default.json --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  Json doc = surfcert::core::io::parse_json(r.out, "stdout");
+  EXPECT_GE(doc.find("results")->size(), 5u);
+  for (const auto& q : doc.find("results")->items()) EXPECT_EQ(q.find("status")->text(), "certified");
+}
