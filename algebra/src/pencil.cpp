@@ -6,6 +6,7 @@
 #include <flint/fmpq_mat.h>
 #include <flint/fmpz_poly_factor.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace surfcert::algebra {
@@ -26,28 +27,125 @@ bool proportional(const Mat4& a, const Mat4& b) {
   return core::is_zero(b);
 }
 
-UPolyQ pencil_char_poly(const Mat4& a, const Mat4& b) {
-  // Clear denominators once with a common factor L: det(l*LA - LB) = L^4 f(l).
-  Integer l(1);
-  for (const Mat4* m : {&a, &b})
-    for (const auto& row : *m)
-      for (const auto& v : row)
-        fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
-  Mat4T<Integer> ai, bi;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      Integer t;
-      fmpz_divexact(t.raw_mut(), l.raw(), fmpq_denref(a[i][j].raw()));
-      ai[i][j] = t * a[i][j].num();
-      fmpz_divexact(t.raw_mut(), l.raw(), fmpq_denref(b[i][j].raw()));
-      bi[i][j] = t * b[i][j].num();
+namespace {
+
+// The pencil with denominators cleared by one common factor L (so lambda is unchanged):
+// a = L*A, b = L*B are integer matrices and det(l*a - b) = L^4 det(l*A - B).
+struct IntegerPencil {
+  Mat4T<Integer> a, b;
+  Integer l{1};
+
+  IntegerPencil(const Mat4& ra, const Mat4& rb) {
+    for (const Mat4* m : {&ra, &rb})
+      for (const auto& row : *m)
+        for (const auto& v : row)
+          fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        Integer t;
+        fmpz_divexact(t.raw_mut(), l.raw(), fmpq_denref(ra[i][j].raw()));
+        a[i][j] = t * ra[i][j].num();
+        fmpz_divexact(t.raw_mut(), l.raw(), fmpq_denref(rb[i][j].raw()));
+        b[i][j] = t * rb[i][j].num();
+      }
+  }
+
+  // Number of positive eigenvalues of s*A - B, s = p/q: q*L*(s*A - B) = p*a - q*b has the
+  // same inertia (positive factor). `sign_det` = sign of f(s) (also the sign of det(p*a - q*b)).
+  // Fast route: Jacobi's rule on the leading principal minors (negative eigenvalues = sign
+  // changes of 1, d1, d2, d3, d4) when none of them vanishes; otherwise Descartes on the
+  // integer characteristic polynomial. Both exact.
+  int index_at(const Rational& s, int sign_det) const {
+    Integer p = s.num(), q = s.den();
+    Mat4T<Integer> m;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j) {
+        fmpz_mul(m[i][j].raw_mut(), p.raw(), a[i][j].raw());
+        fmpz_submul(m[i][j].raw_mut(), q.raw(), b[i][j].raw());
+        if (j != i) m[j][i] = m[i][j];
+      }
+    if (sign_det != 0) {
+      Integer d2, d3, t;
+      fmpz_mul(d2.raw_mut(), m[0][0].raw(), m[1][1].raw());
+      fmpz_submul(d2.raw_mut(), m[0][1].raw(), m[1][0].raw());
+      // d3 by cofactors along the last row of the leading 3x3 block.
+      fmpz_mul(t.raw_mut(), m[0][1].raw(), m[1][2].raw());
+      fmpz_submul(t.raw_mut(), m[0][2].raw(), m[1][1].raw());
+      fmpz_mul(d3.raw_mut(), m[2][0].raw(), t.raw());
+      fmpz_mul(t.raw_mut(), m[0][0].raw(), m[1][2].raw());
+      fmpz_submul(t.raw_mut(), m[0][2].raw(), m[1][0].raw());
+      fmpz_submul(d3.raw_mut(), m[2][1].raw(), t.raw());
+      fmpz_addmul(d3.raw_mut(), m[2][2].raw(), d2.raw());
+      int sg[5] = {1, m[0][0].sign(), d2.sign(), d3.sign(), sign_det};
+      if (sg[1] != 0 && sg[2] != 0 && sg[3] != 0) {
+        int neg = 0;
+        for (int k = 0; k < 4; ++k)
+          neg += sg[k] != sg[k + 1];
+        return 4 - neg;
+      }
     }
-  auto c = pencil_char_coeffs(ai, bi);
-  Integer l4 = l * l * l * l;
-  std::vector<Rational> q;
-  for (const auto& x : c)
-    q.emplace_back(x, l4);
-  return UPolyQ::from_coeffs(q);
+    auto c = charpoly_coeffs(m);
+    int sg[4];
+    for (size_t k = 0; k < 4; ++k)
+      sg[k] = c[k].sign();
+    return inertia_from_charpoly_signs(sg).p;
+  }
+};
+
+// f = det(l*A - B) from the integer pencil: coefficients c_i / L^4.
+UPolyQ char_poly_of(const IntegerPencil& ip, std::array<Integer, 5>* int_coeffs = nullptr) {
+  auto c = pencil_char_coeffs(ip.a, ip.b);
+  Integer l2 = ip.l * ip.l, l4 = l2 * l2;
+  UPolyQ f;
+  UPolyZ z = UPolyZ::from_coeffs(std::vector<Integer>(c.begin(), c.end()));
+  fmpq_poly_set_fmpz_poly(f.raw_mut(), z.raw());
+  fmpq_poly_scalar_div_fmpz(f.raw_mut(), f.raw(), l4.raw()); // one content gcd, not five
+  if (int_coeffs) *int_coeffs = c;
+  return f;
+}
+
+} // namespace
+
+UPolyQ pencil_char_poly(const Mat4& a, const Mat4& b) {
+  return char_poly_of(IntegerPencil(a, b));
+}
+
+std::string root_pattern_from_multiplicities(const PencilFacts& f) {
+  std::vector<int> m;
+  for (const auto& r : f.real_roots)
+    m.push_back(r.multiplicity);
+  std::sort(m.rbegin(), m.rend());
+  if (f.complex_double_pair) return "R8";
+  if (m.empty()) return "R2";
+  if (m == std::vector<int>{1, 1, 1, 1}) return "R1";
+  if (m == std::vector<int>{1, 1}) return "R3";
+  if (m == std::vector<int>{2, 1, 1}) return "R4";
+  if (m == std::vector<int>{2}) return "R5";
+  if (m == std::vector<int>{2, 2}) return "R6";
+  if (m == std::vector<int>{3, 1}) return "R7";
+  if (m == std::vector<int>{4}) return "R9";
+  throw std::logic_error("impossible root multiplicities for a quartic");
+}
+
+void fill_quartic_invariants(PencilFacts& facts) {
+  IntegerPencil ip(facts.a, facts.b);
+  std::array<Integer, 5> c;
+  facts.f = char_poly_of(ip, &c);
+  // D_k is homogeneous of degree 2, 4, 6 (E: 3) in the coefficients and c_i = L^4 f_i, so
+  // D_k(f) = D_k(c) / L^(4 deg): integer arithmetic, one division each.
+  auto inv = quartic_invariants(c);
+  Integer l4 = ip.l * ip.l * ip.l * ip.l, l8 = l4 * l4, l12 = l8 * l4;
+  facts.d2 = Rational(inv.d2, l8);
+  facts.d3 = Rational(inv.d3, l8 * l8);
+  facts.d4 = Rational(inv.d4, l12 * l12);
+  facts.e = Rational(inv.e, l12);
+  std::string rp =
+      root_pattern_from_signs(inv.d2.sign(), inv.d3.sign(), inv.d4.sign(), inv.e.sign());
+  // Two routes to the same label: Yang's sign conditions and the multiplicities found by the
+  // square-free factorisation. A disagreement is our bug.
+  if (!facts.root_pattern.empty() && facts.root_pattern != rp)
+    throw std::logic_error("root pattern " + rp + " from D2..E contradicts " + facts.root_pattern);
+  facts.root_pattern = rp;
 }
 
 std::string root_pattern_from_signs(int sd2, int sd3, int sd4, int se) {
@@ -182,7 +280,9 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
     out.kind = PencilKind::Coincident;
     return out;
   }
-  out.f = pencil_char_poly(a0, b0);
+  std::optional<IntegerPencil> ip(std::in_place, a0, b0);
+  std::array<Integer, 5> fi;
+  out.f = char_poly_of(*ip, &fi);
   if (out.f.is_zero()) {
     out.kind = PencilKind::Degenerate;
     return out;
@@ -199,22 +299,13 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
         break;
       }
     }
-    out.f = pencil_char_poly(out.a, out.b);
+    ip.emplace(out.a, out.b);
+    out.f = char_poly_of(*ip, &fi);
   }
-  // Seed 002 Lemma 1 quantities, exact.
-  std::array<Rational, 5> fc;
-  for (size_t i = 0; i < 5; ++i)
-    fc[i] = out.f.coeff(static_cast<long>(i));
-  auto inv = quartic_invariants(fc);
-  out.d2 = inv.d2;
-  out.d3 = inv.d3;
-  out.d4 = inv.d4;
-  out.e = inv.e;
-  out.root_pattern =
-      root_pattern_from_signs(inv.d2.sign(), inv.d3.sign(), inv.d4.sign(), inv.e.sign());
+  // D2, D3, D4, E are report data: fill_quartic_invariants computes them on demand.
 
   // Square-free decomposition f = c * prod g_m^m; isolate the real roots of prod g_m.
-  UPolyZ fz = out.f.primitive_integer();
+  UPolyZ fz = UPolyZ::from_coeffs(std::vector<Integer>(fi.begin(), fi.end())).primitive_part();
   fmpz_poly_factor_t fac;
   fmpz_poly_factor_init(fac);
   fmpz_poly_factor_squarefree(fac, fz.raw());
@@ -259,9 +350,14 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
     if (exps[j] == 2 && parts[j].degree() == 2 && count_real_roots(parts[j]) == 0)
       out.complex_double_pair = true;
 
+  out.root_pattern = root_pattern_from_multiplicities(out);
+
   // Index on every interval between real roots.
+  // sign(det(p*a - q*b)) = sign f(s): evaluate the integer f (not its primitive part, whose
+  // sign may be flipped).
+  UPolyZ fint = UPolyZ::from_coeffs(std::vector<Integer>(fi.begin(), fi.end()));
   for (const auto& s : out.samples)
-    out.indices.push_back(inertia_descartes(member(s, out.a, out.b)).p);
+    out.indices.push_back(ip->index_at(s, fint.sign_at(s)));
   for (size_t i = 0; i < out.indices.size(); ++i)
     if (out.indices[i] == 0 || out.indices[i] == 4) out.definite_member = true;
 

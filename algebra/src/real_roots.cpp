@@ -56,6 +56,78 @@ std::vector<double> approx_real_roots(const std::vector<double>& coeffs, size_t 
   return r;
 }
 
+// Real roots of c3 x^3 + c2 x^2 + c1 x + c0 (closed form, trigonometric or Cardano),
+// each polished by two Newton steps. Returns their number (0 when c3 == 0).
+int approx_cubic_real_roots(double c3, double c2, double c1, double c0, double* out) {
+  if (c3 == 0 || !std::isfinite(c3)) return 0;
+  double a = c2 / c3, b = c1 / c3, c = c0 / c3;
+  double p = b - a * a / 3, q = 2 * a * a * a / 27 - a * b / 3 + c;
+  int n;
+  if (p < 0 && 4 * p * p * p + 27 * q * q < 0) {
+    double m = 2 * std::sqrt(-p / 3);
+    double th = std::acos(std::clamp(3 * q / (p * m), -1.0, 1.0)) / 3;
+    for (int k = 0; k < 3; ++k)
+      out[k] = m * std::cos(th - 2 * M_PI * k / 3) - a / 3;
+    n = 3;
+  } else {
+    double d = std::sqrt(std::max(0.0, q * q / 4 + p * p * p / 27));
+    out[0] = std::cbrt(-q / 2 + d) + std::cbrt(-q / 2 - d) - a / 3;
+    n = 1;
+  }
+  for (int k = 0; k < n; ++k)
+    for (int it = 0; it < 2; ++it) {
+      double x = out[k];
+      double v = ((x + a) * x + b) * x + c, dv = (3 * x + 2 * a) * x + b;
+      if (dv != 0 && std::isfinite(v / dv)) out[k] = x - v / dv;
+    }
+  std::sort(out, out + n);
+  return n;
+}
+
+std::vector<double> critical_point_separators(const std::vector<double>& c, size_t k) {
+  std::vector<double> out;
+  size_t n = c.size() - 1;
+  if (k <= 1 || n < 2 || n > 4 || c[n] == 0) return out;
+  // Real roots of p' (degree n - 1 <= 3).
+  double crit[3];
+  int ncrit = 0;
+  if (n == 4) {
+    ncrit = approx_cubic_real_roots(4 * c[4], 3 * c[3], 2 * c[2], c[1], crit);
+  } else if (n == 3) {
+    double qa = 3 * c[3], qb = 2 * c[2], qc = c[1], disc = qb * qb - 4 * qa * qc;
+    if (disc > 0) {
+      double r = std::sqrt(disc);
+      double x1 = (-qb - std::copysign(r, qb)) / (2 * qa); // stable pair of roots
+      double x2 = x1 != 0 ? qc / (qa * x1) : -qb / qa;
+      crit[0] = std::min(x1, x2);
+      crit[1] = std::max(x1, x2);
+      ncrit = 2;
+    }
+  } else {
+    crit[0] = -c[1] / (2 * c[2]);
+    ncrit = 1;
+  }
+  auto value = [&](double x) {
+    double v = 0;
+    for (size_t i = n + 1; i-- > 0;)
+      v = v * x + c[i];
+    return v;
+  };
+  if (static_cast<size_t>(ncrit) == k - 1) {
+    out.assign(crit, crit + ncrit);
+  } else if (k == 2 && ncrit == 3) {
+    // Between the two roots p has the sign opposite to its leading coefficient: take the
+    // critical point where sign(lead) * p is lowest.
+    int best = 0;
+    for (int i = 1; i < 3; ++i)
+      if ((c[n] > 0 ? value(crit[i]) : -value(crit[i])) <
+          (c[n] > 0 ? value(crit[best]) : -value(crit[best])))
+        best = i;
+    out.push_back(crit[best]);
+  }
+  return out;
+}
+
 namespace {
 
 // True when the separators certify an isolation of the k real roots of p (see header).
@@ -70,6 +142,27 @@ bool separators_certify(const UPolyZ& p, const std::vector<Rational>& s, long k)
     prev = sg;
   }
   return true;
+}
+
+// The dyadic number with the fewest fraction bits in (lo, hi) (or their midpoint): short
+// separators keep the exact sign and inertia computations at them cheap.
+double simplest_dyadic_between(double lo, double hi);
+
+// A short dyadic close to x (within 2^-24 relative): the exact check decides whether it works.
+double simplest_dyadic_near(double x) {
+  double w = std::ldexp(std::fabs(x) + 1e-300, -24);
+  return simplest_dyadic_between(x - w, x + w);
+}
+
+double simplest_dyadic_between(double lo, double hi) {
+  double mid = 0.5 * (lo + hi);
+  if (!(lo < hi) || !std::isfinite(mid)) return mid;
+  for (int k = 0; k < 60; ++k) {
+    double scale = std::ldexp(1.0, k);
+    double x = std::round(mid * scale) / scale;
+    if (lo < x && x < hi) return x;
+  }
+  return mid;
 }
 
 // A power of two strictly above every root's absolute value (Cauchy: 1 + max|a_i/a_n|).
@@ -102,12 +195,21 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     c.push_back(p.coeff(i).to_double_approx());
   bool finite = std::all_of(c.begin(), c.end(), [](double x) { return std::isfinite(x); });
   if (finite && c.back() != 0) {
-    auto r = approx_real_roots(c, static_cast<size_t>(k));
     Rational bound = root_bound(p);
     std::vector<Rational> s{-bound};
     bool ok = true;
+    std::vector<double> r;
+    if (p.degree() <= 4) {
+      // Critical points separate the roots (Rolle): no iteration needed.
+      for (double x : critical_point_separators(c, static_cast<size_t>(k)))
+        s.push_back(Rational::exact_from_double(simplest_dyadic_near(x)));
+      ok = static_cast<long>(s.size()) == k;
+    } else {
+      r = approx_real_roots(c, static_cast<size_t>(k));
+    }
     for (size_t i = 0; i + 1 < r.size() && ok; ++i) {
-      double mid = 0.5 * (r[i] + r[i + 1]);
+      double gap = r[i + 1] - r[i];
+      double mid = simplest_dyadic_between(r[i] + 0.25 * gap, r[i + 1] - 0.25 * gap);
       if (!std::isfinite(mid))
         ok = false;
       else

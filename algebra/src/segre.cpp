@@ -41,6 +41,10 @@ static std::vector<int> blocks_from_rank(int m, int r, bool n2_zero) {
 }
 
 std::string segre_from_facts(const PencilFacts& facts) {
+  bool all_simple = !facts.complex_double_pair;
+  for (const auto& r : facts.real_roots)
+    all_simple = all_simple && r.multiplicity == 1;
+  if (all_simple) return "[1111]"; // the common case, without building groups
   std::vector<std::vector<int>> groups;
   for (const auto& r : facts.real_roots)
     groups.push_back(blocks_from_rank(r.multiplicity, r.rank, facts.quadruple_n2_zero));

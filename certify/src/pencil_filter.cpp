@@ -47,6 +47,28 @@ int isign(const I& x) {
   return 2;
 }
 
+// Candidate separators for the k real roots of the quartic fd (k = 0, 2 or 4): +-B outside
+// the roots and critical points between them. Returns their number, 0 on failure.
+size_t separator_candidates(const double* fd, int k, double* seps) {
+  if (k == 0) {
+    seps[0] = 0.0;
+    return 1;
+  }
+  std::vector<double> c(fd, fd + 5);
+  auto inner = algebra::critical_point_separators(c, static_cast<size_t>(k));
+  if (inner.size() != static_cast<size_t>(k - 1)) return 0;
+  double bound = 0;
+  for (int i = 0; i < 4; ++i)
+    bound = std::max(bound, std::fabs(fd[i] / fd[4]));
+  bound = 2 * (1 + bound);
+  size_t n = 0;
+  seps[n++] = -bound;
+  for (double x : inner)
+    seps[n++] = x;
+  seps[n++] = bound;
+  return n;
+}
+
 I horner(const std::array<I, 5>& f, double x) {
   I r = f[4];
   for (int i = 3; i >= 0; --i)
@@ -77,33 +99,31 @@ std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b
     if (s3 == 2 || s2 == 2) return std::nullopt;
     k = (s3 > 0 && s2 > 0) ? 4 : 0;
   }
-  // Separators from float root guesses, certified by alternating certain signs of f.
-  std::vector<double> seps;
-  if (k == 0) {
-    seps.push_back(0.0);
-  } else {
-    std::vector<double> c(5);
-    for (size_t i = 0; i < 5; ++i)
-      c[i] = CGAL::to_double(f[i]);
-    auto r = algebra::approx_real_roots(c, static_cast<size_t>(k));
-    double span = std::max(1.0, std::fabs(r.back() - r.front()));
-    seps.push_back(r.front() - span);
-    for (size_t i = 0; i + 1 < r.size(); ++i)
-      seps.push_back(0.5 * (r[i] + r[i + 1]));
-    seps.push_back(r.back() + span);
-  }
+  // Separators: the critical points of f (roots of the cubic f', found in double) separate
+  // consecutive real roots (Rolle); +-B with a Cauchy bound B lie outside all roots. Whatever
+  // their accuracy, they are only candidates: k+1 points with certain, alternating signs of f
+  // prove one root per gap (k is certain from D2, D3, D4).
+  double fd[5];
+  for (size_t i = 0; i < 5; ++i)
+    fd[i] = CGAL::to_double(f[i]);
+  double seps[5];
+  size_t nsep = separator_candidates(fd, k, seps);
+  if (nsep == 0) return std::nullopt;
   int prev = 0;
-  for (size_t i = 0; i < seps.size(); ++i) {
+  for (size_t i = 0; i < nsep; ++i) {
     if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return std::nullopt;
     int sg = isign(horner(f, seps[i]));
     if (sg == 0 || sg == 2 || (i > 0 && sg == prev)) return std::nullopt;
     prev = sg;
   }
   // Indices: Descartes on the interval charpoly of s*A - B (all signs must be certain).
+  // The caller holds a and b: the facts of a filtered answer do not copy them (see
+  // complete_report_data), to keep the fast path free of big-number copies.
   PencilFacts out;
-  out.a = a0;
-  out.b = b0;
-  for (double s : seps) {
+  out.indices.reserve(nsep);
+  out.samples.reserve(nsep);
+  for (size_t si = 0; si < nsep; ++si) {
+    double s = seps[si];
     Mat4T<I> m;
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j)
@@ -135,17 +155,8 @@ std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b
 }
 
 void complete_exact_invariants(PencilFacts& facts) {
-  facts.f = algebra::pencil_char_poly(facts.a, facts.b);
-  std::array<Rational, 5> fc;
-  for (size_t i = 0; i < 5; ++i)
-    fc[i] = facts.f.coeff(static_cast<long>(i));
-  auto q = algebra::quartic_invariants(fc);
-  facts.d2 = q.d2;
-  facts.d3 = q.d3;
-  facts.d4 = q.d4;
-  facts.e = q.e;
-  facts.root_pattern =
-      algebra::root_pattern_from_signs(q.d2.sign(), q.d3.sign(), q.d4.sign(), q.e.sign());
+  algebra::fill_quartic_invariants(facts);
+  facts.invariants_filled = true;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -248,23 +259,16 @@ double max_abs(const Mat4T<double>& x) {
 } // namespace
 
 PencilFacts analyze_pencil_float(const Mat4& a0, const Mat4& b0, FloatInvariants& inv, double tol) {
+  // Like seed 002: plain doubles of the given matrices, the root pattern from D2, D3, D4, E
+  // with an absolute zero tolerance, then float indices. Nothing here is certified.
   PencilFacts out;
   out.a = a0;
   out.b = b0;
   Mat4T<double> a, b;
-  double sa = 0, sb = 0;
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j) {
-      a[i][j] = a0[i][j].to_double_approx();
-      b[i][j] = b0[i][j].to_double_approx();
-      sa = std::max(sa, std::fabs(a[i][j]));
-      sb = std::max(sb, std::fabs(b[i][j]));
-    }
-  // Normalise both matrices (positive scalings do not change the pencil's topology).
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      a[i][j] /= sa;
-      b[i][j] /= sb;
+      a[i][j] = fmpq_get_d(a0[i][j].raw());
+      b[i][j] = fmpq_get_d(b0[i][j].raw());
     }
   auto f = algebra::pencil_char_coeffs(a, b);
   double fs = 0;
@@ -294,13 +298,10 @@ PencilFacts analyze_pencil_float(const Mat4& a0, const Mat4& b0, FloatInvariants
       }
     }
     f = algebra::pencil_char_coeffs(a, b);
-    fs = 0;
-    for (double c : f)
-      fs = std::max(fs, std::fabs(c));
   }
   std::array<double, 5> fn;
   for (size_t i = 0; i < 5; ++i)
-    fn[i] = f[i] / fs;
+    fn[i] = f[i];
   auto q = algebra::quartic_invariants(fn);
   for (size_t i = 0; i < 5; ++i)
     inv.f[i] = f[i];
@@ -310,8 +311,50 @@ PencilFacts analyze_pencil_float(const Mat4& a0, const Mat4& b0, FloatInvariants
   inv.e = q.e;
   auto z = [&](double x) { return std::fabs(x) <= tol ? 0 : (x > 0 ? 1 : -1); };
   out.root_pattern = algebra::root_pattern_from_signs(z(q.d2), z(q.d3), z(q.d4), z(q.e));
-  // Root multiplicities the pattern implies (real ones listed with their multiplicity).
   const std::string& rp = out.root_pattern;
+  if (rp == "R1" || rp == "R2" || rp == "R3") {
+    // All roots simple: separators as in the filter, indices by Descartes on float charpolys.
+    int k = rp == "R1" ? 4 : (rp == "R3" ? 2 : 0);
+    double seps[5];
+    size_t nsep = separator_candidates(fn.data(), k, seps);
+    if (nsep == 0) { // fall through to the clustering route below with the same pattern
+    } else {
+      for (size_t si = 0; si < nsep; ++si) {
+        auto m = member(seps[si], a, b);
+        auto c = algebra::charpoly_coeffs(m);
+        double scale = 0;
+        for (const auto& row : m)
+          for (double v : row)
+            scale = std::max(scale, std::fabs(v));
+        int sg[4];
+        for (size_t t = 0; t < 4; ++t) {
+          double tolk = tol * std::pow(std::max(scale, 1e-300), static_cast<double>(4 - t));
+          sg[t] = std::fabs(c[t]) <= tolk ? 0 : (c[t] > 0 ? 1 : -1);
+        }
+        out.indices.push_back(algebra::inertia_from_charpoly_signs(sg).p);
+        out.samples.push_back(Rational::exact_from_double(seps[si]));
+      }
+      for (int idx : out.indices)
+        if (idx == 0 || idx == 4) out.definite_member = true;
+      for (int i = 0; i < k; ++i) {
+        RootFacts r;
+        auto ui = static_cast<size_t>(i);
+        r.lo = out.samples[ui];
+        r.hi = out.samples[ui + 1];
+        r.index_left = out.indices[ui];
+        r.index_right = out.indices[ui + 1];
+        r.sigma = Inertia{std::min(r.index_left, r.index_right),
+                          4 - std::max(r.index_left, r.index_right)};
+        out.real_roots.push_back(std::move(r));
+      }
+      out.complex_roots = 4 - k;
+      return out;
+    }
+  }
+  std::array<double, 5> fnorm;
+  for (size_t i = 0; i < 5; ++i)
+    fnorm[i] = f[i] / fs;
+  // Root multiplicities the pattern implies (real ones listed with their multiplicity).
   std::vector<int> mults; // multiplicities of the real roots, in increasing root order later
   int complex_roots = 0;
   if (rp == "R1")
@@ -333,7 +376,7 @@ PencilFacts analyze_pencil_float(const Mat4& a0, const Mat4& b0, FloatInvariants
   else
     mults = {4};
   // Approximate roots: cluster the float roots closest to the real axis.
-  std::vector<double> coeffs(fn.begin(), fn.end());
+  std::vector<double> coeffs(fnorm.begin(), fnorm.end());
   int nreal = 0;
   for (int m : mults)
     nreal += m;

@@ -151,7 +151,11 @@ void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core:
 void complete_report_data(QsicResult& r, const core::QuadricMatrix& a,
                           const core::QuadricMatrix& b) {
   if (r.pencil != PencilKind::Regular) return;
-  if (r.mode != Mode::Float && r.facts.f.is_zero()) complete_exact_invariants(r.facts);
+  if (r.mode == Mode::Filtered && !r.exact_fallback) {
+    r.facts.a = a.matrix(); // the filter does not copy the matrices
+    r.facts.b = b.matrix();
+  }
+  if (r.mode != Mode::Float && !r.facts.invariants_filled) complete_exact_invariants(r.facts);
   if (r.mode != Mode::Float && r.status == Status::Certified) {
     ellipsoid_relation(r, a, b);
     r.special_points = special_points(r.facts, r.tu_case, r.special_points_complete);

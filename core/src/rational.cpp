@@ -39,12 +39,24 @@ Rational::Rational(const Integer& num, const Integer& den) {
 
 Rational Rational::exact_from_double(double d) {
   if (!std::isfinite(d)) throw std::domain_error("exact_from_double: non-finite double");
+  Rational r;
+  if (d == 0) return r;
   int e = 0;
   double m = std::frexp(d, &e); // d = m * 2^e, 0.5 <= |m| < 1
-  // m * 2^53 is an integer exactly (53-bit significand).
-  auto mi = static_cast<long>(std::ldexp(m, 53));
-  Rational r(mi);
-  return r * pow2(static_cast<long>(e) - 53);
+  // m * 2^53 is an integer exactly (53-bit significand); strip its trailing zero bits so
+  // that num / 2^k is already in lowest terms.
+  auto mi = static_cast<long long>(std::ldexp(m, 53));
+  long exp2 = static_cast<long>(e) - 53;
+  while ((mi & 1) == 0) {
+    mi /= 2;
+    ++exp2;
+  }
+  fmpz_set_si(fmpq_numref(r.v_), static_cast<slong>(mi));
+  if (exp2 >= 0)
+    fmpz_mul_2exp(fmpq_numref(r.v_), fmpq_numref(r.v_), static_cast<ulong>(exp2));
+  else
+    fmpz_one_2exp(fmpq_denref(r.v_), static_cast<ulong>(-exp2));
+  return r;
 }
 
 std::optional<Rational> Rational::from_string(const std::string& s) {

@@ -24,7 +24,8 @@ inline core::io::Json load_json(const std::string& rel) {
 inline core::Mat4 mat4_from_json(const core::io::Json& m) {
   core::Mat4 r;
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) r[i][j] = *core::Rational::from_string(m.items()[i].items()[j].text());
+    for (size_t j = 0; j < 4; ++j)
+      r[i][j] = *core::Rational::from_string(m.items()[i].items()[j].text());
   return r;
 }
 
@@ -34,7 +35,8 @@ inline algebra::UPolyQ sympy_univariate(const std::string& s) {
   std::string t = std::regex_replace(s, std::regex("lambda"), "x");
   core::Poly3 p = core::io::parse_polynomial(t, core::Location{"fixture", 1, 1, ""});
   std::vector<core::Rational> c(static_cast<size_t>(std::max(0, p.total_degree()) + 1));
-  for (const auto& [e, v] : p.terms()) c[static_cast<size_t>(e[0])] = v;
+  for (const auto& [e, v] : p.terms())
+    c[static_cast<size_t>(e[0])] = v;
   return algebra::UPolyQ::from_coeffs(c);
 }
 

@@ -37,7 +37,8 @@ UPolyZ squarefree_part(const UPolyZ& p) {
 
 // Checks the separators against Arb's certified complex roots: same number of real roots and
 // each real root's ball lies strictly inside exactly one gap.
-void check_against_arb(const UPolyZ& p, const algebra::RootSeparation& sep, const std::string& ctx) {
+void check_against_arb(const UPolyZ& p, const algebra::RootSeparation& sep,
+                       const std::string& ctx) {
   long n = p.degree();
   acb_ptr roots = _acb_vec_init(n);
   arb_fmpz_poly_complex_roots(roots, p.raw(), 0, 128);
@@ -71,7 +72,8 @@ TEST(RealRoots, RandomPolynomialsThreeIsolators) {
   for (int it = 0; it < 300; ++it) {
     std::vector<Integer> c;
     long d = deg(rng);
-    for (long i = 0; i <= d; ++i) c.emplace_back(coef(rng));
+    for (long i = 0; i <= d; ++i)
+      c.emplace_back(coef(rng));
     if (c.back().is_zero()) c.back() = Integer(1);
     UPolyZ p = squarefree_part(UPolyZ::from_coeffs(c));
     if (p.degree() < 1) continue;
@@ -131,7 +133,8 @@ TEST(Inertia, DescartesLdltAndSylvesterAgree) {
     core::Mat4 p, d;
     do {
       for (auto& row : p)
-        for (auto& v : row) v = Rational(e(rng), static_cast<unsigned long>(den(rng)));
+        for (auto& v : row)
+          v = Rational(e(rng), static_cast<unsigned long>(den(rng)));
     } while (core::det(p).is_zero());
     algebra::Inertia expect;
     for (size_t i = 0; i < 4; ++i) {
@@ -161,18 +164,22 @@ TEST(Pencil, ClosedFormDeterminantMatchesFlint) {
     for (long t : {-3L, 0L, 2L, 7L}) {
       core::Mat4 m;
       for (size_t i = 0; i < 4; ++i)
-        for (size_t j = 0; j < 4; ++j) m[i][j] = Rational(t) * a[i][j] - b[i][j];
+        for (size_t j = 0; j < 4; ++j)
+          m[i][j] = Rational(t) * a[i][j] - b[i][j];
       EXPECT_EQ(f.evaluate(Rational(t)), core::det(m)); // core::det is fmpq_mat_det
     }
     // D4 equals the discriminant of f (FLINT), for an integer multiple of f.
     UPolyZ fz;
     fmpq_poly_get_numerator(fz.raw_mut(), f.raw());
     std::array<Integer, 5> c;
-    for (size_t i = 0; i < 5; ++i) c[i] = fz.coeff(static_cast<long>(i));
+    for (size_t i = 0; i < 5; ++i)
+      c[i] = fz.coeff(static_cast<long>(i));
     auto inv = algebra::quartic_invariants(c);
     Integer disc;
     fmpz_poly_discriminant(disc.raw_mut(), fz.raw());
-    if (fz.degree() == 4) EXPECT_EQ(inv.d4, disc);
+    if (fz.degree() == 4) {
+      EXPECT_EQ(inv.d4, disc);
+    }
   }
 }
 

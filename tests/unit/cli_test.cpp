@@ -23,19 +23,22 @@ struct Run {
 };
 
 std::string tmp_path(const std::string& name) {
-  return (::testing::TempDir().empty() ? std::string("/tmp/") : ::testing::TempDir()) + "surfcert_cli_" + std::to_string(getpid()) + "_" + name;
+  return (::testing::TempDir().empty() ? std::string("/tmp/") : ::testing::TempDir()) +
+         "surfcert_cli_" + std::to_string(getpid()) + "_" + name;
 }
 
 std::string quote(const std::string& s) {
   std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
 }
 
 Run run(const std::string& args, const std::string& stdin_text = "") {
   std::string in = tmp_path("stdin"), out = tmp_path("stdout"), err = tmp_path("stderr");
   std::ofstream(in) << stdin_text;
-  std::string cmd = std::string(SURFCERT_BINARY) + " " + args + " <" + in + " >" + out + " 2>" + err;
+  std::string cmd =
+      std::string(SURFCERT_BINARY) + " " + args + " <" + in + " >" + out + " 2>" + err;
   int st = std::system(cmd.c_str());
   auto slurp = [](const std::string& p) {
     std::ifstream f(p);
@@ -50,7 +53,9 @@ Run run(const std::string& args, const std::string& stdin_text = "") {
   return r;
 }
 
-bool exists(const std::string& p) { return std::ifstream(p).good(); }
+bool exists(const std::string& p) {
+  return std::ifstream(p).good();
+}
 
 } // namespace
 
@@ -75,11 +80,11 @@ TEST(Cli, BadEquationsExitTwoWithLocation) {
     const char* a;
     const char* needle;
   } cases[] = {
-      {"x^2 + * y", "<argument 1>:1:"},   // malformed expression
-      {"x^3 + y^2 - 1", "degree"},        // degree > 2
-      {"x^2 + w^2 - 1", "'w'"},           // unknown variable
-      {"x^2 / (y - y)", "<argument 1>"},  // division by zero
-      {"", "<argument 1>"},               // empty
+      {"x^2 + * y", "<argument 1>:1:"},  // malformed expression
+      {"x^3 + y^2 - 1", "degree"},       // degree > 2
+      {"x^2 + w^2 - 1", "'w'"},          // unknown variable
+      {"x^2 / (y - y)", "<argument 1>"}, // division by zero
+      {"", "<argument 1>"},              // empty
   };
   for (const auto& c : cases) {
     auto r = run(std::string("classify ") + quote(c.a) + " 'x^2+y^2+z^2=1'");
@@ -94,16 +99,24 @@ TEST(Cli, BadScenesExitTwoAndWriteNothing) {
     const char* scene;
     const char* needle;
   } cases[] = {
-      {R"({"surfaces": {"A": {"matrix": [[1,2,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]}, "B": "x^2+y^2+z^2=4"}, "queries": [{"op": "classify", "a": "A", "b": "B"}]})", "$.surfaces.A.matrix[0][1]"},
-      {R"({"surfaces": {"A": {"type": "sphere", "radius": 0}, "B": "x^2=1"}, "queries": []})", "$.surfaces.A.radius"},
-      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1, -2, 1]}, "B": "x^2=1"}, "queries": []})", "$.surfaces.A.radii[1]"},
-      {R"({"surfaces": {"A": {"type": "sphere", "radius": 1e999}, "B": "x^2=1"}, "queries": []})", "finite"},
-      {R"({"surfaces": {"A": {"type": "sphere", "radius": 1, "colour": "red"}, "B": "x^2=1"}, "queries": []})", "unknown field \"colour\""},
-      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "classify", "a": "A", "b": "C"}]})", "$.queries[0].b"},
-      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "distance", "a": "A", "b": "B"}]})", "$.queries[0].op"},
+      {R"({"surfaces": {"A": {"matrix": [[1,2,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]}, "B": "x^2+y^2+z^2=4"}, "queries": [{"op": "classify", "a": "A", "b": "B"}]})",
+       "$.surfaces.A.matrix[0][1]"},
+      {R"({"surfaces": {"A": {"type": "sphere", "radius": 0}, "B": "x^2=1"}, "queries": []})",
+       "$.surfaces.A.radius"},
+      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1, -2, 1]}, "B": "x^2=1"}, "queries": []})",
+       "$.surfaces.A.radii[1]"},
+      {R"({"surfaces": {"A": {"type": "sphere", "radius": 1e999}, "B": "x^2=1"}, "queries": []})",
+       "finite"},
+      {R"({"surfaces": {"A": {"type": "sphere", "radius": 1, "colour": "red"}, "B": "x^2=1"}, "queries": []})",
+       "unknown field \"colour\""},
+      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "classify", "a": "A", "b": "C"}]})",
+       "$.queries[0].b"},
+      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "distance", "a": "A", "b": "B"}]})",
+       "$.queries[0].op"},
       {"{\"surfaces\": {\"A\": \"x^2+y^2=1\",\n \"B\": \"x^2 + + = 1\"}, \"queries\": []}", ":2:"},
       {"{\"surfaces\": {}, \n\n  \"queries\": [,]}", ":3:"},
-      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1,1,1], "rotation": {"matrix": [[1,0,0],[0,1,0],[0,1,1]]}}, "B": "x^2=1"}, "queries": []})", "orthogonal"},
+      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1,1,1], "rotation": {"matrix": [[1,0,0],[0,1,0],[0,1,1]]}}, "B": "x^2=1"}, "queries": []})",
+       "orthogonal"},
   };
   for (const auto& c : cases) {
     std::string scene = tmp_path("scene.json"), report = tmp_path("report.json");
@@ -149,12 +162,13 @@ TEST(Cli, BatchKeepsOrderAndSurvivesBadLines) {
                             {"x^2+y^2+z^2=1", "(x-1)^2+y^2+z^2=1"}};
   for (int i = 0; i < 60; ++i) {
     if (i % 7 == 3) {
-      in += "{\"id\": " + std::to_string(i) + ", \"op\": \"classify\", \"a\": \"x^2+\", \"b\": \"y=1\"}\n";
+      in += "{\"id\": " + std::to_string(i) +
+            ", \"op\": \"classify\", \"a\": \"x^2+\", \"b\": \"y=1\"}\n";
     } else if (i % 11 == 5) {
       in += "this is not json\n";
     } else {
-      in += "{\"id\": " + std::to_string(i) + ", \"op\": \"classify\", \"a\": \"" + pairs[i % 3][0] +
-            "\", \"b\": {\"equation\": \"" + pairs[i % 3][1] + "\"}}\n";
+      in += "{\"id\": " + std::to_string(i) + ", \"op\": \"classify\", \"a\": \"" +
+            pairs[i % 3][0] + "\", \"b\": {\"equation\": \"" + pairs[i % 3][1] + "\"}}\n";
     }
   }
   auto one = run("batch --threads 1", in);
@@ -192,5 +206,6 @@ TEST(Cli, DefaultSceneRuns) {
   ASSERT_EQ(r.code, 0) << r.err;
   Json doc = surfcert::core::io::parse_json(r.out, "stdout");
   EXPECT_GE(doc.find("results")->size(), 5u);
-  for (const auto& q : doc.find("results")->items()) EXPECT_EQ(q.find("status")->text(), "certified");
+  for (const auto& q : doc.find("results")->items())
+    EXPECT_EQ(q.find("status")->text(), "certified");
 }

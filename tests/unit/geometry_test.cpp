@@ -12,7 +12,9 @@ using core::Rational;
 
 namespace {
 
-core::QuadricMatrix q(const std::string& s) { return core::io::quadric_from_equation(s, {"test", 1, 1, ""}); }
+core::QuadricMatrix q(const std::string& s) {
+  return core::io::quadric_from_equation(s, {"test", 1, 1, ""});
+}
 
 certify::QsicResult run(const std::string& a, const std::string& b, Mode m = Mode::Exact) {
   auto qa = q(a), qb = q(b);
@@ -22,7 +24,8 @@ certify::QsicResult run(const std::string& a, const std::string& b, Mode m = Mod
 }
 
 // Exact checks for a rational special point: on both quadrics, gradients parallel.
-void expect_singular_on_both(const std::string& a, const std::string& b, const certify::SpecialPoint& p) {
+void expect_singular_on_both(const std::string& a, const std::string& b,
+                             const certify::SpecialPoint& p) {
   ASSERT_TRUE(p.exact);
   std::array<Rational, 3> x;
   for (size_t i = 0; i < 3; ++i) {
@@ -40,7 +43,8 @@ void expect_singular_on_both(const std::string& a, const std::string& b, const c
         if (e[static_cast<size_t>(v)] == 0) continue;
         Rational t = c * Rational(e[static_cast<size_t>(v)]);
         for (int w = 0; w < 3; ++w)
-          for (int k = 0; k < e[static_cast<size_t>(w)] - (w == v ? 1 : 0); ++k) t *= x[static_cast<size_t>(w)];
+          for (int k = 0; k < e[static_cast<size_t>(w)] - (w == v ? 1 : 0); ++k)
+            t *= x[static_cast<size_t>(w)];
         g[static_cast<size_t>(v)] += t;
       }
     return g;
@@ -100,7 +104,8 @@ TEST(Geometry, SpheresAndEllipsoidsWithKnownRelations) {
       auto s = run(c.b, c.a, m);
       EXPECT_EQ(s.tu_case, c.tu_case) << "swapped " << c.a << " | " << c.b;
       EXPECT_EQ(s.ellipsoid_relation, c.relation) << "swapped " << c.a << " | " << c.b;
-      for (const auto& p : r.special_points) expect_singular_on_both(c.a, c.b, p);
+      for (const auto& p : r.special_points)
+        expect_singular_on_both(c.a, c.b, p);
     }
 }
 

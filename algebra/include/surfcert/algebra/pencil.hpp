@@ -41,12 +41,13 @@ struct RootFacts {
 
 struct PencilFacts {
   PencilKind kind = PencilKind::Regular;
-  core::Mat4 a, b;          ///< the basis used (after re-basing)
-  bool rebased = false;     ///< true when the given A was singular
-  long rebase_t = 0;        ///< then a = t*A0 - B0, b = -A0, l0 = t + 1/l
-  UPolyQ f;                 ///< det(l*a - b)
-  Rational d2, d3, d4, e;   ///< seed 002 Lemma 1 quantities of f
-  std::string root_pattern; ///< "R1".."R9"
+  core::Mat4 a, b;                ///< the basis used (after re-basing)
+  bool rebased = false;           ///< true when the given A was singular
+  long rebase_t = 0;              ///< then a = t*A0 - B0, b = -A0, l0 = t + 1/l
+  UPolyQ f;                       ///< det(l*a - b)
+  Rational d2, d3, d4, e;         ///< seed 002 Lemma 1 quantities of f (fill_quartic_invariants)
+  bool invariants_filled = false; ///< f, d2..e set exactly (report data)
+  std::string root_pattern;       ///< "R1".."R9"
   std::vector<RootFacts> real_roots;
   std::vector<Rational> samples;    ///< rational points between the real roots (size k+1)
   std::vector<int> indices;         ///< index at each sample point
@@ -60,6 +61,13 @@ struct PencilFacts {
 
 /// Exact analysis. Precondition: a, b symmetric.
 PencilFacts analyze_pencil_exact(const core::Mat4& a, const core::Mat4& b);
+
+/// f, D2, D3, D4, E exactly from facts.a, facts.b (integer route), and the root pattern from
+/// their signs, checked against the one from the multiplicities when that is already set.
+void fill_quartic_invariants(PencilFacts& facts);
+
+/// Root pattern label from the multiplicities of an exact analysis.
+std::string root_pattern_from_multiplicities(const PencilFacts& facts);
 
 /// Root pattern label R1..R9 from the exact signs of D2, D3, D4, E (research §3.1).
 std::string root_pattern_from_signs(int sd2, int sd3, int sd4, int se);

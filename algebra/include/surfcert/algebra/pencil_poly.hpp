@@ -9,6 +9,8 @@
 // T must support +, -, * and construction from int.
 #pragma once
 
+#include "surfcert/core/rational.hpp"
+
 #include <array>
 
 namespace surfcert::algebra {
@@ -16,6 +18,21 @@ namespace surfcert::algebra {
 template <class T> using Mat4T = std::array<std::array<T, 4>, 4>;
 
 namespace detail {
+// acc += x*y and acc -= x*y; the Integer overloads use FLINT's fused in-place operations, which
+// avoid a temporary (and, for big values, an allocation) per product.
+template <class T> void mul_add(T& acc, const T& x, const T& y) {
+  acc = acc + x * y;
+}
+template <class T> void mul_sub(T& acc, const T& x, const T& y) {
+  acc = acc - x * y;
+}
+inline void mul_add(core::Integer& acc, const core::Integer& x, const core::Integer& y) {
+  fmpz_addmul(acc.raw_mut(), x.raw(), y.raw());
+}
+inline void mul_sub(core::Integer& acc, const core::Integer& x, const core::Integer& y) {
+  fmpz_submul(acc.raw_mut(), x.raw(), y.raw());
+}
+
 // Coefficients [q0, q1, q2] of the 2x2 minor (rows r1, r2; cols c1, c2) of l*A - B.
 template <class T>
 std::array<T, 3> pencil_minor2(const Mat4T<T>& a, const Mat4T<T>& b, int r1, int r2, int c1,
@@ -27,10 +44,15 @@ std::array<T, 3> pencil_minor2(const Mat4T<T>& a, const Mat4T<T>& b, int r1, int
     return b[static_cast<size_t>(i)][static_cast<size_t>(j)];
   };
   // (l*a11 - b11)(l*a22 - b22) - (l*a12 - b12)(l*a21 - b21)
-  T q2 = A(r1, c1) * A(r2, c2) - A(r1, c2) * A(r2, c1);
-  T q1 = (A(r1, c2) * B(r2, c1) + B(r1, c2) * A(r2, c1)) -
-         (A(r1, c1) * B(r2, c2) + B(r1, c1) * A(r2, c2));
-  T q0 = B(r1, c1) * B(r2, c2) - B(r1, c2) * B(r2, c1);
+  T q2(0), q1(0), q0(0);
+  mul_add(q2, A(r1, c1), A(r2, c2));
+  mul_sub(q2, A(r1, c2), A(r2, c1));
+  mul_add(q1, A(r1, c2), B(r2, c1));
+  mul_add(q1, B(r1, c2), A(r2, c1));
+  mul_sub(q1, A(r1, c1), B(r2, c2));
+  mul_sub(q1, B(r1, c1), A(r2, c2));
+  mul_add(q0, B(r1, c1), B(r2, c2));
+  mul_sub(q0, B(r1, c2), B(r2, c1));
   return {q0, q1, q2};
 }
 } // namespace detail
@@ -48,9 +70,9 @@ template <class T> std::array<T, 5> pencil_char_coeffs(const Mat4T<T>& a, const 
     for (size_t s = 0; s < 3; ++s)
       for (size_t t = 0; t < 3; ++t) {
         if (negative)
-          f[s + t] = f[s + t] - top[s] * bot[t];
+          detail::mul_sub(f[s + t], top[s], bot[t]);
         else
-          f[s + t] = f[s + t] + top[s] * bot[t];
+          detail::mul_add(f[s + t], top[s], bot[t]);
       }
   }
   return f;
@@ -85,31 +107,46 @@ template <class T> std::array<T, 4> charpoly_coeffs(const Mat4T<T>& m) {
   auto M = [&](int i, int j) -> const T& {
     return m[static_cast<size_t>(i)][static_cast<size_t>(j)];
   };
+  using detail::mul_add;
+  using detail::mul_sub;
   T tr = M(0, 0) + M(1, 1) + M(2, 2) + M(3, 3);
   T s2(0);
   for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j)
-      s2 = s2 + (M(i, i) * M(j, j) - M(i, j) * M(j, i));
-  // Sum of principal 3x3 minors and the determinant via 2x2 minors of rows {0,1}, {2,3}.
+    for (int j = i + 1; j < 4; ++j) {
+      mul_add(s2, M(i, i), M(j, j));
+      mul_sub(s2, M(i, j), M(j, i));
+    }
+  // Sum of principal 3x3 minors (cofactor expansion along the first kept row).
   T s3(0);
   for (int skip = 0; skip < 4; ++skip) {
     int r[3], n = 0;
     for (int i = 0; i < 4; ++i)
       if (i != skip) r[n++] = i;
-    s3 = s3 + M(r[0], r[0]) * (M(r[1], r[1]) * M(r[2], r[2]) - M(r[1], r[2]) * M(r[2], r[1])) -
-         M(r[0], r[1]) * (M(r[1], r[0]) * M(r[2], r[2]) - M(r[1], r[2]) * M(r[2], r[0])) +
-         M(r[0], r[2]) * (M(r[1], r[0]) * M(r[2], r[1]) - M(r[1], r[1]) * M(r[2], r[0]));
+    T c1(0), c2(0), c3(0);
+    mul_add(c1, M(r[1], r[1]), M(r[2], r[2]));
+    mul_sub(c1, M(r[1], r[2]), M(r[2], r[1]));
+    mul_add(c2, M(r[1], r[0]), M(r[2], r[2]));
+    mul_sub(c2, M(r[1], r[2]), M(r[2], r[0]));
+    mul_add(c3, M(r[1], r[0]), M(r[2], r[1]));
+    mul_sub(c3, M(r[1], r[1]), M(r[2], r[0]));
+    mul_add(s3, M(r[0], r[0]), c1);
+    mul_sub(s3, M(r[0], r[1]), c2);
+    mul_add(s3, M(r[0], r[2]), c3);
   }
+  // Determinant via the 2x2 minors of rows {0,1} and {2,3} (Laplace).
   static const int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   T det(0);
   for (int p = 0; p < 6; ++p) {
     int i = pairs[p][0], j = pairs[p][1], k = pairs[5 - p][0], l = pairs[5 - p][1];
-    T top = M(0, i) * M(1, j) - M(0, j) * M(1, i);
-    T bot = M(2, k) * M(3, l) - M(2, l) * M(3, k);
+    T top(0), bot(0);
+    mul_add(top, M(0, i), M(1, j));
+    mul_sub(top, M(0, j), M(1, i));
+    mul_add(bot, M(2, k), M(3, l));
+    mul_sub(bot, M(2, l), M(3, k));
     if ((i + j + 1) % 2)
-      det = det - top * bot;
+      mul_sub(det, top, bot);
     else
-      det = det + top * bot;
+      mul_add(det, top, bot);
   }
   return {det, T(0) - s3, s2, T(0) - tr};
 }

@@ -41,6 +41,15 @@ std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>
 /// The `count` guesses closest to the real axis, real parts sorted increasingly (no guarantee).
 std::vector<double> approx_real_roots(const std::vector<double>& coeffs, size_t count);
 
+/// Float guesses (no guarantee) of real roots of c3 x^3 + ... + c0, increasing; returns their
+/// number (0 when c3 == 0). Closed form plus two Newton steps.
+int approx_cubic_real_roots(double c3, double c2, double c1, double c0, double* out);
+
+/// For a polynomial of degree 2..4 with k real roots (k known exactly elsewhere): k - 1 float
+/// points, one between each pair of consecutive roots, chosen among the critical points
+/// (Rolle). Empty when it cannot pick them. A guess: callers check it exactly.
+std::vector<double> critical_point_separators(const std::vector<double>& coeffs, size_t k);
+
 /// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, by exact
 /// bisection until hi - lo <= width (or the root is hit exactly, then lo == hi).
 void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width);
