@@ -10,6 +10,7 @@
 // test_seed() = SURFCERT_TEST_SEED (environment) or 20261122.
 #pragma once
 
+#include "surfcert/algebra/pencil.hpp"
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/rational.hpp"
 
@@ -46,10 +47,24 @@ struct CaseRecipe {
   int tu_case;
   const char* recipe; ///< text accepted by parse_recipe
   const char* segre;  ///< Segre characteristic of the case (research §2.1), canonical text
+  /// Normalised signature sequence(s) of §2.1 in ASCII ("<1,(1,2),2,((1,1)),3>"; index =
+  /// number of positive eigenvalues; a root in m pairs of parentheses); case 16 has two,
+  /// separated by a space.
+  const char* sequences;
 };
 
 /// The 35 recipes of research §4.5, in case order (index = case - 1).
 const std::vector<CaseRecipe>& case_recipes();
+
+/// Normal form (research §1.4) of the signature sequence read off exact pencil facts: the
+/// lexicographically smallest among all rotations, each optionally reversed and/or
+/// complemented (interval entries by value, root entries by (m, p, n)), as ASCII text.
+/// Precondition: regular pencil analysed with det(facts.a) != 0.
+std::string signature_normal_form(const algebra::PencilFacts& facts);
+
+/// Case from the §2.1 table given the Segre text and the normalised sequence: the pair
+/// (Segre, sequence) is unique per case. 0 when no row matches.
+int case_from_table(const std::string& segre, const std::string& sequence);
 
 /// Parses e.g. "J1(-3,+) J1(-1,+) J1(1,-) J1(3,+)", "J2(-3,+) C1(1+2i)", "C2(i)",
 /// "J1(-1/2,-) C1(-3/2-i)", "J1(-3,+)x3 J1(-1,+)" (x3 = repeat). Throws
