@@ -1,6 +1,7 @@
 #include "surfcert/algebra/real_roots.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 namespace surfcert::algebra {
@@ -190,9 +191,19 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     // p has no real root, so p(0) != 0 unless p is zero (precondition).
     return out;
   }
+  // Coefficients as doubles scaled by a common power of two (no overflow for huge integers;
+  // the roots are unchanged).
   std::vector<double> c;
-  for (long i = 0; i <= p.degree(); ++i)
-    c.push_back(p.coeff(i).to_double_approx());
+  slong emax = LONG_MIN;
+  std::vector<slong> ex(static_cast<size_t>(p.degree() + 1));
+  std::vector<double> mant(ex.size());
+  for (long i = 0; i <= p.degree(); ++i) {
+    auto ui = static_cast<size_t>(i);
+    mant[ui] = fmpz_get_d_2exp(&ex[ui], p.raw()->coeffs + i);
+    if (mant[ui] != 0) emax = std::max(emax, ex[ui]);
+  }
+  for (size_t i = 0; i < ex.size(); ++i)
+    c.push_back(mant[i] == 0 ? 0.0 : std::ldexp(mant[i], static_cast<int>(std::max<slong>(ex[i] - emax, -2000))));
   bool finite = std::all_of(c.begin(), c.end(), [](double x) { return std::isfinite(x); });
   if (finite && c.back() != 0) {
     Rational bound = root_bound(p);
@@ -201,9 +212,15 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     std::vector<double> r;
     if (p.degree() <= 4) {
       // Critical points separate the roots (Rolle): no iteration needed.
-      for (double x : critical_point_separators(c, static_cast<size_t>(k)))
-        s.push_back(Rational::exact_from_double(simplest_dyadic_near(x)));
-      ok = static_cast<long>(s.size()) == k;
+      for (double x : critical_point_separators(c, static_cast<size_t>(k))) {
+        double y = simplest_dyadic_near(x);
+        if (!std::isfinite(y)) {
+          ok = false;
+          break;
+        }
+        s.push_back(Rational::exact_from_double(y));
+      }
+      ok = ok && static_cast<long>(s.size()) == k;
     } else {
       r = approx_real_roots(c, static_cast<size_t>(k));
     }

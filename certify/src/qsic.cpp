@@ -51,7 +51,13 @@ QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix
   r.mode = mode;
   if (mode == Mode::Float) {
     FloatInvariants inv{};
-    r.facts = analyze_pencil_float(a.matrix(), b.matrix(), inv);
+    try {
+      r.facts = analyze_pencil_float(a.matrix(), b.matrix(), inv);
+    } catch (const std::domain_error& e) { // overflow to inf/nan in plain doubles
+      r.status = Status::Undecided;
+      r.note = std::string("float analysis failed: ") + e.what();
+      return r;
+    }
     r.float_invariants = inv;
     r.status = Status::Uncertified;
   } else {
