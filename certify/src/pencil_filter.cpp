@@ -110,10 +110,12 @@ std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b
   size_t nsep = separator_candidates(fd, k, seps);
   if (nsep == 0) return std::nullopt;
   int prev = 0;
+  int fsign[5] = {0, 0, 0, 0, 0};
   for (size_t i = 0; i < nsep; ++i) {
     if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return std::nullopt;
     int sg = isign(horner(f, seps[i]));
     if (sg == 0 || sg == 2 || (i > 0 && sg == prev)) return std::nullopt;
+    fsign[i] = sg; // = sign det(s*A - B), reused by Jacobi's rule below
     prev = sg;
   }
   // Indices: Descartes on the interval charpoly of s*A - B (all signs must be certain).
@@ -126,9 +128,23 @@ std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b
     double s = seps[si];
     Mat4T<I> m;
     for (size_t i = 0; i < 4; ++i)
-      for (size_t j = 0; j < 4; ++j)
-        m[i][j] = a[i][j] * s - b[i][j];
-    auto c = algebra::charpoly_coeffs(m);
+      for (size_t j = i; j < 4; ++j) m[i][j] = m[j][i] = a[i][j] * s - b[i][j];
+    // Jacobi's rule: with leading minors d1, d2, d3 certainly nonzero and d4 = f(s) (its sign
+    // is certain from above), the negative eigenvalues are the sign changes of 1, d1..d4.
+    I d2 = m[0][0] * m[1][1] - m[0][1] * m[0][1];
+    I d3 = m[2][0] * (m[0][1] * m[1][2] - m[0][2] * m[1][1]) -
+           m[2][1] * (m[0][0] * m[1][2] - m[0][2] * m[1][0]) + m[2][2] * d2;
+    int lead[5] = {1, isign(m[0][0]), isign(d2), isign(d3), fsign[si]};
+    bool certain = true;
+    for (int t = 1; t < 4; ++t) certain = certain && (lead[t] == 1 || lead[t] == -1);
+    if (certain) {
+      int neg = 0;
+      for (int t = 0; t < 4; ++t) neg += lead[t] != lead[t + 1];
+      out.indices.push_back(4 - neg);
+      out.samples.push_back(Rational::exact_from_double(s));
+      continue;
+    }
+    auto c = algebra::charpoly_coeffs(m); // a leading minor may vanish: Descartes instead
     int sg[4];
     for (size_t t = 0; t < 4; ++t) {
       sg[t] = isign(c[t]);
@@ -163,6 +179,11 @@ void complete_exact_invariants(PencilFacts& facts) {
 // Float mode (uncertified).
 
 namespace {
+
+// num/den in double (cheap; the float mode is uncertified anyway).
+double approx(const Rational& q) {
+  return fmpz_get_d(fmpq_numref(q.raw())) / fmpz_get_d(fmpq_denref(q.raw()));
+}
 
 // Eigenvalues of a symmetric 4x4 matrix by cyclic Jacobi rotations.
 std::array<double, 4> eigenvalues(Mat4T<double> m) {
@@ -267,8 +288,8 @@ PencilFacts analyze_pencil_float(const Mat4& a0, const Mat4& b0, FloatInvariants
   Mat4T<double> a, b;
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j) {
-      a[i][j] = fmpq_get_d(a0[i][j].raw());
-      b[i][j] = fmpq_get_d(b0[i][j].raw());
+      a[i][j] = approx(a0[i][j]);
+      b[i][j] = approx(b0[i][j]);
     }
   auto f = algebra::pencil_char_coeffs(a, b);
   double fs = 0;

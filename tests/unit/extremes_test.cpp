@@ -1,0 +1,86 @@
+// Numerical extremes with closed-form answers: tangent configurations perturbed by 2^-40 and
+// 2^-100, scales of 10^-30 and 10^30, and huge translations. Exact and filtered modes must give
+// the closed-form topology; float mode is only counted (it is uncertified by design).
+#include "surfcert/certify/qsic.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace surfcert;
+using certify::Mode;
+using core::Rational;
+
+namespace {
+
+core::QuadricMatrix sphere(const Rational& cx, const Rational& r) {
+  core::Mat4 m;
+  m[0][0] = m[1][1] = m[2][2] = Rational(1);
+  m[0][3] = m[3][0] = -cx;
+  m[3][3] = cx * cx - r * r;
+  return core::QuadricMatrix(m);
+}
+
+core::QuadricMatrix cylinder_z(const Rational& r) {
+  core::Mat4 m;
+  m[0][0] = m[1][1] = Rational(1);
+  m[3][3] = -r * r;
+  return core::QuadricMatrix(m);
+}
+
+// Expects the closed-form case in exact and filtered mode (and swapped), counts float misses.
+int float_misses = 0;
+void expect_case(const core::QuadricMatrix& a, const core::QuadricMatrix& b, int expect,
+                 const std::string& what) {
+  for (Mode m : {Mode::Exact, Mode::Filtered}) {
+    auto r = certify::classify_qsic(a, b, m);
+    EXPECT_EQ(r.status, certify::Status::Certified) << what;
+    EXPECT_EQ(r.tu_case, expect) << what << " mode " << certify::to_string(m);
+    auto s = certify::classify_qsic(b, a, m);
+    EXPECT_EQ(s.tu_case, expect) << what << " swapped, mode " << certify::to_string(m);
+  }
+  float_misses += certify::classify_qsic(a, b, Mode::Float).tu_case != expect;
+}
+
+} // namespace
+
+TEST(Extremes, TouchingSpheresPerturbed) {
+  for (long k : {40L, 100L}) {
+    Rational eps = core::pow2(-k);
+    std::string tag = "2^-" + std::to_string(k);
+    // Unit spheres with centres 2 apart touch; closer: one circle; farther: separated.
+    expect_case(sphere(0, 1), sphere(Rational(2), 1), 25, "touching");
+    expect_case(sphere(0, 1), sphere(Rational(2) - eps, 1), 17, "overlap by " + tag);
+    expect_case(sphere(0, 1), sphere(Rational(2) + eps, 1), 16, "gap " + tag);
+    // Radius 3 around radius 1 with centres 2 apart: internal touch; perturbed both ways.
+    expect_case(sphere(0, 3), sphere(Rational(2), 1), 25, "internal touch");
+    expect_case(sphere(0, 3), sphere(Rational(2) - eps, 1), 16, "nested by " + tag);
+    expect_case(sphere(0, 3), sphere(Rational(2) + eps, 1), 17, "poking out by " + tag);
+    // Unit sphere in a cylinder of radius 1 +- eps: double conic, two circles, or nothing.
+    expect_case(sphere(0, 1), cylinder_z(1), 21, "tangent along the equator");
+    expect_case(sphere(0, 1), cylinder_z(Rational(1) - eps), 14, "cylinder thinner by " + tag);
+    auto r = certify::classify_qsic(sphere(0, 1), cylinder_z(Rational(1) + eps), Mode::Exact);
+    ASSERT_NE(r.morphology, nullptr);
+    EXPECT_EQ(r.morphology->connected_components, 0) << "cylinder wider by " << tag << ": empty";
+  }
+}
+
+TEST(Extremes, TinyAndHugeScales) {
+  for (long e : {-30L, 30L}) {
+    Rational s(1);
+    for (long i = 0; i < (e < 0 ? -e : e); ++i) s = e < 0 ? s / Rational(10) : s * Rational(10);
+    std::string tag = "scale 10^" + std::to_string(e);
+    expect_case(sphere(0, s), sphere(Rational(2) * s, s), 25, tag + " touching");
+    expect_case(sphere(0, s), sphere(s, s), 17, tag + " overlapping");
+    expect_case(sphere(0, s), sphere(Rational(3) * s, s), 16, tag + " separated");
+    expect_case(sphere(0, s), sphere(Rational(2) * s - s * core::pow2(-60), s), 17, tag + " overlap 2^-60");
+  }
+}
+
+TEST(Extremes, FarFromTheOrigin) {
+  // Touching unit spheres translated by 10^6 (exact rationals; doubles lose the gap).
+  Rational t(1000000);
+  expect_case(sphere(t, 1), sphere(t + Rational(2), 1), 25, "touching at 10^6");
+  expect_case(sphere(t, 1), sphere(t + Rational(2) + core::pow2(-40), 1), 16, "gap 2^-40 at 10^6");
+  RecordProperty("float_mode_misses", float_misses);
+  std::cout << "float mode missed " << float_misses << " of the extreme configurations (uncertified)\n";
+}
