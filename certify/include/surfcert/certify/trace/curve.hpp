@@ -1,0 +1,61 @@
+// surfcert::trace: approximate (floating-point) pieces of the intersection curve of two
+// quadrics, produced to match a certified topology. Nothing in this namespace claims
+// certainty: intersect_curve (certify/curve.hpp) compares what the tracer returns with the
+// certified morphology and reports "undecided" when they disagree.
+//
+// Conventions: points are affine (x, y, z) doubles; every returned point has been corrected
+// by Newton steps onto both surfaces; `residual` is the largest max(|f|, |g|)/scale over the
+// returned points, with f, g the quadrics' polynomials normalised so that their largest
+// coefficient has absolute value 1.
+#pragma once
+
+#include "surfcert/core/quadric.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace surfcert::trace {
+
+using Point3 = std::array<double, 3>;
+
+/// One connected piece of curve as a polyline.
+struct Branch {
+  std::string kind; ///< "loop", "figure_eight", "loop_with_cusp", "conic", "line", "double_conic"
+  bool closed = true;
+  std::vector<Point3> points; ///< for closed branches the first point is not repeated at the end
+};
+
+struct TraceOptions {
+  double tolerance = 2e-4; ///< bound on chord error and on the step (relative to the scene size)
+  int max_points_per_branch = 200000;
+};
+
+/// The pair as float data, normalised; shared by the tracer's parts.
+struct QuadricPair {
+  std::array<std::array<double, 4>, 4> a, b; ///< symmetric, largest |entry| = 1 each
+  explicit QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb);
+  double f(const Point3& p) const;  ///< X^T A X with X = (p, 1)
+  double g(const Point3& p) const;
+  Point3 grad_f(const Point3& p) const;
+  Point3 grad_g(const Point3& p) const;
+};
+
+/// Newton (minimum-norm Gauss-Newton) projection of p onto f = g = 0. Returns false when it
+/// does not converge to max(|f|, |g|) <= 1e-15 * (1 + |p|^2) within `iterations`.
+bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations = 30);
+
+/// Start points: for a random-ish direction d, the points of the curve where d.x is critical
+/// (every compact branch has at least two), computed from the exact real roots of a
+/// univariate resultant in the slice parameter (see start_points.cpp). Points at which the
+/// surfaces are tangent or the curve is singular are included when they are extreme.
+std::vector<Point3> extreme_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b);
+
+/// Marches along the smooth parts of the curve from the start points, with a step adapted to
+/// curvature and Newton correction, passing through the given singular points along their
+/// tangent directions; closes loops. Each start point lying on an already traced branch is
+/// skipped.
+std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& starts,
+                          const std::vector<Point3>& singular_points, const TraceOptions& opt);
+
+} // namespace surfcert::trace
