@@ -28,20 +28,23 @@ Inertia inertia_from_charpoly_signs(const int s[4]) {
   return Inertia{variations(pos, 5), variations(neg, 5)};
 }
 
-Inertia inertia_descartes(const Mat4& m) {
-  // Scale to an integer matrix by the lcm of the denominators (a positive factor keeps signs).
+void scaled_integer_matrix(fmpz_mat_t out, const Mat4& m) {
   core::Integer l(1);
   for (const auto& row : m)
     for (const auto& v : row)
       fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
-  fmpz_mat_t z;
-  fmpz_mat_init(z, 4, 4);
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j) {
-      fmpz* e = fmpz_mat_entry(z, static_cast<slong>(i), static_cast<slong>(j));
+      fmpz* e = fmpz_mat_entry(out, static_cast<slong>(i), static_cast<slong>(j));
       fmpz_divexact(e, l.raw(), fmpq_denref(m[i][j].raw()));
       fmpz_mul(e, e, fmpq_numref(m[i][j].raw()));
     }
+}
+
+Inertia inertia_descartes(const Mat4& m) {
+  fmpz_mat_t z;
+  fmpz_mat_init(z, 4, 4);
+  scaled_integer_matrix(z, m); // a positive factor keeps the signs of the eigenvalues
   fmpz_poly_t cp;
   fmpz_poly_init(cp);
   fmpz_mat_charpoly(cp, z);

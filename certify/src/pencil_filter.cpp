@@ -128,7 +128,8 @@ std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b
     double s = seps[si];
     Mat4T<I> m;
     for (size_t i = 0; i < 4; ++i)
-      for (size_t j = i; j < 4; ++j) m[i][j] = m[j][i] = a[i][j] * s - b[i][j];
+      for (size_t j = i; j < 4; ++j)
+        m[i][j] = m[j][i] = a[i][j] * s - b[i][j];
     // Jacobi's rule: with leading minors d1, d2, d3 certainly nonzero and d4 = f(s) (its sign
     // is certain from above), the negative eigenvalues are the sign changes of 1, d1..d4.
     I d2 = m[0][0] * m[1][1] - m[0][1] * m[0][1];
@@ -136,10 +137,12 @@ std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b
            m[2][1] * (m[0][0] * m[1][2] - m[0][2] * m[1][0]) + m[2][2] * d2;
     int lead[5] = {1, isign(m[0][0]), isign(d2), isign(d3), fsign[si]};
     bool certain = true;
-    for (int t = 1; t < 4; ++t) certain = certain && (lead[t] == 1 || lead[t] == -1);
+    for (int t = 1; t < 4; ++t)
+      certain = certain && (lead[t] == 1 || lead[t] == -1);
     if (certain) {
       int neg = 0;
-      for (int t = 0; t < 4; ++t) neg += lead[t] != lead[t + 1];
+      for (int t = 0; t < 4; ++t)
+        neg += lead[t] != lead[t + 1];
       out.indices.push_back(4 - neg);
       out.samples.push_back(Rational::exact_from_double(s));
       continue;

@@ -21,8 +21,10 @@ using core::io::json_path_index;
 
 namespace {
 
+using core::io::check_fields;
+
 Location at(const Json& v, const std::string& source, const std::string& path) {
-  return Location{source, v.line(), v.column(), path};
+  return core::io::json_location(v, source, path);
 }
 
 Mode read_mode(const Json& v, const std::string& source, const std::string& path) {
@@ -31,18 +33,6 @@ Mode read_mode(const Json& v, const std::string& source, const std::string& path
     throw InputError(at(v, source, path), "a mode: \"exact\", \"filtered\" or \"float\"",
                      v.is_string() ? "\"" + v.text() + "\"" : core::io::type_name(v.type()));
   return *m;
-}
-
-void check_fields(const Json& v, const std::set<std::string>& allowed, const std::string& source,
-                  const std::string& path) {
-  for (const auto& [k, val] : v.members())
-    if (!allowed.count(k)) {
-      std::string list;
-      for (const auto& x : allowed)
-        list += (list.empty() ? "" : ", ") + x;
-      throw InputError(at(val, source, json_path_child(path, k)), "one of the fields " + list,
-                       "unknown field \"" + k + "\"");
-    }
 }
 
 const char* kSupportedOps = "\"classify\"";

@@ -1,5 +1,7 @@
 #include "surfcert/certify/special_points.hpp"
 
+#include "surfcert/algebra/inertia.hpp"
+
 #include <flint/fmpq_mat.h>
 #include <flint/fmpz_mat.h>
 
@@ -17,19 +19,10 @@ using QVec4 = std::array<QuadraticNumber, 4>;
 
 // Basis of the kernel of a rational 4x4 matrix (FLINT nullspace over Z after scaling).
 std::vector<Vec4> kernel(const Mat4& m) {
-  Integer l(1);
-  for (const auto& row : m)
-    for (const auto& v : row)
-      fmpz_lcm(l.raw_mut(), l.raw(), fmpq_denref(v.raw()));
   fmpz_mat_t z, n;
   fmpz_mat_init(z, 4, 4);
   fmpz_mat_init(n, 4, 4);
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      fmpz* e = fmpz_mat_entry(z, static_cast<slong>(i), static_cast<slong>(j));
-      fmpz_divexact(e, l.raw(), fmpq_denref(m[i][j].raw()));
-      fmpz_mul(e, e, fmpq_numref(m[i][j].raw()));
-    }
+  algebra::scaled_integer_matrix(z, m);
   slong nullity = fmpz_mat_nullspace(n, z);
   std::vector<Vec4> out;
   for (slong c = 0; c < nullity; ++c) {

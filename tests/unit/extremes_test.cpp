@@ -67,12 +67,14 @@ TEST(Extremes, TouchingSpheresPerturbed) {
 TEST(Extremes, TinyAndHugeScales) {
   for (long e : {-30L, 30L}) {
     Rational s(1);
-    for (long i = 0; i < (e < 0 ? -e : e); ++i) s = e < 0 ? s / Rational(10) : s * Rational(10);
+    for (long i = 0; i < (e < 0 ? -e : e); ++i)
+      s = e < 0 ? s / Rational(10) : s * Rational(10);
     std::string tag = "scale 10^" + std::to_string(e);
     expect_case(sphere(0, s), sphere(Rational(2) * s, s), 25, tag + " touching");
     expect_case(sphere(0, s), sphere(s, s), 17, tag + " overlapping");
     expect_case(sphere(0, s), sphere(Rational(3) * s, s), 16, tag + " separated");
-    expect_case(sphere(0, s), sphere(Rational(2) * s - s * core::pow2(-60), s), 17, tag + " overlap 2^-60");
+    expect_case(sphere(0, s), sphere(Rational(2) * s - s * core::pow2(-60), s), 17,
+                tag + " overlap 2^-60");
   }
 }
 
@@ -82,5 +84,6 @@ TEST(Extremes, FarFromTheOrigin) {
   expect_case(sphere(t, 1), sphere(t + Rational(2), 1), 25, "touching at 10^6");
   expect_case(sphere(t, 1), sphere(t + Rational(2) + core::pow2(-40), 1), 16, "gap 2^-40 at 10^6");
   RecordProperty("float_mode_misses", float_misses);
-  std::cout << "float mode missed " << float_misses << " of the extreme configurations (uncertified)\n";
+  std::cout << "float mode missed " << float_misses
+            << " of the extreme configurations (uncertified)\n";
 }

@@ -41,7 +41,8 @@ TEST(Filter, AgreesWithExactArithmeticWheneverItAnswers) {
       const Rational& s = fast->samples[i];
       core::Mat4 m;
       for (size_t r = 0; r < 4; ++r)
-        for (size_t c = 0; c < 4; ++c) m[r][c] = s * a[r][c] - b[r][c];
+        for (size_t c = 0; c < 4; ++c)
+          m[r][c] = s * a[r][c] - b[r][c];
       EXPECT_EQ(fast->indices[i], algebra::inertia_ldlt(m).p) << ctx << " sample " << i;
       EXPECT_NE(f.evaluate(s).sign(), 0) << ctx;
       if (i > 0) {
@@ -50,8 +51,12 @@ TEST(Filter, AgreesWithExactArithmeticWheneverItAnswers) {
     }
     auto ex = algebra::analyze_pencil_exact(a, b);
     EXPECT_EQ(ex.real_roots.size(), fast->real_roots.size()) << ctx;
-    EXPECT_EQ(certify::classify_qsic(core::QuadricMatrix(a), core::QuadricMatrix(b), certify::Mode::Filtered).tu_case,
-              certify::classify_qsic(core::QuadricMatrix(a), core::QuadricMatrix(b), certify::Mode::Exact).tu_case)
+    EXPECT_EQ(
+        certify::classify_qsic(core::QuadricMatrix(a), core::QuadricMatrix(b),
+                               certify::Mode::Filtered)
+            .tu_case,
+        certify::classify_qsic(core::QuadricMatrix(a), core::QuadricMatrix(b), certify::Mode::Exact)
+            .tu_case)
         << ctx;
   }
   EXPECT_GT(answered, 400);

@@ -11,7 +11,7 @@ namespace surfcert::core::io {
 namespace {
 
 Location at(const Json& v, const std::string& source, const std::string& path) {
-  return Location{source, v.line(), v.column(), path};
+  return json_location(v, source, path);
 }
 
 std::string describe(const Json& v) {
@@ -23,18 +23,6 @@ std::string describe(const Json& v) {
   default:
     return type_name(v.type());
   }
-}
-
-void check_fields(const Json& v, const std::set<std::string>& allowed, const std::string& source,
-                  const std::string& path) {
-  for (const auto& [k, val] : v.members())
-    if (!allowed.count(k)) {
-      std::string list;
-      for (const auto& a : allowed)
-        list += (list.empty() ? "" : ", ") + a;
-      throw InputError(at(val, source, json_path_child(path, k)), "one of the fields " + list,
-                       "unknown field \"" + k + "\"");
-    }
 }
 
 const Json& require(const Json& v, const std::string& key, const std::string& source,
@@ -213,6 +201,22 @@ QuadricMatrix read_shape(const Json& v, const std::string& source, const std::st
 }
 
 } // namespace
+
+Location json_location(const Json& v, const std::string& source, const std::string& path) {
+  return Location{source, v.line(), v.column(), path};
+}
+
+void check_fields(const Json& v, const std::set<std::string>& allowed, const std::string& source,
+                  const std::string& path) {
+  for (const auto& [k, val] : v.members())
+    if (!allowed.count(k)) {
+      std::string list;
+      for (const auto& a : allowed)
+        list += (list.empty() ? "" : ", ") + a;
+      throw InputError(json_location(val, source, json_path_child(path, k)),
+                       "one of the fields " + list, "unknown field \"" + k + "\"");
+    }
+}
 
 Rational read_number(const Json& v, const std::string& source, const std::string& path) {
   if (v.is_number()) {

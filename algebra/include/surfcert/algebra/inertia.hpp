@@ -10,6 +10,8 @@
 #include "surfcert/algebra/upoly.hpp"
 #include "surfcert/core/quadric.hpp"
 
+#include <flint/fmpz_mat.h>
+
 #include <algorithm>
 #include <string>
 
@@ -32,6 +34,10 @@ Inertia inertia_descartes(const core::Mat4& m);
 
 /// Exact, by symmetric congruence elimination over Q (independent second route).
 Inertia inertia_ldlt(const core::Mat4& m);
+
+/// Writes into the initialised 4x4 `out` the integer matrix L*m, L = lcm of m's denominators
+/// (a positive multiple: same inertia, rank and kernel).
+void scaled_integer_matrix(fmpz_mat_t out, const core::Mat4& m);
 
 /// Exact rank over Q (FLINT).
 int rank_exact(const core::Mat4& m);

@@ -15,9 +15,17 @@
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/quadric.hpp"
 
+#include <set>
 #include <string>
 
 namespace surfcert::core::io {
+
+/// Location of a parsed JSON value (source, its line and column, and its JSON path).
+Location json_location(const Json& v, const std::string& source, const std::string& path);
+
+/// Throws InputError naming the first member of object v whose key is not in `allowed`.
+void check_fields(const Json& v, const std::set<std::string>& allowed, const std::string& source,
+                  const std::string& path);
 
 /// An exact number from a JSON number or numeric string.
 Rational read_number(const Json& v, const std::string& source, const std::string& path);
