@@ -1,0 +1,23 @@
+// surfcert::trace::conic_branches: the conic components of a QSIC, produced as plane ∩ quadric
+// from the factored singular members of the pencil, never traced.
+//
+// At a multiple root theta of f with rank(theta*A - B) <= 2 the member is a pair of planes
+// (rank 2, real when its inertia is (1,1)) or a double plane (rank 1). Each real plane meets
+// Q_A in a conic; the real, non-empty ones are the conic components (for a double plane the
+// conic is a double component: the surfaces are tangent along it, and a tracer using
+// grad f x grad g would stall there). Points are sampled so that the chord error stays below
+// the tolerance and corrected onto both surfaces. Approximate (floating point), like all of
+// surfcert::trace.
+#pragma once
+
+#include "surfcert/algebra/pencil.hpp"
+#include "surfcert/certify/trace/curve.hpp"
+
+namespace surfcert::trace {
+
+/// Conic branches (kind "conic" or "double_conic", closed) for the exact pencil facts of a
+/// pair whose morphology has conic components. Empty when there are none.
+std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                   const algebra::PencilFacts& facts, const TraceOptions& opt);
+
+} // namespace surfcert::trace
