@@ -4,6 +4,7 @@
 // configurations perturbed by 2^-40 and 2^-100). The exact mode is the reference: it is
 // certified, and the test suite checks it against independent routes.
 // Usage: qsic_bench [pairs=100000] [seed=2026]
+#include "random_ellipsoids.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
@@ -25,38 +26,6 @@ using core::QuadricMatrix;
 using core::Rational;
 
 namespace {
-
-// Ellipsoid with centre in [-1/2, 1/2]^3 (step 1/1000), semi-axes in [1/10, 1] (step 1/100)
-// and a rotation from a random integer quaternion (rational rotation matrix).
-QuadricMatrix random_ellipsoid(std::mt19937_64& rng) {
-  std::uniform_int_distribution<long> c(-500, 500), r(10, 100), q(-9, 9);
-  Mat4 local;
-  for (size_t i = 0; i < 3; ++i) {
-    Rational rad(r(rng), 100);
-    local[i][i] = Rational(1) / (rad * rad);
-  }
-  local[3][3] = Rational(-1);
-  long w, x, y, z;
-  do {
-    w = q(rng), x = q(rng), y = q(rng), z = q(rng);
-  } while (w == 0 && x == 0 && y == 0 && z == 0);
-  Rational n(w * w + x * x + y * y + z * z);
-  long R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                  {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
-                  {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
-  Rational cen[3] = {Rational(c(rng), 1000), Rational(c(rng), 1000), Rational(c(rng), 1000)};
-  Mat4 t;
-  for (size_t i = 0; i < 3; ++i) {
-    Rational s;
-    for (size_t j = 0; j < 3; ++j) {
-      t[i][j] = Rational(R[j][i]) / n;
-      s += t[i][j] * cen[j];
-    }
-    t[i][3] = -s;
-  }
-  t[3][3] = Rational(1);
-  return QuadricMatrix(core::transpose(t) * local * t);
-}
 
 struct Stats {
   double median_us = 0, mean_us = 0;
@@ -105,8 +74,8 @@ int main(int argc, char** argv) {
   std::vector<std::pair<QuadricMatrix, QuadricMatrix>> input;
   input.reserve(static_cast<size_t>(pairs));
   for (long i = 0; i < pairs; ++i) {
-    auto a = random_ellipsoid(rng);
-    auto b = random_ellipsoid(rng);
+    auto a = bench::random_ellipsoid(rng).quadric;
+    auto b = bench::random_ellipsoid(rng).quadric;
     input.emplace_back(a, b);
   }
   const Mode modes[3] = {Mode::Float, Mode::Filtered, Mode::Exact};

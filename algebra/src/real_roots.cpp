@@ -32,13 +32,21 @@ std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>
         p = p * z[k] + c[i];
       }
       if (p == cd(0)) continue;
-      cd ratio = p / dp, sum = 0;
+      // Plain complex divisions (std::complex's operator/ guards against overflow with slow
+      // library calls; a non-finite result is skipped below anyway).
+      auto div = [](cd x, cd y) {
+        double d = y.real() * y.real() + y.imag() * y.imag();
+        return cd((x.real() * y.real() + x.imag() * y.imag()) / d,
+                  (x.imag() * y.real() - x.real() * y.imag()) / d);
+      };
+      cd ratio = div(p, dp), sum = 0;
       for (size_t j = 0; j < n; ++j)
-        if (j != k) sum += 1.0 / (z[k] - z[j]);
-      cd w = ratio / (1.0 - ratio * sum);
+        if (j != k) sum += div(1.0, z[k] - z[j]);
+      cd w = div(ratio, 1.0 - ratio * sum);
       if (!std::isfinite(w.real()) || !std::isfinite(w.imag())) continue;
       z[k] -= w;
-      moved = std::max(moved, std::abs(w) / (1 + std::abs(z[k])));
+      double aw = std::fabs(w.real()) + std::fabs(w.imag());
+      moved = std::max(moved, aw / (1 + std::fabs(z[k].real()) + std::fabs(z[k].imag())));
     }
     if (moved < 1e-15) break;
   }
@@ -203,7 +211,9 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     if (mant[ui] != 0) emax = std::max(emax, ex[ui]);
   }
   for (size_t i = 0; i < ex.size(); ++i)
-    c.push_back(mant[i] == 0 ? 0.0 : std::ldexp(mant[i], static_cast<int>(std::max<slong>(ex[i] - emax, -2000))));
+    c.push_back(mant[i] == 0
+                    ? 0.0
+                    : std::ldexp(mant[i], static_cast<int>(std::max<slong>(ex[i] - emax, -2000))));
   bool finite = std::all_of(c.begin(), c.end(), [](double x) { return std::isfinite(x); });
   if (finite && c.back() != 0) {
     Rational bound = root_bound(p);

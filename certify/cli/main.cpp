@@ -1,8 +1,10 @@
 // The `surfcert` command line: classify, run, batch. Exit codes: 0 success, 2 bad input
 // (message with location on stderr, nothing written), 3 finished with undecided results,
 // 1 internal error.
+#include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/scene.hpp"
+#include "surfcert/certify/trace/export.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
 #include <flint/flint.h>
@@ -24,6 +26,8 @@ const char* kUsage =
     "\n"
     "usage:\n"
     "  surfcert classify 'EQ_A' 'EQ_B' [--mode exact|filtered|float] [--json]\n"
+    "  surfcert intersect 'EQ_A' 'EQ_B' [--mode M] [--tol T] [--json] [--export F.obj|F.ply] "
+    "[--svg F.svg]\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N]     (JSON lines on stdin -> JSON lines on stdout)\n"
     "  surfcert --help | --version\n"
@@ -102,6 +106,77 @@ int cmd_classify(const std::vector<std::string>& args) {
   else
     std::cout << certify::qsic_result_text(r, a, b);
   return r.status == certify::Status::Undecided ? 3 : 0;
+}
+
+int cmd_intersect(const std::vector<std::string>& args) {
+  std::vector<std::string> eq;
+  certify::Mode mode = certify::Mode::Filtered;
+  bool json = false;
+  std::string export_path, svg_path;
+  trace::TraceOptions opt;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--json")
+      json = true;
+    else if (args[i] == "--mode" && i + 1 < args.size())
+      mode = mode_arg(args[++i]);
+    else if (args[i] == "--export" && i + 1 < args.size())
+      export_path = args[++i];
+    else if (args[i] == "--svg" && i + 1 < args.size())
+      svg_path = args[++i];
+    else if (args[i] == "--tol" && i + 1 < args.size()) {
+      auto t = core::Rational::from_string(args[++i]);
+      double d = t ? t->to_double_approx() : 0;
+      if (!(d >= 1e-12 && d <= 1))
+        throw InputError(Location{"<command line>", 0, 0, ""}, "--tol between 1e-12 and 1",
+                         "\"" + args[i] + "\"");
+      opt.tolerance = d;
+    } else if (args[i].size() > 1 && args[i][0] == '-' && args[i][1] == '-')
+      throw UsageError("unknown option " + args[i]);
+    else
+      eq.push_back(args[i]);
+  }
+  if (eq.size() != 2) throw UsageError("intersect needs exactly two equations");
+  auto ends_with = [](const std::string& s, const std::string& e) {
+    return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
+  };
+  if (!export_path.empty() && !ends_with(export_path, ".obj") && !ends_with(export_path, ".ply"))
+    throw InputError(Location{"<command line>", 0, 0, ""}, "--export FILE.obj or FILE.ply",
+                     "\"" + export_path + "\"");
+  auto a = core::io::quadric_from_equation(eq[0], Location{"<argument 1>", 1, 1, ""});
+  auto b = core::io::quadric_from_equation(eq[1], Location{"<argument 2>", 1, 1, ""});
+  certify::CurveResult c = certify::intersect_curve(a, b, mode, opt);
+  std::vector<trace::Point3> special;
+  for (const auto& p : c.topology.special_points)
+    if (!p.at_infinity) special.push_back(p.approx);
+  if (!export_path.empty())
+    write_atomically(export_path, ends_with(export_path, ".obj")
+                                      ? trace::to_obj(c.branches, c.isolated_points)
+                                      : trace::to_ply(c.branches, c.isolated_points));
+  if (!svg_path.empty()) {
+    trace::Picture pic;
+    pic.branches = c.branches;
+    pic.special_points = special;
+    pic.caption = c.topology.morphology
+                      ? "case " + std::to_string(c.topology.tu_case) + " " +
+                            c.topology.morphology->id + ": " + c.topology.morphology->description +
+                            " (topology " + certify::to_string(c.topology.status) + "; curves " +
+                            certify::to_string(c.status) + ")"
+                      : std::string("no curve: ") + c.note;
+    write_atomically(svg_path, trace::to_svg(a, b, pic));
+  }
+  if (json) {
+    std::cout << core::io::dump(certify::curve_envelope_json(c, a, b), 2) << "\n";
+  } else {
+    std::cout << certify::qsic_result_text(c.topology, a, b);
+    std::cout << "curve: " << certify::to_string(c.status) << ", " << c.branches.size()
+              << " branch(es):";
+    for (const auto& br : c.branches)
+      std::cout << " " << br.kind << "(" << br.points.size() << " points)";
+    std::cout << ", " << c.isolated_points.size() << " isolated point(s), max residual "
+              << c.max_residual << "\n";
+    if (!c.note.empty()) std::cout << "note: " << c.note << "\n";
+  }
+  return c.status == certify::Status::Undecided ? 3 : 0;
 }
 
 int cmd_run(const std::vector<std::string>& args) {
@@ -195,6 +270,8 @@ int main(int argc, char** argv) {
         rc = cmd_classify(rest);
       else if (args[0] == "run")
         rc = cmd_run(rest);
+      else if (args[0] == "intersect")
+        rc = cmd_intersect(rest);
       else if (args[0] == "batch")
         rc = cmd_batch(rest);
       else

@@ -165,6 +165,7 @@ void complete_report_data(QsicResult& r, const core::QuadricMatrix& a,
   if (r.mode != Mode::Float && r.status == Status::Certified) {
     ellipsoid_relation(r, a, b);
     r.special_points = special_points(r.facts, r.tu_case, r.special_points_complete);
+    r.special_points_done = true;
   }
 }
 

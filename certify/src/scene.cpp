@@ -1,11 +1,13 @@
 #include "surfcert/certify/scene.hpp"
 
+#include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
 #include <flint/flint.h>
 
 #include <atomic>
+#include <cstdio>
 #include <istream>
 #include <ostream>
 #include <set>
@@ -15,6 +17,7 @@ namespace surfcert::certify {
 
 using core::InputError;
 using core::Location;
+using core::Rational;
 using core::io::Json;
 using core::io::json_path_child;
 using core::io::json_path_index;
@@ -35,7 +38,33 @@ Mode read_mode(const Json& v, const std::string& source, const std::string& path
   return *m;
 }
 
-const char* kSupportedOps = "\"classify\"";
+const char* kSupportedOps = "\"classify\" or \"intersect\"";
+
+bool known_op(const Json* op) {
+  return op && op->is_string() && (op->text() == "classify" || op->text() == "intersect");
+}
+
+double read_tolerance(const Json& v, const std::string& source, const std::string& path) {
+  Rational t = core::io::read_number(v, source, path);
+  double d = t.to_double_approx();
+  if (!(d >= 1e-12 && d <= 1))
+    throw InputError(at(v, source, path), "a tolerance between 1e-12 and 1",
+                     t.to_decimal_approx(6));
+  return d;
+}
+
+std::string curve_summary(const CurveResult& c) {
+  std::string s = "curve: " + std::string(to_string(c.status)) + ", " +
+                  std::to_string(c.branches.size()) + " branch(es):";
+  for (const auto& b : c.branches)
+    s += " " + b.kind + "(" + std::to_string(b.points.size()) + " pts)";
+  s += ", " + std::to_string(c.isolated_points.size()) + " isolated point(s), max residual ";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2e", c.max_residual);
+  s += buf;
+  if (!c.note.empty()) s += "\nnote: " + c.note;
+  return s + "\n";
+}
 
 } // namespace
 
@@ -70,12 +99,12 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
     std::string path = json_path_index("$.queries", i);
     if (!q.is_object())
       throw InputError(at(q, source, path), "a query object", core::io::type_name(q.type()));
-    check_fields(q, {"id", "op", "a", "b", "mode"}, source, path);
+    check_fields(q, {"id", "op", "a", "b", "mode", "tolerance"}, source, path);
     Query query;
     query.mode = default_mode;
     if (const Json* id = q.find("id")) query.id = *id;
     const Json* op = q.find("op");
-    if (!op || !op->is_string() || op->text() != "classify")
+    if (!known_op(op))
       throw InputError(
           at(op ? *op : q, source, json_path_child(path, "op")),
           std::string("an op: ") + kSupportedOps,
@@ -106,9 +135,19 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
 Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   const auto& a = s.surface(q.a);
   const auto& b = s.surface(q.b);
-  QsicResult r = classify_qsic(a, b, q.mode);
-  complete_report_data(r, a, b);
-  Json env = qsic_envelope_json(r, a, b);
+  Json env;
+  if (q.op == "intersect") {
+    trace::TraceOptions opt;
+    opt.tolerance = q.tolerance;
+    CurveResult c = intersect_curve(a, b, q.mode, opt);
+    env = curve_envelope_json(c, a, b);
+    if (text_summary) *text_summary = qsic_result_text(c.topology, a, b) + curve_summary(c);
+  } else {
+    QsicResult r = classify_qsic(a, b, q.mode);
+    complete_report_data(r, a, b);
+    env = qsic_envelope_json(r, a, b);
+    if (text_summary) *text_summary = qsic_result_text(r, a, b);
+  }
   Json o = Json::object();
   o.set("id", q.id);
   o.set("op", Json::string(q.op));
@@ -116,7 +155,6 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   o.set("b", Json::string(q.b));
   for (const auto& [k, v] : env.members())
     o.set(k, v);
-  if (text_summary) *text_summary = qsic_result_text(r, a, b);
   return o;
 }
 
@@ -143,9 +181,9 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       if (!doc.is_object())
         throw InputError(at(doc, source, "$"), "a JSON object {\"id\", \"op\", \"a\", \"b\"}",
                          core::io::type_name(doc.type()));
-      check_fields(doc, {"id", "op", "a", "b", "mode"}, source, "$");
+      check_fields(doc, {"id", "op", "a", "b", "mode", "tolerance"}, source, "$");
       const Json* op = doc.find("op");
-      if (!op || !op->is_string() || op->text() != "classify")
+      if (!known_op(op))
         throw InputError(
             at(op ? *op : doc, source, "$.op"), std::string("an op: ") + kSupportedOps,
             op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))
@@ -158,10 +196,20 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       if (!jb) throw InputError(at(doc, source, "$.b"), "a surface \"b\"", "none");
       auto a = core::io::read_quadric(*ja, source, "$.a");
       auto b = core::io::read_quadric(*jb, source, "$.b");
-      QsicResult r = classify_qsic(a, b, mode);
-      complete_report_data(r, a, b);
-      if (fallback) *fallback = r.exact_fallback;
-      Json env = qsic_envelope_json(r, a, b);
+      Json env;
+      if (op->text() == "intersect") {
+        trace::TraceOptions opt;
+        if (const Json* t = doc.find("tolerance"))
+          opt.tolerance = read_tolerance(*t, source, "$.tolerance");
+        CurveResult c = intersect_curve(a, b, mode, opt);
+        if (fallback) *fallback = c.topology.exact_fallback;
+        env = curve_envelope_json(c, a, b);
+      } else {
+        QsicResult r = classify_qsic(a, b, mode);
+        complete_report_data(r, a, b);
+        if (fallback) *fallback = r.exact_fallback;
+        env = qsic_envelope_json(r, a, b);
+      }
       for (const auto& [k, v] : env.members())
         out.set(k, v);
     } catch (const InputError& e) {

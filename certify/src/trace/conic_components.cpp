@@ -1,1 +1,486 @@
-// stub, being written
+// surfcert::trace::conic_branches: conic components as plane ∩ quadric (see conics.hpp).
+//
+// Route: at each real multiple root theta of det(l*A - B) with rank(theta*A - B) <= 2 the
+// member M = theta*A - B (in double, from the exact theta) is split by a 4x4 Jacobi
+// eigen-decomposition into its planes (rank 2, inertia (1,1): p, q = sqrt(l1) v1 +- sqrt(-l2) v2,
+// so X^T M X = (p.X)(q.X); rank 1: the eigenvector, a double plane). Each affine plane is given
+// an orthonormal frame, the better conditioned of the two input quadrics is restricted to it
+// (on the plane the restrictions of A and B are proportional), and the 2D conic is analysed:
+// a real ellipse is sampled uniformly in its angle parameter with step sqrt(8 h / r_max)
+// (chord error <= r_max dt^2 / 8 <= h, h = tolerance * scene size, the scene being the
+// bounding box of the conics produced); a hyperbola or parabola (non-ellipsoid inputs only) is
+// sampled the same way inside a clipping box and returned as open branches. Empty, imaginary
+// and degenerate conics (a point: a tangent plane; a line pair) are skipped, as are planes at
+// infinity and planes already used. Each sample is corrected by Gauss-Newton onto
+// {plane = 0, Q = 0} (transversal even along a double conic, where grad f x grad g vanishes).
+#include "surfcert/certify/trace/conics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace surfcert::trace {
+
+namespace {
+
+using M4 = std::array<std::array<double, 4>, 4>;
+using V4 = std::array<double, 4>;
+using V3 = std::array<double, 3>;
+
+constexpr double kPi = 3.14159265358979323846;
+
+M4 to_double(const core::Mat4& m) {
+  M4 r{};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      r[i][j] = m[i][j].to_double_approx();
+  return r;
+}
+
+double max_abs(const M4& m) {
+  double s = 0;
+  for (const auto& row : m)
+    for (double v : row)
+      s = std::max(s, std::fabs(v));
+  return s;
+}
+
+M4 normalised(M4 m) {
+  double s = max_abs(m);
+  if (s > 0)
+    for (auto& row : m)
+      for (double& v : row)
+        v /= s;
+  return m;
+}
+
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+V3 axpy(const V3& x, double s, const V3& d) {
+  return {x[0] + s * d[0], x[1] + s * d[1], x[2] + s * d[2]};
+}
+
+/// Symmetric 4x4 eigen-decomposition by cyclic Jacobi: m = sum_k w[k] v_k v_k^T, v_k = column k.
+void jacobi4(M4 a, V4& w, M4& v) {
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      v[i][j] = i == j ? 1.0 : 0.0;
+  for (int sweep = 0; sweep < 60; ++sweep) {
+    double off = 0, all = 0;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        all += a[i][j] * a[i][j];
+        if (i != j)
+          off += a[i][j] * a[i][j];
+      }
+    if (off <= 1e-34 * all || off == 0)
+      break;
+    for (size_t p = 0; p < 3; ++p)
+      for (size_t q = p + 1; q < 4; ++q) {
+        if (a[p][q] == 0)
+          continue;
+        double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+        double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
+        double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (size_t k = 0; k < 4; ++k) { // a <- a J (columns p, q)
+          double akp = a[k][p], akq = a[k][q];
+          a[k][p] = c * akp - s * akq;
+          a[k][q] = s * akp + c * akq;
+        }
+        for (size_t k = 0; k < 4; ++k) { // a <- J^T a (rows p, q)
+          double apk = a[p][k], aqk = a[q][k];
+          a[p][k] = c * apk - s * aqk;
+          a[q][k] = s * apk + c * aqk;
+        }
+        for (size_t k = 0; k < 4; ++k) {
+          double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - s * vkq;
+          v[k][q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  for (size_t k = 0; k < 4; ++k)
+    w[k] = a[k][k];
+}
+
+V4 column(const M4& v, size_t k) { return {v[0][k], v[1][k], v[2][k], v[3][k]}; }
+
+/// The member theta*A - B of the facts' basis in double, normalised (exact where possible:
+/// for theta = u + s sqrt(d) the rational part u*A - B and s*A are formed exactly).
+std::optional<M4> member_at(const algebra::PencilFacts& facts, const algebra::RootFacts& r) {
+  M4 m{};
+  if (r.rational_value) {
+    core::Mat4 e = core::scaled(facts.a, *r.rational_value) + core::scaled(facts.b, -1);
+    m = to_double(e);
+  } else if (r.quadratic) {
+    core::Mat4 e = core::scaled(facts.a, r.quadratic->a) + core::scaled(facts.b, -1);
+    M4 f = to_double(core::scaled(facts.a, r.quadratic->b));
+    M4 ed = to_double(e);
+    double sd = std::sqrt(r.quadratic->d.to_double_approx());
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        m[i][j] = ed[i][j] + sd * f[i][j];
+  } else {
+    double th = ((r.lo + r.hi) * core::Rational(1, 2)).to_double_approx();
+    M4 ad = to_double(facts.a), bd = to_double(facts.b);
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        m[i][j] = th * ad[i][j] - bd[i][j];
+  }
+  if (max_abs(m) == 0 || !std::isfinite(max_abs(m)))
+    return std::nullopt;
+  return normalised(m);
+}
+
+double quad_form(const M4& q, const V4& x) {
+  double s = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      s += x[i] * q[i][j] * x[j];
+  return s;
+}
+
+double eval(const M4& q, const V3& p) { return quad_form(q, {p[0], p[1], p[2], 1.0}); }
+
+V3 grad(const M4& q, const V3& p) {
+  V4 x{p[0], p[1], p[2], 1.0};
+  V3 g{};
+  for (size_t i = 0; i < 3; ++i) {
+    double s = 0;
+    for (size_t j = 0; j < 4; ++j)
+      s += q[i][j] * x[j];
+    g[i] = 2 * s;
+  }
+  return g;
+}
+
+/// A conic of a plane, parametrised: ellipse c + r1 cos t e1 + r2 sin t e2; hyperbola
+/// branch c + sgn (r1 cosh t e1) + r2 sinh t e2; parabola c + t e1 + (k t^2) e2 (c = vertex).
+struct PlaneConic {
+  enum Type { Ellipse, Hyperbola, Parabola } type = Ellipse;
+  V3 c{}, e1{}, e2{};
+  double r1 = 0, r2 = 0, k = 0;
+  double t_max = 0; ///< clipping for the open types
+  V3 n{};
+  double d = 0;     ///< the plane n.x + d = 0, |n| = 1
+  const M4* q = nullptr; ///< quadric used for the correction (normalised)
+  bool doubled = false;
+
+  V3 at(double t, double sgn = 1) const {
+    switch (type) {
+    case Ellipse:
+      return axpy(axpy(c, r1 * std::cos(t), e1), r2 * std::sin(t), e2);
+    case Hyperbola:
+      return axpy(axpy(c, sgn * r1 * std::cosh(t), e1), r2 * std::sinh(t), e2);
+    case Parabola:
+      return axpy(axpy(c, t, e1), k * t * t, e2);
+    }
+    return c;
+  }
+  /// Bound on |gamma''| over the parameter range.
+  double second_derivative_bound() const {
+    switch (type) {
+    case Ellipse:
+      return std::max(r1, r2);
+    case Hyperbola:
+      return std::hypot(r1 * std::cosh(t_max), r2 * std::sinh(t_max));
+    case Parabola:
+      return 2 * std::fabs(k);
+    }
+    return 1;
+  }
+};
+
+/// Restriction of the 4x4 form q to the frame (e1, e2, x0) of a plane: a 3x3 conic in (u, v, 1).
+std::array<std::array<double, 3>, 3> restrict_to_plane(const M4& q, const V3& e1, const V3& e2,
+                                                         const V3& x0) {
+  std::array<V4, 3> t = {V4{e1[0], e1[1], e1[2], 0.0}, V4{e2[0], e2[1], e2[2], 0.0},
+                         V4{x0[0], x0[1], x0[2], 1.0}};
+  std::array<std::array<double, 3>, 3> c{};
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      double s = 0;
+      for (size_t a = 0; a < 4; ++a)
+        for (size_t b = 0; b < 4; ++b)
+          s += t[i][a] * q[a][b] * t[j][b];
+      c[i][j] = s;
+    }
+  return c;
+}
+
+/// Real, non-degenerate conics of the plane p.X = 0 with the quadric qa (or qb). Empty when the
+/// plane is at infinity or the conic is imaginary or degenerate. Hyperbolas give two entries.
+std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb, bool doubled) {
+  std::vector<PlaneConic> out;
+  V3 n{p[0], p[1], p[2]};
+  double nn = norm(n), pn = std::hypot(nn, p[3]);
+  if (pn == 0 || nn <= 1e-12 * pn)
+    return out; // plane at infinity: its conic has no affine point
+  V3 un{n[0] / nn, n[1] / nn, n[2] / nn};
+  double d = p[3] / nn;
+  V3 x0{-d * un[0], -d * un[1], -d * un[2]};
+  size_t small = 0;
+  for (size_t i = 1; i < 3; ++i)
+    if (std::fabs(un[i]) < std::fabs(un[small]))
+      small = i;
+  V3 ax{0, 0, 0};
+  ax[small] = 1;
+  V3 e1 = cross(un, ax);
+  double l1 = norm(e1);
+  e1 = {e1[0] / l1, e1[1] / l1, e1[2] / l1};
+  V3 e2 = cross(un, e1);
+
+  auto ca = restrict_to_plane(qa, e1, e2, x0), cb = restrict_to_plane(qb, e1, e2, x0);
+  auto fro = [](const std::array<std::array<double, 3>, 3>& c) {
+    double s = 0;
+    for (const auto& r : c)
+      for (double v : r)
+        s = std::max(s, std::fabs(v));
+    return s;
+  };
+  bool use_a = fro(ca) >= fro(cb);
+  auto c = use_a ? ca : cb;
+  double cs = fro(c);
+  if (cs == 0)
+    return out; // the plane lies on both quadrics (not a regular pencil)
+  for (auto& r : c)
+    for (double& v : r)
+      v /= cs;
+
+  // Eigen-decomposition of the 2x2 quadratic part.
+  double a11 = c[0][0], a12 = c[0][1], a22 = c[1][1];
+  double mean = 0.5 * (a11 + a22), diff = 0.5 * (a11 - a22);
+  double rad = std::hypot(diff, a12);
+  double mu1 = mean + rad, mu2 = mean - rad;
+  std::array<double, 2> w1, w2;
+  if (rad == 0) {
+    w1 = {1, 0};
+  } else if (diff >= 0) {
+    double x = diff + rad, y = a12, l = std::hypot(x, y);
+    w1 = {x / l, y / l};
+  } else {
+    double x = a12, y = rad - diff, l = std::hypot(x, y);
+    w1 = {x / l, y / l};
+  }
+  w2 = {-w1[1], w1[0]};
+  auto to3 = [&](const std::array<double, 2>& w) {
+    return V3{w[0] * e1[0] + w[1] * e2[0], w[0] * e1[1] + w[1] * e2[1],
+              w[0] * e1[2] + w[1] * e2[2]};
+  };
+  auto plane_point = [&](double u, double v) { return axpy(axpy(x0, u, e1), v, e2); };
+  std::array<double, 2> l{c[0][2], c[1][2]};
+  double c0 = c[2][2];
+  double lw1 = l[0] * w1[0] + l[1] * w1[1], lw2 = l[0] * w2[0] + l[1] * w2[1];
+  const double eps = 1e-11;
+  double mumax = std::max(std::fabs(mu1), std::fabs(mu2));
+
+  PlaneConic base;
+  base.n = un;
+  base.d = d;
+  base.q = use_a ? &qa : &qb;
+  base.doubled = doubled;
+
+  if (std::fabs(mu1) > eps * mumax && std::fabs(mu2) > eps * mumax && mumax > eps) {
+    // Central conic: centre m (in eigen coordinates s1 = -lw1/mu1, s2 = -lw2/mu2).
+    double s1 = -lw1 / mu1, s2 = -lw2 / mu2;
+    double cc = c0 + lw1 * s1 + lw2 * s2;                       // value at the centre
+    double mag = std::fabs(c0) + std::fabs(lw1 * s1) + std::fabs(lw2 * s2); // cancellation
+    if (std::fabs(cc) <= 1e-10 * mag || cc == 0)
+      return out; // a point (tangent plane) or a line pair: degenerate
+    double u = s1 * w1[0] + s2 * w2[0], v = s1 * w1[1] + s2 * w2[1];
+    V3 centre = plane_point(u, v);
+    if ((mu1 > 0) == (mu2 > 0)) {
+      if ((mu1 > 0) == (cc > 0))
+        return out; // imaginary ellipse
+      PlaneConic e = base;
+      e.type = PlaneConic::Ellipse;
+      e.c = centre;
+      e.e1 = to3(w1);
+      e.e2 = to3(w2);
+      e.r1 = std::sqrt(-cc / mu1);
+      e.r2 = std::sqrt(-cc / mu2);
+      out.push_back(e);
+      return out;
+    }
+    // Hyperbola: the real axis is the eigenvector with -cc/mu > 0.
+    PlaneConic h = base;
+    h.type = PlaneConic::Hyperbola;
+    h.c = centre;
+    if (-cc / mu1 > 0) {
+      h.e1 = to3(w1);
+      h.e2 = to3(w2);
+      h.r1 = std::sqrt(-cc / mu1);
+      h.r2 = std::sqrt(cc / mu2);
+    } else {
+      h.e1 = to3(w2);
+      h.e2 = to3(w1);
+      h.r1 = std::sqrt(-cc / mu2);
+      h.r2 = std::sqrt(cc / mu1);
+    }
+    double reach = 8 * std::max(h.r1, h.r2);
+    h.t_max = std::min(std::acosh(reach / h.r1), std::asinh(reach / h.r2));
+    out.push_back(h);
+    h.r1 = -h.r1; // the other branch (sgn folded into r1)
+    out.push_back(h);
+    return out;
+  }
+  if (mumax <= eps)
+    return out; // the restriction is (nearly) linear: the plane lies on the quadric's cone
+  // Parabola: mu s^2 + 2 ls s + 2 lt t + c0 = 0 (s along the non-null eigenvector).
+  bool first = std::fabs(mu1) >= std::fabs(mu2);
+  double mu = first ? mu1 : mu2, ls = first ? lw1 : lw2, lt = first ? lw2 : lw1;
+  auto ws = first ? w1 : w2, wt = first ? w2 : w1;
+  if (std::fabs(lt) <= 1e-10 * (std::fabs(mu) + std::fabs(ls) + std::fabs(c0)))
+    return out; // parallel lines or empty
+  // t = -(mu s^2 + 2 ls s + c0) / (2 lt); vertex at s* = -ls/mu.
+  double sv = -ls / mu;
+  double tv = -(mu * sv * sv + 2 * ls * sv + c0) / (2 * lt);
+  PlaneConic pc = base;
+  pc.type = PlaneConic::Parabola;
+  pc.c = plane_point(sv * ws[0] + tv * wt[0], sv * ws[1] + tv * wt[1]);
+  pc.e1 = to3(ws);
+  pc.e2 = to3(wt);
+  pc.k = -mu / (2 * lt);
+  double focal = 1 / (4 * std::fabs(pc.k));
+  pc.t_max = 16 * focal;
+  out.push_back(pc);
+  return out;
+}
+
+/// Gauss-Newton (minimum norm) onto {n.x + d = 0, Q(x) = 0}.
+void correct(const PlaneConic& pc, V3& x) {
+  for (int it = 0; it < 6; ++it) {
+    double r1 = dot(pc.n, x) + pc.d;
+    double r2 = eval(*pc.q, x);
+    V3 g = grad(*pc.q, x);
+    // J = [n; g]; dx = -J^T (J J^T)^{-1} r
+    double a = dot(pc.n, pc.n), b = dot(pc.n, g), cc = dot(g, g);
+    double det = a * cc - b * b;
+    if (!(det > 1e-300))
+      return;
+    double y1 = (cc * r1 - b * r2) / det, y2 = (-b * r1 + a * r2) / det;
+    V3 dx{-(y1 * pc.n[0] + y2 * g[0]), -(y1 * pc.n[1] + y2 * g[1]),
+          -(y1 * pc.n[2] + y2 * g[2])};
+    x = axpy(x, 1.0, dx);
+    if (norm(dx) <= 1e-17 * (1 + norm(x)))
+      return;
+  }
+}
+
+bool same_plane(const V4& p, const V4& q) {
+  double np = 0, nq = 0, dp = 0;
+  for (size_t i = 0; i < 4; ++i) {
+    np += p[i] * p[i];
+    nq += q[i] * q[i];
+    dp += p[i] * q[i];
+  }
+  if (np == 0 || nq == 0)
+    return false;
+  return std::fabs(std::fabs(dp) / std::sqrt(np * nq) - 1) < 1e-12;
+}
+
+} // namespace
+
+std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                   const algebra::PencilFacts& facts, const TraceOptions& opt) {
+  std::vector<Branch> out;
+  if (facts.kind != algebra::PencilKind::Regular)
+    return out;
+  const M4 qa = normalised(to_double(a.matrix())), qb = normalised(to_double(b.matrix()));
+
+  std::vector<V4> planes_used;
+  std::vector<PlaneConic> conics;
+  for (const auto& r : facts.real_roots) {
+    if (r.multiplicity < 2 || r.rank > 2 || r.rank < 1)
+      continue;
+    auto m = member_at(facts, r);
+    if (!m)
+      continue;
+    V4 w;
+    M4 v;
+    jacobi4(*m, w, v);
+    std::array<size_t, 4> idx{0, 1, 2, 3};
+    std::sort(idx.begin(), idx.end(), [&](size_t i, size_t j) { return w[i] > w[j]; });
+    std::vector<V4> planes;
+    bool doubled = false;
+    if (r.rank == 2) {
+      if (r.sigma.p != 1 || r.sigma.n != 1)
+        continue; // (2,0) / (0,2): a pair of complex conjugate planes
+      double l1 = w[idx[0]], l2 = w[idx[3]];
+      if (!(l1 > 0 && l2 < 0))
+        continue;
+      V4 v1 = column(v, idx[0]), v2 = column(v, idx[3]);
+      double s1 = std::sqrt(l1), s2 = std::sqrt(-l2);
+      V4 p{}, q{};
+      for (size_t i = 0; i < 4; ++i) {
+        p[i] = s1 * v1[i] + s2 * v2[i];
+        q[i] = s1 * v1[i] - s2 * v2[i];
+      }
+      planes = {p, q};
+    } else { // rank 1: a double plane
+      size_t k = std::fabs(w[idx[0]]) >= std::fabs(w[idx[3]]) ? idx[0] : idx[3];
+      planes = {column(v, k)};
+      doubled = true;
+    }
+    for (const V4& p : planes) {
+      bool seen = false;
+      for (const V4& u : planes_used)
+        seen = seen || same_plane(p, u);
+      if (seen)
+        continue;
+      planes_used.push_back(p);
+      for (auto& pc : conics_in_plane(p, qa, qb, doubled))
+        conics.push_back(pc);
+    }
+  }
+  if (conics.empty())
+    return out;
+
+  // Scene size: bounding-box diagonal of the conics (coarse samples of the parametrisations).
+  V3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const auto& pc : conics) {
+    double t0 = pc.type == PlaneConic::Ellipse ? 0 : -pc.t_max;
+    double t1 = pc.type == PlaneConic::Ellipse ? 2 * kPi : pc.t_max;
+    for (int i = 0; i <= 256; ++i) {
+      V3 x = pc.at(t0 + (t1 - t0) * i / 256.0);
+      for (size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], x[k]);
+        hi[k] = std::max(hi[k], x[k]);
+      }
+    }
+  }
+  double scene = norm(sub(hi, lo));
+  if (!(scene > 0) || !std::isfinite(scene))
+    scene = 1;
+  const double h = opt.tolerance * scene;
+  const int cap = std::max(8, opt.max_points_per_branch);
+
+  for (const auto& pc : conics) {
+    Branch br;
+    br.kind = pc.doubled ? "double_conic" : "conic";
+    bool ellipse = pc.type == PlaneConic::Ellipse;
+    br.closed = ellipse;
+    double bound = pc.second_derivative_bound();
+    double dt = bound > 0 ? std::sqrt(8 * h / bound) : 1.0;
+    double span = ellipse ? 2 * kPi : 2 * pc.t_max;
+    long n = static_cast<long>(std::ceil(span / dt));
+    n = std::max(n, ellipse ? 16L : 8L);
+    n = std::min(n, static_cast<long>(ellipse ? cap : cap - 1));
+    double t0 = ellipse ? 0 : -pc.t_max;
+    long count = ellipse ? n : n + 1;
+    br.points.reserve(static_cast<size_t>(count));
+    for (long i = 0; i < count; ++i) {
+      V3 x = pc.at(t0 + span * static_cast<double>(i) / static_cast<double>(n));
+      correct(pc, x);
+      br.points.push_back(x);
+    }
+    out.push_back(std::move(br));
+  }
+  return out;
+}
+
+} // namespace surfcert::trace

@@ -1,1 +1,429 @@
-// stub, being written
+// surfcert::trace exports: OBJ, ASCII PLY and an SVG picture (see export.hpp).
+//
+// SVG layout: a fixed viewBox with three square panels (views along z, y and x, i.e. the
+// planes x-y, x-z, y-z), all drawn at the same scale so that lengths compare across views.
+// Each panel has a light grid with tick labels, axis names, the silhouettes of the quadrics
+// that are real ellipsoids (the projection of an ellipsoid along axis k is the ellipse of the
+// Schur complement of its 4x4 matrix with respect to k), then one <g class="branch"> per
+// branch holding its three projected <path class="curve">, then one <circle class="special">
+// per special point and view. The caption is XML-escaped (control characters and invalid
+// UTF-8 bytes are replaced) and written as <text class="caption">.
+#include "surfcert/certify/trace/export.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+
+namespace surfcert::trace {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string num17(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string num2(double v) {
+  char buf[40];
+  if (std::fabs(v) < 0.005)
+    v = 0;
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+bool finite(const Point3& p) {
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+
+/// XML text content: escapes markup characters, replaces control characters and bytes that
+/// are not valid UTF-8 (so that the document is always well-formed).
+std::string xml_escape(const std::string& s) {
+  std::string r;
+  size_t i = 0;
+  while (i < s.size()) {
+    auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      switch (c) {
+      case '&': r += "&amp;"; break;
+      case '<': r += "&lt;"; break;
+      case '>': r += "&gt;"; break;
+      case '"': r += "&quot;"; break;
+      case '\'': r += "&apos;"; break;
+      default:
+        r += (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f ? ' '
+                                                                           : static_cast<char>(c);
+      }
+      ++i;
+      continue;
+    }
+    size_t len = c >= 0xf0 && c <= 0xf4 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 && c < 0xe0 ? 2 : 0;
+    bool ok = len > 0 && i + len <= s.size();
+    unsigned cp = len == 2 ? c & 0x1fu : len == 3 ? c & 0x0fu : c & 0x07u;
+    for (size_t k = 1; ok && k < len; ++k) {
+      auto d = static_cast<unsigned char>(s[i + k]);
+      ok = (d & 0xc0) == 0x80;
+      cp = (cp << 6) | (d & 0x3fu);
+    }
+    if (ok) { // reject overlong forms, surrogates, > U+10FFFF and U+FFFE/U+FFFF
+      ok = !(len == 3 && cp < 0x800) && !(len == 4 && cp < 0x10000) && cp <= 0x10ffff &&
+           !(cp >= 0xd800 && cp <= 0xdfff) && cp != 0xfffe && cp != 0xffff;
+    }
+    if (ok) {
+      r.append(s, i, len);
+      i += len;
+    } else {
+      r += '?';
+      ++i;
+    }
+  }
+  return r;
+}
+
+using M4 = std::array<std::array<double, 4>, 4>;
+
+/// Outline of an ellipsoid seen along axis k, as points (u, v) in the view's coordinates
+/// (the two remaining axes in increasing order); nullopt when the projection is not a real
+/// ellipse (it always is for a real ellipsoid).
+std::optional<std::vector<std::array<double, 2>>> silhouette(const core::QuadricMatrix& q,
+                                                             size_t k, int samples) {
+  M4 m{};
+  double s = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      m[i][j] = q(static_cast<int>(i), static_cast<int>(j)).to_double_approx();
+      s = std::max(s, std::fabs(m[i][j]));
+    }
+  if (!(s > 0))
+    return std::nullopt;
+  for (auto& r : m)
+    for (double& v : r)
+      v /= s;
+  if (m[k][k] == 0)
+    return std::nullopt;
+  std::array<size_t, 3> id{};
+  size_t t = 0;
+  for (size_t i = 0; i < 4; ++i)
+    if (i != k)
+      id[t++] = i; // (u, v, w)
+  double c[3][3];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      c[i][j] = m[id[i]][id[j]] - m[id[i]][k] * m[k][id[j]] / m[k][k];
+  double a11 = c[0][0], a12 = c[0][1], a22 = c[1][1];
+  double mean = 0.5 * (a11 + a22), diff = 0.5 * (a11 - a22), rad = std::hypot(diff, a12);
+  double mu1 = mean + rad, mu2 = mean - rad;
+  if (!((mu1 > 0) == (mu2 > 0)) || mu1 == 0 || mu2 == 0)
+    return std::nullopt;
+  double w1x, w1y;
+  if (rad == 0) {
+    w1x = 1;
+    w1y = 0;
+  } else if (diff >= 0) {
+    double l = std::hypot(diff + rad, a12);
+    w1x = (diff + rad) / l;
+    w1y = a12 / l;
+  } else {
+    double l = std::hypot(a12, rad - diff);
+    w1x = a12 / l;
+    w1y = (rad - diff) / l;
+  }
+  double w2x = -w1y, w2y = w1x;
+  double l1 = c[0][2] * w1x + c[1][2] * w1y, l2 = c[0][2] * w2x + c[1][2] * w2y;
+  double s1 = -l1 / mu1, s2 = -l2 / mu2;
+  double cc = c[2][2] + l1 * s1 + l2 * s2;
+  if ((cc > 0) == (mu1 > 0) || cc == 0)
+    return std::nullopt;
+  double r1 = std::sqrt(-cc / mu1), r2 = std::sqrt(-cc / mu2);
+  double cx = s1 * w1x + s2 * w2x, cy = s1 * w1y + s2 * w2y;
+  std::vector<std::array<double, 2>> pts;
+  for (int i = 0; i < samples; ++i) {
+    double th = 2 * kPi * i / samples;
+    double a = r1 * std::cos(th), b = r2 * std::sin(th);
+    pts.push_back({cx + a * w1x + b * w2x, cy + a * w1y + b * w2y});
+  }
+  return pts;
+}
+
+} // namespace
+
+std::string to_obj(const std::vector<Branch>& branches, const std::vector<Point3>& points) {
+  std::ostringstream o;
+  o << "# surfcert intersection curve: " << branches.size() << " branch(es), " << points.size()
+    << " isolated point(s)\n";
+  for (const auto& br : branches)
+    for (const auto& p : br.points)
+      o << "v " << num17(p[0]) << ' ' << num17(p[1]) << ' ' << num17(p[2]) << '\n';
+  for (const auto& p : points)
+    o << "v " << num17(p[0]) << ' ' << num17(p[1]) << ' ' << num17(p[2]) << '\n';
+  size_t base = 1;
+  for (const auto& br : branches) {
+    size_t n = br.points.size();
+    if (n == 0)
+      continue;
+    o << "# " << (br.kind.empty() ? "branch" : br.kind) << (br.closed ? " (closed)" : "")
+      << '\n';
+    if (n == 1) { // a polyline needs two vertices
+      o << "p " << base << '\n';
+    } else {
+      o << 'l';
+      for (size_t i = 0; i < n; ++i)
+        o << ' ' << base + i;
+      if (br.closed)
+        o << ' ' << base;
+      o << '\n';
+    }
+    base += n;
+  }
+  for (size_t i = 0; i < points.size(); ++i)
+    o << "p " << base + i << '\n';
+  return o.str();
+}
+
+std::string to_ply(const std::vector<Branch>& branches, const std::vector<Point3>& points) {
+  size_t nv = points.size(), ne = 0;
+  for (const auto& br : branches) {
+    size_t n = br.points.size();
+    nv += n;
+    if (n >= 2)
+      ne += br.closed && n >= 3 ? n : n - 1;
+  }
+  std::ostringstream o;
+  o << "ply\nformat ascii 1.0\ncomment surfcert intersection curve: " << branches.size()
+    << " branch(es), " << points.size() << " isolated point(s)\n"
+    << "element vertex " << nv << "\nproperty double x\nproperty double y\nproperty double z\n"
+    << "element edge " << ne << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+  for (const auto& br : branches)
+    for (const auto& p : br.points)
+      o << num17(p[0]) << ' ' << num17(p[1]) << ' ' << num17(p[2]) << '\n';
+  for (const auto& p : points)
+    o << num17(p[0]) << ' ' << num17(p[1]) << ' ' << num17(p[2]) << '\n';
+  size_t base = 0;
+  for (const auto& br : branches) {
+    size_t n = br.points.size();
+    if (n >= 2) {
+      for (size_t i = 0; i + 1 < n; ++i)
+        o << base + i << ' ' << base + i + 1 << '\n';
+      if (br.closed && n >= 3)
+        o << base + n - 1 << ' ' << base << '\n';
+    }
+    base += n;
+  }
+  return o.str();
+}
+
+std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                   const Picture& pic) {
+  // Views: (horizontal axis, vertical axis, axis looked along).
+  const size_t view_axes[3][3] = {{0, 1, 2}, {0, 2, 1}, {1, 2, 0}};
+  const char* axis_name[3] = {"x", "y", "z"};
+  const double panel = 400, gap = 20, top = 50, inner_margin = 34;
+  const double width = 3 * panel + 4 * gap, height = top + panel + 70;
+
+  // Outlines of the ellipsoids, per view, in the view's (u, v) coordinates.
+  struct Outline {
+    int surface;
+    size_t view;
+    std::vector<std::array<double, 2>> pts;
+  };
+  std::vector<Outline> outlines;
+  const core::QuadricMatrix* quadrics[2] = {&a, &b};
+  for (int s = 0; s < 2; ++s) {
+    if (quadrics[s]->kind() != core::QuadricKind::Ellipsoid)
+      continue;
+    for (size_t v = 0; v < 3; ++v)
+      if (auto pts = silhouette(*quadrics[s], view_axes[v][2], 180))
+        outlines.push_back({s, v, std::move(*pts)});
+  }
+
+  // 3D bounding box of everything drawn.
+  std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  auto grow = [&](size_t k, double x) {
+    if (std::isfinite(x)) {
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+    }
+  };
+  for (const auto& br : pic.branches)
+    for (const auto& p : br.points)
+      if (finite(p))
+        for (size_t k = 0; k < 3; ++k)
+          grow(k, p[k]);
+  for (const auto& p : pic.special_points)
+    if (finite(p))
+      for (size_t k = 0; k < 3; ++k)
+        grow(k, p[k]);
+  for (const auto& o : outlines)
+    for (const auto& q : o.pts) {
+      grow(view_axes[o.view][0], q[0]);
+      grow(view_axes[o.view][1], q[1]);
+    }
+  double range = 0;
+  for (size_t k = 0; k < 3; ++k) {
+    if (!(lo[k] <= hi[k])) {
+      lo[k] = -1;
+      hi[k] = 1;
+    }
+    range = std::max(range, hi[k] - lo[k]);
+  }
+  if (!(range > 0))
+    range = 2;
+  for (size_t k = 0; k < 3; ++k) { // at least `range` wide, centred on the data
+    double mid = 0.5 * (lo[k] + hi[k]);
+    lo[k] = mid - 0.5 * range;
+    hi[k] = mid + 0.5 * range;
+  }
+  const double scale = (panel - 2 * inner_margin) / range;
+
+  auto px = [&](size_t v, double u) {
+    size_t k = view_axes[v][0];
+    return gap + v * (panel + gap) + inner_margin + (u - lo[k]) * scale;
+  };
+  auto py = [&](size_t v, double w) {
+    size_t k = view_axes[v][1];
+    return top + panel - inner_margin - (w - lo[k]) * scale;
+  };
+
+  // "Nice" grid step: 1, 2 or 5 times a power of ten, about 5 cells per panel.
+  double raw = range / 5, p10 = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = raw / p10 < 1.5 ? p10 : raw / p10 < 3.5 ? 2 * p10 : raw / p10 < 7.5 ? 5 * p10 : 10 * p10;
+  auto label = [&](double t) {
+    if (std::fabs(t) < 1e-9 * step)
+      t = 0;
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", t);
+    return std::string(buf);
+  };
+
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+    << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << width
+    << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << ' ' << height << "\">\n"
+    << "<title>surfcert: intersection curve of two quadrics</title>\n"
+    << "<style>text{font-family:sans-serif} .grid{stroke:#e6e6e6;stroke-width:1} "
+       ".frame{fill:none;stroke:#999;stroke-width:1} .tick{fill:#888;font-size:10px} "
+       ".axis{fill:#444;font-size:13px;font-style:italic} .title{fill:#222;font-size:14px} "
+       ".outline{fill:none;stroke-width:1.5} .outline-a{stroke:#1f77b4} "
+       ".outline-b{stroke:#2ca02c} .curve{fill:none;stroke-width:2;stroke-linejoin:round} "
+       ".special{fill:#ff8c00;stroke:#222;stroke-width:1} .caption{fill:#111;font-size:14px} "
+       ".legend{font-size:12px}</style>\n"
+    << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height
+    << "\" fill=\"#ffffff\"/>\n<defs>\n";
+  for (size_t v = 0; v < 3; ++v)
+    o << "<clipPath id=\"panel" << v << "\"><rect x=\"" << num2(gap + v * (panel + gap))
+      << "\" y=\"" << num2(top) << "\" width=\"" << panel << "\" height=\"" << panel
+      << "\"/></clipPath>\n";
+  o << "</defs>\n";
+
+  // Legend.
+  o << "<g class=\"legend\"><text x=\"" << gap << "\" y=\"18\" fill=\"#1f77b4\">surface A"
+    << "</text><text x=\"" << gap + 80 << "\" y=\"18\" fill=\"#2ca02c\">surface B</text>"
+    << "<text x=\"" << gap + 160 << "\" y=\"18\" fill=\"#d62728\">curve</text>"
+    << "<text x=\"" << gap + 210 << "\" y=\"18\" fill=\"#111111\">double curve</text>"
+    << "<text x=\"" << gap + 305 << "\" y=\"18\" fill=\"#ff8c00\">special point</text></g>\n";
+
+  for (size_t v = 0; v < 3; ++v) {
+    size_t ku = view_axes[v][0], kv = view_axes[v][1], kw = view_axes[v][2];
+    double x0 = gap + v * (panel + gap);
+    o << "<g class=\"view\" id=\"view-" << axis_name[ku] << axis_name[kv] << "\">\n";
+    o << "<text class=\"title\" x=\"" << num2(x0 + 4) << "\" y=\"" << num2(top - 8)
+      << "\">view along " << axis_name[kw] << " (" << axis_name[ku] << "-" << axis_name[kv]
+      << ")</text>\n";
+    o << "<rect class=\"frame\" x=\"" << num2(x0) << "\" y=\"" << num2(top) << "\" width=\""
+      << panel << "\" height=\"" << panel << "\"/>\n";
+    // Grid and tick labels.
+    o << "<g clip-path=\"url(#panel" << v << ")\">\n";
+    double u_lo = lo[ku] - inner_margin / scale, u_hi = hi[ku] + inner_margin / scale;
+    double v_lo = lo[kv] - inner_margin / scale, v_hi = hi[kv] + inner_margin / scale;
+    for (double t = std::ceil(u_lo / step) * step; t <= u_hi; t += step)
+      o << "<line class=\"grid\" x1=\"" << num2(px(v, t)) << "\" y1=\"" << num2(top)
+        << "\" x2=\"" << num2(px(v, t)) << "\" y2=\"" << num2(top + panel) << "\"/>\n";
+    for (double t = std::ceil(v_lo / step) * step; t <= v_hi; t += step)
+      o << "<line class=\"grid\" x1=\"" << num2(x0) << "\" y1=\"" << num2(py(v, t))
+        << "\" x2=\"" << num2(x0 + panel) << "\" y2=\"" << num2(py(v, t)) << "\"/>\n";
+    o << "</g>\n";
+    for (double t = std::ceil(lo[ku] / step) * step; t <= hi[ku] + 1e-9 * step; t += step)
+      o << "<text class=\"tick\" text-anchor=\"middle\" x=\"" << num2(px(v, t)) << "\" y=\""
+        << num2(top + panel - 6) << "\">" << label(t) << "</text>\n";
+    for (double t = std::ceil(lo[kv] / step) * step; t <= hi[kv] + 1e-9 * step; t += step)
+      o << "<text class=\"tick\" x=\"" << num2(x0 + 4) << "\" y=\"" << num2(py(v, t) + 3)
+        << "\">" << label(t) << "</text>\n";
+    o << "<text class=\"axis\" text-anchor=\"end\" x=\"" << num2(x0 + panel - 6) << "\" y=\""
+      << num2(top + panel - 18) << "\">" << axis_name[ku] << "</text>\n";
+    o << "<text class=\"axis\" x=\"" << num2(x0 + 22) << "\" y=\"" << num2(top + 16) << "\">"
+      << axis_name[kv] << "</text>\n";
+    // Outlines.
+    o << "<g clip-path=\"url(#panel" << v << ")\">\n";
+    for (const auto& ol : outlines) {
+      if (ol.view != v)
+        continue;
+      o << "<path class=\"outline " << (ol.surface == 0 ? "outline-a" : "outline-b")
+        << "\" d=\"";
+      for (size_t i = 0; i < ol.pts.size(); ++i)
+        o << (i == 0 ? "M" : " L") << num2(px(v, ol.pts[i][0])) << ','
+          << num2(py(v, ol.pts[i][1]));
+      o << " Z\"/>\n";
+    }
+    o << "</g>\n</g>\n";
+  }
+
+  // Branches: one group each, with its three projections.
+  for (size_t bi = 0; bi < pic.branches.size(); ++bi) {
+    const auto& br = pic.branches[bi];
+    bool dbl = br.kind.rfind("double", 0) == 0;
+    o << "<g class=\"branch\" id=\"branch-" << bi << "\" data-kind=\"" << xml_escape(br.kind)
+      << "\" stroke=\"" << (dbl ? "#111111" : "#d62728") << "\""
+      << (dbl ? " stroke-width=\"3\"" : "") << ">\n";
+    for (size_t v = 0; v < 3; ++v) {
+      size_t ku = view_axes[v][0], kv = view_axes[v][1];
+      o << "<path class=\"curve\" clip-path=\"url(#panel" << v << ")\" d=\"";
+      bool pen = false;
+      double lx = 0, ly = 0;
+      size_t emitted = 0;
+      for (size_t i = 0; i < br.points.size(); ++i) {
+        const auto& p = br.points[i];
+        if (!finite(p)) {
+          pen = false;
+          continue;
+        }
+        double x = px(v, p[ku]), y = py(v, p[kv]);
+        bool last = i + 1 == br.points.size();
+        if (pen && !last && std::hypot(x - lx, y - ly) < 0.4)
+          continue; // below display resolution
+        o << (emitted == 0 ? "" : " ") << (pen ? "L" : "M") << num2(x) << ',' << num2(y);
+        pen = true;
+        lx = x;
+        ly = y;
+        ++emitted;
+      }
+      if (emitted == 1) // a single point: draw a dot
+        o << " l0.01,0";
+      if (br.closed && emitted > 2)
+        o << " Z";
+      if (emitted == 0)
+        o << "M0,0";
+      o << "\"" << (emitted <= 1 ? " stroke-linecap=\"round\"" : "") << "/>\n";
+    }
+    o << "</g>\n";
+  }
+
+  // Special points.
+  for (const auto& p : pic.special_points) {
+    if (!finite(p))
+      continue;
+    for (size_t v = 0; v < 3; ++v)
+      o << "<circle class=\"special\" cx=\"" << num2(px(v, p[view_axes[v][0]])) << "\" cy=\""
+        << num2(py(v, p[view_axes[v][1]])) << "\" r=\"4.5\"/>\n";
+  }
+
+  o << "<text class=\"caption\" x=\"" << gap << "\" y=\"" << num2(top + panel + 34) << "\">"
+    << xml_escape(pic.caption) << "</text>\n";
+  o << "</svg>\n";
+  return o.str();
+}
+
+} // namespace surfcert::trace

@@ -1,1 +1,561 @@
-// stub, being written
+// march: predictor-corrector tracing of the QSIC from start points, through known singular
+// points, closing loops. Approximate (floating point); nothing here is certified.
+//
+// Step control at a point p with unit tangent t (travel direction):
+//   h_free = min(hmax, sqrt(8 tol / kappa), 0.2 / kappa),
+//   h      = min(h_free, max(sqrt(0.5 d_sep / kappa), h_free / 20))
+// with tol = tolerance * L (L = diagonal of the bounding box of the start and singular points:
+// the scene size, so the result does not depend on the scale), hmax = 50 tol, kappa the
+// larger of the curve's curvature at p (exact, from the surfaces' second derivatives) and of
+// the turning rate over the last step, and d_sep the distance at which the local second-order
+// model of the pair puts another piece of curve: in the (approximate) common tangent plane the
+// curve is {l . v + v^T Q v / 2 = 0}, l the difference of the unit normals, Q the difference
+// of the shape operators; another branch of that conic lies about |l| / |Q| away. The second
+// bound keeps the predictor's sideways error below d_sep / 4.
+// A corrected point is accepted when it lies within h/2 of the predictor and 1.5h of p, the
+// step made progress, the tangent (grad f x grad g with the walk's orientation sign) turned by
+// less than ~45 degrees, and h is not too long for the curvature and d_sep at the new point;
+// otherwise h is halved. The orientation test is what keeps the walk on its own piece where
+// two pieces of curve run closer than the step: next to each other the field grad f x grad g
+// runs in opposite directions on them (they are neighbouring zero sets of one function on the
+// surface), so a jump shows up as a reversed tangent.
+//
+// Singular points (crunode, cusp, acnode) are classified locally from the pair: there the
+// gradients are parallel, g - mu f is singular at S, and the tangent cone of the curve is
+// {v in the tangent plane : v^T (B - mu A) v = 0} (A, B the quadratic parts): two lines
+// (crunode), one double line (cusp; a tacnode looks the same at this order and is treated as
+// one, so conic cases belong to conic_branches) or none (acnode). A walk that gets within
+// 2 h_free of a crunode or cusp ahead of it steps onto it exactly and continues along the
+// branch that best continues its direction (crunode) or back along the other half (cusp);
+// the outgoing point solves f = g = 0, |X - S| = r by Newton. Start points at which the curve
+// is singular (extreme_points returns them) are not starts; they join the list of singular
+// points. A walk leaving the scene by more than 100 L is on a non-compact branch and stops.
+#include "surfcert/certify/trace/curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace surfcert::trace {
+
+namespace {
+
+using V = Point3;
+
+V add(const V& a, const V& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+V sub(const V& a, const V& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V mul(double s, const V& a) { return {s * a[0], s * a[1], s * a[2]}; }
+double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const V& a) { return std::sqrt(dot(a, a)); }
+V cross(const V& a, const V& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+V unit(const V& a) {
+  double n = norm(a);
+  return n > 0 ? mul(1 / n, a) : V{0, 0, 0};
+}
+double dist(const V& a, const V& b) { return norm(sub(a, b)); }
+
+// v^T M v and u^T M v for the quadratic part (upper-left 3x3 block) of a 4x4 matrix.
+double quad(const std::array<std::array<double, 4>, 4>& m, const V& u, const V& v) {
+  double s = 0;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      s += u[i] * m[i][j] * v[j];
+  return s;
+}
+
+// A unit vector orthogonal to the unit vector n.
+V orthogonal(const V& n) {
+  size_t k = 0;
+  for (size_t i = 1; i < 3; ++i)
+    if (std::abs(n[i]) < std::abs(n[k])) k = i;
+  V e{0, 0, 0};
+  e[k] = 1;
+  return unit(cross(n, e));
+}
+
+// Eigen-decomposition of the symmetric 2x2 matrix [[a, b], [b, d]]: values l1 <= l2 and the
+// unit eigenvector of l1 (the other one is its rotation by 90 degrees).
+void eig2(double a, double b, double d, double& l1, double& l2, double& c, double& s) {
+  const double m = (a + d) / 2, r = std::hypot((a - d) / 2, b);
+  l1 = m - r;
+  l2 = m + r;
+  // Eigenvector of l1: (b, l1 - a) or (l1 - d, b), whichever is better conditioned.
+  double x1 = b, y1 = l1 - a, x2 = l1 - d, y2 = b;
+  double n1 = std::hypot(x1, y1), n2 = std::hypot(x2, y2);
+  if (n1 >= n2 && n1 > 0) {
+    c = x1 / n1;
+    s = y1 / n1;
+  } else if (n2 > 0) {
+    c = x2 / n2;
+    s = y2 / n2;
+  } else {
+    c = 1;
+    s = 0;
+  }
+}
+
+enum class SKind { Crunode, Cusp, Acnode, Other };
+
+struct Singular {
+  V p;
+  SKind kind = SKind::Other;
+  V n{};              // unit normal of the common tangent plane
+  std::vector<V> dirs; // unit tangent directions of the curve at p (crunode 2, cusp 1)
+};
+
+// sin of the angle between the gradients (0 when one vanishes).
+double sin_angle(const QuadricPair& q, const V& p) {
+  const V gf = q.grad_f(p), gg = q.grad_g(p);
+  const double d = norm(gf) * norm(gg);
+  return d > 0 ? norm(cross(gf, gg)) / d : 0;
+}
+
+Singular classify(const QuadricPair& q, const V& p) {
+  Singular s;
+  s.p = p;
+  const V gf = q.grad_f(p), gg = q.grad_g(p);
+  const double nf = norm(gf), ng = norm(gg);
+  const double big = std::max(nf, ng);
+  if (!(big > 0)) return s;
+  if (norm(cross(gf, gg)) > 1e-6 * nf * ng) return s; // not a singular point of the curve
+  // M = B - mu A (quadratic parts), with grad g = mu grad f; or the quadratic part of the
+  // surface that is singular at p.
+  std::array<std::array<double, 4>, 4> m{};
+  if (nf > 1e-9 * big && ng > 1e-9 * big) {
+    const double mu = dot(gg, gf) / dot(gf, gf);
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        m[i][j] = q.b[i][j] - mu * q.a[i][j];
+  } else {
+    m = nf > ng ? q.b : q.a;
+  }
+  s.n = unit(nf >= ng ? gf : gg);
+  const V e1 = orthogonal(s.n), e2 = cross(s.n, e1);
+  const double a = quad(m, e1, e1), b = quad(m, e1, e2), d = quad(m, e2, e2);
+  double l1, l2, c, sn;
+  eig2(a, b, d, l1, l2, c, sn);
+  const V u1 = add(mul(c, e1), mul(sn, e2)), u2 = add(mul(-sn, e1), mul(c, e2));
+  double scale = std::max(std::abs(l1), std::abs(l2));
+  double mscale = 0;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      mscale = std::max(mscale, std::abs(m[i][j]));
+  if (!(scale > 1e-12 * mscale)) return s; // degenerate: a higher-order contact
+  const double lo = std::min(std::abs(l1), std::abs(l2));
+  if (lo <= 1e-7 * scale) {
+    s.kind = SKind::Cusp;
+    s.dirs.push_back(std::abs(l1) < std::abs(l2) ? u1 : u2);
+  } else if (l1 * l2 > 0) {
+    s.kind = SKind::Acnode;
+  } else {
+    s.kind = SKind::Crunode;
+    const double cc = std::sqrt(l2 / (l2 - l1)), ss = std::sqrt(-l1 / (l2 - l1));
+    s.dirs.push_back(unit(add(mul(cc, u1), mul(ss, u2))));
+    s.dirs.push_back(unit(add(mul(cc, u1), mul(-ss, u2))));
+  }
+  return s;
+}
+
+// Newton on f = g = 0, |X - S|^2 = r^2 from x (3x3 system, partial pivoting).
+bool newton_sphere(const QuadricPair& q, const V& sp, double r, V& x) {
+  for (int it = 0; it < 50; ++it) {
+    const double fv = q.f(x), gv = q.g(x);
+    const V dx = sub(x, sp);
+    const double sv = dot(dx, dx) - r * r;
+    const double n2 = dot(x, x);
+    if (!std::isfinite(fv) || !std::isfinite(gv) || !std::isfinite(sv)) return false;
+    if (std::max(std::abs(fv), std::abs(gv)) <= 1e-15 * (1 + n2) && std::abs(sv) <= 1e-12 * r * r)
+      return true;
+    const V gf = q.grad_f(x), gg = q.grad_g(x);
+    double m[3][4] = {{gf[0], gf[1], gf[2], fv},
+                      {gg[0], gg[1], gg[2], gv},
+                      {2 * dx[0], 2 * dx[1], 2 * dx[2], sv}};
+    // Row scaling so pivoting compares like with like.
+    for (auto& row : m) {
+      double s = std::max({std::abs(row[0]), std::abs(row[1]), std::abs(row[2])});
+      if (!(s > 0)) return false;
+      for (double& v : row)
+        v /= s;
+    }
+    for (int col = 0; col < 3; ++col) {
+      int piv = col;
+      for (int i = col + 1; i < 3; ++i)
+        if (std::abs(m[i][col]) > std::abs(m[piv][col])) piv = i;
+      if (!(std::abs(m[piv][col]) > 1e-300)) return false;
+      if (piv != col)
+        for (int j = 0; j < 4; ++j)
+          std::swap(m[col][j], m[piv][j]);
+      for (int i = col + 1; i < 3; ++i) {
+        const double fct = m[i][col] / m[col][col];
+        for (int j = col; j < 4; ++j)
+          m[i][j] -= fct * m[col][j];
+      }
+    }
+    double d[3];
+    for (int i = 2; i >= 0; --i) {
+      double s = m[i][3];
+      for (int j = i + 1; j < 3; ++j)
+        s -= m[i][j] * d[j];
+      d[i] = s / m[i][i];
+    }
+    const V step{d[0], d[1], d[2]};
+    x = sub(x, step);
+    if (norm(step) <= 1e-16 * (1 + norm(x))) {
+      const double res = std::max(std::abs(q.f(x)), std::abs(q.g(x)));
+      return res <= 1e-13 * (1 + dot(x, x));
+    }
+  }
+  return false;
+}
+
+struct Walk {
+  std::vector<V> pts;
+  std::vector<double> sg; // per point: travel direction = sg * (grad f x grad g), 0 at a singular point
+  bool closed = false;
+  bool dead = false;    // stopped where it could not continue (an end or a failure)
+  bool capped = false;  // hit max_points_per_branch
+  std::vector<int> passes; // per singular point: number of times walked through
+};
+
+class Tracer {
+public:
+  Tracer(const QuadricPair& q, const TraceOptions& opt, double scene)
+      : q_(q), opt_(opt), scene_(scene), tol_(opt.tolerance * scene), hmax_(50 * tol_) {}
+
+  std::vector<Singular> sing;
+
+  // Raw unit tangent grad f x grad g (zero at a singular point).
+  V raw_tangent(const V& p) const { return unit(cross(q_.grad_f(p), q_.grad_g(p))); }
+
+  // Curvature of the curve at p (t the unit tangent): solve grad f . k = -t^T H_f t,
+  // grad g . k = -t^T H_g t, t . k = 0.
+  double curvature(const V& p, const V& t) const {
+    const V gf = q_.grad_f(p), gg = q_.grad_g(p);
+    const double det = dot(t, cross(gf, gg));
+    if (!(std::abs(det) > 0)) return std::numeric_limits<double>::infinity();
+    const double r1 = -2 * quad(q_.a, t, t), r2 = -2 * quad(q_.b, t, t);
+    const V k = mul(1 / det, add(mul(r1, cross(gg, t)), mul(r2, cross(t, gf))));
+    return norm(k);
+  }
+
+  // Distance to another piece of curve predicted by the local second-order model.
+  double separation(const V& p, const V& t) const {
+    const V gf = q_.grad_f(p), gg = q_.grad_g(p);
+    const double nf = norm(gf), ng = norm(gg);
+    if (!(nf > 0) || !(ng > 0)) return 0;
+    const V uf = mul(1 / nf, gf), ug = mul(1 / ng, gg);
+    const double sg = dot(uf, ug) < 0 ? -1 : 1;
+    const V n = unit(add(uf, mul(sg, ug)));
+    const V e2 = cross(n, t);
+    const double lin = std::abs(dot(sub(uf, mul(sg, ug)), e2));
+    // Q = 2 A / |grad f| - sg 2 B / |grad g| restricted to span(t, e2).
+    auto qf = [&](const V& u, const V& v) {
+      return 2 * quad(q_.a, u, v) / nf - sg * 2 * quad(q_.b, u, v) / ng;
+    };
+    const double a = qf(t, t), b = qf(t, e2), d = qf(e2, e2);
+    const double qn = std::abs((a + d) / 2) + std::hypot((a - d) / 2, b);
+    if (!(qn > 0)) return std::numeric_limits<double>::infinity();
+    return lin / qn;
+  }
+
+  // Target step at p; h_free excludes the separation bound (used for snapping).
+  double target(const V& p, const V& t, double kappa_est, double* h_free) const {
+    const double kappa = std::max(curvature(p, t), kappa_est);
+    double h = hmax_;
+    if (kappa > 0) h = std::min({h, std::sqrt(8 * tol_ / kappa), 0.2 / kappa});
+    if (h_free) *h_free = h;
+    // The predictor's sideways error kappa h^2 / 2 stays below a quarter of d_sep, so Newton
+    // is not drawn to another piece of curve lying d_sep away. A second line of defence (the
+    // orientation test of the corrector comes first: on two neighbouring pieces of curve
+    // grad f x grad g runs in opposite directions), so it never shrinks the step below
+    // h_free / 20: the point count stays bounded when two pieces run close for long.
+    const double sep = separation(p, t);
+    if (kappa > 0 && std::isfinite(sep))
+      h = std::min(h, std::max(std::sqrt(0.5 * sep / kappa), 0.05 * h));
+    return h;
+  }
+
+  double hmin(const V& p) const { return std::max(1e-11 * scene_, 1e-14 * (1 + norm(p))); }
+
+  // Through singular point sp (index si) arriving from p: returns the first point after it.
+  bool pass_singular(const Singular& s, const V& p, double h_free, V& out) const {
+    const double r = dist(s.p, p);
+    if (s.kind == SKind::Crunode) {
+      const V din = unit(sub(s.p, p));
+      V best{};
+      double bd = -2;
+      for (const V& d : s.dirs)
+        for (double sg : {1.0, -1.0}) {
+          const double v = sg * dot(d, din);
+          if (v > bd) {
+            bd = v;
+            best = mul(sg, d);
+          }
+        }
+      double rr = std::max(r, 0.5 * h_free);
+      for (int attempt = 0; attempt < 6; ++attempt, rr *= 0.5) {
+        V x = add(s.p, mul(rr, best));
+        if (!newton_sphere(q_, s.p, rr, x)) continue;
+        if (dist(x, add(s.p, mul(rr, best))) > 0.3 * rr) continue;
+        out = x;
+        return true;
+      }
+      return false;
+    }
+    if (s.kind == SKind::Cusp) {
+      V d = s.dirs[0];
+      const V u = sub(p, s.p);
+      if (dot(d, u) < 0) d = mul(-1, d);
+      const V e = cross(s.n, d);
+      const double a = dot(u, d), b = dot(u, e), c = dot(u, s.n);
+      for (double k : {1.0, 2.0, 0.5, 4.0}) {
+        V x = add(s.p, add(mul(a, d), add(mul(-k * b, e), mul(c, s.n))));
+        if (!newton_sphere(q_, s.p, r, x)) continue;
+        if (dot(sub(x, s.p), d) <= 0) continue;
+        if (dist(x, p) <= std::max(std::abs(b), 1e-9 * r)) continue; // came back to p
+        out = x;
+        return true;
+      }
+      return false;
+    }
+    return false;
+  }
+
+  Walk walk(const V& p0, double s0) const {
+    Walk w;
+    w.passes.assign(sing.size(), 0);
+    w.pts.push_back(p0);
+    w.sg.push_back(s0);
+    V p = p0;
+    double s = s0;
+    V t = mul(s, raw_tangent(p0));
+    const V t0 = t;
+    double kest = 0;
+    double hlast = -1;
+    bool away = false;
+    const size_t cap = static_cast<size_t>(std::max(opt_.max_points_per_branch, 2));
+    while (true) {
+      if (w.pts.size() >= cap) {
+        w.capped = true;
+        return w;
+      }
+      // Running off to infinity (a non-compact branch: every compact one has both of its
+      // extreme points among the starts, so it stays within a few scene sizes of them).
+      if (dist(p, p0) > 100 * scene_) {
+        w.dead = true;
+        return w;
+      }
+      double hfree = 0;
+      double h = target(p, t, kest, &hfree);
+      if (hlast > 0) h = std::min(h, 2 * hlast);
+      // Closing the loop.
+      const double d0 = dist(p, p0);
+      if (!away && d0 > 1.5 * h && w.pts.size() > 2) away = true;
+      if (away && d0 <= 1.2 * h && dot(sub(p0, p), t) > 0 && dot(t0, t) > 0.5) {
+        w.closed = true;
+        return w;
+      }
+      // Singular point ahead within reach: step onto it and through it.
+      bool passed = false;
+      for (size_t i = 0; i < sing.size(); ++i) {
+        const Singular& sg = sing[i];
+        if (sg.kind != SKind::Crunode && sg.kind != SKind::Cusp) continue;
+        const V d = sub(sg.p, p);
+        const double r = norm(d);
+        if (!(r > 0) || r > 2 * hfree || dot(d, t) <= 0.9 * r) continue;
+        V x;
+        if (!pass_singular(sg, p, hfree, x)) {
+          w.dead = true;
+          return w;
+        }
+        const V rt = raw_tangent(x);
+        s = dot(rt, sub(x, sg.p)) >= 0 ? 1 : -1;
+        w.pts.push_back(sg.p);
+        w.sg.push_back(0);
+        w.pts.push_back(x);
+        w.sg.push_back(s);
+        ++w.passes[i];
+        t = mul(s, rt);
+        p = x;
+        kest = 0;
+        hlast = dist(x, sg.p);
+        away = away || dist(x, p0) > 1.5 * hlast;
+        passed = true;
+        break;
+      }
+      if (passed) continue;
+      // Predictor-corrector step.
+      bool ok = false;
+      while (!ok) {
+        if (h < hmin(p)) {
+          w.dead = true;
+          return w;
+        }
+        const V pp = add(p, mul(h, t));
+        V x = pp;
+        if (project_onto_curve(q_, x)) {
+          const V dq = sub(x, p);
+          const double len = norm(dq);
+          const V tx = mul(s, raw_tangent(x));
+          if (len <= 1.5 * h && len >= 0.25 * h && dist(x, pp) <= 0.5 * h &&
+              dot(dq, t) > 0.5 * len && dot(tx, t) > 0.7) {
+            const double ang = std::acos(std::min(1.0, std::max(-1.0, dot(tx, t))));
+            const double k2 = ang / len;
+            const double hx = target(x, tx, k2, nullptr);
+            if (h <= 2 * hx) {
+              ok = true;
+              kest = k2;
+              p = x;
+              t = tx;
+              hlast = len;
+              w.pts.push_back(x);
+              w.sg.push_back(s);
+              break;
+            }
+            h = std::min(0.5 * h, hx);
+            continue;
+          }
+        }
+        h *= 0.5;
+      }
+    }
+  }
+
+private:
+  const QuadricPair& q_;
+  const TraceOptions& opt_;
+  double scene_, tol_, hmax_;
+};
+
+// Distance from x to the segment [a, b].
+double seg_dist(const V& x, const V& a, const V& b) {
+  const V ab = sub(b, a);
+  const double l2 = dot(ab, ab);
+  double t = l2 > 0 ? dot(sub(x, a), ab) / l2 : 0;
+  t = std::min(1.0, std::max(0.0, t));
+  return dist(x, add(a, mul(t, ab)));
+}
+
+// A traced branch with, per point, the sign relating its travel direction to grad f x grad g.
+struct Traced {
+  Branch br;
+  std::vector<double> sg;
+};
+
+// Whether the curve point x lies on the traced branch: within the chord error of one of its
+// segments (kappa len^2 / 4 with kappa the curvature at x, plus the rounding floor, which
+// grows like 1/sin(angle between the surfaces)), and with its tangent running the same way as
+// the segment. The orientation test is what tells apart two pieces of curve closer than the
+// steps: next to each other the field grad f x grad g runs in opposite directions on them.
+bool on_branch(const Tracer& tr, const QuadricPair& q, const V& x, const Traced& t, double eps) {
+  const auto& pts = t.br.points;
+  const size_t n = pts.size();
+  for (const V& p : pts)
+    if (dist(x, p) <= eps) return true;
+  if (n < 2) return false;
+  const V rx = tr.raw_tangent(x);
+  const double kappa = std::min(tr.curvature(x, rx), 1e300);
+  const double sa = sin_angle(q, x);
+  const double noise = 1e-15 * (1 + norm(x)) / std::max(sa, 1e-300);
+  const size_t segs = t.br.closed ? n : n - 1;
+  for (size_t i = 0; i < segs; ++i) {
+    const V& a = pts[i];
+    const V& b = pts[(i + 1) % n];
+    const double len = dist(a, b);
+    const double thr = std::min(0.05 * len, kappa * len * len / 4) + noise + eps;
+    if (seg_dist(x, a, b) > thr) continue;
+    double sg = t.sg[i] != 0 ? t.sg[i] : t.sg[(i + 1) % n];
+    if (sg * dot(rx, sub(b, a)) > 0.5 * len) return true;
+  }
+  return false;
+}
+
+} // namespace
+
+std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& starts,
+                          const std::vector<Point3>& singular_points, const TraceOptions& opt) {
+  std::vector<Branch> out;
+  // Scene size: the bounding box of everything we were given.
+  V lo{}, hi{};
+  bool any = false;
+  for (const auto* list : {&starts, &singular_points})
+    for (const V& p : *list) {
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
+      for (size_t i = 0; i < 3; ++i) {
+        lo[i] = any ? std::min(lo[i], p[i]) : p[i];
+        hi[i] = any ? std::max(hi[i], p[i]) : p[i];
+      }
+      any = true;
+    }
+  double scene = any ? dist(lo, hi) : 0;
+  if (!(scene > 0)) scene = any ? 1 + norm(lo) : 1;
+
+  Tracer tr(q, opt, scene);
+  for (const V& p : singular_points)
+    tr.sing.push_back(classify(q, p));
+  const double near_eps = 1e-7 * scene;
+  auto near_singular = [&](const V& p) {
+    for (const auto& s : tr.sing)
+      if (dist(s.p, p) <= near_eps) return true;
+    return false;
+  };
+  // Start points at which the curve is singular are not starts; they join the list.
+  std::vector<V> smooth;
+  for (const V& p0 : starts) {
+    V p = p0;
+    if (near_singular(p)) continue;
+    if (sin_angle(q, p) <= 1e-9) {
+      Singular s = classify(q, p);
+      if (s.kind != SKind::Other) {
+        tr.sing.push_back(s);
+        continue;
+      }
+    }
+    if (!project_onto_curve(q, p)) continue;
+    if (near_singular(p)) continue;
+    smooth.push_back(p);
+  }
+
+  std::vector<Traced> traced;
+  for (const V& p0 : smooth) {
+    bool known = false;
+    for (const auto& t : traced)
+      if (on_branch(tr, q, p0, t, 1e-12 * scene)) known = true;
+    if (known) continue;
+    if (norm(tr.raw_tangent(p0)) == 0) continue;
+    Walk fw = tr.walk(p0, 1.0);
+    Traced tb;
+    Branch& br = tb.br;
+    std::vector<int> passes = fw.passes;
+    if (fw.closed || fw.capped) {
+      br.points = std::move(fw.pts);
+      tb.sg = std::move(fw.sg);
+      br.closed = fw.closed;
+    } else {
+      Walk bw = tr.walk(p0, -1.0);
+      if (fw.pts.size() + bw.pts.size() <= 2) continue; // no curve through p0 to follow
+      for (size_t i = 0; i < passes.size(); ++i)
+        passes[i] += bw.passes[i];
+      br.points.assign(bw.pts.rbegin(), bw.pts.rend());
+      for (auto it = bw.sg.rbegin(); it != bw.sg.rend(); ++it)
+        tb.sg.push_back(-*it); // walked backwards: the travel direction flips
+      br.points.insert(br.points.end(), fw.pts.begin() + 1, fw.pts.end());
+      tb.sg.insert(tb.sg.end(), fw.sg.begin() + 1, fw.sg.end());
+      br.closed = false;
+    }
+    int crunode_twice = 0, cusps = 0;
+    for (size_t i = 0; i < passes.size(); ++i) {
+      if (tr.sing[i].kind == SKind::Crunode && passes[i] >= 2) ++crunode_twice;
+      if (tr.sing[i].kind == SKind::Cusp && passes[i] >= 1) ++cusps;
+    }
+    br.kind = crunode_twice > 0 ? "figure_eight" : cusps > 0 ? "loop_with_cusp" : "loop";
+    traced.push_back(std::move(tb));
+  }
+  for (auto& t : traced)
+    out.push_back(std::move(t.br));
+  return out;
+}
+
+} // namespace surfcert::trace

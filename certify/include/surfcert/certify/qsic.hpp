@@ -52,6 +52,7 @@ struct QsicResult {
   std::string containment;        ///< "a_inside_b" / "b_inside_a" when nested/touching inside
   std::vector<SpecialPoint> special_points;
   bool special_points_complete = true; ///< false when some were not computed exactly
+  bool special_points_done = false;    ///< special_points has been filled
 };
 
 /// Decision only (what the benchmark times): pencil facts, Tu case, Segre characteristic.

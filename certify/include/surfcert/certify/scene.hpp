@@ -2,7 +2,8 @@
 //
 // A Scene names surfaces and lists queries; read_scene validates the whole document before
 // anything is computed (so a bad scene produces an error and no report). run_query computes
-// only what its op needs: "classify" builds the pencil and decides the topology, nothing else.
+// only what its op needs: "classify" builds the pencil and decides the topology, nothing else;
+// "intersect" adds the branches of the curve (traced or produced as conics).
 // process_batch reads JSON lines and writes one JSON line per input line, in input order,
 // using N worker threads; a bad line yields an error line and the batch goes on.
 #pragma once
@@ -18,9 +19,10 @@
 namespace surfcert::certify {
 
 struct Query {
-  core::io::Json id; ///< as given (null when absent)
-  std::string op;    ///< "classify"
-  std::string a, b;  ///< surface names
+  core::io::Json id;       ///< as given (null when absent)
+  std::string op;          ///< "classify" or "intersect"
+  double tolerance = 2e-4; ///< intersect: geometric tolerance of the traced branches
+  std::string a, b;        ///< surface names
   Mode mode = Mode::Filtered;
 };
 

@@ -35,7 +35,7 @@ struct TraceOptions {
 struct QuadricPair {
   std::array<std::array<double, 4>, 4> a, b; ///< symmetric, largest |entry| = 1 each
   explicit QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb);
-  double f(const Point3& p) const;  ///< X^T A X with X = (p, 1)
+  double f(const Point3& p) const; ///< X^T A X with X = (p, 1)
   double g(const Point3& p) const;
   Point3 grad_f(const Point3& p) const;
   Point3 grad_g(const Point3& p) const;
@@ -50,6 +50,11 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations = 30);
 /// univariate resultant in the slice parameter (see start_points.cpp). Points at which the
 /// surfaces are tangent or the curve is singular are included when they are extreme.
 std::vector<Point3> extreme_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b);
+
+/// The same construction in plain doubles (slice polynomials, float roots of R): cheap, with
+/// no guarantee. Callers use it first and fall back to extreme_points when the branches traced
+/// from these starts do not reproduce the certified topology.
+std::vector<Point3> extreme_points_float(const QuadricPair& q);
 
 /// Marches along the smooth parts of the curve from the start points, with a step adapted to
 /// curvature and Newton correction, passing through the given singular points along their

@@ -1,0 +1,9 @@
+#!/bin/sh
+# Benchmark peers only (bench/trace_bench); the library and the tests never need them.
+# Open CASCADE 7.6.3 (Debian 12): Geom, GeomConvert, GeomAPI_IntSS.
+set -e
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO=sudo
+$SUDO apt-get update
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends \
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev

@@ -1,0 +1,19 @@
+// our_tracer.cpp: the surfcert side of trace_bench after the topology: certify::trace_curve
+// (branches from the already computed topology; conics from singular members, quartic
+// branches marched from exact extreme points).
+#include "our_tracer.hpp"
+
+#include "surfcert/certify/curve.hpp"
+
+namespace surfcert::bench {
+
+int run_our_tracer(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                   const certify::QsicResult& topology, double tol) {
+  trace::TraceOptions opt;
+  opt.tolerance = tol;
+  auto r = certify::trace_curve(a, b, topology, opt);
+  if (r.status != certify::Status::Certified) return -2; // branches do not match the topology
+  return static_cast<int>(r.branches.size());
+}
+
+} // namespace surfcert::bench

@@ -1,0 +1,53 @@
+// surfcert::certify::intersect_curve: the certified topology of the intersection of two
+// quadrics plus every branch of the curve as a polyline, checked against that topology.
+//
+// The topology (classify_qsic) is certified. The branches come from surfcert::trace and are
+// approximations: every point is corrected onto both surfaces and the largest residual is
+// reported. Invariant: status is Certified only when the branches returned have exactly the
+// number and kinds the certified morphology prescribes (loops, figure eight, loop with cusp,
+// conics, double conic, isolated points); otherwise Undecided, with what was found and why.
+// Scope: an ellipsoid (or sphere) and any second quadric, where the real curve is bounded
+// and the projective topology is the affine one.
+#pragma once
+
+#include "surfcert/certify/qsic.hpp"
+#include "surfcert/certify/trace/curve.hpp"
+#include "surfcert/core/io/json.hpp"
+
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+struct CurveResult {
+  QsicResult topology;
+  Status status = Status::Error;
+  std::vector<trace::Branch> branches;
+  std::vector<trace::Point3> isolated_points;
+  double max_residual = 0; ///< max over returned points of max(|f|, |g|), normalised quadrics
+  double tolerance = 2e-4;
+  bool matches_topology = false;
+  bool exact_start_points = false; ///< the float start points missed a branch: exact ones used
+  std::string note;
+};
+
+/// Topology (in `mode`), special points, and branches (tracing only what the topology needs:
+/// conics from the factored singular members, quartic branches by marching from exact extreme
+/// points, isolated points from the exact special points).
+CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode,
+                            const trace::TraceOptions& opt);
+
+/// The same from a topology already computed by classify_qsic (complete_report_data is not
+/// needed: the special points are computed here when missing).
+CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                        QsicResult topology, const trace::TraceOptions& opt);
+
+/// {"status", "mode", ..., "result": {classification fields..., "branches": [...],
+/// "isolated_points": [...], "max_residual", "tolerance", "branches_match_topology"}}.
+core::io::Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
+                                   const core::QuadricMatrix& b);
+
+/// Expected branch kinds for a Tu case (ellipsoid cases), e.g. {"loop", "loop"} for case 1.
+std::vector<std::string> expected_branch_kinds(int tu_case);
+
+} // namespace surfcert::certify
