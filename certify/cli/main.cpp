@@ -108,6 +108,12 @@ int cmd_classify(const std::vector<std::string>& args) {
   return r.status == certify::Status::Undecided ? 3 : 0;
 }
 
+std::string tol_text(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", t);
+  return buf;
+}
+
 int cmd_intersect(const std::vector<std::string>& args) {
   std::vector<std::string> eq;
   certify::Mode mode = certify::Mode::Filtered;
@@ -159,8 +165,9 @@ int cmd_intersect(const std::vector<std::string>& args) {
     pic.caption = c.topology.morphology
                       ? "case " + std::to_string(c.topology.tu_case) + " " +
                             c.topology.morphology->id + ": " + c.topology.morphology->description +
-                            " (topology " + certify::to_string(c.topology.status) + "; curves " +
-                            certify::to_string(c.status) + ")"
+                            " (topology " + certify::to_string(c.topology.status) +
+                            "; branches traced to tolerance " + tol_text(opt.tolerance) +
+                            (c.matches_topology ? ", matching it)" : ", NOT matching it: undecided)")
                       : std::string("no curve: ") + c.note;
     write_atomically(svg_path, trace::to_svg(a, b, pic));
   }

@@ -209,3 +209,36 @@ TEST(Cli, DefaultSceneRuns) {
   for (const auto& q : doc.find("results")->items())
     EXPECT_EQ(q.find("status")->text(), "certified");
 }
+
+TEST(Cli, IntersectWritesPictureAndPolylines) {
+  std::string svg = tmp_path("curve.svg"), obj = tmp_path("curve.obj"), ply = tmp_path("curve.ply");
+  auto r = run("intersect 'x^2+y^2/4+z^2=1' 'x^2-2x+9y^2+9/4 z^2=8' --svg " + svg + " --export " + obj + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  Json doc = surfcert::core::io::parse_json(r.out, "stdout");
+  EXPECT_EQ(doc.find("status")->text(), "certified");
+  const Json& branches = *doc.find("result")->find("branches");
+  ASSERT_EQ(branches.size(), 2u); // seed 002 Example 4.2: two loops
+  size_t points = 0;
+  for (const auto& b : branches.items()) {
+    EXPECT_EQ(b.find("kind")->text(), "loop");
+    points += b.find("points")->size();
+  }
+  // OBJ: one "v" line per point and one "l" element per branch.
+  std::ifstream o(obj);
+  std::string line;
+  size_t v = 0, l = 0;
+  while (std::getline(o, line)) {
+    v += line.rfind("v ", 0) == 0;
+    l += line.rfind("l ", 0) == 0;
+  }
+  EXPECT_EQ(v, points);
+  EXPECT_EQ(l, 2u);
+  std::ifstream sv(svg);
+  std::stringstream ss;
+  ss << sv.rdbuf();
+  EXPECT_NE(ss.str().find("<svg"), std::string::npos);
+  auto bad = run("intersect 'x^2+y^2+z^2=1' 'x^2=1/4' --export " + ply + ".stl");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_FALSE(exists(ply + ".stl"));
+  for (const auto& f : {svg, obj}) std::remove(f.c_str());
+}

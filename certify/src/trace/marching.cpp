@@ -334,6 +334,8 @@ public:
     const V t0 = t;
     double kest = 0;
     double hlast = -1;
+    bool have_next = false;
+    double next_h = 0, next_hfree = 0;
     bool away = false;
     const size_t cap = static_cast<size_t>(std::max(opt_.max_points_per_branch, 2));
     while (true) {
@@ -348,7 +350,14 @@ public:
         return w;
       }
       double hfree = 0;
-      double h = target(p, t, kest, &hfree);
+      double h;
+      if (have_next) { // computed when the previous step was accepted (same p, t, kest)
+        h = next_h;
+        hfree = next_hfree;
+        have_next = false;
+      } else {
+        h = target(p, t, kest, &hfree);
+      }
       if (hlast > 0) h = std::min(h, 2 * hlast);
       // Closing the loop.
       const double d0 = dist(p, p0);
@@ -403,9 +412,13 @@ public:
               dot(dq, t) > 0.5 * len && dot(tx, t) > 0.7) {
             const double ang = std::acos(std::min(1.0, std::max(-1.0, dot(tx, t))));
             const double k2 = ang / len;
-            const double hx = target(x, tx, k2, nullptr);
+            double hx_free = 0;
+            const double hx = target(x, tx, k2, &hx_free);
             if (h <= 2 * hx) {
               ok = true;
+              have_next = true;
+              next_h = hx;
+              next_hfree = hx_free;
               kest = k2;
               p = x;
               t = tx;
