@@ -23,9 +23,13 @@ std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>
   r = std::max(r, 1e-300);
   for (size_t k = 0; k < n; ++k)
     z[k] = std::polar(r, 2 * M_PI * (static_cast<double>(k) + 0.25) / static_cast<double>(n) + 0.4);
-  for (int it = 0; it < 200; ++it) {
+  // Roots whose last correction was below 1e-14 (relative) are frozen: only guesses are
+  // needed here (callers check them exactly or polish them by Newton).
+  std::vector<char> done(n, 0);
+  for (int it = 0; it < 100; ++it) {
     double moved = 0;
     for (size_t k = 0; k < n; ++k) {
+      if (done[k]) continue;
       cd p = c[n], dp = 0;
       for (size_t i = n; i-- > 0;) {
         dp = dp * z[k] + p;
@@ -46,7 +50,9 @@ std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>
       if (!std::isfinite(w.real()) || !std::isfinite(w.imag())) continue;
       z[k] -= w;
       double aw = std::fabs(w.real()) + std::fabs(w.imag());
-      moved = std::max(moved, aw / (1 + std::fabs(z[k].real()) + std::fabs(z[k].imag())));
+      double rel = aw / (1 + std::fabs(z[k].real()) + std::fabs(z[k].imag()));
+      if (rel < 1e-14) done[k] = 1;
+      moved = std::max(moved, rel);
     }
     if (moved < 1e-15) break;
   }

@@ -99,6 +99,11 @@ double residual(const QuadricPair& q, const Point3& x) {
 // than the rounding floor, so stopping at its edge would leave the point visibly off the
 // curve sideways.
 void polish(const QuadricPair& q, Point3& p) {
+  // Only needed where the surfaces meet at a small angle (sin^2 < 1/100); elsewhere the
+  // tolerance band is already as narrow as the rounding floor allows.
+  const Point3 gf = q.grad_f(p), gg = q.grad_g(p);
+  const double a11 = dot(gf, gf), a12 = dot(gf, gg), a22 = dot(gg, gg);
+  if (a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
   double r = residual(q, p);
   for (int k = 0; k < 2 && r > 0; ++k) {
     Point3 x{};
