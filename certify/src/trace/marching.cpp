@@ -222,7 +222,7 @@ struct Walk {
 class Tracer {
 public:
   Tracer(const QuadricPair& q, const TraceOptions& opt, double scene)
-      : q_(q), opt_(opt), scene_(scene), tol_(opt.tolerance * scene), hmax_(50 * tol_) {}
+      : q_(q), opt_(opt), scene_(scene), tol_(opt.tolerance * scene), hmax_(200 * tol_) {}
 
   std::vector<Singular> sing;
 
@@ -231,8 +231,8 @@ public:
 
   // Curvature of the curve at p (t the unit tangent): solve grad f . k = -t^T H_f t,
   // grad g . k = -t^T H_g t, t . k = 0.
-  double curvature(const V& p, const V& t) const {
-    const V gf = q_.grad_f(p), gg = q_.grad_g(p);
+  double curvature(const V& p, const V& t) const { return curvature(t, q_.grad_f(p), q_.grad_g(p)); }
+  double curvature(const V& t, const V& gf, const V& gg) const {
     const double det = dot(t, cross(gf, gg));
     if (!(std::abs(det) > 0)) return std::numeric_limits<double>::infinity();
     const double r1 = -2 * quad(q_.a, t, t), r2 = -2 * quad(q_.b, t, t);
@@ -241,8 +241,7 @@ public:
   }
 
   // Distance to another piece of curve predicted by the local second-order model.
-  double separation(const V& p, const V& t) const {
-    const V gf = q_.grad_f(p), gg = q_.grad_g(p);
+  double separation(const V& t, const V& gf, const V& gg) const {
     const double nf = norm(gf), ng = norm(gg);
     if (!(nf > 0) || !(ng > 0)) return 0;
     const V uf = mul(1 / nf, gf), ug = mul(1 / ng, gg);
@@ -262,7 +261,8 @@ public:
 
   // Target step at p; h_free excludes the separation bound (used for snapping).
   double target(const V& p, const V& t, double kappa_est, double* h_free) const {
-    const double kappa = std::max(curvature(p, t), kappa_est);
+    const V gf = q_.grad_f(p), gg = q_.grad_g(p); // shared by the two bounds below
+    const double kappa = std::max(curvature(t, gf, gg), kappa_est);
     double h = hmax_;
     if (kappa > 0) h = std::min({h, std::sqrt(8 * tol_ / kappa), 0.2 / kappa});
     if (h_free) *h_free = h;
@@ -271,7 +271,7 @@ public:
     // orientation test of the corrector comes first: on two neighbouring pieces of curve
     // grad f x grad g runs in opposite directions), so it never shrinks the step below
     // h_free / 20: the point count stays bounded when two pieces run close for long.
-    const double sep = separation(p, t);
+    const double sep = separation(t, gf, gg);
     if (kappa > 0 && std::isfinite(sep))
       h = std::min(h, std::max(std::sqrt(0.5 * sep / kappa), 0.05 * h));
     return h;
@@ -363,8 +363,14 @@ public:
       const double d0 = dist(p, p0);
       if (!away && d0 > 1.5 * h && w.pts.size() > 2) away = true;
       if (away && d0 <= 1.2 * h && dot(sub(p0, p), t) > 0 && dot(t0, t) > 0.5) {
-        w.closed = true;
-        return w;
+        // The closing chord obeys the same bound as every other one (see the corrector).
+        const V cdir = mul(1 / d0, sub(p0, p));
+        const double sag = 0.25 * d0 * std::max(norm(cross(t, cdir)), norm(cross(t0, cdir)));
+        if (sag <= tol_) {
+          w.closed = true;
+          return w;
+        }
+        h = std::min(h, 0.5 * d0); // one more point before closing
       }
       // Singular point ahead within reach: step onto it and through it.
       bool passed = false;
@@ -373,7 +379,7 @@ public:
         if (sg.kind != SKind::Crunode && sg.kind != SKind::Cusp) continue;
         const V d = sub(sg.p, p);
         const double r = norm(d);
-        if (!(r > 0) || r > 2 * hfree || dot(d, t) <= 0.9 * r) continue;
+        if (!(r > 0) || r > hfree || dot(d, t) <= 0.9 * r) continue;
         V x;
         if (!pass_singular(sg, p, hfree, x)) {
           w.dead = true;
@@ -414,7 +420,14 @@ public:
             const double k2 = ang / len;
             double hx_free = 0;
             const double hx = target(x, tx, k2, &hx_free);
-            if (h <= 2 * hx) {
+            // The chord p-x must stay within the tolerance of the curve. The curvature
+            // estimates at its ends can miss a sharper bend in between; the end tangents
+            // cannot: a smooth arc leaves its chord by about len/4 times the sine of the
+            // angle between a tangent and the chord (len*theta/8 for a circular arc).
+            const V cdir = mul(1 / len, dq);
+            const double sag = 0.25 * len * std::max(norm(cross(t, cdir)), norm(cross(tx, cdir)));
+            const bool chord_ok = sag <= tol_;
+            if (h <= 2 * hx && chord_ok) {
               ok = true;
               have_next = true;
               next_h = hx;
@@ -427,7 +440,7 @@ public:
               w.sg.push_back(s);
               break;
             }
-            h = std::min(0.5 * h, hx);
+            h = chord_ok ? std::min(0.5 * h, hx) : 0.7 * h;
             continue;
           }
         }
