@@ -11,18 +11,31 @@ namespace {
 
 using M4 = std::array<std::array<double, 4>, 4>;
 
-// A / max|A| entrywise, the division done exactly before rounding to double.
+// A / max|A| entrywise in double: each entry rounded once (num/den), then divided by the
+// rounded maximum; a relative error of a few ulps, far below the tracer's tolerances.
 M4 normalised(const core::QuadricMatrix& q) {
-  core::Rational mx;
+  M4 out{};
+  double mx = 0;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      core::Rational v = core::abs(q(i, j));
-      if (mx < v) mx = v;
+      const fmpq* v = q(i, j).raw();
+      double d = fmpz_get_d(fmpq_numref(v)) / fmpz_get_d(fmpq_denref(v));
+      out[static_cast<size_t>(i)][static_cast<size_t>(j)] = d;
+      mx = std::max(mx, std::fabs(d));
     }
-  M4 out{};
+  if (std::isfinite(mx) && mx > 0) {
+    for (auto& row : out)
+      for (auto& x : row) x /= mx;
+    return out;
+  }
+  // Entries beyond the double range: divide exactly first.
+  core::Rational mq;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      out[static_cast<size_t>(i)][static_cast<size_t>(j)] = (q(i, j) / mx).to_double_approx();
+      if (mq < core::abs(q(i, j))) mq = core::abs(q(i, j));
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      out[static_cast<size_t>(i)][static_cast<size_t>(j)] = (q(i, j) / mq).to_double_approx();
   return out;
 }
 
