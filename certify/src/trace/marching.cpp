@@ -5,14 +5,16 @@
 //   h_free = min(hmax, sqrt(8 tol / kappa), 0.2 / kappa),
 //   h      = min(h_free, max(sqrt(0.5 d_sep / kappa), h_free / 20))
 // with tol = tolerance * L (L = diagonal of the bounding box of the start and singular points:
-// the scene size, so the result does not depend on the scale), hmax = 50 tol, kappa the
+// the scene size, so the result does not depend on the scale), hmax = 200 tol, kappa the
 // larger of the curve's curvature at p (exact, from the surfaces' second derivatives) and of
 // the turning rate over the last step, and d_sep the distance at which the local second-order
 // model of the pair puts another piece of curve: in the (approximate) common tangent plane the
 // curve is {l . v + v^T Q v / 2 = 0}, l the difference of the unit normals, Q the difference
 // of the shape operators; another branch of that conic lies about |l| / |Q| away. The second
 // bound keeps the predictor's sideways error below d_sep / 4.
-// A corrected point is accepted when it lies within h/2 of the predictor and 1.5h of p, the
+// A corrected point is accepted when the chord to it stays within tol of the curve (estimated
+// from the end tangents: len/4 times the sine of the tangent-chord angle; the closing chord
+// too), it lies within h/2 of the predictor and 1.5h of p, the
 // step made progress, the tangent (grad f x grad g with the walk's orientation sign) turned by
 // less than ~45 degrees, and h is not too long for the curvature and d_sep at the new point;
 // otherwise h is halved. The orientation test is what keeps the walk on its own piece where
@@ -25,7 +27,7 @@
 // {v in the tangent plane : v^T (B - mu A) v = 0} (A, B the quadratic parts): two lines
 // (crunode), one double line (cusp; a tacnode looks the same at this order and is treated as
 // one, so conic cases belong to conic_branches) or none (acnode). A walk that gets within
-// 2 h_free of a crunode or cusp ahead of it steps onto it exactly and continues along the
+// h_free of a crunode or cusp ahead of it steps onto it exactly and continues along the
 // branch that best continues its direction (crunode) or back along the other half (cusp);
 // the outgoing point solves f = g = 0, |X - S| = r by Newton. Start points at which the curve
 // is singular (extreme_points returns them) are not starts; they join the list of singular
