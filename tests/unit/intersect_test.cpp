@@ -138,3 +138,67 @@ TEST(Intersect, DegenerateInputsAreNotCertifiedCurves) {
   auto r2 = certify::intersect_curve(hyp, cyl, Mode::Exact, opt); // no ellipsoid: out of scope
   EXPECT_EQ(r2.status, certify::Status::Undecided);
 }
+
+namespace {
+
+certify::CurveResult curve(const std::string& a, const std::string& b) {
+  trace::TraceOptions opt;
+  return certify::intersect_curve(core::io::quadric_from_equation(a, {"t", 1, 1, ""}),
+                                  core::io::quadric_from_equation(b, {"t", 1, 1, ""}), Mode::Filtered,
+                                  opt);
+}
+
+} // namespace
+
+TEST(Intersect, SphereAndConeClosedForm) {
+  // Cone x^2 + y^2 = (3z/4)^2; a sphere centred at (0, 0, 5) is 3 away from its generatrices,
+  // so radius 3 touches it along a circle, a larger one cuts two circles, a smaller misses it.
+  const std::string cone = "x^2 + y^2 - 9z^2/16";
+  auto tangent = curve("x^2 + y^2 + (z-5)^2 = 9", cone);
+  EXPECT_EQ(tangent.topology.tu_case, 21);
+  expect_matches_morphology(tangent, "sphere tangent to cone");
+  ASSERT_EQ(tangent.branches.size(), 1u);
+  // The circle of tangency: the foot points of (0,0,5) on the generatrix rho = 3z/4, at
+  // distance 3: rho = 12/5, z = 5 - 9/5 = 16/5.
+  for (const auto& p : tangent.branches[0].points) {
+    EXPECT_NEAR(std::hypot(p[0], p[1]), 12.0 / 5, 1e-9);
+    EXPECT_NEAR(p[2], 16.0 / 5, 1e-9);
+  }
+  auto cut = curve("x^2 + y^2 + (z-5)^2 = 10", cone);
+  EXPECT_EQ(cut.topology.tu_case, 14);
+  expect_matches_morphology(cut, "sphere cutting the cone");
+  auto miss = curve("x^2 + y^2 + (z-5)^2 = 8", cone);
+  EXPECT_TRUE(miss.branches.empty());
+  EXPECT_EQ(miss.topology.morphology->connected_components, 0);
+  // Off the axis: a quartic; whatever its case, the branches match it.
+  auto off = curve("(x-1)^2 + y^2 + (z-5)^2 = 10", cone);
+  expect_matches_morphology(off, "sphere off the cone's axis");
+}
+
+TEST(Intersect, NearlyTangentPairsGap2pow30) {
+  const std::string e = "1/1073741824"; // 2^-30
+  // Unit spheres 2 -+ 2^-30 apart: a circle of radius ~2^-15.5, or nothing.
+  auto close = curve("x^2+y^2+z^2=1", "(x-2+" + e + ")^2+y^2+z^2=1");
+  EXPECT_EQ(close.topology.tu_case, 17);
+  expect_matches_morphology(close, "spheres overlapping by 2^-30");
+  auto apart = curve("x^2+y^2+z^2=1", "(x-2-" + e + ")^2+y^2+z^2=1");
+  EXPECT_EQ(apart.topology.tu_case, 16);
+  EXPECT_TRUE(apart.branches.empty());
+  // Two ellipsoids almost touching from outside (touching pair of case 7 moved 2^-30 closer):
+  // one small oval.
+  auto oval = curve("x^2/4+y^2+z^2=1", "(x-3+" + e + ")^2+y^2+z^2/4=1");
+  EXPECT_EQ(oval.topology.tu_case, 3);
+  expect_matches_morphology(oval, "ellipsoids overlapping by 2^-30");
+}
+
+TEST(Intersect, EllipsoidAndCylinder) {
+  // Generic: a cylinder through the sphere off its axis (a quartic); tangent: along a circle.
+  auto generic = curve("x^2+y^2+z^2=1", "(x-3/10)^2+y^2=1/4");
+  expect_matches_morphology(generic, "sphere and off-axis cylinder");
+  auto viviani = curve("x^2+y^2+z^2=1", "(x-1/2)^2+y^2=1/4");
+  EXPECT_EQ(viviani.topology.tu_case, 5);
+  expect_matches_morphology(viviani, "Viviani's curve");
+  auto tangent = curve("x^2+y^2/4+z^2=1", "x^2+z^2=1");
+  EXPECT_EQ(tangent.topology.tu_case, 21);
+  expect_matches_morphology(tangent, "ellipsoid tangent to a cylinder along a circle");
+}
