@@ -57,16 +57,21 @@ double form(const M4& m, const Point3& p) {
   return static_cast<double>(s);
 }
 
+// Gradient in double: it only steers the Newton steps; the zero set is decided by form().
 Point3 gradient(const M4& m, const Point3& p) {
-  const long double x[4] = {p[0], p[1], p[2], 1.0L};
   Point3 g{};
-  for (size_t i = 0; i < 3; ++i) {
-    long double r = 0;
-    for (size_t j = 0; j < 4; ++j)
-      r += static_cast<long double>(m[i][j]) * x[j];
-    g[i] = static_cast<double>(2 * r);
-  }
+  for (size_t i = 0; i < 3; ++i)
+    g[i] = 2 * (m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2] + m[i][3]);
   return g;
+}
+
+// X^T M X in plain double (symmetric M, 10 products): the first Newton steps, far from the
+// rounding floor, do not need extended precision.
+double form_fast(const M4& m, const Point3& p) {
+  const double x = p[0], y = p[1], z = p[2];
+  return x * (m[0][0] * x + 2 * (m[0][1] * y + m[0][2] * z + m[0][3])) +
+         y * (m[1][1] * y + 2 * (m[1][2] * z + m[1][3])) + z * (m[2][2] * z + 2 * m[2][3]) +
+         m[3][3];
 }
 
 double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -132,6 +137,17 @@ void polish(const QuadricPair& q, Point3& p) {
 } // namespace
 
 bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
+  // Double-precision steps while the residual is far above the rounding floor, then the
+  // extended-precision loop below decides convergence.
+  for (int it = 0; it < iterations; ++it) {
+    const double fv = form_fast(q.a, p), gv = form_fast(q.b, p);
+    if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
+    if (std::max(std::abs(fv), std::abs(gv)) <= 1e-11 * (1 + dot(p, p))) break;
+    Point3 x{};
+    double sn = 0;
+    if (!gauss_newton_step(q, p, fv, gv, x, sn)) return false;
+    p = x;
+  }
   for (int it = 0; it <= iterations; ++it) {
     const double fv = q.f(p), gv = q.g(p);
     if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
