@@ -74,19 +74,22 @@ OcctResult occt_intersect(const EllipsoidParams& e1, const EllipsoidParams& e2, 
     }
     auto find = [&parent](int x) {
       while (parent[static_cast<size_t>(x)] != x)
-        x = parent[static_cast<size_t>(x)] = parent[static_cast<size_t>(parent[static_cast<size_t>(x)])];
+        x = parent[static_cast<size_t>(x)] =
+            parent[static_cast<size_t>(parent[static_cast<size_t>(x)])];
       return x;
     };
     for (size_t p = 0; p < ends.size(); ++p)
       for (size_t q = p + 1; q < ends.size(); ++q)
         if (p / 2 != q / 2 && ends[p].Distance(ends[q]) <= glue)
-          parent[static_cast<size_t>(find(static_cast<int>(p / 2)))] = find(static_cast<int>(q / 2));
+          parent[static_cast<size_t>(find(static_cast<int>(p / 2)))] =
+              find(static_cast<int>(q / 2));
     for (int i = 0; i < r.branches; ++i)
       r.glued_branches += find(i) == i;
   } catch (const Standard_Failure& f) {
     r.ok = false;
     r.seconds = elapsed();
-    r.error = std::string("Standard_Failure: ") + (f.GetMessageString() ? f.GetMessageString() : "");
+    r.error =
+        std::string("Standard_Failure: ") + (f.GetMessageString() ? f.GetMessageString() : "");
   } catch (const std::exception& x) {
     r.ok = false;
     r.seconds = elapsed();
@@ -99,6 +102,8 @@ OcctResult occt_intersect(const EllipsoidParams& e1, const EllipsoidParams& e2, 
   return r;
 }
 
-std::string occt_version() { return std::string("Open CASCADE ") + OCC_VERSION_COMPLETE; }
+std::string occt_version() {
+  return std::string("Open CASCADE ") + OCC_VERSION_COMPLETE;
+}
 
 } // namespace surfcert::bench

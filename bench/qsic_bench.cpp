@@ -96,7 +96,8 @@ int main(int argc, char** argv) {
       times[m].push_back(time_us(t0, t1));
       answers[m].push_back(r.tu_case);
       if (modes[m] == Mode::Filtered && r.exact_fallback) ++fallbacks;
-      if (pairs >= 10 && (i + 1) % (pairs / 10) == 0) std::fprintf(stderr, " %ld%%", (i + 1) * 100 / pairs);
+      if (pairs >= 10 && (i + 1) % (pairs / 10) == 0)
+        std::fprintf(stderr, " %ld%%", (i + 1) * 100 / pairs);
     }
     std::fprintf(stderr, "\n");
   }
@@ -187,7 +188,8 @@ int main(int argc, char** argv) {
               st[2].mean_us);
   std::printf("filtered / float median ratio: %.2f\n\n", st[1].median_us / st[0].median_us);
   Stats rep = summarize(report_times);
-  std::printf("Report data after a filtered decision (exact f, D2..E, special points, ellipsoid relation; complete_report_data): median %.2f us, mean %.2f us over %zu pairs.\n\n",
+  std::printf("Report data after a filtered decision (exact f, D2..E, special points, ellipsoid "
+              "relation; complete_report_data): median %.2f us, mean %.2f us over %zu pairs.\n\n",
               rep.median_us, rep.mean_us, report_times.size());
   std::printf("Cases among the random pairs (exact):");
   for (size_t c = 1; c < hist.size(); ++c)

@@ -69,10 +69,10 @@ Stats summarize(std::vector<double> t) {
 
 struct PairRecord {
   int tu_case = 0;
-  int certified = -1;      ///< certified curve branches
-  int isolated = 0;        ///< certified isolated points
-  double our_us = 0;       ///< topology + tracer
-  int our_branches = -1;   ///< -1: tracer not available
+  int certified = -1;    ///< certified curve branches
+  int isolated = 0;      ///< certified isolated points
+  double our_us = 0;     ///< topology + tracer
+  int our_branches = -1; ///< -1: tracer not available
   bool occt_run = false;
   bool occt_ok = false;
   int occt_branches = 0;
@@ -171,9 +171,12 @@ int main(int argc, char** argv) {
     }
     if (r.our_branches >= 0) {
       ++our.compared;
-      if (r.our_branches == r.certified) ++our.equal;
-      else if (r.our_branches < r.certified) ++our.fewer;
-      else ++our.more;
+      if (r.our_branches == r.certified)
+        ++our.equal;
+      else if (r.our_branches < r.certified)
+        ++our.fewer;
+      else
+        ++our.more;
     }
     if (!r.occt_run) continue;
     ++occ.compared;
@@ -189,19 +192,25 @@ int main(int argc, char** argv) {
     if (r.our_us > 0) ratio.push_back(r.occt_us / r.our_us);
     occt_by_certified[r.certified][r.occt_branches]++;
     open_lines_by_certified[r.certified] += r.occt_branches - r.occt_closed;
-    if (r.occt_branches == r.certified) ++occ.equal;
-    else if (r.occt_branches < r.certified) ++occ.fewer;
-    else ++occ.more;
+    if (r.occt_branches == r.certified)
+      ++occ.equal;
+    else if (r.occt_branches < r.certified)
+      ++occ.fewer;
+    else
+      ++occ.more;
     ++glued.compared;
-    if (r.occt_glued == r.certified) ++glued.equal;
-    else if (r.occt_glued < r.certified) ++glued.fewer;
-    else ++glued.more;
+    if (r.occt_glued == r.certified)
+      ++glued.equal;
+    else if (r.occt_glued < r.certified)
+      ++glued.fewer;
+    else
+      ++glued.more;
   }
   Stats so = summarize(ours_all), ss = summarize(ours_sub), sc = summarize(occt_all),
         sr = summarize(ratio);
 
-  std::printf("## Tracer benchmark: surfcert vs %s (trace_bench %ld %ld %lu %g)\n\n", occt_name.c_str(),
-              pairs, every, seed, tol);
+  std::printf("## Tracer benchmark: surfcert vs %s (trace_bench %ld %ld %lu %g)\n\n",
+              occt_name.c_str(), pairs, every, seed, tol);
   std::printf("Random ellipsoid pairs: %ld (centres in [-1/2,1/2]^3, semi-axes in [1/10,1], "
               "rational rotations), tolerance %g.\n",
               pairs, tol);
@@ -230,7 +239,8 @@ int main(int argc, char** argv) {
   }
   std::printf("Branch counts against the certified count (loops + conics + lines + cubics; "
               "isolated points apart):\n\n");
-  std::printf("| solver | pairs compared | equal | fewer | more | failed |\n|---|---|---|---|---|---|\n");
+  std::printf(
+      "| solver | pairs compared | equal | fewer | more | failed |\n|---|---|---|---|---|---|\n");
   if (have_occt) {
     std::printf("| OCCT (NbLines) | %ld | %ld | %ld | %ld | %ld |\n", occ.compared, occ.equal,
                 occ.fewer, occ.more, occ.failed);
@@ -252,8 +262,10 @@ int main(int argc, char** argv) {
     for (const auto& [c, h] : occt_by_certified) {
       std::printf("- certified %d:", c);
       for (const auto& [k, v] : h)
-        if (k < 0) std::printf(" failed: %ld;", v);
-        else std::printf(" %d: %ld;", k, v);
+        if (k < 0)
+          std::printf(" failed: %ld;", v);
+        else
+          std::printf(" %d: %ld;", k, v);
       std::printf(" (open OCCT lines: %ld)\n", open_lines_by_certified[c]);
     }
   }

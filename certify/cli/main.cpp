@@ -162,13 +162,14 @@ int cmd_intersect(const std::vector<std::string>& args) {
     trace::Picture pic;
     pic.branches = c.branches;
     pic.special_points = special;
-    pic.caption = c.topology.morphology
-                      ? "case " + std::to_string(c.topology.tu_case) + " " +
-                            c.topology.morphology->id + ": " + c.topology.morphology->description +
-                            " (topology " + certify::to_string(c.topology.status) +
-                            "; branches traced to tolerance " + tol_text(opt.tolerance) +
-                            (c.matches_topology ? ", matching it)" : ", NOT matching it: undecided)")
-                      : std::string("no curve: ") + c.note;
+    pic.caption =
+        c.topology.morphology
+            ? "case " + std::to_string(c.topology.tu_case) + " " + c.topology.morphology->id +
+                  ": " + c.topology.morphology->description + " (topology " +
+                  certify::to_string(c.topology.status) + "; branches traced to tolerance " +
+                  tol_text(opt.tolerance) +
+                  (c.matches_topology ? ", matching it)" : ", NOT matching it: undecided)")
+            : std::string("no curve: ") + c.note;
     write_atomically(svg_path, trace::to_svg(a, b, pic));
   }
   if (json) {

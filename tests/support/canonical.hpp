@@ -85,9 +85,7 @@ class Rng {
 public:
   explicit Rng(std::uint64_t seed) : gen_(seed) {}
   /// Uniform integer in [lo, hi].
-  long uniform(long lo, long hi) {
-    return std::uniform_int_distribution<long>(lo, hi)(gen_);
-  }
+  long uniform(long lo, long hi) { return std::uniform_int_distribution<long>(lo, hi)(gen_); }
   /// Small random rational num/den, num in [-num_max, num_max], den in [1, den_max].
   Rational small_rational(long num_max = 9, long den_max = 4);
   std::mt19937_64& engine() { return gen_; }

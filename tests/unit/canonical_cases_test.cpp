@@ -57,8 +57,9 @@ QsicResult classify(const st::PencilPair& ab, Mode m) {
   try {
     return classify_qsic(QuadricMatrix(ab.a), QuadricMatrix(ab.b), m);
   } catch (const std::exception& e) {
-    ADD_FAILURE() << "classify_qsic (" << surfcert::certify::to_string(m)
-                  << ") threw: " << e.what() << "\n" << st::pencil_to_string(ab);
+    ADD_FAILURE() << "classify_qsic (" << surfcert::certify::to_string(m) << ") threw: " << e.what()
+                  << "\n"
+                  << st::pencil_to_string(ab);
     QsicResult r;
     r.status = Status::Error;
     r.tu_case = -1;
@@ -70,8 +71,7 @@ std::optional<surfcert::algebra::PencilFacts> analyze(const st::PencilPair& ab) 
   try {
     return analyze_pencil_exact(ab.a, ab.b);
   } catch (const std::exception& e) {
-    ADD_FAILURE() << "analyze_pencil_exact threw: " << e.what() << "\n"
-                  << st::pencil_to_string(ab);
+    ADD_FAILURE() << "analyze_pencil_exact threw: " << e.what() << "\n" << st::pencil_to_string(ab);
     return std::nullopt;
   }
 }
@@ -144,7 +144,9 @@ TEST(CanonicalSupport, ParsesRecipes) {
   EXPECT_EQ(q[1].theta, Rational(-3, 2));
   EXPECT_EQ(q[1].im, Rational(-1));
 
-  const st::Recipe x = st::parse_recipe("J1(\xE2\x88\x92" "3,+)\xC3\x97" "3 J1(-1,+)");
+  const st::Recipe x = st::parse_recipe("J1(\xE2\x88\x92"
+                                        "3,+)\xC3\x97"
+                                        "3 J1(-1,+)");
   ASSERT_EQ(x.size(), 4u);
   EXPECT_EQ(x[2].theta, Rational(-3));
   EXPECT_EQ(x[3].theta, Rational(-1));
@@ -325,7 +327,7 @@ void ambiguous_group_case(int c, const std::string& shared_sequence, int draws) 
     const auto facts = analyze(ab);
     if (!facts) continue;
     EXPECT_EQ(st::signature_normal_form(*facts), shared_sequence) << what << "\n"
-                                                                 << st::pencil_to_string(ab);
+                                                                  << st::pencil_to_string(ab);
     expect_case(ab, c, cr.segre, what);
   }
 }
@@ -335,7 +337,8 @@ void ambiguous_group_case(int c, const std::string& shared_sequence, int draws) 
 TEST(AmbiguousGroups, IndexConstantlyTwo_4_11_31) {
   // <2>: no real root, index 2 everywhere. Square-free f -> 4 (smooth quartic, two branches);
   // f = c g^2 with g(A^-1 B) != 0 -> 11 (cubic + line), g(A^-1 B) = 0 -> 31 (two skew lines).
-  for (int c : {4, 11, 31}) ambiguous_group_case(c, "<2>", 12);
+  for (int c : {4, 11, 31})
+    ambiguous_group_case(c, "<2>", 12);
   // The same pencils with a non-generic complex pair: C1(a+bi) C1(a+bi) vs C2(a+bi).
   expect_case(st::build_pencil(st::parse_recipe("C1(-1/2+3i) C1(-1/2+3i)")), 31, "[(11)(11)]",
               "two equal 1x1 complex blocks");
@@ -348,7 +351,8 @@ TEST(AmbiguousGroups, IndexConstantlyTwo_4_11_31) {
 TEST(AmbiguousGroups, QuadrupleRootRankTwo_26_35) {
   // <2,((((1,1)))),2>: quadruple root of rank 2 with inertia (1,1). (A^-1 B - t I)^2 != 0 ->
   // 26 ([(31)], conic + two lines crossing on it); == 0 -> 35 ([(22)], double line + 2 lines).
-  for (int c : {26, 35}) ambiguous_group_case(c, "<2,((((1,1)))),2>", 12);
+  for (int c : {26, 35})
+    ambiguous_group_case(c, "<2,((((1,1)))),2>", 12);
   expect_case(st::build_pencil(st::parse_recipe("J3(7/3,-) J1(7/3,+)")), 26, "[(31)]",
               "J3(7/3,-) J1(7/3,+)");
   expect_case(st::build_pencil(st::parse_recipe("J2(-5/2,-) J2(-5/2,+)")), 35, "[(22)]",

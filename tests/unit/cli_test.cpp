@@ -212,7 +212,8 @@ TEST(Cli, DefaultSceneRuns) {
 
 TEST(Cli, IntersectWritesPictureAndPolylines) {
   std::string svg = tmp_path("curve.svg"), obj = tmp_path("curve.obj"), ply = tmp_path("curve.ply");
-  auto r = run("intersect 'x^2+y^2/4+z^2=1' 'x^2-2x+9y^2+9/4 z^2=8' --svg " + svg + " --export " + obj + " --json");
+  auto r = run("intersect 'x^2+y^2/4+z^2=1' 'x^2-2x+9y^2+9/4 z^2=8' --svg " + svg + " --export " +
+               obj + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   Json doc = surfcert::core::io::parse_json(r.out, "stdout");
   EXPECT_EQ(doc.find("status")->text(), "certified");
@@ -240,5 +241,6 @@ TEST(Cli, IntersectWritesPictureAndPolylines) {
   auto bad = run("intersect 'x^2+y^2+z^2=1' 'x^2=1/4' --export " + ply + ".stl");
   EXPECT_EQ(bad.code, 2);
   EXPECT_FALSE(exists(ply + ".stl"));
-  for (const auto& f : {svg, obj}) std::remove(f.c_str());
+  for (const auto& f : {svg, obj})
+    std::remove(f.c_str());
 }

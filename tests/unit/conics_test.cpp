@@ -67,10 +67,8 @@ double dist_to_polyline(const Point3& p, const Branch& br) {
   size_t n = br.points.size();
   for (size_t i = 0; i + 1 < n; ++i)
     d = std::min(d, dist_to_segment(p, br.points[i], br.points[i + 1]));
-  if (br.closed && n > 2)
-    d = std::min(d, dist_to_segment(p, br.points[n - 1], br.points[0]));
-  if (n == 1)
-    d = dist(p, br.points[0]);
+  if (br.closed && n > 2) d = std::min(d, dist_to_segment(p, br.points[n - 1], br.points[0]));
+  if (n == 1) d = dist(p, br.points[0]);
   return d;
 }
 
@@ -148,13 +146,11 @@ void check_closed_form(const core::QuadricMatrix& a, const core::QuadricMatrix& 
     // Which closed-form conic is this one? (all points must be on it)
     size_t match = expected.size();
     for (size_t k = 0; k < expected.size() && match == expected.size(); ++k) {
-      if (used[k])
-        continue;
+      if (used[k]) continue;
       double worst = 0;
       for (size_t i = 0; i < br.points.size(); i += 7)
         worst = std::max(worst, dist_to_curve(br.points[i], expected[k]));
-      if (worst < 1e-9)
-        match = k;
+      if (worst < 1e-9) match = k;
     }
     ASSERT_LT(match, expected.size()) << "branch matches no closed-form conic";
     used[match] = true;
@@ -218,11 +214,12 @@ TEST(Conics, SpheroidAndSphereTwoCircles) {
 TEST(Conics, Case13TwoEllipsesCrossing) {
   // In the planes y = +-x: (5/4) x^2 + z^2 = 1; they cross at (0, 0, +-1).
   double s = 2 / std::sqrt(5.0);
-  Point3 u1{1 / std::sqrt(2.0), 1 / std::sqrt(2.0), 0}, u2{1 / std::sqrt(2.0), -1 / std::sqrt(2.0), 0};
+  Point3 u1{1 / std::sqrt(2.0), 1 / std::sqrt(2.0), 0},
+      u2{1 / std::sqrt(2.0), -1 / std::sqrt(2.0), 0};
   double ru = s * std::sqrt(2.0); // |(s, s, 0)|
-  check_closed_form(q("x^2/4 + y^2 + z^2 - 1"), q("x^2 + y^2/4 + z^2 - 1"),
-                    {circle({0, 0, 0}, u1, {0, 0, 1}, ru, 1), circle({0, 0, 0}, u2, {0, 0, 1}, ru, 1)},
-                    13, 2e-4);
+  check_closed_form(
+      q("x^2/4 + y^2 + z^2 - 1"), q("x^2 + y^2/4 + z^2 - 1"),
+      {circle({0, 0, 0}, u1, {0, 0, 1}, ru, 1), circle({0, 0, 0}, u2, {0, 0, 1}, ru, 1)}, 13, 2e-4);
 }
 
 TEST(Conics, Case13MovedByRationalRigidMotion) {
@@ -233,8 +230,10 @@ TEST(Conics, Case13MovedByRationalRigidMotion) {
   // R = Rz(3/5, 4/5) * Rx(5/13, 12/13)
   double rz[3][3] = {{0.6, -0.8, 0}, {0.8, 0.6, 0}, {0, 0, 1}};
   double rx[3][3] = {{1, 0, 0}, {0, 5.0 / 13, -12.0 / 13}, {0, 12.0 / 13, 5.0 / 13}};
-  Rational rzq[3][3] = {{Rational(3, 5), Rational(-4, 5), 0}, {Rational(4, 5), Rational(3, 5), 0}, {0, 0, 1}};
-  Rational rxq[3][3] = {{1, 0, 0}, {0, Rational(5, 13), Rational(-12, 13)}, {0, Rational(12, 13), Rational(5, 13)}};
+  Rational rzq[3][3] = {
+      {Rational(3, 5), Rational(-4, 5), 0}, {Rational(4, 5), Rational(3, 5), 0}, {0, 0, 1}};
+  Rational rxq[3][3] = {
+      {1, 0, 0}, {0, Rational(5, 13), Rational(-12, 13)}, {0, Rational(12, 13), Rational(5, 13)}};
   double rd[3][3];
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j) {
@@ -297,8 +296,8 @@ TEST(Conics, Case19TwoTangentConics) {
     double z = 0.5 + 0.5 * std::cos(t);
     return Point3{1 - z, std::sqrt(0.5) * std::sin(t), z};
   });
-  check_closed_form(q("x^2 + y^2 + z^2 - 1"), q("(3/2)x^2 - x + y^2 + (1/2)z^2 - 1/2"), {c1, c2}, 19,
-                    2e-4);
+  check_closed_form(q("x^2 + y^2 + z^2 - 1"), q("(3/2)x^2 - x + y^2 + (1/2)z^2 - 1/2"), {c1, c2},
+                    19, 2e-4);
 }
 
 TEST(Conics, NoConicsForSmoothQuartic) {
@@ -345,8 +344,7 @@ TEST(Conics, EllipsoidFixtures) {
     ++n;
     int expect = certify::morphology_of_case(c).conics;
     EXPECT_EQ(static_cast<int>(t.branches.size()), expect);
-    if (expect == 0)
-      continue;
+    if (expect == 0) continue;
     ++with_conics;
     int doubles = 0;
     Point3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -393,8 +391,7 @@ TEST(Conics, EllipsoidFixtures) {
             for (int j2 = 0; j2 < 4; ++j2) {
               double aij = a(i2, j2).to_double_approx();
               r2 += X[static_cast<size_t>(i2)] * aij * X[static_cast<size_t>(j2)];
-              if (i2 < 3)
-                g[static_cast<size_t>(i2)] += 2 * aij * X[static_cast<size_t>(j2)];
+              if (i2 < 3) g[static_cast<size_t>(i2)] += 2 * aij * X[static_cast<size_t>(j2)];
             }
           double nn = 1, ng = nrm[0] * g[0] + nrm[1] * g[1] + nrm[2] * g[2],
                  gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];

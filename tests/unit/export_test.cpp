@@ -65,8 +65,7 @@ std::string xml_problem(const std::string& s) {
   int roots = 0;
   auto entity_ok = [&](size_t at) {
     size_t e = s.find(';', at);
-    if (e == std::string::npos || e - at > 10)
-      return false;
+    if (e == std::string::npos || e - at > 10) return false;
     std::string name = s.substr(at + 1, e - at - 1);
     static const std::regex ent("amp|lt|gt|quot|apos|#[0-9]+|#x[0-9a-fA-F]+");
     return std::regex_match(name, ent);
@@ -77,15 +76,13 @@ std::string xml_problem(const std::string& s) {
   };
   if (s.compare(0, 5, "<?xml") == 0) {
     i = s.find("?>");
-    if (i == std::string::npos)
-      return "unterminated declaration";
+    if (i == std::string::npos) return "unterminated declaration";
     i += 2;
   }
   while (i < s.size()) {
     char c = s[i];
     if (c == '&') {
-      if (!entity_ok(i))
-        return "bad entity at " + std::to_string(i);
+      if (!entity_ok(i)) return "bad entity at " + std::to_string(i);
       ++i;
       continue;
     }
@@ -97,8 +94,7 @@ std::string xml_problem(const std::string& s) {
     }
     if (s.compare(i, 4, "<!--") == 0) {
       size_t e = s.find("-->", i);
-      if (e == std::string::npos)
-        return "unterminated comment";
+      if (e == std::string::npos) return "unterminated comment";
       i = e + 3;
       continue;
     }
@@ -108,15 +104,12 @@ std::string xml_problem(const std::string& s) {
     while (j < s.size() && is_name(s[j]))
       ++j;
     std::string name = s.substr(ns, j - ns);
-    if (name.empty())
-      return "bad tag at " + std::to_string(i);
+    if (name.empty()) return "bad tag at " + std::to_string(i);
     if (closing) {
       while (j < s.size() && std::isspace(static_cast<unsigned char>(s[j])))
         ++j;
-      if (j >= s.size() || s[j] != '>')
-        return "bad closing tag " + name;
-      if (stack.empty() || stack.back() != name)
-        return "mismatched </" + name + ">";
+      if (j >= s.size() || s[j] != '>') return "bad closing tag " + name;
+      if (stack.empty() || stack.back() != name) return "mismatched </" + name + ">";
       stack.pop_back();
       i = j + 1;
       continue;
@@ -126,8 +119,7 @@ std::string xml_problem(const std::string& s) {
     for (;;) {
       while (j < s.size() && std::isspace(static_cast<unsigned char>(s[j])))
         ++j;
-      if (j >= s.size())
-        return "unterminated tag " + name;
+      if (j >= s.size()) return "unterminated tag " + name;
       if (s[j] == '>') {
         ++j;
         break;
@@ -141,37 +133,28 @@ std::string xml_problem(const std::string& s) {
       while (j < s.size() && is_name(s[j]))
         ++j;
       std::string an = s.substr(as, j - as);
-      if (an.empty() || j >= s.size() || s[j] != '=')
-        return "bad attribute in " + name;
+      if (an.empty() || j >= s.size() || s[j] != '=') return "bad attribute in " + name;
       for (const auto& x : attrs)
-        if (x == an)
-          return "duplicate attribute " + an;
+        if (x == an) return "duplicate attribute " + an;
       attrs.push_back(an);
       ++j;
-      if (j >= s.size() || (s[j] != '"' && s[j] != '\''))
-        return "unquoted attribute " + an;
+      if (j >= s.size() || (s[j] != '"' && s[j] != '\'')) return "unquoted attribute " + an;
       char qc = s[j];
       size_t e = s.find(qc, j + 1);
-      if (e == std::string::npos)
-        return "unterminated attribute " + an;
+      if (e == std::string::npos) return "unterminated attribute " + an;
       for (size_t k = j + 1; k < e; ++k) {
-        if (s[k] == '<')
-          return "'<' in attribute " + an;
-        if (s[k] == '&' && !entity_ok(k))
-          return "bad entity in attribute " + an;
+        if (s[k] == '<') return "'<' in attribute " + an;
+        if (s[k] == '&' && !entity_ok(k)) return "bad entity in attribute " + an;
       }
       j = e + 1;
     }
     if (stack.empty()) {
-      if (++roots > 1)
-        return "two root elements";
+      if (++roots > 1) return "two root elements";
     }
-    if (!self_close)
-      stack.push_back(name);
+    if (!self_close) stack.push_back(name);
     i = j;
   }
-  if (!stack.empty())
-    return "unclosed <" + stack.back() + ">";
+  if (!stack.empty()) return "unclosed <" + stack.back() + ">";
   return roots == 1 ? "" : "no root element";
 }
 
@@ -279,10 +262,8 @@ TEST(Export, PlyCounts) {
   EXPECT_EQ(ls[1], "format ascii 1.0");
   size_t nv = 0, ne = 0, header_end = 0;
   for (size_t i = 0; i < ls.size(); ++i) {
-    if (ls[i].rfind("element vertex ", 0) == 0)
-      nv = std::stoul(ls[i].substr(15));
-    if (ls[i].rfind("element edge ", 0) == 0)
-      ne = std::stoul(ls[i].substr(13));
+    if (ls[i].rfind("element vertex ", 0) == 0) nv = std::stoul(ls[i].substr(15));
+    if (ls[i].rfind("element edge ", 0) == 0) ne = std::stoul(ls[i].substr(13));
     if (ls[i] == "end_header") {
       header_end = i;
       break;
@@ -409,8 +390,7 @@ TEST(Export, SvgOutlineMatchesTangentEquator) {
   auto attr_after = [&](const std::string& marker) {
     size_t at = svg.find(marker);
     EXPECT_NE(at, std::string::npos) << marker;
-    if (at == std::string::npos)
-      return std::string();
+    if (at == std::string::npos) return std::string();
     size_t d = svg.find(" d=\"", at) + 4, e = svg.find('"', d);
     return svg.substr(d, e - d);
   };

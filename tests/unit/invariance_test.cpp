@@ -64,8 +64,9 @@ QsicResult classify(const Mat4& a, const Mat4& b, Mode m) {
   try {
     return classify_qsic(QuadricMatrix(a), QuadricMatrix(b), m);
   } catch (const std::exception& e) {
-    ADD_FAILURE() << "classify_qsic (" << surfcert::certify::to_string(m)
-                  << ") threw: " << e.what() << "\n" << st::pencil_to_string(a, b);
+    ADD_FAILURE() << "classify_qsic (" << surfcert::certify::to_string(m) << ") threw: " << e.what()
+                  << "\n"
+                  << st::pencil_to_string(a, b);
     QsicResult r;
     r.status = Status::Error;
     r.tu_case = -1;
@@ -95,7 +96,8 @@ std::string segre_if(const Mat4& a, const Mat4& b) {
 
 Rational pow10(int e) {
   Rational r(1);
-  for (int k = 0; k < (e < 0 ? -e : e); ++k) r *= Rational(10);
+  for (int k = 0; k < (e < 0 ? -e : e); ++k)
+    r *= Rational(10);
   return e < 0 ? Rational(1) / r : r;
 }
 
@@ -109,7 +111,8 @@ int sgn(const Rational& x) {
 
 std::string expected_root_pattern(const PencilFacts& f) {
   std::vector<int> m;
-  for (const auto& r : f.real_roots) m.push_back(r.multiplicity);
+  for (const auto& r : f.real_roots)
+    m.push_back(r.multiplicity);
   std::sort(m.rbegin(), m.rend());
   using V = std::vector<int>;
   if (m == V{1, 1, 1, 1}) return "R1";
@@ -277,8 +280,8 @@ void invariance_battery(const Mat4& A, const Mat4& B, int expected_case, st::Rng
     const st::PencilPair c = st::congruence({A, B}, p);
     expect_same(ref, c.a, c.b, "40-bit congruence P = " + st::mat_to_string(p));
     const QsicResult fr = classify(c.a, c.b, Mode::Filtered);
-    EXPECT_EQ(fr.tu_case, ref.tu_case) << "filtered after 40-bit congruence, P = "
-                                       << st::mat_to_string(p);
+    EXPECT_EQ(fr.tu_case, ref.tu_case)
+        << "filtered after 40-bit congruence, P = " << st::mat_to_string(p);
   }
   // (ii) swap, (iii) negations.
   expect_same(ref, B, A, "swap A and B");
@@ -318,7 +321,8 @@ TEST(Invariance, RandomIntegerPairs) {
   }
   EXPECT_LE(degenerate, kMaxDegenerate);
   std::string h;
-  for (const auto& [c, n] : histogram) h += " case" + std::to_string(c) + ":" + std::to_string(n);
+  for (const auto& [c, n] : histogram)
+    h += " case" + std::to_string(c) + ":" + std::to_string(n);
   std::cout << "[ info     ] degenerate skipped: " << degenerate << "; cases:" << h << "\n";
   // A [-5, 5] pencil is generic: all four [1111] cases show up.
   EXPECT_GE(histogram.size(), 3u) << h;
@@ -358,7 +362,8 @@ TEST(Invariance, SmallEntryPairs) {
     if (::testing::Test::HasFatalFailure()) return;
   }
   std::string h;
-  for (const auto& [c, n] : histogram) h += " case" + std::to_string(c) + ":" + std::to_string(n);
+  for (const auto& [c, n] : histogram)
+    h += " case" + std::to_string(c) + ":" + std::to_string(n);
   std::cout << "[ info     ] degenerate/coincident skipped: " << degenerate << "; cases:" << h
             << "\n";
   EXPECT_LE(degenerate, kSmallEntryPairs / 2);

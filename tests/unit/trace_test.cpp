@@ -85,8 +85,7 @@ double poly_dist(const Point3& x, const std::vector<Point3>& pts, bool closed) {
 // |X^T Q X| / max|Q| with X = (p, 1), evaluated exactly from the exact matrix (independent of
 // QuadricPair).
 double exact_residual(const QuadricMatrix& m, const Point3& p) {
-  std::array<Rational, 4> x = {Rational::exact_from_double(p[0]),
-                               Rational::exact_from_double(p[1]),
+  std::array<Rational, 4> x = {Rational::exact_from_double(p[0]), Rational::exact_from_double(p[1]),
                                Rational::exact_from_double(p[2]), Rational(1)};
   Rational s, mx;
   for (size_t i = 0; i < 4; ++i)
@@ -172,7 +171,9 @@ double gap_one_way(const Branch& a, const Branch& b) {
   return d;
 }
 
-double gap(const Branch& a, const Branch& b) { return std::min(gap_one_way(a, b), gap_one_way(b, a)); }
+double gap(const Branch& a, const Branch& b) {
+  return std::min(gap_one_way(a, b), gap_one_way(b, a));
+}
 
 size_t count_near(const Branch& b, const Point3& p, double eps) {
   size_t n = 0;
@@ -283,9 +284,8 @@ TEST(Trace, Seed002Example41TwoLoops) {
   // loops (2 decimals: within 0.02 of the curve).
   const Point3 p1{-0.54, 0.77, 0.75}, p2{-0.62, -0.77, 0.69};
   auto which = [&](const Point3& p) {
-    return poly_dist(p, t.branches[0].points, true) < poly_dist(p, t.branches[1].points, true)
-               ? 0
-               : 1;
+    return poly_dist(p, t.branches[0].points, true) < poly_dist(p, t.branches[1].points, true) ? 0
+                                                                                               : 1;
   };
   EXPECT_LT(std::min(poly_dist(p1, t.branches[0].points, true),
                      poly_dist(p1, t.branches[1].points, true)),
@@ -307,7 +307,9 @@ Point3 cross(const Point3& a, const Point3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Point3& a, const Point3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 Point3 unit(const Point3& a) {
   const double n = std::sqrt(dot(a, a));
@@ -401,8 +403,12 @@ TEST(Trace, SingularPointsFoundWithoutBeingPassed) {
   }
 }
 
-TEST(Trace, SmallOvalDiameter2pow10) { small_oval(10); }
-TEST(Trace, SmallOvalDiameter2pow20) { small_oval(20); }
+TEST(Trace, SmallOvalDiameter2pow10) {
+  small_oval(10);
+}
+TEST(Trace, SmallOvalDiameter2pow20) {
+  small_oval(20);
+}
 
 // The case 5 pair with the second ellipsoid grown or shrunk by e: near the crunode (0,-1,0)
 // the curve becomes -x^2/4 + 7 z^2/9 = e on the tangent plane y = -1. For e = 7/36 * 2^-40
@@ -429,8 +435,8 @@ TEST(Trace, TwoLoops2pow20Apart) {
 // over a long stretch (not a neck: the gap grows only like z * 2^-9).
 TEST(Trace, TwoParallelLoops2pow20Apart) {
   auto a = q("x^2 + y^2 + z^2 = 1");
-  auto b = q("x^2/4 + y^2 + " + (Rational(1) + core::pow2(-20)).to_string() + " z^2 = " +
-             (Rational(1) - Rational(3) * core::pow2(-44)).to_string());
+  auto b = q("x^2/4 + y^2 + " + (Rational(1) + core::pow2(-20)).to_string() +
+             " z^2 = " + (Rational(1) - Rational(3) * core::pow2(-44)).to_string());
   Traced t = run(a, b);
   expect_matches_certified(a, b, t, 1);
   ASSERT_EQ(t.branches.size(), 2u);
@@ -455,8 +461,8 @@ TEST(Trace, NestedLoops2pow20Apart) {
   auto a = q("x^2 + y^2 + z^2 = 1");
   const Rational c2 = Rational(1, 2) + core::pow2(-20);
   auto b = q((Rational(1) + core::pow2(-40)).to_string() + " x^2 + y^2 + " +
-             (Rational(1, 2) + c2).to_string() + " z = " +
-             (Rational(1) + Rational(1, 2) * c2).to_string());
+             (Rational(1, 2) + c2).to_string() +
+             " z = " + (Rational(1) + Rational(1, 2) * c2).to_string());
   Traced t = run(a, b);
   expect_matches_certified(a, b, t, 1);
   ASSERT_EQ(t.branches.size(), 2u);
@@ -514,14 +520,14 @@ TEST(Trace, InvariantUnderRationalRigidMotion) {
   const Mat4 p = rigid_motion_inverse(4, 1, -2, 3, tr, rot);
   const double td[3] = {1.0 / 3, -2.0 / 7, 5.0 / 4};
   const std::vector<std::pair<std::string, std::string>> pairs = {
-      {"x^2 + y^2 + z^2 = 1", "(x - 1/2)^2 + y^2 = 1/4"},             // Viviani
-      {"4x^2 + y^2/9 + z^2 = 1", "4x^2 + (y - 1)^2 + z^2/9 = 1"},     // case 1
-      {"x^2/4 + y^2 + z^2 = 1", "(x - 1)^2 + y^2 + z^2/4 = 1"},       // case 6
+      {"x^2 + y^2 + z^2 = 1", "(x - 1/2)^2 + y^2 = 1/4"},               // Viviani
+      {"4x^2 + y^2/9 + z^2 = 1", "4x^2 + (y - 1)^2 + z^2/9 = 1"},       // case 1
+      {"x^2/4 + y^2 + z^2 = 1", "(x - 1)^2 + y^2 + z^2/4 = 1"},         // case 6
       {"x^2 + y^2 + (z - 1)^2 = 1", "2x^2 + y^2 + z^2 - y z - 2z = 0"}, // case 9
       // the oval of diameter 2^-20 and the two loops 2^-20 apart (see below)
-      {"x^2/4 + y^2 + z^2 = 1",
-       "(x - " + (Rational(3) - Rational(9, 32) * core::pow2(-40)).to_string() +
-           ")^2 + y^2 + z^2/4 = 1"},
+      {"x^2/4 + y^2 + z^2 = 1", "(x - " +
+                                    (Rational(3) - Rational(9, 32) * core::pow2(-40)).to_string() +
+                                    ")^2 + y^2 + z^2/4 = 1"},
       {"x^2 + y^2 + 4z^2/9 = 1",
        "x^2/4 + (y - 1)^2/4 + z^2 = " +
            (Rational(1) + Rational(7, 36) * core::pow2(-40)).to_string()}};

@@ -54,12 +54,18 @@ M4 normalised(M4 m) {
   return m;
 }
 
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 sub(const V3& a, const V3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const V3& a, const V3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 V3 cross(const V3& a, const V3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+double norm(const V3& a) {
+  return std::sqrt(dot(a, a));
+}
 V3 axpy(const V3& x, double s, const V3& d) {
   return {x[0] + s * d[0], x[1] + s * d[1], x[2] + s * d[2]};
 }
@@ -74,15 +80,12 @@ void jacobi4(M4 a, V4& w, M4& v) {
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j) {
         all += a[i][j] * a[i][j];
-        if (i != j)
-          off += a[i][j] * a[i][j];
+        if (i != j) off += a[i][j] * a[i][j];
       }
-    if (off <= 1e-34 * all || off == 0)
-      break;
+    if (off <= 1e-34 * all || off == 0) break;
     for (size_t p = 0; p < 3; ++p)
       for (size_t q = p + 1; q < 4; ++q) {
-        if (a[p][q] == 0)
-          continue;
+        if (a[p][q] == 0) continue;
         double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
         double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
         double c = 1 / std::sqrt(t * t + 1), s = t * c;
@@ -107,7 +110,9 @@ void jacobi4(M4 a, V4& w, M4& v) {
     w[k] = a[k][k];
 }
 
-V4 column(const M4& v, size_t k) { return {v[0][k], v[1][k], v[2][k], v[3][k]}; }
+V4 column(const M4& v, size_t k) {
+  return {v[0][k], v[1][k], v[2][k], v[3][k]};
+}
 
 /// The member theta*A - B of the facts' basis in double, normalised (exact where possible:
 /// for theta = u + s sqrt(d) the rational part u*A - B and s*A are formed exactly).
@@ -131,8 +136,7 @@ std::optional<M4> member_at(const algebra::PencilFacts& facts, const algebra::Ro
       for (size_t j = 0; j < 4; ++j)
         m[i][j] = th * ad[i][j] - bd[i][j];
   }
-  if (max_abs(m) == 0 || !std::isfinite(max_abs(m)))
-    return std::nullopt;
+  if (max_abs(m) == 0 || !std::isfinite(max_abs(m))) return std::nullopt;
   return normalised(m);
 }
 
@@ -144,7 +148,9 @@ double quad_form(const M4& q, const V4& x) {
   return s;
 }
 
-double eval(const M4& q, const V3& p) { return quad_form(q, {p[0], p[1], p[2], 1.0}); }
+double eval(const M4& q, const V3& p) {
+  return quad_form(q, {p[0], p[1], p[2], 1.0});
+}
 
 V3 grad(const M4& q, const V3& p) {
   V4 x{p[0], p[1], p[2], 1.0};
@@ -166,7 +172,7 @@ struct PlaneConic {
   double r1 = 0, r2 = 0, k = 0;
   double t_max = 0; ///< clipping for the open types
   V3 n{};
-  double d = 0;     ///< the plane n.x + d = 0, |n| = 1
+  double d = 0;          ///< the plane n.x + d = 0, |n| = 1
   const M4* q = nullptr; ///< quadric used for the correction (normalised)
   bool doubled = false;
 
@@ -197,7 +203,7 @@ struct PlaneConic {
 
 /// Restriction of the 4x4 form q to the frame (e1, e2, x0) of a plane: a 3x3 conic in (u, v, 1).
 std::array<std::array<double, 3>, 3> restrict_to_plane(const M4& q, const V3& e1, const V3& e2,
-                                                         const V3& x0) {
+                                                       const V3& x0) {
   std::array<V4, 3> t = {V4{e1[0], e1[1], e1[2], 0.0}, V4{e2[0], e2[1], e2[2], 0.0},
                          V4{x0[0], x0[1], x0[2], 1.0}};
   std::array<std::array<double, 3>, 3> c{};
@@ -218,15 +224,13 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
   std::vector<PlaneConic> out;
   V3 n{p[0], p[1], p[2]};
   double nn = norm(n), pn = std::hypot(nn, p[3]);
-  if (pn == 0 || nn <= 1e-12 * pn)
-    return out; // plane at infinity: its conic has no affine point
+  if (pn == 0 || nn <= 1e-12 * pn) return out; // plane at infinity: its conic has no affine point
   V3 un{n[0] / nn, n[1] / nn, n[2] / nn};
   double d = p[3] / nn;
   V3 x0{-d * un[0], -d * un[1], -d * un[2]};
   size_t small = 0;
   for (size_t i = 1; i < 3; ++i)
-    if (std::fabs(un[i]) < std::fabs(un[small]))
-      small = i;
+    if (std::fabs(un[i]) < std::fabs(un[small])) small = i;
   V3 ax{0, 0, 0};
   ax[small] = 1;
   V3 e1 = cross(un, ax);
@@ -245,8 +249,7 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
   bool use_a = fro(ca) >= fro(cb);
   auto c = use_a ? ca : cb;
   double cs = fro(c);
-  if (cs == 0)
-    return out; // the plane lies on both quadrics (not a regular pencil)
+  if (cs == 0) return out; // the plane lies on both quadrics (not a regular pencil)
   for (auto& r : c)
     for (double& v : r)
       v /= cs;
@@ -287,15 +290,14 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
   if (std::fabs(mu1) > eps * mumax && std::fabs(mu2) > eps * mumax && mumax > eps) {
     // Central conic: centre m (in eigen coordinates s1 = -lw1/mu1, s2 = -lw2/mu2).
     double s1 = -lw1 / mu1, s2 = -lw2 / mu2;
-    double cc = c0 + lw1 * s1 + lw2 * s2;                       // value at the centre
+    double cc = c0 + lw1 * s1 + lw2 * s2;                                   // value at the centre
     double mag = std::fabs(c0) + std::fabs(lw1 * s1) + std::fabs(lw2 * s2); // cancellation
     if (std::fabs(cc) <= 1e-10 * mag || cc == 0)
       return out; // a point (tangent plane) or a line pair: degenerate
     double u = s1 * w1[0] + s2 * w2[0], v = s1 * w1[1] + s2 * w2[1];
     V3 centre = plane_point(u, v);
     if ((mu1 > 0) == (mu2 > 0)) {
-      if ((mu1 > 0) == (cc > 0))
-        return out; // imaginary ellipse
+      if ((mu1 > 0) == (cc > 0)) return out; // imaginary ellipse
       PlaneConic e = base;
       e.type = PlaneConic::Ellipse;
       e.c = centre;
@@ -360,14 +362,11 @@ void correct(const PlaneConic& pc, V3& x) {
     // J = [n; g]; dx = -J^T (J J^T)^{-1} r
     double a = dot(pc.n, pc.n), b = dot(pc.n, g), cc = dot(g, g);
     double det = a * cc - b * b;
-    if (!(det > 1e-300))
-      return;
+    if (!(det > 1e-300)) return;
     double y1 = (cc * r1 - b * r2) / det, y2 = (-b * r1 + a * r2) / det;
-    V3 dx{-(y1 * pc.n[0] + y2 * g[0]), -(y1 * pc.n[1] + y2 * g[1]),
-          -(y1 * pc.n[2] + y2 * g[2])};
+    V3 dx{-(y1 * pc.n[0] + y2 * g[0]), -(y1 * pc.n[1] + y2 * g[1]), -(y1 * pc.n[2] + y2 * g[2])};
     x = axpy(x, 1.0, dx);
-    if (norm(dx) <= 1e-17 * (1 + norm(x)))
-      return;
+    if (norm(dx) <= 1e-17 * (1 + norm(x))) return;
   }
 }
 
@@ -378,8 +377,7 @@ bool same_plane(const V4& p, const V4& q) {
     nq += q[i] * q[i];
     dp += p[i] * q[i];
   }
-  if (np == 0 || nq == 0)
-    return false;
+  if (np == 0 || nq == 0) return false;
   return std::fabs(std::fabs(dp) / std::sqrt(np * nq) - 1) < 1e-12;
 }
 
@@ -388,18 +386,15 @@ bool same_plane(const V4& p, const V4& q) {
 std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                    const algebra::PencilFacts& facts, const TraceOptions& opt) {
   std::vector<Branch> out;
-  if (facts.kind != algebra::PencilKind::Regular)
-    return out;
+  if (facts.kind != algebra::PencilKind::Regular) return out;
   const M4 qa = normalised(to_double(a.matrix())), qb = normalised(to_double(b.matrix()));
 
   std::vector<V4> planes_used;
   std::vector<PlaneConic> conics;
   for (const auto& r : facts.real_roots) {
-    if (r.multiplicity < 2 || r.rank > 2 || r.rank < 1)
-      continue;
+    if (r.multiplicity < 2 || r.rank > 2 || r.rank < 1) continue;
     auto m = member_at(facts, r);
-    if (!m)
-      continue;
+    if (!m) continue;
     V4 w;
     M4 v;
     jacobi4(*m, w, v);
@@ -411,8 +406,7 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
       if (r.sigma.p != 1 || r.sigma.n != 1)
         continue; // (2,0) / (0,2): a pair of complex conjugate planes
       double l1 = w[idx[0]], l2 = w[idx[3]];
-      if (!(l1 > 0 && l2 < 0))
-        continue;
+      if (!(l1 > 0 && l2 < 0)) continue;
       V4 v1 = column(v, idx[0]), v2 = column(v, idx[3]);
       double s1 = std::sqrt(l1), s2 = std::sqrt(-l2);
       V4 p{}, q{};
@@ -430,15 +424,13 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
       bool seen = false;
       for (const V4& u : planes_used)
         seen = seen || same_plane(p, u);
-      if (seen)
-        continue;
+      if (seen) continue;
       planes_used.push_back(p);
       for (auto& pc : conics_in_plane(p, qa, qb, doubled))
         conics.push_back(pc);
     }
   }
-  if (conics.empty())
-    return out;
+  if (conics.empty()) return out;
 
   // Scene size: bounding-box diagonal of the conics (coarse samples of the parametrisations).
   V3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -454,8 +446,7 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
     }
   }
   double scene = norm(sub(hi, lo));
-  if (!(scene > 0) || !std::isfinite(scene))
-    scene = 1;
+  if (!(scene > 0) || !std::isfinite(scene)) scene = 1;
   const double h = opt.tolerance * scene;
   const int cap = std::max(8, opt.max_points_per_branch);
 

@@ -30,8 +30,7 @@ std::string num17(double v) {
 
 std::string num2(double v) {
   char buf[40];
-  if (std::fabs(v) < 0.005)
-    v = 0;
+  if (std::fabs(v) < 0.005) v = 0;
   std::snprintf(buf, sizeof buf, "%.2f", v);
   return buf;
 }
@@ -49,14 +48,24 @@ std::string xml_escape(const std::string& s) {
     auto c = static_cast<unsigned char>(s[i]);
     if (c < 0x80) {
       switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      case '\'': r += "&apos;"; break;
+      case '&':
+        r += "&amp;";
+        break;
+      case '<':
+        r += "&lt;";
+        break;
+      case '>':
+        r += "&gt;";
+        break;
+      case '"':
+        r += "&quot;";
+        break;
+      case '\'':
+        r += "&apos;";
+        break;
       default:
         r += (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f ? ' '
-                                                                           : static_cast<char>(c);
+                                                                            : static_cast<char>(c);
       }
       ++i;
       continue;
@@ -89,8 +98,8 @@ using M4 = std::array<std::array<double, 4>, 4>;
 /// Outline of an ellipsoid seen along axis k, as points (u, v) in the view's coordinates
 /// (the two remaining axes in increasing order); nullopt when the projection is not a real
 /// ellipse (it always is for a real ellipsoid).
-std::optional<std::vector<std::array<double, 2>>> silhouette(const core::QuadricMatrix& q,
-                                                             size_t k, int samples) {
+std::optional<std::vector<std::array<double, 2>>> silhouette(const core::QuadricMatrix& q, size_t k,
+                                                             int samples) {
   M4 m{};
   double s = 0;
   for (size_t i = 0; i < 4; ++i)
@@ -98,18 +107,15 @@ std::optional<std::vector<std::array<double, 2>>> silhouette(const core::Quadric
       m[i][j] = q(static_cast<int>(i), static_cast<int>(j)).to_double_approx();
       s = std::max(s, std::fabs(m[i][j]));
     }
-  if (!(s > 0))
-    return std::nullopt;
+  if (!(s > 0)) return std::nullopt;
   for (auto& r : m)
     for (double& v : r)
       v /= s;
-  if (m[k][k] == 0)
-    return std::nullopt;
+  if (m[k][k] == 0) return std::nullopt;
   std::array<size_t, 3> id{};
   size_t t = 0;
   for (size_t i = 0; i < 4; ++i)
-    if (i != k)
-      id[t++] = i; // (u, v, w)
+    if (i != k) id[t++] = i; // (u, v, w)
   double c[3][3];
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
@@ -117,8 +123,7 @@ std::optional<std::vector<std::array<double, 2>>> silhouette(const core::Quadric
   double a11 = c[0][0], a12 = c[0][1], a22 = c[1][1];
   double mean = 0.5 * (a11 + a22), diff = 0.5 * (a11 - a22), rad = std::hypot(diff, a12);
   double mu1 = mean + rad, mu2 = mean - rad;
-  if (!((mu1 > 0) == (mu2 > 0)) || mu1 == 0 || mu2 == 0)
-    return std::nullopt;
+  if (!((mu1 > 0) == (mu2 > 0)) || mu1 == 0 || mu2 == 0) return std::nullopt;
   double w1x, w1y;
   if (rad == 0) {
     w1x = 1;
@@ -136,8 +141,7 @@ std::optional<std::vector<std::array<double, 2>>> silhouette(const core::Quadric
   double l1 = c[0][2] * w1x + c[1][2] * w1y, l2 = c[0][2] * w2x + c[1][2] * w2y;
   double s1 = -l1 / mu1, s2 = -l2 / mu2;
   double cc = c[2][2] + l1 * s1 + l2 * s2;
-  if ((cc > 0) == (mu1 > 0) || cc == 0)
-    return std::nullopt;
+  if ((cc > 0) == (mu1 > 0) || cc == 0) return std::nullopt;
   double r1 = std::sqrt(-cc / mu1), r2 = std::sqrt(-cc / mu2);
   double cx = s1 * w1x + s2 * w2x, cy = s1 * w1y + s2 * w2y;
   std::vector<std::array<double, 2>> pts;
@@ -163,18 +167,15 @@ std::string to_obj(const std::vector<Branch>& branches, const std::vector<Point3
   size_t base = 1;
   for (const auto& br : branches) {
     size_t n = br.points.size();
-    if (n == 0)
-      continue;
-    o << "# " << (br.kind.empty() ? "branch" : br.kind) << (br.closed ? " (closed)" : "")
-      << '\n';
+    if (n == 0) continue;
+    o << "# " << (br.kind.empty() ? "branch" : br.kind) << (br.closed ? " (closed)" : "") << '\n';
     if (n == 1) { // a polyline needs two vertices
       o << "p " << base << '\n';
     } else {
       o << 'l';
       for (size_t i = 0; i < n; ++i)
         o << ' ' << base + i;
-      if (br.closed)
-        o << ' ' << base;
+      if (br.closed) o << ' ' << base;
       o << '\n';
     }
     base += n;
@@ -189,8 +190,7 @@ std::string to_ply(const std::vector<Branch>& branches, const std::vector<Point3
   for (const auto& br : branches) {
     size_t n = br.points.size();
     nv += n;
-    if (n >= 2)
-      ne += br.closed && n >= 3 ? n : n - 1;
+    if (n >= 2) ne += br.closed && n >= 3 ? n : n - 1;
   }
   std::ostringstream o;
   o << "ply\nformat ascii 1.0\ncomment surfcert intersection curve: " << branches.size()
@@ -208,16 +208,14 @@ std::string to_ply(const std::vector<Branch>& branches, const std::vector<Point3
     if (n >= 2) {
       for (size_t i = 0; i + 1 < n; ++i)
         o << base + i << ' ' << base + i + 1 << '\n';
-      if (br.closed && n >= 3)
-        o << base + n - 1 << ' ' << base << '\n';
+      if (br.closed && n >= 3) o << base + n - 1 << ' ' << base << '\n';
     }
     base += n;
   }
   return o.str();
 }
 
-std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                   const Picture& pic) {
+std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Picture& pic) {
   // Views: (horizontal axis, vertical axis, axis looked along).
   const size_t view_axes[3][3] = {{0, 1, 2}, {0, 2, 1}, {1, 2, 0}};
   const char* axis_name[3] = {"x", "y", "z"};
@@ -233,8 +231,7 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
   std::vector<Outline> outlines;
   const core::QuadricMatrix* quadrics[2] = {&a, &b};
   for (int s = 0; s < 2; ++s) {
-    if (quadrics[s]->kind() != core::QuadricKind::Ellipsoid)
-      continue;
+    if (quadrics[s]->kind() != core::QuadricKind::Ellipsoid) continue;
     for (size_t v = 0; v < 3; ++v)
       if (auto pts = silhouette(*quadrics[s], view_axes[v][2], 180))
         outlines.push_back({s, v, std::move(*pts)});
@@ -270,8 +267,7 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
     }
     range = std::max(range, hi[k] - lo[k]);
   }
-  if (!(range > 0))
-    range = 2;
+  if (!(range > 0)) range = 2;
   for (size_t k = 0; k < 3; ++k) { // at least `range` wide, centred on the data
     double mid = 0.5 * (lo[k] + hi[k]);
     lo[k] = mid - 0.5 * range;
@@ -290,10 +286,12 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
 
   // "Nice" grid step: 1, 2 or 5 times a power of ten, about 5 cells per panel.
   double raw = range / 5, p10 = std::pow(10.0, std::floor(std::log10(raw)));
-  double step = raw / p10 < 1.5 ? p10 : raw / p10 < 3.5 ? 2 * p10 : raw / p10 < 7.5 ? 5 * p10 : 10 * p10;
+  double step = raw / p10 < 1.5   ? p10
+                : raw / p10 < 3.5 ? 2 * p10
+                : raw / p10 < 7.5 ? 5 * p10
+                                  : 10 * p10;
   auto label = [&](double t) {
-    if (std::fabs(t) < 1e-9 * step)
-      t = 0;
+    if (std::fabs(t) < 1e-9 * step) t = 0;
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", t);
     return std::string(buf);
@@ -340,18 +338,18 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
     double u_lo = lo[ku] - inner_margin / scale, u_hi = hi[ku] + inner_margin / scale;
     double v_lo = lo[kv] - inner_margin / scale, v_hi = hi[kv] + inner_margin / scale;
     for (double t = std::ceil(u_lo / step) * step; t <= u_hi; t += step)
-      o << "<line class=\"grid\" x1=\"" << num2(px(v, t)) << "\" y1=\"" << num2(top)
-        << "\" x2=\"" << num2(px(v, t)) << "\" y2=\"" << num2(top + panel) << "\"/>\n";
+      o << "<line class=\"grid\" x1=\"" << num2(px(v, t)) << "\" y1=\"" << num2(top) << "\" x2=\""
+        << num2(px(v, t)) << "\" y2=\"" << num2(top + panel) << "\"/>\n";
     for (double t = std::ceil(v_lo / step) * step; t <= v_hi; t += step)
-      o << "<line class=\"grid\" x1=\"" << num2(x0) << "\" y1=\"" << num2(py(v, t))
-        << "\" x2=\"" << num2(x0 + panel) << "\" y2=\"" << num2(py(v, t)) << "\"/>\n";
+      o << "<line class=\"grid\" x1=\"" << num2(x0) << "\" y1=\"" << num2(py(v, t)) << "\" x2=\""
+        << num2(x0 + panel) << "\" y2=\"" << num2(py(v, t)) << "\"/>\n";
     o << "</g>\n";
     for (double t = std::ceil(lo[ku] / step) * step; t <= hi[ku] + 1e-9 * step; t += step)
       o << "<text class=\"tick\" text-anchor=\"middle\" x=\"" << num2(px(v, t)) << "\" y=\""
         << num2(top + panel - 6) << "\">" << label(t) << "</text>\n";
     for (double t = std::ceil(lo[kv] / step) * step; t <= hi[kv] + 1e-9 * step; t += step)
-      o << "<text class=\"tick\" x=\"" << num2(x0 + 4) << "\" y=\"" << num2(py(v, t) + 3)
-        << "\">" << label(t) << "</text>\n";
+      o << "<text class=\"tick\" x=\"" << num2(x0 + 4) << "\" y=\"" << num2(py(v, t) + 3) << "\">"
+        << label(t) << "</text>\n";
     o << "<text class=\"axis\" text-anchor=\"end\" x=\"" << num2(x0 + panel - 6) << "\" y=\""
       << num2(top + panel - 18) << "\">" << axis_name[ku] << "</text>\n";
     o << "<text class=\"axis\" x=\"" << num2(x0 + 22) << "\" y=\"" << num2(top + 16) << "\">"
@@ -359,13 +357,10 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
     // Outlines.
     o << "<g clip-path=\"url(#panel" << v << ")\">\n";
     for (const auto& ol : outlines) {
-      if (ol.view != v)
-        continue;
-      o << "<path class=\"outline " << (ol.surface == 0 ? "outline-a" : "outline-b")
-        << "\" d=\"";
+      if (ol.view != v) continue;
+      o << "<path class=\"outline " << (ol.surface == 0 ? "outline-a" : "outline-b") << "\" d=\"";
       for (size_t i = 0; i < ol.pts.size(); ++i)
-        o << (i == 0 ? "M" : " L") << num2(px(v, ol.pts[i][0])) << ','
-          << num2(py(v, ol.pts[i][1]));
+        o << (i == 0 ? "M" : " L") << num2(px(v, ol.pts[i][0])) << ',' << num2(py(v, ol.pts[i][1]));
       o << " Z\"/>\n";
     }
     o << "</g>\n</g>\n";
@@ -392,8 +387,7 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
         }
         double x = px(v, p[ku]), y = py(v, p[kv]);
         bool last = i + 1 == br.points.size();
-        if (pen && !last && std::hypot(x - lx, y - ly) < 0.4)
-          continue; // below display resolution
+        if (pen && !last && std::hypot(x - lx, y - ly) < 0.4) continue; // below display resolution
         o << (emitted == 0 ? "" : " ") << (pen ? "L" : "M") << num2(x) << ',' << num2(y);
         pen = true;
         lx = x;
@@ -402,10 +396,8 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
       }
       if (emitted == 1) // a single point: draw a dot
         o << " l0.01,0";
-      if (br.closed && emitted > 2)
-        o << " Z";
-      if (emitted == 0)
-        o << "M0,0";
+      if (br.closed && emitted > 2) o << " Z";
+      if (emitted == 0) o << "M0,0";
       o << "\"" << (emitted <= 1 ? " stroke-linecap=\"round\"" : "") << "/>\n";
     }
     o << "</g>\n";
@@ -413,8 +405,7 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
 
   // Special points.
   for (const auto& p : pic.special_points) {
-    if (!finite(p))
-      continue;
+    if (!finite(p)) continue;
     for (size_t v = 0; v < 3; ++v)
       o << "<circle class=\"special\" cx=\"" << num2(px(v, p[view_axes[v][0]])) << "\" cy=\""
         << num2(py(v, p[view_axes[v][1]])) << "\" r=\"4.5\"/>\n";

@@ -44,11 +44,21 @@ namespace {
 
 using V = Point3;
 
-V add(const V& a, const V& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-V sub(const V& a, const V& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V mul(double s, const V& a) { return {s * a[0], s * a[1], s * a[2]}; }
-double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const V& a) { return std::sqrt(dot(a, a)); }
+V add(const V& a, const V& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+V sub(const V& a, const V& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+V mul(double s, const V& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
+double dot(const V& a, const V& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double norm(const V& a) {
+  return std::sqrt(dot(a, a));
+}
 V cross(const V& a, const V& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
@@ -56,7 +66,9 @@ V unit(const V& a) {
   double n = norm(a);
   return n > 0 ? mul(1 / n, a) : V{0, 0, 0};
 }
-double dist(const V& a, const V& b) { return norm(sub(a, b)); }
+double dist(const V& a, const V& b) {
+  return norm(sub(a, b));
+}
 
 // v^T M v and u^T M v for the quadratic part (upper-left 3x3 block) of a 4x4 matrix.
 double quad(const std::array<std::array<double, 4>, 4>& m, const V& u, const V& v) {
@@ -103,7 +115,7 @@ enum class SKind { Crunode, Cusp, Acnode, Other };
 struct Singular {
   V p;
   SKind kind = SKind::Other;
-  V n{};              // unit normal of the common tangent plane
+  V n{};               // unit normal of the common tangent plane
   std::vector<V> dirs; // unit tangent directions of the curve at p (crunode 2, cusp 1)
 };
 
@@ -214,10 +226,11 @@ bool newton_sphere(const QuadricPair& q, const V& sp, double r, V& x) {
 
 struct Walk {
   std::vector<V> pts;
-  std::vector<double> sg; // per point: travel direction = sg * (grad f x grad g), 0 at a singular point
+  std::vector<double>
+      sg; // per point: travel direction = sg * (grad f x grad g), 0 at a singular point
   bool closed = false;
-  bool dead = false;    // stopped where it could not continue (an end or a failure)
-  bool capped = false;  // hit max_points_per_branch
+  bool dead = false;       // stopped where it could not continue (an end or a failure)
+  bool capped = false;     // hit max_points_per_branch
   std::vector<int> passes; // per singular point: number of times walked through
 };
 
@@ -233,7 +246,9 @@ public:
 
   // Curvature of the curve at p (t the unit tangent): solve grad f . k = -t^T H_f t,
   // grad g . k = -t^T H_g t, t . k = 0.
-  double curvature(const V& p, const V& t) const { return curvature(t, q_.grad_f(p), q_.grad_g(p)); }
+  double curvature(const V& p, const V& t) const {
+    return curvature(t, q_.grad_f(p), q_.grad_g(p));
+  }
   double curvature(const V& t, const V& gf, const V& gg) const {
     const double det = dot(t, cross(gf, gg));
     if (!(std::abs(det) > 0)) return std::numeric_limits<double>::infinity();

@@ -25,7 +25,8 @@ M4 normalised(const core::QuadricMatrix& q) {
     }
   if (std::isfinite(mx) && mx > 0) {
     for (auto& row : out)
-      for (auto& x : row) x /= mx;
+      for (auto& x : row)
+        x /= mx;
     return out;
   }
   // Entries beyond the double range: divide exactly first.
@@ -74,17 +75,27 @@ double form_fast(const M4& m, const Point3& p) {
          m[3][3];
 }
 
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Point3& a, const Point3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 } // namespace
 
 QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb)
     : a(normalised(qa)), b(normalised(qb)) {}
 
-double QuadricPair::f(const Point3& p) const { return form(a, p); }
-double QuadricPair::g(const Point3& p) const { return form(b, p); }
-Point3 QuadricPair::grad_f(const Point3& p) const { return gradient(a, p); }
-Point3 QuadricPair::grad_g(const Point3& p) const { return gradient(b, p); }
+double QuadricPair::f(const Point3& p) const {
+  return form(a, p);
+}
+double QuadricPair::g(const Point3& p) const {
+  return form(b, p);
+}
+Point3 QuadricPair::grad_f(const Point3& p) const {
+  return gradient(a, p);
+}
+Point3 QuadricPair::grad_g(const Point3& p) const {
+  return gradient(b, p);
+}
 
 namespace {
 

@@ -41,7 +41,9 @@ using PMat3 = std::array<std::array<UPolyQ, 3>, 3>;
 using QMat3 = std::array<std::array<Rational, 3>, 3>;
 using DMat3 = std::array<std::array<double, 3>, 3>;
 
-double norm3(const Point3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+double norm3(const Point3& a) {
+  return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
 
 // Rational rotation matrix of the integer quaternion (a, b, c, d).
 std::array<std::array<Rational, 3>, 3> quaternion_rotation(long a, long b, long c, long d) {
@@ -58,9 +60,7 @@ std::array<std::array<Rational, 3>, 3> quaternion_rotation(long a, long b, long 
 
 // The slice form of a quadric on x = c, in (y, z, w); entries polynomial in c.
 PMat3 slice(const core::QuadricMatrix& q) {
-  auto lin = [](const Rational& c0, const Rational& c1) {
-    return UPolyQ::from_coeffs({c0, c1});
-  };
+  auto lin = [](const Rational& c0, const Rational& c1) { return UPolyQ::from_coeffs({c0, c1}); };
   PMat3 s;
   s[0][0] = UPolyQ(q(1, 1));
   s[0][1] = UPolyQ(q(1, 2));
@@ -93,8 +93,8 @@ std::array<UPolyQ, 4> slice_cubic(const PMat3& f, const PMat3& g) {
   const UPolyQ half(Rational(1, 2)), sixth(Rational(1, 6));
   UPolyQ h0 = d0;
   UPolyQ h2 = half * (d1 + dm1) - h0;
-  UPolyQ o1 = half * (d1 - dm1);          // h3 + h1
-  UPolyQ o2 = d2 - UPolyQ(4) * h2 - h0;   // 8 h3 + 2 h1
+  UPolyQ o1 = half * (d1 - dm1);        // h3 + h1
+  UPolyQ o2 = d2 - UPolyQ(4) * h2 - h0; // 8 h3 + 2 h1
   UPolyQ h3 = sixth * (o2 - UPolyQ(2) * o1);
   UPolyQ h1 = o1 - h3;
   return {h0, h1, h2, h3};
@@ -172,7 +172,7 @@ void tangency_points(const QMat3& fq, const QMat3& gq, const std::array<Rational
     members.emplace_back(num, den);
   } else {
     members.emplace_back(-h[2], Rational(3) * h[3]); // triple root -h2 / (3 h3)
-    members.emplace_back(Rational(1), Rational(0));   // root at infinity: F itself
+    members.emplace_back(Rational(1), Rational(0));  // root at infinity: F itself
   }
   const DMat3 fd = to_double(fq), gd = to_double(gq);
   for (const auto& [mu, nu] : members) {
