@@ -4,6 +4,7 @@
 
 #include "surfcert/algebra/pencil_poly.hpp"
 #include "surfcert/algebra/real_roots.hpp"
+#include "surfcert/certify/trace/eigen4.hpp"
 
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
@@ -188,33 +189,12 @@ double approx(const Rational& q) {
   return fmpz_get_d(fmpq_numref(q.raw())) / fmpz_get_d(fmpq_denref(q.raw()));
 }
 
-// Eigenvalues of a symmetric 4x4 matrix by cyclic Jacobi rotations.
-std::array<double, 4> eigenvalues(Mat4T<double> m) {
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    double off = 0;
-    for (size_t p = 0; p < 4; ++p)
-      for (size_t q = p + 1; q < 4; ++q)
-        off += m[p][q] * m[p][q];
-    if (off < 1e-300) break;
-    for (size_t p = 0; p < 4; ++p)
-      for (size_t q = p + 1; q < 4; ++q) {
-        if (m[p][q] == 0) continue;
-        double theta = (m[q][q] - m[p][p]) / (2 * m[p][q]);
-        double t = (theta >= 0 ? 1 : -1) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
-        double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (size_t k = 0; k < 4; ++k) {
-          double mkp = m[k][p], mkq = m[k][q];
-          m[k][p] = c * mkp - s * mkq;
-          m[k][q] = s * mkp + c * mkq;
-        }
-        for (size_t k = 0; k < 4; ++k) {
-          double mpk = m[p][k], mqk = m[q][k];
-          m[p][k] = c * mpk - s * mqk;
-          m[q][k] = s * mpk + c * mqk;
-        }
-      }
-  }
-  return {m[0][0], m[1][1], m[2][2], m[3][3]};
+// Eigenvalues of a symmetric 4x4 matrix (cyclic Jacobi, shared with the tracer).
+std::array<double, 4> eigenvalues(const Mat4T<double>& m) {
+  std::array<double, 4> w{};
+  trace::Mat4d v{};
+  trace::jacobi4(m, w, v);
+  return w;
 }
 
 Inertia float_inertia(const Mat4T<double>& m, double tol) {

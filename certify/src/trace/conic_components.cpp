@@ -14,6 +14,7 @@
 // infinity and planes already used. Each sample is corrected by Gauss-Newton onto
 // {plane = 0, Q = 0} (transversal even along a double conic, where grad f x grad g vanishes).
 #include "surfcert/certify/trace/conics.hpp"
+#include "surfcert/certify/trace/eigen4.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -68,46 +69,6 @@ double norm(const V3& a) {
 }
 V3 axpy(const V3& x, double s, const V3& d) {
   return {x[0] + s * d[0], x[1] + s * d[1], x[2] + s * d[2]};
-}
-
-/// Symmetric 4x4 eigen-decomposition by cyclic Jacobi: m = sum_k w[k] v_k v_k^T, v_k = column k.
-void jacobi4(M4 a, V4& w, M4& v) {
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      v[i][j] = i == j ? 1.0 : 0.0;
-  for (int sweep = 0; sweep < 60; ++sweep) {
-    double off = 0, all = 0;
-    for (size_t i = 0; i < 4; ++i)
-      for (size_t j = 0; j < 4; ++j) {
-        all += a[i][j] * a[i][j];
-        if (i != j) off += a[i][j] * a[i][j];
-      }
-    if (off <= 1e-34 * all || off == 0) break;
-    for (size_t p = 0; p < 3; ++p)
-      for (size_t q = p + 1; q < 4; ++q) {
-        if (a[p][q] == 0) continue;
-        double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-        double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
-        double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (size_t k = 0; k < 4; ++k) { // a <- a J (columns p, q)
-          double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - s * akq;
-          a[k][q] = s * akp + c * akq;
-        }
-        for (size_t k = 0; k < 4; ++k) { // a <- J^T a (rows p, q)
-          double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - s * aqk;
-          a[q][k] = s * apk + c * aqk;
-        }
-        for (size_t k = 0; k < 4; ++k) {
-          double vkp = v[k][p], vkq = v[k][q];
-          v[k][p] = c * vkp - s * vkq;
-          v[k][q] = s * vkp + c * vkq;
-        }
-      }
-  }
-  for (size_t k = 0; k < 4; ++k)
-    w[k] = a[k][k];
 }
 
 V4 column(const M4& v, size_t k) {
