@@ -244,3 +244,16 @@ TEST(Cli, IntersectWritesPictureAndPolylines) {
   for (const auto& f : {svg, obj})
     std::remove(f.c_str());
 }
+
+TEST(Cli, JsonDoublesAreReadAsExactDyadicsAndStringsAsDecimals) {
+  // 0.1 as a JSON number is the binary double 3602879701896397 / 2^55; "0.1" is 1/10.
+  std::string line = R"({"id": 1, "op": "classify", "a": {"matrix": [[0.1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]},)"
+                     R"( "b": {"matrix": [["0.1",0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,"-1/4"]]}})";
+  auto r = run("batch", line + "\n");
+  ASSERT_EQ(r.code, 0) << r.err;
+  Json o = surfcert::core::io::parse_json(r.out, "out");
+  const Json& m = *o.find("result")->find("matrices");
+  EXPECT_EQ(m.find("a")->items()[0].items()[0].text(), "3602879701896397/36028797018963968");
+  EXPECT_EQ(m.find("b")->items()[0].items()[0].text(), "1/10");
+  EXPECT_EQ(m.find("b")->items()[3].items()[3].text(), "-1/4");
+}
