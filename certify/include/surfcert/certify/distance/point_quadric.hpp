@@ -1,0 +1,45 @@
+// surfcert::certify::point_quadric_critical: every critical distance from a rational point x to
+// a quadric surface Q, certified.
+//
+// Method (offset / Lagrange): a foot point p of x on Q satisfies x - p = alpha (Q3 p + b) with
+// Q3 the quadratic block and b half the linear part, so p(alpha) = (I + alpha Q3)^-1 (x - alpha b)
+// = N(alpha) / D(alpha) (adjugate over the cubic D = det(I + alpha Q3)), and Q(p(alpha)) = 0
+// clears to a polynomial P(alpha) of degree <= 6 over Q (the point-quadric sextic). Its real
+// roots are isolated exactly; each root with D != 0 gives one foot point; a root where D
+// vanishes too (decided exactly by a gcd) means a continuum of foot points (x on an axis of a
+// surface of revolution) and is reported as such; the singular points of Q (the vertex of a
+// cone: kernel of the 4x4 matrix when it lies on Q) are added as candidates. Each critical
+// distance is enclosed with Arb (ball arithmetic from the exact root's isolating interval),
+// refined until its relative width is <= 10^-digits.
+// Invariants: `criticals` sorted by distance; each enclosure contains the exact value; foot
+// points are approximations (doubles) of exact algebraic points.
+#pragma once
+
+#include "surfcert/core/quadric.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+struct CriticalDistance {
+  std::string lower, upper;   ///< decimal enclosure of the distance |x - p| (lower <= d <= upper)
+  double approx = 0;          ///< midpoint as a double
+  std::array<double, 3> foot{}; ///< a foot point (approximate)
+  bool continuum = false;     ///< a whole circle (or more) of foot points at this distance
+  bool singular_point = false; ///< the foot point is a singular point of Q (cone vertex)
+};
+
+struct PointQuadricResult {
+  bool ok = false;          ///< false: not decided (note says why)
+  std::string note;
+  std::vector<CriticalDistance> criticals; ///< sorted increasingly by distance
+  int sextic_degree = 0;    ///< degree of the eliminated polynomial in alpha
+};
+
+/// Critical distances from x to the quadric q (any quadric with a nonzero quadratic part).
+PointQuadricResult point_quadric_critical(const std::array<core::Rational, 3>& x,
+                                          const core::QuadricMatrix& q, long digits);
+
+} // namespace surfcert::certify
