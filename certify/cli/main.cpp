@@ -2,6 +2,7 @@
 // (message with location on stderr, nothing written), 3 finished with undecided results,
 // 1 internal error.
 #include "surfcert/certify/curve.hpp"
+#include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/scene.hpp"
 #include "surfcert/certify/trace/export.hpp"
@@ -28,6 +29,8 @@ const char* kUsage =
     "  surfcert classify 'EQ_A' 'EQ_B' [--mode exact|filtered|float] [--json]\n"
     "  surfcert intersect 'EQ_A' 'EQ_B' [--mode M] [--tol T] [--json] [--export F.obj|F.ply] "
     "[--svg F.svg]\n"
+    "  surfcert distance 'EQ_A' 'EQ_B' [--digits N] [--solid] [--json]   (one surface a sphere, "
+    "for now)\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N]     (JSON lines on stdin -> JSON lines on stdout)\n"
     "  surfcert --help | --version\n"
@@ -187,6 +190,45 @@ int cmd_intersect(const std::vector<std::string>& args) {
   return c.status == certify::Status::Undecided ? 3 : 0;
 }
 
+int cmd_distance(const std::vector<std::string>& args) {
+  std::vector<std::string> eq;
+  long digits = 15;
+  bool json = false, solid = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--json")
+      json = true;
+    else if (args[i] == "--solid")
+      solid = true;
+    else if (args[i] == "--digits" && i + 1 < args.size()) {
+      auto d = core::Integer::from_string(args[++i]);
+      if (!d || *d < core::Integer(1) || core::Integer(1000) < *d)
+        throw InputError(Location{"<command line>", 0, 0, ""}, "--digits from 1 to 1000",
+                         "\"" + args[i] + "\"");
+      digits = static_cast<long>(d->to_double_approx());
+    } else if (args[i].size() > 1 && args[i][0] == '-' && args[i][1] == '-')
+      throw UsageError("unknown option " + args[i]);
+    else
+      eq.push_back(args[i]);
+  }
+  if (eq.size() != 2) throw UsageError("distance needs exactly two equations");
+  auto a = core::io::quadric_from_equation(eq[0], Location{"<argument 1>", 1, 1, ""});
+  auto b = core::io::quadric_from_equation(eq[1], Location{"<argument 2>", 1, 1, ""});
+  certify::DistanceResult d = certify::surface_distance(a, b, digits, solid);
+  if (json) {
+    std::cout << core::io::dump(certify::distance_envelope_json(d, digits), 2) << "\n";
+  } else {
+    std::cout << "distance: " << certify::to_string(d.status);
+    if (!d.lower.empty())
+      std::cout << " in [" << d.lower << ", " << d.upper << "], minimizers " << d.minimizers;
+    std::cout << "\n";
+    for (const auto& p : d.pairs)
+      std::cout << "  pair (" << p[0][0] << ", " << p[0][1] << ", " << p[0][2] << ") - (" << p[1][0]
+                << ", " << p[1][1] << ", " << p[1][2] << ")\n";
+    if (!d.note.empty()) std::cout << "note: " << d.note << "\n";
+  }
+  return d.status == certify::Status::Undecided ? 3 : 0;
+}
+
 int cmd_run(const std::vector<std::string>& args) {
   std::string scene_path, out_path;
   bool json = false;
@@ -280,6 +322,8 @@ int main(int argc, char** argv) {
         rc = cmd_run(rest);
       else if (args[0] == "intersect")
         rc = cmd_intersect(rest);
+      else if (args[0] == "distance")
+        rc = cmd_distance(rest);
       else if (args[0] == "batch")
         rc = cmd_batch(rest);
       else

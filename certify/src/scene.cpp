@@ -1,6 +1,7 @@
 #include "surfcert/certify/scene.hpp"
 
 #include "surfcert/certify/curve.hpp"
+#include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
@@ -38,10 +39,24 @@ Mode read_mode(const Json& v, const std::string& source, const std::string& path
   return *m;
 }
 
-const char* kSupportedOps = "\"classify\" or \"intersect\"";
+const char* kSupportedOps = "\"classify\", \"intersect\" or \"distance\"";
 
 bool known_op(const Json* op) {
-  return op && op->is_string() && (op->text() == "classify" || op->text() == "intersect");
+  return op && op->is_string() &&
+         (op->text() == "classify" || op->text() == "intersect" || op->text() == "distance");
+}
+
+long read_digits(const Json& v, const std::string& source, const std::string& path) {
+  Rational d = core::io::read_number(v, source, path);
+  if (!d.is_integer() || d < Rational(1) || d > Rational(1000))
+    throw InputError(at(v, source, path), "digits: an integer from 1 to 1000", d.to_string());
+  return static_cast<long>(d.to_double_approx());
+}
+
+bool read_bool(const Json& v, const std::string& source, const std::string& path) {
+  if (!v.is_bool())
+    throw InputError(at(v, source, path), "true or false", core::io::type_name(v.type()));
+  return v.as_bool();
 }
 
 double read_tolerance(const Json& v, const std::string& source, const std::string& path) {
@@ -99,7 +114,7 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
     std::string path = json_path_index("$.queries", i);
     if (!q.is_object())
       throw InputError(at(q, source, path), "a query object", core::io::type_name(q.type()));
-    check_fields(q, {"id", "op", "a", "b", "mode", "tolerance"}, source, path);
+    check_fields(q, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid"}, source, path);
     Query query;
     query.mode = default_mode;
     if (const Json* id = q.find("id")) query.id = *id;
@@ -136,7 +151,16 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   const auto& a = s.surface(q.a);
   const auto& b = s.surface(q.b);
   Json env;
-  if (q.op == "intersect") {
+  if (q.op == "distance") {
+    DistanceResult d = surface_distance(a, b, q.digits, q.solid);
+    env = distance_envelope_json(d, q.digits);
+    if (text_summary)
+      *text_summary =
+          "distance: " + std::string(to_string(d.status)) +
+          (d.lower.empty() ? ""
+                           : " in [" + d.lower + ", " + d.upper + "], minimizers " + d.minimizers) +
+          (d.note.empty() ? "" : "\nnote: " + d.note) + "\n";
+  } else if (q.op == "intersect") {
     trace::TraceOptions opt;
     opt.tolerance = q.tolerance;
     CurveResult c = intersect_curve(a, b, q.mode, opt);
@@ -181,7 +205,8 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       if (!doc.is_object())
         throw InputError(at(doc, source, "$"), "a JSON object {\"id\", \"op\", \"a\", \"b\"}",
                          core::io::type_name(doc.type()));
-      check_fields(doc, {"id", "op", "a", "b", "mode", "tolerance"}, source, "$");
+      check_fields(doc, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid"}, source,
+                   "$");
       const Json* op = doc.find("op");
       if (!known_op(op))
         throw InputError(
@@ -197,7 +222,13 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       auto a = core::io::read_quadric(*ja, source, "$.a");
       auto b = core::io::read_quadric(*jb, source, "$.b");
       Json env;
-      if (op->text() == "intersect") {
+      if (op->text() == "distance") {
+        long digits = 15;
+        bool solid = false;
+        if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");
+        if (const Json* sd = doc.find("solid")) solid = read_bool(*sd, source, "$.solid");
+        env = distance_envelope_json(surface_distance(a, b, digits, solid), digits);
+      } else if (op->text() == "intersect") {
         trace::TraceOptions opt;
         if (const Json* t = doc.find("tolerance"))
           opt.tolerance = read_tolerance(*t, source, "$.tolerance");

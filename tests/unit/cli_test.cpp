@@ -111,7 +111,7 @@ TEST(Cli, BadScenesExitTwoAndWriteNothing) {
        "unknown field \"colour\""},
       {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "classify", "a": "A", "b": "C"}]})",
        "$.queries[0].b"},
-      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "distance", "a": "A", "b": "B"}]})",
+      {R"({"surfaces": {"A": "x^2+y^2=1", "B": "x^2=1"}, "queries": [{"op": "volume", "a": "A", "b": "B"}]})",
        "$.queries[0].op"},
       {"{\"surfaces\": {\"A\": \"x^2+y^2=1\",\n \"B\": \"x^2 + + = 1\"}, \"queries\": []}", ":2:"},
       {"{\"surfaces\": {}, \n\n  \"queries\": [,]}", ":3:"},
@@ -247,8 +247,9 @@ TEST(Cli, IntersectWritesPictureAndPolylines) {
 
 TEST(Cli, JsonDoublesAreReadAsExactDyadicsAndStringsAsDecimals) {
   // 0.1 as a JSON number is the binary double 3602879701896397 / 2^55; "0.1" is 1/10.
-  std::string line = R"({"id": 1, "op": "classify", "a": {"matrix": [[0.1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]},)"
-                     R"( "b": {"matrix": [["0.1",0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,"-1/4"]]}})";
+  std::string line =
+      R"({"id": 1, "op": "classify", "a": {"matrix": [[0.1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]},)"
+      R"( "b": {"matrix": [["0.1",0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,"-1/4"]]}})";
   auto r = run("batch", line + "\n");
   ASSERT_EQ(r.code, 0) << r.err;
   Json o = surfcert::core::io::parse_json(r.out, "out");

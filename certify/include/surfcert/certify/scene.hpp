@@ -22,6 +22,8 @@ struct Query {
   core::io::Json id;       ///< as given (null when absent)
   std::string op;          ///< "classify" or "intersect"
   double tolerance = 2e-4; ///< intersect: geometric tolerance of the traced branches
+  long digits = 15;        ///< distance: requested relative precision 10^-digits
+  bool solid = false;      ///< distance: between solids (0 when the volumes overlap)
   std::string a, b;        ///< surface names
   Mode mode = Mode::Filtered;
 };

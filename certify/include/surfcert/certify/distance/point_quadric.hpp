@@ -24,18 +24,18 @@
 namespace surfcert::certify {
 
 struct CriticalDistance {
-  std::string lower, upper;   ///< decimal enclosure of the distance |x - p| (lower <= d <= upper)
-  double approx = 0;          ///< midpoint as a double
+  std::string lower, upper;     ///< decimal enclosure of the distance |x - p| (lower <= d <= upper)
+  double approx = 0;            ///< midpoint as a double
   std::array<double, 3> foot{}; ///< a foot point (approximate)
-  bool continuum = false;     ///< a whole circle (or more) of foot points at this distance
-  bool singular_point = false; ///< the foot point is a singular point of Q (cone vertex)
+  bool continuum = false;       ///< a whole circle (or more) of foot points at this distance
+  bool singular_point = false;  ///< the foot point is a singular point of Q (cone vertex)
 };
 
 struct PointQuadricResult {
-  bool ok = false;          ///< false: not decided (note says why)
+  bool ok = false; ///< false: not decided (note says why)
   std::string note;
   std::vector<CriticalDistance> criticals; ///< sorted increasingly by distance
-  int sextic_degree = 0;    ///< degree of the eliminated polynomial in alpha
+  int sextic_degree = 0;                   ///< degree of the eliminated polynomial in alpha
 };
 
 /// Critical distances from x to the quadric q (any quadric with a nonzero quadratic part).

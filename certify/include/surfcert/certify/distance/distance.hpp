@@ -1,0 +1,40 @@
+// surfcert::certify::surface_distance: the certified minimum distance between two surfaces.
+//
+// First capability (issue "Certified minimum distance", partial): a sphere against any quadric.
+// Whether the surfaces meet is decided by the certified QSIC topology (distance 0, with a
+// witness point); otherwise the distance is |d - r| for the critical distances d from the
+// sphere's centre to the quadric (point_quadric_critical: the exact point-quadric sextic,
+// Arb enclosures), the sphere of radius r lying outside (d_min - r) or around (r - d_max) the
+// quadric. Enclosures have relative width <= 10^-digits. Pairs without a sphere are reported
+// as undecided ("not supported yet"), never guessed.
+#pragma once
+
+#include "surfcert/certify/qsic.hpp"
+#include "surfcert/core/io/json.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+struct DistanceResult {
+  Status status = Status::Error;
+  std::string note;
+  std::string lower, upper; ///< decimal enclosure of the minimum distance
+  double approx = 0;
+  std::string minimizers; ///< a count ("1", "2", ...) or "infinite"
+  std::vector<std::array<std::array<double, 3>, 2>> pairs; ///< (point on a, point on b), approx
+  int critical_candidates = 0;
+  int eliminated_degree = 0; ///< degree of the point-quadric polynomial
+  bool solid = false;        ///< solid distance requested (0 when the volumes overlap)
+};
+
+DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                long digits, bool solid);
+
+/// {"status", "note"?, "result": {"distance": {"lower", "upper", "approx"}, "minimizers",
+/// "pairs", "critical_candidates", "eliminated_degree", "digits", "solid"}}
+core::io::Json distance_envelope_json(const DistanceResult& r, long digits);
+
+} // namespace surfcert::certify

@@ -1,0 +1,275 @@
+#include "surfcert/certify/distance/distance.hpp"
+
+#include "surfcert/certify/curve.hpp"
+#include "surfcert/certify/distance/point_quadric.hpp"
+
+#include <arb.h>
+#include <mpfr.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace surfcert::certify {
+
+using core::Rational;
+using core::io::Json;
+
+namespace {
+
+// RAII ball.
+struct Ball {
+  arb_t v;
+  Ball() { arb_init(v); }
+  Ball(const Ball&) = delete;
+  Ball& operator=(const Ball&) = delete;
+  ~Ball() { arb_clear(v); }
+};
+
+long bits_for(long digits) {
+  return static_cast<long>(digits * 3.33) + 64;
+}
+
+// Decimal text of an arf bound rounded outward (down for a lower bound, up for an upper one),
+// with `digits` significant digits.
+std::string decimal_bound(const arf_t x, bool upper, long digits) {
+  mpfr_t m;
+  mpfr_init2(m, static_cast<mpfr_prec_t>(arf_bits(x) + 2));
+  arf_get_mpfr(m, x, MPFR_RNDN); // exact: enough bits
+  std::string fmt = "%." + std::to_string(digits) + "R" + (upper ? "U" : "D") + "g";
+  int n = mpfr_snprintf(nullptr, 0, fmt.c_str(), m);
+  std::string out(static_cast<size_t>(n) + 1, '\0');
+  mpfr_snprintf(out.data(), out.size(), fmt.c_str(), m);
+  out.resize(static_cast<size_t>(n));
+  mpfr_clear(m);
+  return out;
+}
+
+void set_enclosure(DistanceResult& out, const arb_t d, long digits) {
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, d, bits_for(digits));
+  arb_get_ubound_arf(hi, d, bits_for(digits));
+  if (arf_sgn(lo) < 0) arf_zero(lo); // a distance is never negative
+  out.lower = decimal_bound(lo, false, digits + 2);
+  out.upper = decimal_bound(hi, true, digits + 2);
+  out.approx = arf_get_d(arb_midref(d), ARF_RND_NEAR);
+  arf_clear(lo);
+  arf_clear(hi);
+}
+
+// The ball [lower, upper] of a critical distance.
+void critical_ball(arb_t out, const CriticalDistance& c, long prec) {
+  Ball lo, hi;
+  arb_set_str(lo.v, c.lower.c_str(), prec);
+  arb_set_str(hi.v, c.upper.c_str(), prec);
+  arb_union(out, lo.v, hi.v, prec);
+}
+
+} // namespace
+
+DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                long digits, bool solid) {
+  DistanceResult out;
+  out.solid = solid;
+  const bool a_sphere = a.is_sphere(), b_sphere = b.is_sphere();
+  if (!a_sphere && !b_sphere) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: the certified distance currently needs one sphere (sphere vs "
+               "any quadric)";
+    return out;
+  }
+  const core::QuadricMatrix& sph = a_sphere ? a : b;
+  const core::QuadricMatrix& other = a_sphere ? b : a;
+  // Centre and squared radius of the sphere k(|x|^2) - 2k c.x + k|c|^2 - k r^2.
+  std::array<Rational, 3> c;
+  Rational k = sph(0, 0), c2;
+  for (int i = 0; i < 3; ++i) {
+    c[static_cast<size_t>(i)] = -sph(i, 3) / k;
+    c2 += c[static_cast<size_t>(i)] * c[static_cast<size_t>(i)];
+  }
+  Rational r2 = c2 - sph(3, 3) / k;
+
+  // Do the surfaces meet? The certified topology decides.
+  QsicResult t = classify_qsic(a, b, Mode::Filtered);
+  if (t.status != Status::Certified) {
+    out.status = Status::Undecided;
+    out.note = "topology not certified";
+    return out;
+  }
+  if (t.pencil == algebra::PencilKind::Coincident) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the surfaces coincide";
+    return out;
+  }
+  if (t.morphology && t.morphology->connected_components > 0) {
+    // Distance 0 with a witness point on the curve (one surface is a sphere: the tracer applies).
+    trace::TraceOptions opt;
+    complete_report_data(t, a, b);
+    CurveResult cr = trace_curve(a, b, t, opt);
+    std::array<double, 3> w{};
+    bool have = false;
+    if (!cr.branches.empty() && !cr.branches[0].points.empty()) {
+      w = cr.branches[0].points[0];
+      have = true;
+    } else if (!cr.isolated_points.empty()) {
+      w = cr.isolated_points[0];
+      have = true;
+    }
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    const auto& m = *t.morphology;
+    bool curve = m.loops + m.conics + m.lines + m.cubics > 0;
+    out.minimizers = curve ? "infinite" : std::to_string(m.isolated_points);
+    if (have) out.pairs.push_back({w, w});
+    out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
+    return out;
+  }
+  if (solid && other.kind() == core::QuadricKind::Ellipsoid) {
+    complete_report_data(t, a, b);
+    if (t.ellipsoid_relation == "nested") {
+      out.status = Status::Certified;
+      out.lower = out.upper = "0";
+      out.minimizers = "infinite";
+      out.note = "solid distance: one solid contains the other";
+      return out;
+    }
+  }
+
+  // A plane (no quadratic part): 2 b.x + c0 = 0, the distance from the centre in closed form.
+  bool plane = true;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      plane = plane && other(i, j).is_zero();
+  if (plane) {
+    const long prec = bits_for(digits + 10);
+    Rational num = other(3, 3), n2;
+    for (int i = 0; i < 3; ++i) {
+      num += Rational(2) * other(i, 3) * c[static_cast<size_t>(i)];
+      n2 += Rational(4) * other(i, 3) * other(i, 3);
+    }
+    Ball dc, r, d;
+    Rational q = num * num / n2; // squared distance from the centre to the plane
+    arb_set_fmpq(dc.v, q.raw(), prec);
+    arb_sqrt(dc.v, dc.v, prec);
+    arb_set_fmpq(r.v, r2.raw(), prec);
+    arb_sqrt(r.v, r.v, prec);
+    arb_sub(d.v, dc.v, r.v, prec); // > 0: the topology said the surfaces do not meet
+    set_enclosure(out, d.v, digits);
+    out.minimizers = "1";
+    out.critical_candidates = 1;
+    out.eliminated_degree = 1;
+    std::array<double, 3> f{}, s{};
+    double tf = num.to_double_approx() / n2.to_double_approx(),
+           rr = std::sqrt(r2.to_double_approx());
+    double dcd = std::sqrt(q.to_double_approx());
+    for (size_t i = 0; i < 3; ++i) {
+      double ni = 2 * other(static_cast<int>(i), 3).to_double_approx();
+      f[i] = c[i].to_double_approx() - tf * ni; // foot on the plane
+      s[i] = c[i].to_double_approx() + rr * (f[i] - c[i].to_double_approx()) / dcd; // on the sphere
+    }
+    out.pairs.push_back(a_sphere ? std::array<std::array<double, 3>, 2>{s, f}
+                                 : std::array<std::array<double, 3>, 2>{f, s});
+    out.status = Status::Certified;
+    return out;
+  }
+  // Critical distances from the centre to the other quadric.
+  PointQuadricResult pq = point_quadric_critical(c, other, digits + 5);
+  out.eliminated_degree = pq.sextic_degree;
+  out.critical_candidates = static_cast<int>(pq.criticals.size());
+  if (!pq.ok || pq.criticals.empty()) {
+    out.status = Status::Undecided;
+    out.note = pq.ok ? "no critical point found" : pq.note;
+    return out;
+  }
+  const long prec = bits_for(digits + 10);
+  Ball r, dmin, dmax, d;
+  arb_set_fmpq(r.v, r2.raw(), prec);
+  arb_sqrt(r.v, r.v, prec);
+  critical_ball(dmin.v, pq.criticals.front(), prec);
+  critical_ball(dmax.v, pq.criticals.back(), prec);
+  bool compact = other.kind() == core::QuadricKind::Ellipsoid;
+  const CriticalDistance* best = nullptr;
+  if (arb_gt(dmin.v, r.v)) {
+    arb_sub(d.v, dmin.v, r.v, prec); // the quadric lies outside the ball
+    best = &pq.criticals.front();
+  } else if (compact && arb_lt(dmax.v, r.v)) {
+    arb_sub(d.v, r.v, dmax.v, prec); // the quadric lies inside the ball
+    best = &pq.criticals.back();
+  } else {
+    out.status = Status::Undecided;
+    out.note = "could not separate the critical distances from the radius at this precision";
+    return out;
+  }
+  set_enclosure(out, d.v, digits);
+  // Minimizers: every critical distance whose enclosure meets the optimal one.
+  int count = 0;
+  bool continuum = false;
+  for (const auto& cd : pq.criticals) {
+    Ball x;
+    critical_ball(x.v, cd, prec);
+    if (!arb_overlaps(x.v, best == &pq.criticals.front() ? dmin.v : dmax.v)) continue;
+    ++count;
+    continuum = continuum || cd.continuum;
+    // The pair: the foot point on the quadric, and the sphere point on the ray from the centre.
+    std::array<double, 3> f = cd.foot, s{};
+    double n = 0;
+    for (size_t i = 0; i < 3; ++i)
+      n += (f[i] - c[i].to_double_approx()) * (f[i] - c[i].to_double_approx());
+    n = std::sqrt(n);
+    double rr = std::sqrt(r2.to_double_approx());
+    for (size_t i = 0; i < 3; ++i)
+      s[i] = c[i].to_double_approx() + rr * (f[i] - c[i].to_double_approx()) / n;
+    out.pairs.push_back(a_sphere ? std::array<std::array<double, 3>, 2>{s, f}
+                                 : std::array<std::array<double, 3>, 2>{f, s});
+  }
+  out.minimizers = continuum ? "infinite" : std::to_string(count);
+  out.status = Status::Certified;
+  if (count > 1 && !continuum)
+    out.note = "several critical points at distances that agree to the requested precision: listed "
+               "as minimizers";
+  return out;
+}
+
+Json distance_envelope_json(const DistanceResult& r, long digits) {
+  Json o = Json::object();
+  o.set("status", Json::string(to_string(r.status)));
+  if (!r.note.empty()) o.set("note", Json::string(r.note));
+  Json res = Json::object();
+  if (!r.lower.empty()) {
+    Json d = Json::object();
+    d.set("lower", Json::string(r.lower));
+    d.set("upper", Json::string(r.upper));
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", r.approx);
+    d.set("approx", Json::string(buf));
+    res.set("distance", d);
+  }
+  if (!r.minimizers.empty()) res.set("minimizers", Json::string(r.minimizers));
+  Json pairs = Json::array();
+  for (const auto& pr : r.pairs) {
+    Json pj = Json::array();
+    for (const auto& p : pr) {
+      Json a3 = Json::array();
+      for (double x : p) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", x);
+        a3.push_back(Json::number_text(buf));
+      }
+      pj.push_back(a3);
+    }
+    pairs.push_back(pj);
+  }
+  res.set("pairs", pairs);
+  res.set("pair_points_approximate", Json::boolean(true));
+  res.set("critical_candidates", Json::number(r.critical_candidates));
+  res.set("eliminated_degree", Json::number(r.eliminated_degree));
+  res.set("digits", Json::number(digits));
+  res.set("solid", Json::boolean(r.solid));
+  o.set("result", res);
+  return o;
+}
+
+} // namespace surfcert::certify
