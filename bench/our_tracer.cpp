@@ -8,10 +8,11 @@
 namespace surfcert::bench {
 
 int run_our_tracer(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                   const certify::QsicResult& topology, double tol) {
+                   const certify::QsicResult& topology, double tol, bool* exact_start_points) {
   trace::TraceOptions opt;
   opt.tolerance = tol;
   auto r = certify::trace_curve(a, b, topology, opt);
+  if (exact_start_points) *exact_start_points = r.exact_start_points;
   if (r.status != certify::Status::Certified) return -2; // branches do not match the topology
   return static_cast<int>(r.branches.size());
 }

@@ -11,6 +11,7 @@
 namespace surfcert::bench {
 
 int run_our_tracer(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                   const certify::QsicResult& topology, double tol);
+                   const certify::QsicResult& topology, double tol,
+                   bool* exact_start_points = nullptr);
 
 } // namespace surfcert::bench
