@@ -99,6 +99,30 @@ TEST(Distance, SpherePlaneEllipsoidCylinderCone) {
   check("x^2+y^2+(z+5)^2=1", "x^2+y^2-z^2", Rational(25, 2), Rational(1), "cone: 5/sqrt2 - 1");
 }
 
+TEST(Distance, EllipsoidPlaneClosedForm) {
+  using core::Rational;
+  // x^2/4 + y^2 + z^2/9 = 1: support in direction n is sqrt(4 n1^2 + n2^2 + 9 n3^2).
+  check("x^2/4+y^2+z^2/9=1", "x=5", Rational(9), Rational(0), "plane x = 5: 5 - 2");
+  // Plane x + y = 10: (10 - sqrt 5) / sqrt 2 = sqrt(50) - sqrt(5/2); check as a bracket.
+  auto r = certify::surface_distance(q("x^2/4+y^2+z^2/9=1"), q("x+y=10"), 40, false);
+  mpfr_t e, t;
+  mpfr_inits2(400, e, t, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_ui(e, 50, MPFR_RNDN);
+  mpfr_sqrt(e, e, MPFR_RNDN);
+  mpfr_set_d(t, 2.5, MPFR_RNDN);
+  mpfr_sqrt(t, t, MPFR_RNDN);
+  mpfr_sub(e, e, t, MPFR_RNDN);
+  expect_contains(r, e, "plane x + y = 10");
+  mpfr_clears(e, t, static_cast<mpfr_ptr>(nullptr));
+  // The plane x = 1 cuts the ellipsoid, z = 3 touches it at a pole: distance 0.
+  auto cut = certify::surface_distance(q("x^2/4+y^2+z^2/9=1"), q("x=1"), 15, false);
+  EXPECT_EQ(cut.upper, "0");
+  EXPECT_EQ(cut.minimizers, "infinite");
+  auto touch = certify::surface_distance(q("x^2/4+y^2+z^2/9=1"), q("z=3"), 15, false);
+  EXPECT_EQ(touch.upper, "0");
+  EXPECT_EQ(touch.minimizers, "1");
+}
+
 TEST(Distance, RigidMotionAndPrecision) {
   // Sphere around (3, 1/2, 0) radius 1/4 vs the ellipsoid x^2/4 + y^2 + z^2/9 = 1, and the
   // same pair rotated by the integer quaternion (1,2,2,1) and translated: same enclosures.

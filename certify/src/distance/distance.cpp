@@ -4,6 +4,7 @@
 #include "surfcert/certify/distance/point_quadric.hpp"
 
 #include <arb.h>
+#include <flint/fmpq_mat.h>
 #include <mpfr.h>
 
 #include <cmath>
@@ -66,6 +67,93 @@ void critical_ball(arb_t out, const CriticalDistance& c, long prec) {
   arb_union(out, lo.v, hi.v, prec);
 }
 
+bool is_plane(const core::QuadricMatrix& q) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (!q(i, j).is_zero()) return false;
+  return true;
+}
+
+// Ellipsoid (x - c)^T M (x - c) = 1 and plane n.x = delta: the ellipsoid's support in the
+// direction n is n.c + sqrt(n^T M^-1 n), so the distance is
+// (|n.c - delta| - sqrt(n^T M^-1 n)) / |n| when positive, and 0 (they meet) otherwise; the
+// comparison is exact (squares of rationals), the value enclosed with Arb.
+void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
+                     const core::QuadricMatrix& p, bool ellipsoid_first, long digits) {
+  core::Mat4 m = e.matrix();
+  if (m[0][0].sign() < 0) m = core::scaled(m, Rational(-1)); // positive definite block
+  // E3^-1 by FLINT (3x3 rational).
+  fmpq_mat_t A, Ainv;
+  fmpq_mat_init(A, 3, 3);
+  fmpq_mat_init(Ainv, 3, 3);
+  for (slong i = 0; i < 3; ++i)
+    for (slong j = 0; j < 3; ++j)
+      fmpq_set(fmpq_mat_entry(A, i, j), m[static_cast<size_t>(i)][static_cast<size_t>(j)].raw());
+  fmpq_mat_inv(Ainv, A);
+  std::array<std::array<Rational, 3>, 3> inv;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      fmpq_set(inv[i][j].raw_mut(),
+               fmpq_mat_entry(Ainv, static_cast<slong>(i), static_cast<slong>(j)));
+  fmpq_mat_clear(A);
+  fmpq_mat_clear(Ainv);
+  std::array<Rational, 3> c, n;
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j)
+      c[i] -= inv[i][j] * m[j][3];
+    n[i] = Rational(2) * p(static_cast<int>(i), 3);
+  }
+  Rational delta = -p(3, 3), k = -m[3][3], nc, ninvn, nn;
+  for (size_t i = 0; i < 3; ++i) {
+    k += c[i] * m[i][i] * c[i];
+    for (size_t j = 0; j < 3; ++j)
+      if (j != i) k += c[i] * m[i][j] * c[j];
+    nc += n[i] * c[i];
+    nn += n[i] * n[i];
+    for (size_t j = 0; j < 3; ++j)
+      ninvn += n[i] * inv[i][j] * n[j];
+  }
+  Rational support2 = k * ninvn; // (n^T M^-1 n) with M = E3 / k
+  Rational gap = core::abs(nc - delta);
+  out.critical_candidates = 2;
+  out.eliminated_degree = 2;
+  out.minimizers = "1";
+  out.status = Status::Certified;
+  if (gap * gap <= support2) { // exact: the plane meets the ellipsoid
+    out.lower = out.upper = "0";
+    out.minimizers = gap * gap == support2 ? "1" : "infinite";
+    out.note =
+        gap * gap == support2 ? "the plane touches the ellipsoid" : "the plane cuts the ellipsoid";
+    return;
+  }
+  const long prec = bits_for(digits + 10);
+  Ball sup, g, nrm, d;
+  arb_set_fmpq(sup.v, support2.raw(), prec);
+  arb_sqrt(sup.v, sup.v, prec);
+  arb_set_fmpq(g.v, gap.raw(), prec);
+  arb_set_fmpq(nrm.v, nn.raw(), prec);
+  arb_sqrt(nrm.v, nrm.v, prec);
+  arb_sub(d.v, g.v, sup.v, prec);
+  arb_div(d.v, d.v, nrm.v, prec);
+  set_enclosure(out, d.v, digits);
+  // The closest points (approximate): x* = c + s M^-1 n / sqrt(n^T M^-1 n) toward the plane.
+  double sgn = (delta - nc).sign() > 0 ? 1 : -1, sq = std::sqrt(support2.to_double_approx());
+  std::array<double, 3> x{}, f{};
+  double kk = k.to_double_approx(), nd = 0, nn_d = nn.to_double_approx();
+  for (size_t i = 0; i < 3; ++i) {
+    double mi = 0;
+    for (size_t j = 0; j < 3; ++j)
+      mi += kk * inv[i][j].to_double_approx() * n[j].to_double_approx();
+    x[i] = c[i].to_double_approx() + sgn * mi / sq;
+  }
+  for (size_t i = 0; i < 3; ++i)
+    nd += n[i].to_double_approx() * x[i];
+  for (size_t i = 0; i < 3; ++i)
+    f[i] = x[i] - (nd - delta.to_double_approx()) / nn_d * n[i].to_double_approx();
+  out.pairs.push_back(ellipsoid_first ? std::array<std::array<double, 3>, 2>{x, f}
+                                      : std::array<std::array<double, 3>, 2>{f, x});
+}
+
 } // namespace
 
 DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
@@ -73,6 +161,11 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   DistanceResult out;
   out.solid = solid;
   const bool a_sphere = a.is_sphere(), b_sphere = b.is_sphere();
+  if (!a_sphere && !b_sphere && (is_plane(a) || is_plane(b)) &&
+      (a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid)) {
+    ellipsoid_plane(out, is_plane(a) ? b : a, is_plane(a) ? a : b, !is_plane(a), digits);
+    return out;
+  }
   if (!a_sphere && !b_sphere) {
     out.status = Status::Undecided;
     out.note = "not supported yet: the certified distance currently needs one sphere (sphere vs "
