@@ -1,4 +1,5 @@
 #include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/certify/distance/ball.hpp"
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
@@ -17,32 +18,8 @@ using core::io::Json;
 
 namespace {
 
-// RAII ball.
-struct Ball {
-  arb_t v;
-  Ball() { arb_init(v); }
-  Ball(const Ball&) = delete;
-  Ball& operator=(const Ball&) = delete;
-  ~Ball() { arb_clear(v); }
-};
-
 long bits_for(long digits) {
   return static_cast<long>(digits * 3.33) + 64;
-}
-
-// Decimal text of an arf bound rounded outward (down for a lower bound, up for an upper one),
-// with `digits` significant digits.
-std::string decimal_bound(const arf_t x, bool upper, long digits) {
-  mpfr_t m;
-  mpfr_init2(m, static_cast<mpfr_prec_t>(arf_bits(x) + 2));
-  arf_get_mpfr(m, x, MPFR_RNDN); // exact: enough bits
-  std::string fmt = "%." + std::to_string(digits) + "R" + (upper ? "U" : "D") + "g";
-  int n = mpfr_snprintf(nullptr, 0, fmt.c_str(), m);
-  std::string out(static_cast<size_t>(n) + 1, '\0');
-  mpfr_snprintf(out.data(), out.size(), fmt.c_str(), m);
-  out.resize(static_cast<size_t>(n));
-  mpfr_clear(m);
-  return out;
 }
 
 void set_enclosure(DistanceResult& out, const arb_t d, long digits) {

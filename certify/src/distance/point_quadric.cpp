@@ -11,6 +11,7 @@
 // circle (continuum) when dim K >= 2 and d2 > h2. An irrational alpha0 with D == 0 is left
 // undecided (ok = false, with a note).
 #include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/distance/ball.hpp"
 
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"
@@ -33,14 +34,6 @@ using core::Rational;
 
 namespace {
 
-struct Ball {
-  arb_t v;
-  Ball() { arb_init(v); }
-  Ball(const Ball&) = delete;
-  Ball& operator=(const Ball&) = delete;
-  ~Ball() { arb_clear(v); }
-};
-
 using Vec3 = std::array<Rational, 3>;
 
 Rational dot(const Vec3& a, const Vec3& b) {
@@ -54,20 +47,6 @@ Vec3 add(const Vec3& a, const Vec3& b) {
 }
 Vec3 scale(const Rational& s, const Vec3& a) {
   return {s * a[0], s * a[1], s * a[2]};
-}
-
-// Decimal text of an arf bound rounded outward, `digits` significant digits.
-std::string decimal_bound(const arf_t x, bool upper, long digits) {
-  mpfr_t m;
-  mpfr_init2(m, static_cast<mpfr_prec_t>(arf_bits(x) + 2));
-  arf_get_mpfr(m, x, MPFR_RNDN); // exact: enough bits
-  std::string fmt = "%." + std::to_string(digits) + "R" + (upper ? "U" : "D") + "e";
-  int n = mpfr_snprintf(nullptr, 0, fmt.c_str(), m);
-  std::string out(static_cast<size_t>(n) + 1, '\0');
-  mpfr_snprintf(out.data(), out.size(), fmt.c_str(), m);
-  out.resize(static_cast<size_t>(n));
-  mpfr_clear(m);
-  return out;
 }
 
 void set_enclosure(CriticalDistance& out, const arb_t d, long digits, long prec) {

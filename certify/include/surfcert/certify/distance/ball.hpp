@@ -1,0 +1,23 @@
+// surfcert::certify::Ball (RAII over Arb's arb_t) and outward-rounded decimal bounds: the two
+// pieces every certified enclosure in the distance code needs.
+#pragma once
+
+#include <arb.h>
+
+#include <string>
+
+namespace surfcert::certify {
+
+struct Ball {
+  arb_t v;
+  Ball() { arb_init(v); }
+  Ball(const Ball&) = delete;
+  Ball& operator=(const Ball&) = delete;
+  ~Ball() { arb_clear(v); }
+};
+
+/// Decimal text of x with `digits` significant digits, rounded down (lower bound) or up
+/// (upper bound), so the text never lies inside the enclosure it bounds.
+std::string decimal_bound(const arf_t x, bool upper, long digits);
+
+} // namespace surfcert::certify
