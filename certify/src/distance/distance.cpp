@@ -3,6 +3,9 @@
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/distance/quadric_pair.hpp"
+
+#include "surfcert/algebra/mpoly.hpp"
 
 #include <arb.h>
 #include <flint/fmpq_mat.h>
@@ -42,6 +45,22 @@ void critical_ball(arb_t out, const CriticalDistance& c, long prec) {
   arb_set_str(lo.v, c.lower.c_str(), prec);
   arb_set_str(hi.v, c.upper.c_str(), prec);
   arb_union(out, lo.v, hi.v, prec);
+}
+
+// True when the conics at infinity x^T A3 x = 0 and x^T B3 x = 0 have a common component
+// (gcd of the two ternary quadratic forms, FLINT): then a real curve of the QSIC may lie
+// entirely at infinity.
+bool conics_at_infinity_share_component(const core::QuadricMatrix& a,
+                                        const core::QuadricMatrix& b) {
+  auto form = [](const core::QuadricMatrix& q) {
+    core::Mat4 m = q.matrix();
+    for (size_t i = 0; i < 4; ++i)
+      m[i][3] = m[3][i] = Rational(0);
+    return algebra::quadric_poly(m); // homogeneous quadratic part in (x, y, z)
+  };
+  algebra::MPoly fa = form(a), fb = form(b);
+  if (fa.is_zero() || fb.is_zero()) return true; // a plane: its "conic" is the whole line
+  return !algebra::gcd(fa, fb).is_constant();
 }
 
 bool is_plane(const core::QuadricMatrix& q) {
@@ -143,22 +162,8 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
     ellipsoid_plane(out, is_plane(a) ? b : a, is_plane(a) ? a : b, !is_plane(a), digits);
     return out;
   }
-  if (!a_sphere && !b_sphere) {
-    out.status = Status::Undecided;
-    out.note = "not supported yet: the certified distance currently needs one sphere (sphere vs "
-               "any quadric)";
-    return out;
-  }
   const core::QuadricMatrix& sph = a_sphere ? a : b;
   const core::QuadricMatrix& other = a_sphere ? b : a;
-  // Centre and squared radius of the sphere k(|x|^2) - 2k c.x + k|c|^2 - k r^2.
-  std::array<Rational, 3> c;
-  Rational k = sph(0, 0), c2;
-  for (int i = 0; i < 3; ++i) {
-    c[static_cast<size_t>(i)] = -sph(i, 3) / k;
-    c2 += c[static_cast<size_t>(i)] * c[static_cast<size_t>(i)];
-  }
-  Rational r2 = c2 - sph(3, 3) / k;
 
   // Do the surfaces meet? The certified topology decides.
   QsicResult t = classify_qsic(a, b, Mode::Filtered);
@@ -175,29 +180,49 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
     return out;
   }
   if (t.morphology && t.morphology->connected_components > 0) {
-    // Distance 0 with a witness point on the curve (one surface is a sphere: the tracer applies).
-    trace::TraceOptions opt;
+    // The classification is projective: the real points may all lie at infinity (translated
+    // paraboloids meet only there). Contact needs an affine point: a real curve has one
+    // unless the conics at infinity share a component; otherwise an affine special point, or
+    // a traced point, is the witness.
     complete_report_data(t, a, b);
-    CurveResult cr = trace_curve(a, b, t, opt);
+    const auto& m = *t.morphology;
+    const bool curve = m.loops + m.conics + m.lines + m.cubics > 0;
+    const bool bounded = a.kind() == core::QuadricKind::Ellipsoid ||
+                         b.kind() == core::QuadricKind::Ellipsoid; // no point at infinity
+    bool affine = bounded || (curve && !conics_at_infinity_share_component(a, b));
     std::array<double, 3> w{};
     bool have = false;
-    if (!cr.branches.empty() && !cr.branches[0].points.empty()) {
-      w = cr.branches[0].points[0];
-      have = true;
-    } else if (!cr.isolated_points.empty()) {
-      w = cr.isolated_points[0];
-      have = true;
+    for (const auto& sp : t.special_points)
+      if (!sp.at_infinity && !have) {
+        w = sp.approx;
+        have = affine = true;
+      }
+    if (curve && !have) {
+      trace::TraceOptions opt;
+      CurveResult cr = trace_curve(a, b, t, opt);
+      if (!cr.branches.empty() && !cr.branches[0].points.empty()) {
+        w = cr.branches[0].points[0];
+        have = affine = true;
+      }
     }
-    out.status = Status::Certified;
-    out.lower = out.upper = "0";
-    const auto& m = *t.morphology;
-    bool curve = m.loops + m.conics + m.lines + m.cubics > 0;
-    out.minimizers = curve ? "infinite" : std::to_string(m.isolated_points);
-    if (have) out.pairs.push_back({w, w});
-    out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
-    return out;
+    if (affine) {
+      out.status = Status::Certified;
+      out.lower = out.upper = "0";
+      out.minimizers = curve ? "infinite" : std::to_string(m.isolated_points);
+      if (have) out.pairs.push_back({w, w});
+      out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
+      return out;
+    }
+    if (curve || !t.special_points_complete) {
+      out.status = Status::Undecided;
+      out.note =
+          "the real intersection (" + std::string(m.id) + ") may lie at infinity only; not decided";
+      return out;
+    }
+    // Every real common point is at infinity: the affine surfaces are disjoint.
   }
-  if (solid && other.kind() == core::QuadricKind::Ellipsoid) {
+  if (solid && a.kind() == core::QuadricKind::Ellipsoid &&
+      b.kind() == core::QuadricKind::Ellipsoid) {
     complete_report_data(t, a, b);
     if (t.ellipsoid_relation == "nested") {
       out.status = Status::Certified;
@@ -207,6 +232,20 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
       return out;
     }
   }
+
+  if (!a_sphere && !b_sphere) {
+    DistanceResult d = quadric_pair_distance(a, b, digits);
+    d.solid = solid;
+    return d;
+  }
+  // Centre and squared radius of the sphere k(|x|^2) - 2k c.x + k|c|^2 - k r^2.
+  std::array<Rational, 3> c;
+  Rational k = sph(0, 0), c2;
+  for (int i = 0; i < 3; ++i) {
+    c[static_cast<size_t>(i)] = -sph(i, 3) / k;
+    c2 += c[static_cast<size_t>(i)] * c[static_cast<size_t>(i)];
+  }
+  Rational r2 = c2 - sph(3, 3) / k;
 
   // A plane (no quadratic part): 2 b.x + c0 = 0, the distance from the centre in closed form.
   bool plane = true;
@@ -336,6 +375,20 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
   res.set("pair_points_approximate", Json::boolean(true));
   res.set("critical_candidates", Json::number(r.critical_candidates));
   res.set("eliminated_degree", Json::number(r.eliminated_degree));
+  if (!r.system_degrees.empty()) {
+    Json deg = Json::object();
+    auto arr = [](const std::vector<long>& v) {
+      Json a = Json::array();
+      for (long x : v)
+        a.push_back(Json::number(x));
+      return a;
+    };
+    deg.set("system", arr(r.system_degrees));
+    deg.set("bivariate", arr(r.bivariate_degrees));
+    deg.set("univariate", arr(r.univariate_degrees));
+    deg.set("squarefree", arr(r.squarefree_degrees));
+    res.set("degrees", deg);
+  }
   res.set("digits", Json::number(digits));
   res.set("solid", Json::boolean(r.solid));
   o.set("result", res);

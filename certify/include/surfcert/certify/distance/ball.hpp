@@ -13,6 +13,14 @@ struct Ball {
   Ball() { arb_init(v); }
   Ball(const Ball&) = delete;
   Ball& operator=(const Ball&) = delete;
+  Ball(Ball&& o) noexcept {
+    arb_init(v);
+    arb_swap(v, o.v);
+  }
+  Ball& operator=(Ball&& o) noexcept {
+    arb_swap(v, o.v);
+    return *this;
+  }
   ~Ball() { arb_clear(v); }
 };
 

@@ -26,8 +26,12 @@ struct DistanceResult {
   std::string minimizers; ///< a count ("1", "2", ...) or "infinite"
   std::vector<std::array<std::array<double, 3>, 2>> pairs; ///< (point on a, point on b), approx
   int critical_candidates = 0;
-  int eliminated_degree = 0; ///< degree of the point-quadric polynomial
-  bool solid = false;        ///< solid distance requested (0 when the volumes overlap)
+  int eliminated_degree = 0; ///< degree of the eliminated univariate polynomial
+  /// Degrees of the offset system (quadric pairs): the equations, the two resultants in
+  /// (x, y), the univariate eliminants onto x, y, z, and their square-free parts (compare
+  /// seed 000 Table 1). Empty when the closed forms or the point-quadric sextic applied.
+  std::vector<long> system_degrees, bivariate_degrees, univariate_degrees, squarefree_degrees;
+  bool solid = false; ///< solid distance requested (0 when the volumes overlap)
 };
 
 DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,

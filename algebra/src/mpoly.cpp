@@ -1,0 +1,201 @@
+#include "surfcert/algebra/mpoly.hpp"
+
+#include <flint/fmpz_mpoly_factor.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace surfcert::algebra {
+
+namespace {
+
+// One context for the whole program: three variables, lexicographic (x > y > z). FLINT
+// contexts are read-only after initialisation, so sharing it between threads is safe.
+struct Ctx {
+  fmpz_mpoly_ctx_t c;
+  Ctx() { fmpz_mpoly_ctx_init(c, 3, ORD_LEX); }
+  ~Ctx() { fmpz_mpoly_ctx_clear(c); }
+};
+
+fmpz_mpoly_ctx_struct* shared_ctx() {
+  static Ctx ctx;
+  return ctx.c;
+}
+
+} // namespace
+
+const fmpz_mpoly_ctx_struct* MPoly::ctx() {
+  return shared_ctx();
+}
+
+MPoly::MPoly() {
+  fmpz_mpoly_init(v_, shared_ctx());
+}
+MPoly::MPoly(long c) : MPoly() {
+  fmpz_mpoly_set_si(v_, c, shared_ctx());
+}
+MPoly::MPoly(const core::Integer& c) : MPoly() {
+  fmpz_mpoly_set_fmpz(v_, c.raw(), shared_ctx());
+}
+MPoly::MPoly(const MPoly& o) : MPoly() {
+  fmpz_mpoly_set(v_, o.v_, shared_ctx());
+}
+MPoly::MPoly(MPoly&& o) noexcept : MPoly() {
+  fmpz_mpoly_swap(v_, o.v_, shared_ctx());
+}
+MPoly& MPoly::operator=(MPoly o) noexcept {
+  fmpz_mpoly_swap(v_, o.v_, shared_ctx());
+  return *this;
+}
+MPoly::~MPoly() {
+  fmpz_mpoly_clear(v_, shared_ctx());
+}
+
+MPoly MPoly::var(int i) {
+  MPoly r;
+  fmpz_mpoly_gen(r.v_, i, shared_ctx());
+  return r;
+}
+
+bool MPoly::is_zero() const {
+  return fmpz_mpoly_is_zero(v_, shared_ctx());
+}
+bool MPoly::is_constant() const {
+  return fmpz_mpoly_is_fmpz(v_, shared_ctx());
+}
+long MPoly::total_degree() const {
+  return fmpz_mpoly_total_degree_si(v_, shared_ctx());
+}
+long MPoly::degree(int var) const {
+  return fmpz_mpoly_degree_si(v_, var, shared_ctx());
+}
+long MPoly::terms() const {
+  return fmpz_mpoly_length(v_, shared_ctx());
+}
+MPoly MPoly::derivative(int var) const {
+  MPoly r;
+  fmpz_mpoly_derivative(r.v_, v_, var, shared_ctx());
+  return r;
+}
+
+MPoly operator+(const MPoly& a, const MPoly& b) {
+  MPoly r;
+  fmpz_mpoly_add(r.v_, a.v_, b.v_, shared_ctx());
+  return r;
+}
+MPoly operator-(const MPoly& a, const MPoly& b) {
+  MPoly r;
+  fmpz_mpoly_sub(r.v_, a.v_, b.v_, shared_ctx());
+  return r;
+}
+MPoly operator*(const MPoly& a, const MPoly& b) {
+  MPoly r;
+  fmpz_mpoly_mul(r.v_, a.v_, b.v_, shared_ctx());
+  return r;
+}
+MPoly operator-(const MPoly& a) {
+  MPoly r;
+  fmpz_mpoly_neg(r.v_, a.v_, shared_ctx());
+  return r;
+}
+bool operator==(const MPoly& a, const MPoly& b) {
+  return fmpz_mpoly_equal(a.v_, b.v_, shared_ctx());
+}
+
+MPoly resultant(const MPoly& a, const MPoly& b, int var) {
+  MPoly r;
+  if (!fmpz_mpoly_resultant(r.raw_mut(), a.raw(), b.raw(), var, shared_ctx()))
+    throw std::runtime_error("fmpz_mpoly_resultant failed");
+  return r;
+}
+
+MPoly gcd(const MPoly& a, const MPoly& b) {
+  MPoly r;
+  if (!fmpz_mpoly_gcd(r.raw_mut(), a.raw(), b.raw(), shared_ctx()))
+    throw std::runtime_error("fmpz_mpoly_gcd failed");
+  return r;
+}
+
+MPoly squarefree_part(const MPoly& a) {
+  if (a.is_zero() || a.is_constant()) return a;
+  fmpz_mpoly_factor_t f;
+  fmpz_mpoly_factor_init(f, shared_ctx());
+  if (!fmpz_mpoly_factor_squarefree(f, a.raw(), shared_ctx())) {
+    fmpz_mpoly_factor_clear(f, shared_ctx());
+    throw std::runtime_error("fmpz_mpoly_factor_squarefree failed");
+  }
+  MPoly r(1);
+  for (slong i = 0; i < f->num; ++i) {
+    MPoly t;
+    fmpz_mpoly_set(t.raw_mut(), f->poly + i, shared_ctx());
+    r = r * t;
+  }
+  fmpz_mpoly_factor_clear(f, shared_ctx());
+  return r;
+}
+
+UPolyZ to_univariate(const MPoly& a, int var) {
+  UPolyZ r;
+  if (!fmpz_mpoly_is_fmpz_poly(a.raw(), var, shared_ctx()) ||
+      !fmpz_mpoly_get_fmpz_poly(r.raw_mut(), a.raw(), var, shared_ctx()))
+    throw std::invalid_argument("to_univariate: the polynomial involves another variable");
+  return r;
+}
+
+void evaluate(arb_t out, const MPoly& a, const std::array<const arb_struct*, 3>& b, long prec) {
+  const slong n = a.terms();
+  arb_zero(out);
+  if (n == 0) return;
+  // Powers of each variable up to its degree, then term by term.
+  std::array<std::vector<arb_struct>, 3> pw;
+  for (int v = 0; v < 3; ++v) {
+    const long d = a.degree(v);
+    pw[static_cast<size_t>(v)].resize(static_cast<size_t>(d < 0 ? 1 : d + 1));
+    auto& t = pw[static_cast<size_t>(v)];
+    for (auto& x : t)
+      arb_init(&x);
+    arb_one(&t[0]);
+    for (size_t k = 1; k < t.size(); ++k)
+      arb_mul(&t[k], &t[k - 1], b[static_cast<size_t>(v)], prec);
+  }
+  fmpz_t c;
+  fmpz_init(c);
+  arb_t term;
+  arb_init(term);
+  slong e[3];
+  for (slong i = 0; i < n; ++i) {
+    fmpz_mpoly_get_term_coeff_fmpz(c, a.raw(), i, shared_ctx());
+    fmpz_mpoly_get_term_exp_si(e, a.raw(), i, shared_ctx());
+    arb_set_fmpz(term, c);
+    for (int v = 0; v < 3; ++v)
+      if (e[v] > 0)
+        arb_mul(term, term, &pw[static_cast<size_t>(v)][static_cast<size_t>(e[v])], prec);
+    arb_add(out, out, term, prec);
+  }
+  arb_clear(term);
+  fmpz_clear(c);
+  for (auto& t : pw)
+    for (auto& x : t)
+      arb_clear(&x);
+}
+
+MPoly quadric_poly(const std::array<std::array<core::Rational, 4>, 4>& m) {
+  // Common denominator of the entries, so every coefficient becomes an integer.
+  core::Integer den(1);
+  for (const auto& row : m)
+    for (const auto& x : row) {
+      fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
+    }
+  std::array<MPoly, 4> p{MPoly::var(0), MPoly::var(1), MPoly::var(2), MPoly(1)};
+  MPoly r;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j) {
+      core::Rational c = m[i][j] * core::Rational(den);
+      if (j != i) c = c * core::Rational(2);
+      if (c.is_zero()) continue;
+      r = r + MPoly(c.num()) * p[i] * p[j];
+    }
+  return r;
+}
+
+} // namespace surfcert::algebra

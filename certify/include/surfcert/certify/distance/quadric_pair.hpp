@@ -1,0 +1,31 @@
+// surfcert::certify::quadric_pair_distance: the certified minimum distance between two
+// quadrics that do not meet, neither of them a sphere (the offset method, seed 000 eq. 2-6).
+//
+// Offset system over Z: with S1: f = 0 the source and S2: g = 0 the target, a closest pair
+// (p, q) has q = p + mu grad f(p) and grad g(q) parallel to grad f(p). As g is quadratic,
+// grad g(q) = X + mu Y with X = grad g(p), Y = Hess(g) grad f(p), so
+//   f(p) = 0,  C(p) = det[grad f, X, Y] = 0,  G(p) = 2 g Q^2 - 2 (X.N) P Q + (N.Y) P^2 = 0
+// where N = grad f, P = l.(N x X), Q = l.(N x Y) for a fixed integer vector l (mu = -P/Q, and
+// P = Q = 0 keeps G = 0, so every closest p, singular or not, solves the system). The real
+// solutions are covered by boxes (algebra::SolutionCover: FLINT resultants, exact isolation).
+// Each box gets a certified LOWER bound for the distance of any closest pair with p in it (the
+// real roots mu of g(p + mu N) = 0 over the box, in Arb; from the exact point-quadric sextic
+// when grad f may vanish there), and the best boxes a certified UPPER bound from a genuine
+// pair (a point of S1 near the box, the point of S2 on its normal line). Boxes are refined by
+// exact bisection until upper - lower <= 10^-digits lower. Boxes whose lower bound exceeds
+// the best upper bound are dropped (they cannot hold the minimum). Minimizers: the boxes left
+// whose lower bound is <= the upper bound; equality of two minimal distances is not proven
+// (noted), the distance enclosure is certified regardless.
+// Preconditions: the quadrics do not meet (the caller decided it from the certified topology).
+// If neither surface is bounded the minimum may not be attained: status undecided with the
+// enclosure [0, upper].
+#pragma once
+
+#include "surfcert/certify/distance/distance.hpp"
+
+namespace surfcert::certify {
+
+DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                     long digits);
+
+} // namespace surfcert::certify
