@@ -1,0 +1,228 @@
+#include "surfcert/certify/distance/offset_minimum.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+using algebra::MPoly;
+using core::Rational;
+
+std::array<const arb_struct*, 3> ball_point(const Ball (&x)[3]) {
+  return {x[0].v, x[1].v, x[2].v};
+}
+
+void ball_norm(arb_t out, const Ball (&v)[3], long prec) {
+  Ball t;
+  arb_zero(out);
+  for (const auto& c : v) {
+    arb_sqr(t.v, c.v, prec);
+    arb_add(out, out, t.v, prec);
+  }
+  arb_sqrtpos(out, out, prec);
+}
+
+bool ball_quadratic_roots(const arb_t a2, const arb_t a1, const arb_t a0, Ball (&r)[2], int& n,
+                          long prec) {
+  n = 0;
+  Ball disc, t, sq;
+  arb_mul(disc.v, a1, a1, prec);
+  arb_mul(t.v, a2, a0, prec);
+  arb_mul_2exp_si(t.v, t.v, 2);
+  arb_sub(disc.v, disc.v, t.v, prec);
+  if (arb_is_negative(disc.v)) return true; // no real root
+  if (!arb_is_positive(disc.v)) return false;
+  arb_sqrt(sq.v, disc.v, prec);
+  // Stable forms: t = -2 a0 / (a1 + s sqrt(disc)) for the root of smaller magnitude, and
+  // (-a1 - s sqrt(disc)) / (2 a2) for the other when a2 != 0 (s = sign of a1).
+  Ball den;
+  if (arb_is_nonnegative(a1))
+    arb_add(den.v, a1, sq.v, prec);
+  else
+    arb_sub(den.v, a1, sq.v, prec);
+  if (arb_contains_zero(den.v)) return false;
+  arb_div(r[0].v, a0, den.v, prec);
+  arb_mul_2exp_si(r[0].v, r[0].v, 1);
+  arb_neg(r[0].v, r[0].v);
+  n = 1;
+  if (arb_is_zero(a2)) return true;
+  if (arb_contains_zero(a2)) return false;
+  arb_neg(r[1].v, den.v);
+  arb_div(r[1].v, r[1].v, a2, prec);
+  arb_mul_2exp_si(r[1].v, r[1].v, -1);
+  n = 2;
+  return true;
+}
+
+SourceQuadric::SourceQuadric(const core::QuadricMatrix& q)
+    : quadric(&q), f(algebra::quadric_poly(q.matrix())) {
+  for (size_t i = 0; i < 3; ++i)
+    N[i] = f.derivative(static_cast<int>(i));
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      MPoly h = N[i].derivative(static_cast<int>(j)); // a constant
+      fmpz_t c;
+      fmpz_init(c);
+      const ulong zero[3] = {0, 0, 0};
+      fmpz_mpoly_get_coeff_fmpz_ui(c, h.raw(), zero, MPoly::ctx());
+      fmpq_set_fmpz_frac(hess[i][j].raw_mut(), c, core::Integer(1).raw());
+      fmpz_clear(c);
+    }
+}
+
+bool SourceQuadric::project(const Rational (&c)[3], Ball (&p)[3], long prec) const {
+  // f(c + t n) = f(c) + t |n|^2 + t^2 n^T H n / 2 with n = grad f(c): exact coefficients.
+  Ball cb[3], n[3], b0, b1, b2, tmp, h;
+  for (size_t k = 0; k < 3; ++k)
+    arb_set_fmpq(cb[k].v, c[k].raw(), prec);
+  for (size_t k = 0; k < 3; ++k)
+    algebra::evaluate(n[k].v, N[k], ball_point(cb), prec);
+  algebra::evaluate(b0.v, f, ball_point(cb), prec);
+  for (size_t i = 0; i < 3; ++i) {
+    arb_addmul(b1.v, n[i].v, n[i].v, prec);
+    for (size_t j = 0; j < 3; ++j) {
+      arb_mul(tmp.v, n[i].v, n[j].v, prec);
+      arb_set_fmpq(h.v, hess[i][j].raw(), prec);
+      arb_addmul(b2.v, tmp.v, h.v, prec);
+    }
+  }
+  arb_mul_2exp_si(b2.v, b2.v, -1);
+  Ball tr[2];
+  int nt = 0;
+  if (!ball_quadratic_roots(b2.v, b1.v, b0.v, tr, nt, prec) || nt == 0) return false;
+  for (size_t k = 0; k < 3; ++k) {
+    arb_set(p[k].v, cb[k].v);
+    arb_addmul(p[k].v, tr[0].v, n[k].v, prec);
+  }
+  return true;
+}
+
+namespace {
+
+bool upper_less(const Ball& a, const Ball& b, long prec) {
+  arf_t u1, u2;
+  arf_init(u1);
+  arf_init(u2);
+  arb_get_ubound_arf(u1, a.v, prec);
+  arb_get_ubound_arf(u2, b.v, prec);
+  bool r = arf_cmp(u1, u2) < 0;
+  arf_clear(u1);
+  arf_clear(u2);
+  return r;
+}
+
+// RAII for an arf_t scalar.
+struct Arf {
+  arf_t v;
+  Arf() { arf_init(v); }
+  Arf(const Arf&) = delete;
+  Arf& operator=(const Arf&) = delete;
+  Arf(Arf&& o) noexcept {
+    arf_init(v);
+    arf_swap(v, o.v);
+  }
+  ~Arf() { arf_clear(v); }
+};
+
+} // namespace
+
+void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src,
+                         const MinimumTarget& tgt, long digits, bool source_is_a, bool compact,
+                         DistanceResult& out) {
+  const long target_bits = static_cast<long>(static_cast<double>(digits) * 3.33) + 24;
+  // Widths are relative to the size of the solutions (a power of two >= every coordinate), so
+  // a scene scaled by 10^8 needs no extra rounds.
+  Rational magnitude(1);
+  for (const auto& rs : cover.roots)
+    for (const auto& r : rs)
+      while (core::abs(r.lo) > magnitude || core::abs(r.hi) > magnitude)
+        magnitude = magnitude * Rational(2);
+  long bits = 8;
+  Arf L, U, lb, tol;
+  std::vector<CandidatePair> best;
+  bool done = false, counted = false;
+  for (int round = 0; round < 40 && !done; ++round) {
+    if (bits >= 32 && !counted) bits = 32; // one round exactly at 2^-32 for the count
+    Rational width = magnitude;
+    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
+    algebra::refine_cover(cover, width);
+    if (!counted && bits >= 32) { // phantom boxes of the projections are gone by now
+      out.critical_candidates = static_cast<int>(cover.boxes.size());
+      counted = true;
+    }
+    const long prec = algebra::precision_for_width(width) + 64;
+    std::vector<Arf> lows(cover.boxes.size());
+    std::vector<std::optional<CandidatePair>> ups(cover.boxes.size());
+    arf_pos_inf(L.v);
+    arf_pos_inf(U.v);
+    for (size_t i = 0; i < cover.boxes.size(); ++i) {
+      Ball box[3];
+      Rational centre[3];
+      algebra::box_balls(cover, cover.boxes[i], box[0].v, box[1].v, box[2].v, prec);
+      for (size_t k = 0; k < 3; ++k) {
+        const auto& r = cover.roots[k][cover.boxes[i][k]];
+        centre[k] = (r.lo + r.hi) * Rational(1, 2);
+      }
+      tgt.lower(lows[i].v, box, centre, prec);
+      if (arf_cmp(lows[i].v, L.v) < 0) arf_set(L.v, lows[i].v);
+      if (arf_is_pos_inf(lows[i].v)) continue;
+      Ball p[3];
+      if (src.project(centre, p, prec)) ups[i] = tgt.upper(p, prec);
+      if (!ups[i]) continue;
+      arb_get_ubound_arf(lb.v, ups[i]->d.v, prec);
+      if (arf_cmp(lb.v, U.v) < 0) arf_set(U.v, lb.v);
+    }
+    // Drop the boxes that cannot hold the minimum; the others are the minimizer candidates.
+    // Not before 2^-32: the boxes counted as critical candidates are the real ones by then.
+    if (!arf_is_pos_inf(U.v) && bits >= 32) {
+      std::vector<std::array<size_t, 3>> kept;
+      best.clear();
+      for (size_t i = 0; i < cover.boxes.size(); ++i)
+        if (arf_cmp(lows[i].v, U.v) <= 0) {
+          kept.push_back(cover.boxes[i]);
+          if (ups[i]) best.push_back(std::move(*ups[i]));
+        }
+      cover.boxes = std::move(kept);
+    }
+    if (!arf_is_pos_inf(U.v) && arf_sgn(L.v) > 0) {
+      arf_sub(tol.v, U.v, L.v, prec, ARF_RND_UP);
+      arf_mul_2exp_si(lb.v, L.v, -target_bits);
+      if (arf_cmp(tol.v, lb.v) <= 0) done = true;
+    }
+    if (bits >= 2 * target_bits + 256) break;
+    bits = std::min(2 * bits, 2 * target_bits + 256);
+  }
+  if (!counted) out.critical_candidates = static_cast<int>(cover.boxes.size());
+  if (arf_is_pos_inf(U.v) || arf_sgn(L.v) < 0) {
+    out.status = Status::Undecided;
+    out.note = "no certified pair of points found at the working precision";
+    return;
+  }
+  out.lower = decimal_bound(L.v, false, digits + 2);
+  out.upper = decimal_bound(U.v, true, digits + 2);
+  out.approx = 0.5 * (arf_get_d(L.v, ARF_RND_NEAR) + arf_get_d(U.v, ARF_RND_NEAR));
+  std::sort(best.begin(), best.end(), [&](const CandidatePair& a, const CandidatePair& b) {
+    return upper_less(a.d, b.d, 128);
+  });
+  for (const auto& bp : best)
+    out.pairs.push_back(source_is_a ? std::array<std::array<double, 3>, 2>{bp.p, bp.q}
+                                    : std::array<std::array<double, 3>, 2>{bp.q, bp.p});
+  out.minimizers = std::to_string(cover.boxes.size());
+  if (!compact) {
+    out.status = Status::Undecided;
+    out.note = "neither surface is bounded: the minimum over the critical pairs is enclosed, "
+               "but the infimum may lie at infinity";
+    out.lower = "0";
+  } else if (!done) {
+    out.status = Status::Undecided;
+    out.note = "the enclosure did not reach the requested width";
+  } else {
+    out.status = Status::Certified;
+    if (cover.boxes.size() > 1)
+      out.note = "several critical pairs at distances that agree to the requested precision: "
+                 "listed as minimizers (their equality is not proven)";
+  }
+}
+
+} // namespace surfcert::certify
