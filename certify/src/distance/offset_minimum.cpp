@@ -147,10 +147,6 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
     Rational width = magnitude;
     fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
     algebra::refine_cover(cover, width);
-    if (!counted && bits >= 32) { // phantom boxes of the projections are gone by now
-      out.critical_candidates = static_cast<int>(cover.boxes.size());
-      counted = true;
-    }
     const long prec = algebra::precision_for_width(width) + 64;
     std::vector<Arf> lows(cover.boxes.size());
     std::vector<std::optional<CandidatePair>> ups(cover.boxes.size());
@@ -173,9 +169,19 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
       arb_get_ubound_arf(lb.v, ups[i]->d.v, prec);
       if (arf_cmp(lb.v, U.v) < 0) arf_set(U.v, lb.v);
     }
+    if (!arf_is_pos_inf(U.v) && arf_sgn(L.v) > 0) {
+      arf_sub(tol.v, U.v, L.v, prec, ARF_RND_UP);
+      arf_mul_2exp_si(lb.v, L.v, -target_bits);
+      if (arf_cmp(tol.v, lb.v) <= 0) done = true;
+    }
     // Drop the boxes that cannot hold the minimum; the others are the minimizer candidates.
-    // Not before 2^-32: the boxes counted as critical candidates are the real ones by then.
-    if (!arf_is_pos_inf(U.v) && bits >= 32) {
+    // Not before 2^-32 (the boxes counted as critical candidates are the real ones by then)
+    // unless already done (exact rational solutions give boxes of width 0).
+    if (!counted && (bits >= 32 || done)) { // phantom boxes are gone by 2^-32
+      out.critical_candidates = static_cast<int>(cover.boxes.size());
+      counted = true;
+    }
+    if (!arf_is_pos_inf(U.v) && (bits >= 32 || done)) {
       std::vector<std::array<size_t, 3>> kept;
       best.clear();
       for (size_t i = 0; i < cover.boxes.size(); ++i)
@@ -184,11 +190,6 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
           if (ups[i]) best.push_back(std::move(*ups[i]));
         }
       cover.boxes = std::move(kept);
-    }
-    if (!arf_is_pos_inf(U.v) && arf_sgn(L.v) > 0) {
-      arf_sub(tol.v, U.v, L.v, prec, ARF_RND_UP);
-      arf_mul_2exp_si(lb.v, L.v, -target_bits);
-      if (arf_cmp(tol.v, lb.v) <= 0) done = true;
     }
     if (bits >= 2 * target_bits + 256) break;
     bits = std::min(2 * bits, 2 * target_bits + 256);
