@@ -29,8 +29,8 @@ const char* kUsage =
     "  surfcert classify 'EQ_A' 'EQ_B' [--mode exact|filtered|float] [--json]\n"
     "  surfcert intersect 'EQ_A' 'EQ_B' [--mode M] [--tol T] [--json] [--export F.obj|F.ply] "
     "[--svg F.svg]\n"
-    "  surfcert distance 'EQ_A' 'EQ_B' [--digits N] [--solid] [--json]   (one surface a sphere, "
-    "for now)\n"
+    "  surfcert distance 'SURF_A' 'SURF_B' [--digits N] [--solid] [--json]   (equations, or JSON "
+    "surfaces incl. {\"type\":\"torus\",...})\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N]     (JSON lines on stdin -> JSON lines on stdout)\n"
     "  surfcert --help | --version\n"
@@ -210,10 +210,16 @@ int cmd_distance(const std::vector<std::string>& args) {
     else
       eq.push_back(args[i]);
   }
-  if (eq.size() != 2) throw UsageError("distance needs exactly two equations");
-  auto a = core::io::quadric_from_equation(eq[0], Location{"<argument 1>", 1, 1, ""});
-  auto b = core::io::quadric_from_equation(eq[1], Location{"<argument 2>", 1, 1, ""});
-  certify::DistanceResult d = certify::surface_distance(a, b, digits, solid);
+  if (eq.size() != 2) throw UsageError("distance needs exactly two surfaces");
+  // An argument starting with '{' is a JSON surface (shapes, matrices, a torus), else an
+  // equation.
+  auto surface = [](const std::string& text, const std::string& src) -> core::Surface {
+    if (!text.empty() && text[0] == '{')
+      return core::io::read_surface(core::io::parse_json(text, src), src, "$");
+    return core::io::quadric_from_equation(text, Location{src, 1, 1, ""});
+  };
+  certify::DistanceResult d = certify::surface_distance(
+      surface(eq[0], "<argument 1>"), surface(eq[1], "<argument 2>"), digits, solid);
   if (json) {
     std::cout << core::io::dump(certify::distance_envelope_json(d, digits), 2) << "\n";
   } else {

@@ -4,6 +4,7 @@
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
+#include "surfcert/certify/distance/torus_distance.hpp"
 
 #include "surfcert/algebra/mpoly.hpp"
 
@@ -339,6 +340,27 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   if (count > 1 && !continuum)
     out.note = "several critical points at distances that agree to the requested precision: listed "
                "as minimizers";
+  return out;
+}
+
+DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
+                                bool solid) {
+  const auto* qa = std::get_if<core::QuadricMatrix>(&a);
+  const auto* qb = std::get_if<core::QuadricMatrix>(&b);
+  if (qa && qb) return surface_distance(*qa, *qb, digits, solid);
+  DistanceResult out;
+  out.solid = solid;
+  if (!qa && !qb) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: distance between two tori";
+    return out;
+  }
+  const auto& t = std::get<core::Torus>(qa ? b : a);
+  out = quadric_torus_distance(qa ? *qa : *qb, t, digits, qa != nullptr);
+  out.solid = solid;
+  if (solid)
+    out.note += (out.note.empty() ? "" : "; ") +
+                std::string("solid applies to two ellipsoids only: surface distance");
   return out;
 }
 

@@ -290,4 +290,27 @@ QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::
                    "an object without them");
 }
 
+Surface read_surface(const Json& v, const std::string& source, const std::string& path) {
+  if (!v.is_object()) return read_quadric(v, source, path);
+  const Json* tj = v.find("type");
+  if (!tj || !tj->is_string() || tj->text() != "torus") return read_quadric(v, source, path);
+  check_fields(v, {"type", "center", "axis", "major_radius", "minor_radius"}, source, path);
+  std::string cp = json_path_child(path, "center"), ap = json_path_child(path, "axis");
+  auto c = read_vector(require(v, "center", source, path), 3, source, cp);
+  auto a = read_vector(require(v, "axis", source, path), 3, source, ap);
+  const Json& Rj = require(v, "major_radius", source, path);
+  const Json& rj = require(v, "minor_radius", source, path);
+  Rational R = read_positive(Rj, source, json_path_child(path, "major_radius"));
+  Rational r = read_positive(rj, source, json_path_child(path, "minor_radius"));
+  if (a[0].is_zero() && a[1].is_zero() && a[2].is_zero())
+    throw InputError(at(require(v, "axis", source, path), source, ap), "a nonzero axis vector",
+                     "[0, 0, 0]");
+  if (!(R > r))
+    throw InputError(at(Rj, source, json_path_child(path, "major_radius")),
+                     "major_radius > minor_radius (a ring torus; spindle and horn tori are not "
+                     "supported)",
+                     R.to_string() + " <= " + r.to_string());
+  return make_torus({c[0], c[1], c[2]}, {a[0], a[1], a[2]}, R, r);
+}
+
 } // namespace surfcert::core::io

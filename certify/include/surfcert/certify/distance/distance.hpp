@@ -1,6 +1,7 @@
 // surfcert::certify::surface_distance: the certified minimum distance between two surfaces.
 //
-// First capability (issue "Certified minimum distance", partial): a sphere against any quadric.
+// Quadric pairs: a sphere against any quadric below; two quadrics without a sphere through the
+// offset system (quadric_pair.hpp); a quadric and a ring torus (torus_distance.hpp).
 // Whether the surfaces meet is decided by the certified QSIC topology (distance 0, with a
 // witness point); otherwise the distance is |d - r| for the critical distances d from the
 // sphere's centre to the quadric (point_quadric_critical: the exact point-quadric sextic,
@@ -11,6 +12,7 @@
 
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
+#include "surfcert/core/surface.hpp"
 
 #include <array>
 #include <string>
@@ -36,6 +38,12 @@ struct DistanceResult {
 
 DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                 long digits, bool solid);
+
+/// Any two supported surfaces: two quadrics as above; a quadric and a ring torus
+/// (quadric_torus_distance). Two tori: undecided ("not supported yet"). `solid` applies to
+/// two ellipsoids only.
+DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
+                                bool solid);
 
 /// {"status", "note"?, "result": {"distance": {"lower", "upper", "approx"}, "minimizers",
 /// "pairs", "critical_candidates", "eliminated_degree", "digits", "solid"}}

@@ -9,11 +9,13 @@
 // Numbers: JSON integers exactly; other JSON number literals are binary doubles and are read
 // as their exact dyadic value; strings are exact decimals or p/q ("0.1" = 1/10).
 // Every problem is an InputError naming the JSON path, line and column; unknown fields too.
+// Distance queries also accept a ring torus (read_surface).
 #pragma once
 
 #include "surfcert/core/error.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/quadric.hpp"
+#include "surfcert/core/surface.hpp"
 
 #include <set>
 #include <string>
@@ -32,6 +34,10 @@ Rational read_number(const Json& v, const std::string& source, const std::string
 
 /// A quadric from a SURFACE JSON value (see above).
 QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::string& path);
+
+/// A surface for distance queries: {"type": "torus", "center": [x,y,z], "axis": [x,y,z],
+/// "major_radius": R, "minor_radius": r} (R > r > 0, axis nonzero), or any SURFACE above.
+Surface read_surface(const Json& v, const std::string& source, const std::string& path);
 
 /// A quadric from an equation string (degree 1 or 2 required).
 QuadricMatrix quadric_from_equation(const std::string& text, const Location& where);

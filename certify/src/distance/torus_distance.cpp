@@ -1,0 +1,699 @@
+#include "surfcert/certify/distance/torus_distance.hpp"
+
+#include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/certify/distance/offset_minimum.hpp"
+#include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/qsic.hpp"
+
+#include <arb.h>
+
+#include <cmath>
+#include <optional>
+
+namespace surfcert::certify {
+
+using algebra::MPoly;
+using core::Integer;
+using core::Rational;
+
+namespace {
+
+using V3 = std::array<MPoly, 3>;
+
+MPoly dot(const V3& a, const V3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+Integer lcm(const Integer& a, const Integer& b) {
+  Integer r;
+  fmpz_lcm(r.raw_mut(), a.raw(), b.raw());
+  return r;
+}
+
+// The torus over Z: W = D (p - c) and an integer axis A (same direction), with D chosen so
+// that D c, D R and D r are integers; T > 0 outside the solid torus, < 0 inside the tube.
+struct TorusPolys {
+  const core::Torus* torus = nullptr;
+  Integer D;
+  V3 W, A;
+  MPoly T;
+  Integer DR2; ///< (D R)^2
+};
+
+TorusPolys torus_polys(const core::Torus& t) {
+  TorusPolys o;
+  o.torus = &t;
+  o.D = lcm(t.R.den(), t.r.den());
+  Integer ad(1);
+  for (size_t i = 0; i < 3; ++i) {
+    o.D = lcm(o.D, t.centre[i].den());
+    ad = lcm(ad, t.axis[i].den());
+  }
+  const Rational Dq(o.D), adq(ad);
+  for (size_t i = 0; i < 3; ++i) {
+    o.W[i] = MPoly(o.D) * MPoly::var(static_cast<int>(i)) - MPoly((t.centre[i] * Dq).num());
+    o.A[i] = MPoly((t.axis[i] * adq).num());
+  }
+  const Rational DR = t.R * Dq, Dr = t.r * Dq;
+  o.DR2 = (DR * DR).num();
+  const MPoly u = dot(o.W, o.W), s = dot(o.W, o.A), A2 = dot(o.A, o.A);
+  const MPoly K((DR * DR - Dr * Dr).num());
+  o.T = A2 * (u + K) * (u + K) - MPoly(4) * MPoly(o.DR2) * (A2 * u - s * s);
+  return o;
+}
+
+// dist(p, K) for a ball point p (closed form), and the nearest point of K (approximate).
+void circle_distance(arb_t out, const core::Torus& t, const Ball (&p)[3], long prec,
+                     std::array<double, 3>* nearest = nullptr) {
+  Ball w[3], a[3], an, h, w2, rho, tmp, R;
+  for (size_t i = 0; i < 3; ++i) {
+    arb_set_fmpq(tmp.v, t.centre[i].raw(), prec);
+    arb_sub(w[i].v, p[i].v, tmp.v, prec);
+    arb_set_fmpq(a[i].v, t.axis[i].raw(), prec);
+  }
+  ball_norm(an.v, a, prec);
+  for (size_t i = 0; i < 3; ++i) {
+    arb_addmul(h.v, w[i].v, a[i].v, prec);
+    arb_addmul(w2.v, w[i].v, w[i].v, prec);
+  }
+  arb_div(h.v, h.v, an.v, prec); // signed height over the plane of K
+  arb_sqr(tmp.v, h.v, prec);
+  arb_sub(rho.v, w2.v, tmp.v, prec);
+  arb_sqrtpos(rho.v, rho.v, prec); // distance to the axis
+  arb_set_fmpq(R.v, t.R.raw(), prec);
+  arb_sub(out, rho.v, R.v, prec);
+  arb_sqr(out, out, prec);
+  arb_addmul(out, h.v, h.v, prec);
+  arb_sqrtpos(out, out, prec);
+  if (nearest) {
+    double hd = arf_get_d(arb_midref(h.v), ARF_RND_NEAR),
+           rd = arf_get_d(arb_midref(rho.v), ARF_RND_NEAR),
+           and_ = arf_get_d(arb_midref(an.v), ARF_RND_NEAR), Rd = t.R.to_double_approx();
+    for (size_t i = 0; i < 3; ++i) {
+      double wi = arf_get_d(arb_midref(w[i].v), ARF_RND_NEAR),
+             ai = arf_get_d(arb_midref(a[i].v), ARF_RND_NEAR) / and_;
+      double radial = rd > 0 ? (wi - hd * ai) / rd : 0;
+      (*nearest)[i] = t.centre[i].to_double_approx() + Rd * radial;
+    }
+  }
+}
+
+// |dist(p, K) - r|: the distance from p to the torus, for every p in the box of balls.
+void torus_point_distance(arb_t out, const core::Torus& t, const Ball (&p)[3], long prec) {
+  Ball r;
+  circle_distance(out, t, p, prec);
+  arb_set_fmpq(r.v, t.r.raw(), prec);
+  arb_sub(out, out, r.v, prec);
+  arb_abs(out, out);
+}
+
+class TorusTarget : public MinimumTarget {
+public:
+  explicit TorusTarget(const core::Torus& t) : t_(t) {}
+  void lower(arf_t out, const Ball (&box)[3], const Rational (&)[3], long prec) const override {
+    Ball d;
+    torus_point_distance(d.v, t_, box, prec);
+    arb_get_lbound_arf(out, d.v, prec);
+    if (arf_sgn(out) < 0) arf_zero(out);
+  }
+  std::optional<CandidatePair> upper(const Ball (&p)[3], long prec) const override {
+    CandidatePair c;
+    std::array<double, 3> k{};
+    Ball D;
+    circle_distance(D.v, t_, p, prec, &k);
+    Ball r;
+    arb_set_fmpq(r.v, t_.r.raw(), prec);
+    arb_sub(c.d.v, D.v, r.v, prec);
+    arb_abs(c.d.v, c.d.v);
+    double Dd = arf_get_d(arb_midref(D.v), ARF_RND_NEAR), rd = t_.r.to_double_approx();
+    for (size_t i = 0; i < 3; ++i) {
+      c.p[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
+      c.q[i] = Dd > 0 ? k[i] + rd * (c.p[i] - k[i]) / Dd : k[i];
+    }
+    return c;
+  }
+
+private:
+  const core::Torus& t_;
+};
+
+// ---- sphere vs torus (closed form) ----------------------------------------------------------
+
+DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, long digits,
+                            bool sphere_first) {
+  DistanceResult out;
+  std::array<Rational, 3> c;
+  Rational k = s(0, 0), c2;
+  for (int i = 0; i < 3; ++i) {
+    c[static_cast<size_t>(i)] = -s(i, 3) / k;
+    c2 += c[static_cast<size_t>(i)] * c[static_cast<size_t>(i)];
+  }
+  const Rational rs2 = c2 - s(3, 3) / k;
+  // Exact: is the centre on the axis (a circle of nearest points) or on K (a circle too)?
+  Rational ww, wa, aa;
+  for (size_t i = 0; i < 3; ++i) {
+    Rational w = c[i] - t.centre[i];
+    ww += w * w;
+    wa += w * t.axis[i];
+    aa += t.axis[i] * t.axis[i];
+  }
+  const Rational rho2 = ww - wa * wa / aa;
+  const bool on_axis = rho2.is_zero(), on_circle = wa.is_zero() && rho2 == t.R * t.R;
+  out.critical_candidates = on_axis ? 2 : 4;
+  out.eliminated_degree = 2;
+  for (long prec = 128;; prec *= 2) {
+    Ball p[3], Dn, Df, r, R, rs, dmin, dmax, d;
+    for (size_t i = 0; i < 3; ++i)
+      arb_set_fmpq(p[i].v, c[i].raw(), prec);
+    circle_distance(Dn.v, t, p, prec);
+    // Farthest point of K: sqrt((rho + R)^2 + h^2) = sqrt(D_near^2 + 4 R rho).
+    Ball rho, tmp;
+    arb_set_fmpq(rho.v, rho2.raw(), prec);
+    arb_sqrtpos(rho.v, rho.v, prec);
+    arb_set_fmpq(R.v, t.R.raw(), prec);
+    arb_mul(tmp.v, R.v, rho.v, prec);
+    arb_mul_2exp_si(tmp.v, tmp.v, 2);
+    arb_sqr(Df.v, Dn.v, prec);
+    arb_add(Df.v, Df.v, tmp.v, prec);
+    arb_sqrtpos(Df.v, Df.v, prec);
+    arb_set_fmpq(r.v, t.r.raw(), prec);
+    arb_set_fmpq(rs.v, rs2.raw(), prec);
+    arb_sqrt(rs.v, rs.v, prec);
+    arb_sub(dmin.v, Dn.v, r.v, prec);
+    arb_abs(dmin.v, dmin.v);
+    arb_add(dmax.v, Df.v, r.v, prec);
+    const char* which = nullptr;
+    if (arb_gt(dmin.v, rs.v)) {
+      arb_sub(d.v, dmin.v, rs.v, prec);
+      which = "near";
+    } else if (arb_lt(dmax.v, rs.v)) {
+      arb_sub(d.v, rs.v, dmax.v, prec);
+      which = "far";
+    } else if (arb_lt(dmin.v, rs.v) && arb_gt(dmax.v, rs.v)) {
+      out.status = Status::Certified;
+      out.lower = out.upper = "0";
+      out.minimizers = "infinite";
+      out.note = "the sphere meets the torus (its radius lies strictly between the smallest and "
+                 "largest distances from its centre to the torus)";
+      return out;
+    } else if (prec > 4096 + 4 * digits) {
+      out.status = Status::Undecided;
+      out.note = "the sphere may touch the torus: not separated at the working precision";
+      return out;
+    } else {
+      continue;
+    }
+    arf_t lo, hi;
+    arf_init(lo);
+    arf_init(hi);
+    arb_get_lbound_arf(lo, d.v, prec);
+    arb_get_ubound_arf(hi, d.v, prec);
+    // Relative width reached?
+    arf_t w;
+    arf_init(w);
+    arf_sub(w, hi, lo, prec, ARF_RND_UP);
+    arf_mul_2exp_si(lo, lo, -static_cast<long>(static_cast<double>(digits) * 3.33) - 4);
+    const bool enough = arf_cmp(w, lo) <= 0;
+    arb_get_lbound_arf(lo, d.v, prec);
+    if (enough) {
+      out.status = Status::Certified;
+      out.lower = decimal_bound(lo, false, digits + 2);
+      out.upper = decimal_bound(hi, true, digits + 2);
+      out.approx = arf_get_d(arb_midref(d.v), ARF_RND_NEAR);
+      out.minimizers = (on_axis || on_circle) ? "infinite" : "1";
+      if (!on_axis && !on_circle) { // the pair, approximately
+        std::array<double, 3> kk{};
+        Ball dd;
+        circle_distance(dd.v, t, p, prec, &kk);
+        const std::array<double, 3> cd{c[0].to_double_approx(), c[1].to_double_approx(),
+                                       c[2].to_double_approx()};
+        const double rr = t.r.to_double_approx(), rsd = std::sqrt(rs2.to_double_approx());
+        if (std::string(which) == "far") // the farthest point of K, opposite the nearest
+          for (size_t i = 0; i < 3; ++i)
+            kk[i] = 2 * t.centre[i].to_double_approx() - kk[i];
+        std::array<double, 3> tq{}, sq{};
+        const double n = std::hypot(cd[0] - kk[0], cd[1] - kk[1], cd[2] - kk[2]);
+        const double sg = std::string(which) == "far" ? -1 : 1;
+        for (size_t i = 0; i < 3; ++i)
+          tq[i] = kk[i] + sg * rr * (cd[i] - kk[i]) / n;
+        const double m = std::hypot(tq[0] - cd[0], tq[1] - cd[1], tq[2] - cd[2]);
+        for (size_t i = 0; i < 3; ++i)
+          sq[i] = cd[i] + rsd * (tq[i] - cd[i]) / m;
+        out.pairs.push_back(sphere_first ? std::array<std::array<double, 3>, 2>{sq, tq}
+                                         : std::array<std::array<double, 3>, 2>{tq, sq});
+      }
+      arf_clear(lo);
+      arf_clear(hi);
+      arf_clear(w);
+      return out;
+    }
+    arf_clear(lo);
+    arf_clear(hi);
+    arf_clear(w);
+  }
+}
+
+// ---- plane vs torus (closed form, exact contact test) ------------------------------------------
+
+bool is_plane(const core::QuadricMatrix& q) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (!q(i, j).is_zero()) return false;
+  return true;
+}
+
+// Plane n.x = delta. dist(plane, K) |n| = alpha - sqrt(beta) with alpha = |n.c - delta| and
+// beta = R^2 |n x a|^2 / |a|^2 (K crosses the plane when alpha^2 < beta); the torus meets the
+// plane iff alpha - sqrt(beta) <= sqrt(gamma), gamma = r^2 |n|^2, decided exactly by squaring
+// twice (X = alpha^2 - beta - gamma >= 0 and X^2 vs 4 beta gamma).
+DistanceResult plane_torus(const core::QuadricMatrix& pl, const core::Torus& t, long digits,
+                           bool plane_first) {
+  DistanceResult out;
+  std::array<Rational, 3> n;
+  Rational nn, na, aa, nc;
+  for (size_t i = 0; i < 3; ++i) {
+    n[i] = Rational(2) * pl(static_cast<int>(i), 3);
+    nn += n[i] * n[i];
+    na += n[i] * t.axis[i];
+    aa += t.axis[i] * t.axis[i];
+    nc += n[i] * t.centre[i];
+  }
+  const Rational delta = -pl(3, 3);
+  const Rational alpha = core::abs(nc - delta);
+  const Rational beta = t.R * t.R * (nn * aa - na * na) / aa, gamma = t.r * t.r * nn;
+  out.critical_candidates = 2;
+  out.eliminated_degree = 2;
+  const Rational X = alpha * alpha - beta - gamma;
+  const bool circle = beta.is_zero(); // plane orthogonal to the axis
+  if (alpha * alpha < beta || X.sign() < 0 || X * X < Rational(4) * beta * gamma) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the plane cuts the torus";
+    return out;
+  }
+  if (X * X == Rational(4) * beta * gamma) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = circle ? "infinite" : "1";
+    out.note = "the plane touches the torus";
+    return out;
+  }
+  const long prec = static_cast<long>(static_cast<double>(digits) * 3.33) + 128;
+  Ball a, b, nr, r, d;
+  arb_set_fmpq(a.v, alpha.raw(), prec);
+  arb_set_fmpq(b.v, beta.raw(), prec);
+  arb_sqrt(b.v, b.v, prec);
+  arb_set_fmpq(nr.v, nn.raw(), prec);
+  arb_sqrt(nr.v, nr.v, prec);
+  arb_set_fmpq(r.v, t.r.raw(), prec);
+  arb_sub(d.v, a.v, b.v, prec);
+  arb_div(d.v, d.v, nr.v, prec);
+  arb_sub(d.v, d.v, r.v, prec);
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, d.v, prec);
+  arb_get_ubound_arf(hi, d.v, prec);
+  out.lower = decimal_bound(lo, false, digits + 2);
+  out.upper = decimal_bound(hi, true, digits + 2);
+  out.approx = arf_get_d(arb_midref(d.v), ARF_RND_NEAR);
+  arf_clear(lo);
+  arf_clear(hi);
+  out.status = Status::Certified;
+  out.minimizers = circle ? "infinite" : "1";
+  if (!circle) { // approximate pair: the point of K nearest the plane, then along -n
+    double s = (nc - delta).sign() > 0 ? 1 : -1, nd = std::sqrt(nn.to_double_approx()),
+           ad = std::sqrt(aa.to_double_approx());
+    std::array<double, 3> m{}, k{}, tq{}, pq{};
+    double mn = 0, dot = na.to_double_approx() / ad;
+    for (size_t i = 0; i < 3; ++i) {
+      m[i] = n[i].to_double_approx() - dot * t.axis[i].to_double_approx() / ad;
+      mn += m[i] * m[i];
+    }
+    mn = std::sqrt(mn);
+    for (size_t i = 0; i < 3; ++i) {
+      k[i] = t.centre[i].to_double_approx() - s * t.R.to_double_approx() * m[i] / mn;
+      tq[i] = k[i] - s * t.r.to_double_approx() * n[i].to_double_approx() / nd;
+      pq[i] = tq[i] - s * out.approx * n[i].to_double_approx() / nd;
+    }
+    out.pairs.push_back(plane_first ? std::array<std::array<double, 3>, 2>{pq, tq}
+                                    : std::array<std::array<double, 3>, 2>{tq, pq});
+  }
+  return out;
+}
+
+// ---- a quadric of revolution sharing the torus axis ----------------------------------------
+
+// If q is invariant under the rotations about the torus axis (quadratic block mu I + nu a a^T,
+// Q3 c + b parallel to a) and |a| is rational, its meridian conic in the half-plane
+// (X = distance to the axis, Z = height): mu X^2 + lambda Z^2 + 2 beta |a| Z + f(c) = 0.
+std::optional<core::QuadricMatrix> coaxial_meridian(const core::QuadricMatrix& q,
+                                                    const core::Torus& t) {
+  const auto& a = t.axis;
+  Rational aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  Integer an2 = aa.num() * aa.den(); // aa a square iff num*den is (both coprime)
+  Integer root;
+  fmpz_sqrtrem(root.raw_mut(), Integer().raw_mut(), an2.raw());
+  if (!(root * root == an2)) return std::nullopt;
+  const Rational alen = Rational(root) / Rational(aa.den()); // |a|
+  auto M = [&](size_t i, size_t j) { return q(static_cast<int>(i), static_cast<int>(j)); };
+  std::array<Rational, 3> Ma, v; // M a, and M c + b
+  for (size_t i = 0; i < 3; ++i) {
+    v[i] = M(i, 3);
+    for (size_t j = 0; j < 3; ++j) {
+      Ma[i] += M(i, j) * a[j];
+      v[i] += M(i, j) * t.centre[j];
+    }
+  }
+  Rational aMa = a[0] * Ma[0] + a[1] * Ma[1] + a[2] * Ma[2];
+  const Rational lambda = aMa / aa;
+  for (size_t i = 0; i < 3; ++i)
+    if (!(Ma[i] == lambda * a[i])) return std::nullopt; // a is an eigenvector
+  // Two vectors spanning a-perp (cross products with the coordinate axes), same eigenvalue.
+  std::vector<std::array<Rational, 3>> perp;
+  for (size_t k = 0; k < 3 && perp.size() < 2; ++k) {
+    std::array<Rational, 3> e{}, u{};
+    e[k] = Rational(1);
+    u = {a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2], a[0] * e[1] - a[1] * e[0]};
+    if (u[0].is_zero() && u[1].is_zero() && u[2].is_zero()) continue;
+    if (perp.size() == 1) { // independent of the first?
+      const auto& w = perp[0];
+      std::array<Rational, 3> x{w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2],
+                                w[0] * u[1] - w[1] * u[0]};
+      if (x[0].is_zero() && x[1].is_zero() && x[2].is_zero()) continue;
+    }
+    perp.push_back(u);
+  }
+  std::optional<Rational> mu;
+  for (const auto& u : perp) {
+    std::array<Rational, 3> Mu{};
+    Rational uu;
+    for (size_t i = 0; i < 3; ++i) {
+      uu += u[i] * u[i];
+      for (size_t j = 0; j < 3; ++j)
+        Mu[i] += M(i, j) * u[j];
+    }
+    Rational m = (u[0] * Mu[0] + u[1] * Mu[1] + u[2] * Mu[2]) / uu;
+    for (size_t i = 0; i < 3; ++i)
+      if (!(Mu[i] == m * u[i])) return std::nullopt;
+    if (mu && !(*mu == m)) return std::nullopt;
+    mu = m;
+  }
+  // M c + b = beta a.
+  std::optional<Rational> beta;
+  for (size_t i = 0; i < 3; ++i) {
+    if (a[i].is_zero()) {
+      if (!v[i].is_zero()) return std::nullopt;
+      continue;
+    }
+    Rational bb = v[i] / a[i];
+    if (beta && !(*beta == bb)) return std::nullopt;
+    beta = bb;
+  }
+  Rational fc = M(3, 3);
+  for (size_t i = 0; i < 3; ++i) {
+    fc += Rational(2) * M(i, 3) * t.centre[i];
+    for (size_t j = 0; j < 3; ++j)
+      fc += t.centre[i] * M(i, j) * t.centre[j];
+  }
+  core::Mat4 g;
+  g[0][0] = *mu;
+  g[2][2] = lambda;
+  g[2][3] = g[3][2] = *beta * alen;
+  g[3][3] = fc;
+  if (mu->is_zero() && lambda.is_zero()) return std::nullopt; // a plane: the closed form applies
+  return core::QuadricMatrix(g);
+}
+
+// dist(S, T) for S coaxial with T: m = dist(K, S) is the 2D distance from (R, 0) to the
+// meridian conic (every circle point is alike), found by the exact point-quadric sextic on
+// the conic seen as a cylinder; S meets T iff m <= r (S always has points outside the solid
+// torus: on the axis, or at infinity), else d = m - r along a circle of pairs.
+DistanceResult coaxial_torus(const core::QuadricMatrix& meridian, const core::Torus& t, long digits,
+                             bool quadric_first) {
+  DistanceResult out;
+  PointQuadricResult pq =
+      point_quadric_critical({t.R, Rational(0), Rational(0)}, meridian, digits + 5);
+  out.eliminated_degree = pq.sextic_degree;
+  out.critical_candidates = static_cast<int>(pq.criticals.size());
+  if (!pq.ok || pq.criticals.empty()) {
+    out.status = Status::Undecided;
+    out.note =
+        "coaxial surface of revolution: " + (pq.ok ? std::string("no critical point") : pq.note);
+    return out;
+  }
+  const long prec = static_cast<long>(static_cast<double>(digits) * 3.33) + 128;
+  Ball m, lo, r, d;
+  arb_set_str(m.v, pq.criticals.front().lower.c_str(), prec);
+  arb_set_str(lo.v, pq.criticals.front().upper.c_str(), prec);
+  arb_union(m.v, m.v, lo.v, prec);
+  arb_set_fmpq(r.v, t.r.raw(), prec);
+  if (arb_lt(m.v, r.v)) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the coaxial surface of revolution enters the tube: it meets the torus";
+    return out;
+  }
+  if (!arb_gt(m.v, r.v)) {
+    out.status = Status::Undecided;
+    out.note = "coaxial surface of revolution touching the torus? (not separated)";
+    return out;
+  }
+  arb_sub(d.v, m.v, r.v, prec);
+  arf_t l, h;
+  arf_init(l);
+  arf_init(h);
+  arb_get_lbound_arf(l, d.v, prec);
+  arb_get_ubound_arf(h, d.v, prec);
+  out.lower = decimal_bound(l, false, digits + 2);
+  out.upper = decimal_bound(h, true, digits + 2);
+  out.approx = arf_get_d(arb_midref(d.v), ARF_RND_NEAR);
+  arf_clear(l);
+  arf_clear(h);
+  out.status = Status::Certified;
+  out.minimizers = "infinite";
+  out.note = "coaxial surfaces of revolution: a circle of closest pairs (one shown)";
+  // One representative pair, approximately: the meridian foot (X, Z) in the half-plane of a
+  // unit vector u orthogonal to the axis.
+  const auto& f = pq.criticals.front().foot;
+  std::array<double, 3> ad{t.axis[0].to_double_approx(), t.axis[1].to_double_approx(),
+                           t.axis[2].to_double_approx()};
+  double an = std::hypot(ad[0], ad[1], ad[2]);
+  for (auto& x : ad)
+    x /= an;
+  std::array<double, 3> u =
+      std::fabs(ad[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+  double ua = u[0] * ad[0] + u[1] * ad[1] + u[2] * ad[2];
+  for (size_t i = 0; i < 3; ++i)
+    u[i] -= ua * ad[i];
+  double un = std::hypot(u[0], u[1], u[2]);
+  std::array<double, 3> p{}, k{}, qq{};
+  for (size_t i = 0; i < 3; ++i) {
+    u[i] /= un;
+    p[i] = t.centre[i].to_double_approx() + std::fabs(f[0]) * u[i] + f[2] * ad[i];
+    k[i] = t.centre[i].to_double_approx() + t.R.to_double_approx() * u[i];
+  }
+  double pk = std::hypot(p[0] - k[0], p[1] - k[1], p[2] - k[2]);
+  for (size_t i = 0; i < 3; ++i)
+    qq[i] = k[i] + t.r.to_double_approx() * (p[i] - k[i]) / pk;
+  out.pairs.push_back(quadric_first ? std::array<std::array<double, 3>, 2>{p, qq}
+                                    : std::array<std::array<double, 3>, 2>{qq, p});
+  return out;
+}
+
+// ---- float helpers for approximate witness points (never used in a decision) -------------
+
+double qval(const core::QuadricMatrix& q, const std::array<double, 4>& X,
+            std::array<double, 3>* g) {
+  double v = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      v += q(i, j).to_double_approx() * X[static_cast<size_t>(i)] * X[static_cast<size_t>(j)];
+  if (g)
+    for (int i = 0; i < 3; ++i) {
+      double s = 0;
+      for (int j = 0; j < 4; ++j)
+        s += 2 * q(i, j).to_double_approx() * X[static_cast<size_t>(j)];
+      (*g)[static_cast<size_t>(i)] = s;
+    }
+  return v;
+}
+
+std::array<double, 3> float_project(const core::QuadricMatrix& q, std::array<double, 3> x) {
+  for (int it = 0; it < 30; ++it) {
+    std::array<double, 3> g{};
+    double v = qval(q, {x[0], x[1], x[2], 1}, &g), n2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
+    if (n2 == 0) break;
+    for (size_t i = 0; i < 3; ++i)
+      x[i] -= v / n2 * g[i];
+  }
+  return x;
+}
+
+double float_tube(const core::Torus& t, const std::array<double, 3>& x) { // dist(x, K) - r
+  double w[3], a[3], an = 0, h = 0, w2 = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    w[i] = x[i] - t.centre[i].to_double_approx();
+    a[i] = t.axis[i].to_double_approx();
+    an += a[i] * a[i];
+  }
+  an = std::sqrt(an);
+  for (size_t i = 0; i < 3; ++i) {
+    h += w[i] * a[i] / an;
+    w2 += w[i] * w[i];
+  }
+  double rho = std::sqrt(std::max(0.0, w2 - h * h));
+  return std::hypot(rho - t.R.to_double_approx(), h) - t.r.to_double_approx();
+}
+
+// ---- contact of a quadric and the torus --------------------------------------------------------
+
+enum class Contact { Disjoint, Meet, Unknown };
+
+// Sign of the torus quartic over S1 at the critical points of T restricted to S1 (see header).
+Contact quadric_torus_contact(const SourceQuadric& src, const TorusPolys& tp, bool ellipsoid,
+                              std::array<double, 3>& witness, std::string& why) {
+  V3 gT{tp.T.derivative(0), tp.T.derivative(1), tp.T.derivative(2)};
+  const V3 v = cross(src.N, gT);
+  const std::array<std::array<long, 3>, 2> l{{{3, -5, 7}, {2, 7, -11}}};
+  MPoly e1, e2;
+  for (size_t i = 0; i < 3; ++i) {
+    e1 = e1 + MPoly(l[0][i]) * v[i];
+    e2 = e2 + MPoly(l[1][i]) * v[i];
+  }
+  algebra::SolutionCover cover = algebra::cover_real_solutions({src.f, e1, e2}, Rational(1, 16));
+  if (!cover.ok) {
+    why = "the critical points of the torus equation on the quadric form a curve";
+    return Contact::Unknown;
+  }
+  bool any_in = false, any_out = false;
+  std::optional<std::array<double, 3>> p_in, p_out;
+  for (long bits = 16; bits <= 512; bits *= 2) {
+    Rational width(1);
+    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
+    algebra::refine_cover(cover, width);
+    const long prec = algebra::precision_for_width(width) + 64;
+    bool all_signed = true;
+    any_in = any_out = false;
+    for (const auto& b : cover.boxes) {
+      Ball box[3], val;
+      algebra::box_balls(cover, b, box[0].v, box[1].v, box[2].v, prec);
+      algebra::evaluate(val.v, tp.T, ball_point(box), prec);
+      if (arb_is_positive(val.v))
+        any_out = true;
+      else if (arb_is_negative(val.v)) {
+        any_in = true;
+        // A certified point of S1 inside the solid torus.
+        Rational centre[3];
+        for (size_t k = 0; k < 3; ++k)
+          centre[k] = (cover.roots[k][b[k]].lo + cover.roots[k][b[k]].hi) * Rational(1, 2);
+        Ball p[3], tv;
+        if (!p_in && src.project(centre, p, prec)) {
+          algebra::evaluate(tv.v, tp.T, ball_point(p), prec);
+          if (arb_is_negative(tv.v))
+            p_in = std::array<double, 3>{arf_get_d(arb_midref(p[0].v), ARF_RND_NEAR),
+                                         arf_get_d(arb_midref(p[1].v), ARF_RND_NEAR),
+                                         arf_get_d(arb_midref(p[2].v), ARF_RND_NEAR)};
+        }
+      } else
+        all_signed = false;
+      if (arb_is_positive(val.v) && !p_out) {
+        Rational centre[3];
+        for (size_t k = 0; k < 3; ++k)
+          centre[k] = (cover.roots[k][b[k]].lo + cover.roots[k][b[k]].hi) * Rational(1, 2);
+        Ball p[3], tv;
+        if (src.project(centre, p, prec)) {
+          algebra::evaluate(tv.v, tp.T, ball_point(p), prec);
+          if (arb_is_positive(tv.v))
+            p_out = std::array<double, 3>{arf_get_d(arb_midref(p[0].v), ARF_RND_NEAR),
+                                          arf_get_d(arb_midref(p[1].v), ARF_RND_NEAR),
+                                          arf_get_d(arb_midref(p[2].v), ARF_RND_NEAR)};
+        }
+      }
+    }
+    // Points inside certified (and outside: certified, or a non-ellipsoid quadric's component
+    // reaching infinity): the surface crosses the torus.
+    if (p_in && (p_out || !ellipsoid)) {
+      witness = *p_in;
+      if (p_out) { // bisection on S1 between the two points (float; the witness is approximate)
+        std::array<double, 3> a = *p_in, b = *p_out;
+        for (int it = 0; it < 80; ++it) {
+          std::array<double, 3> m{};
+          for (size_t i = 0; i < 3; ++i)
+            m[i] = 0.5 * (a[i] + b[i]);
+          m = float_project(*src.quadric, m);
+          (float_tube(tp.torus[0], m) < 0 ? a : b) = m;
+        }
+        witness = a;
+      }
+      return Contact::Meet;
+    }
+    if (!all_signed) continue;
+    if (!any_in) return Contact::Disjoint;               // T > 0 at every critical point
+    if (ellipsoid && !any_out) return Contact::Disjoint; // inside the tube
+  }
+  why = "a critical value of the torus equation on the quadric is not separated from 0 "
+        "(touching?)";
+  return Contact::Unknown;
+}
+
+} // namespace
+
+DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::Torus& t,
+                                      long digits, bool quadric_first) {
+  if (q.is_sphere()) return sphere_torus(q, t, digits, quadric_first);
+  if (is_plane(q)) return plane_torus(q, t, digits, quadric_first);
+  if (auto mer = coaxial_meridian(q, t)) return coaxial_torus(*mer, t, digits, quadric_first);
+  DistanceResult out;
+  const TorusPolys tp = torus_polys(t);
+  SourceQuadric src(q);
+  std::array<double, 3> witness{};
+  std::string why;
+  const bool ellipsoid = q.kind() == core::QuadricKind::Ellipsoid;
+  Contact c = quadric_torus_contact(src, tp, ellipsoid, witness, why);
+  if (c == Contact::Unknown) {
+    out.status = Status::Undecided;
+    out.note = "contact not decided: " + why;
+    return out;
+  }
+  if (c == Contact::Meet) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the quadric meets the torus (certified points of the quadric inside and outside "
+               "the solid torus); the pair is an approximate common point (float bisection)";
+    out.pairs.push_back({witness, witness});
+    return out;
+  }
+  // The offset system: normal line coplanar with the axis and meeting K.
+  const MPoly na = dot(src.N, tp.A), s = dot(tp.W, tp.A);
+  const MPoly F2 = dot(src.N, cross(tp.W, tp.A));
+  V3 u;
+  for (size_t i = 0; i < 3; ++i)
+    u[i] = na * tp.W[i] - s * src.N[i];
+  const MPoly F3 = dot(u, u) - MPoly(tp.DR2) * na * na;
+  algebra::SolutionCover cover = algebra::cover_real_solutions({src.f, F2, F3}, Rational(1, 16));
+  if (!cover.ok) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: the offset system has a curve of solutions (" + cover.note +
+               "; e.g. a quadric of revolution sharing the torus axis)";
+    return out;
+  }
+  out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
+  out.system_degrees = {src.f.total_degree(), F2.total_degree(), F3.total_degree()};
+  out.bivariate_degrees = {cover.bivariate_degree[0], cover.bivariate_degree[1]};
+  out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1],
+                            cover.eliminant_degree[2]};
+  out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1],
+                            cover.squarefree_degree[2]};
+  TorusTarget tgt(t);
+  minimize_over_cover(cover, src, tgt, digits, quadric_first, true, out);
+  return out;
+}
+
+} // namespace surfcert::certify
