@@ -6,6 +6,7 @@
 #include "surfcert/core/io/surface_reader.hpp"
 
 #include <flint/flint.h>
+#include <tuple>
 
 #include <atomic>
 #include <cstdio>
@@ -83,7 +84,7 @@ std::string curve_summary(const CurveResult& c) {
 
 } // namespace
 
-const core::QuadricMatrix& Scene::surface(const std::string& name) const {
+const core::Surface& Scene::surface(const std::string& name) const {
   for (const auto& [n, q] : surfaces)
     if (n == name) return q;
   throw std::out_of_range("no surface " + name);
@@ -104,7 +105,7 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
                      surf ? core::io::type_name(surf->type()) : "no \"surfaces\" field");
   for (const auto& [name, v] : surf->members())
     s.surfaces.emplace_back(name,
-                            core::io::read_quadric(v, source, json_path_child("$.surfaces", name)));
+                            core::io::read_surface(v, source, json_path_child("$.surfaces", name)));
   const Json* qs = doc.find("queries");
   if (!qs || !qs->is_array())
     throw InputError(at(qs ? *qs : doc, source, "$.queries"), "an array of queries",
@@ -132,12 +133,15 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
       if (!n || !n->is_string())
         throw InputError(at(n ? *n : q, source, kp), "the name of a surface of $.surfaces",
                          n ? core::io::type_name(n->type()) : "none");
-      bool known = false;
+      const core::Surface* found = nullptr;
       for (const auto& sf : s.surfaces)
-        known = known || sf.first == n->text();
-      if (!known)
+        if (sf.first == n->text()) found = &sf.second;
+      if (!found)
         throw InputError(at(*n, source, kp), "the name of a surface of $.surfaces",
                          "\"" + n->text() + "\"");
+      if (query.op != "distance" && !std::holds_alternative<core::QuadricMatrix>(*found))
+        throw InputError(at(*n, source, kp), "a quadric (\"" + query.op + "\" needs two quadrics)",
+                         "\"" + n->text() + "\" (a " + core::surface_kind(*found) + ")");
       (std::string(key) == "a" ? query.a : query.b) = n->text();
     }
     if (const Json* m = q.find("mode"))
@@ -148,11 +152,9 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
 }
 
 Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
-  const auto& a = s.surface(q.a);
-  const auto& b = s.surface(q.b);
   Json env;
   if (q.op == "distance") {
-    DistanceResult d = surface_distance(a, b, q.digits, q.solid);
+    DistanceResult d = surface_distance(s.surface(q.a), s.surface(q.b), q.digits, q.solid);
     env = distance_envelope_json(d, q.digits);
     if (text_summary)
       *text_summary =
@@ -161,12 +163,16 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
                            : " in [" + d.lower + ", " + d.upper + "], minimizers " + d.minimizers) +
           (d.note.empty() ? "" : "\nnote: " + d.note) + "\n";
   } else if (q.op == "intersect") {
+    const auto& a = std::get<core::QuadricMatrix>(s.surface(q.a));
+    const auto& b = std::get<core::QuadricMatrix>(s.surface(q.b));
     trace::TraceOptions opt;
     opt.tolerance = q.tolerance;
     CurveResult c = intersect_curve(a, b, q.mode, opt);
     env = curve_envelope_json(c, a, b);
     if (text_summary) *text_summary = qsic_result_text(c.topology, a, b) + curve_summary(c);
   } else {
+    const auto& a = std::get<core::QuadricMatrix>(s.surface(q.a));
+    const auto& b = std::get<core::QuadricMatrix>(s.surface(q.b));
     QsicResult r = classify_qsic(a, b, q.mode);
     complete_report_data(r, a, b);
     env = qsic_envelope_json(r, a, b);
@@ -219,27 +225,35 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       const Json* jb = doc.find("b");
       if (!ja) throw InputError(at(doc, source, "$.a"), "a surface \"a\"", "none");
       if (!jb) throw InputError(at(doc, source, "$.b"), "a surface \"b\"", "none");
-      auto a = core::io::read_quadric(*ja, source, "$.a");
-      auto b = core::io::read_quadric(*jb, source, "$.b");
+      const core::Surface sa = core::io::read_surface(*ja, source, "$.a");
+      const core::Surface sb = core::io::read_surface(*jb, source, "$.b");
+      const core::QuadricMatrix* a = std::get_if<core::QuadricMatrix>(&sa);
+      const core::QuadricMatrix* b = std::get_if<core::QuadricMatrix>(&sb);
+      if (op->text() != "distance")
+        for (const auto& [q, j, key] :
+             {std::make_tuple(a, ja, "$.a"), std::make_tuple(b, jb, "$.b")})
+          if (!q)
+            throw InputError(at(*j, source, key),
+                             "a quadric (\"" + op->text() + "\" needs two quadrics)", "a torus");
       Json env;
       if (op->text() == "distance") {
         long digits = 15;
         bool solid = false;
         if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");
         if (const Json* sd = doc.find("solid")) solid = read_bool(*sd, source, "$.solid");
-        env = distance_envelope_json(surface_distance(a, b, digits, solid), digits);
+        env = distance_envelope_json(surface_distance(sa, sb, digits, solid), digits);
       } else if (op->text() == "intersect") {
         trace::TraceOptions opt;
         if (const Json* t = doc.find("tolerance"))
           opt.tolerance = read_tolerance(*t, source, "$.tolerance");
-        CurveResult c = intersect_curve(a, b, mode, opt);
+        CurveResult c = intersect_curve(*a, *b, mode, opt);
         if (fallback) *fallback = c.topology.exact_fallback;
-        env = curve_envelope_json(c, a, b);
+        env = curve_envelope_json(c, *a, *b);
       } else {
-        QsicResult r = classify_qsic(a, b, mode);
-        complete_report_data(r, a, b);
+        QsicResult r = classify_qsic(*a, *b, mode);
+        complete_report_data(r, *a, *b);
         if (fallback) *fallback = r.exact_fallback;
-        env = qsic_envelope_json(r, a, b);
+        env = qsic_envelope_json(r, *a, *b);
       }
       for (const auto& [k, v] : env.members())
         out.set(k, v);

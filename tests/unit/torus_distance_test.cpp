@@ -7,6 +7,7 @@
 // - contact: an ellipsoid crossing the tube gives 0 with a witness on both surfaces;
 // - input: spindle tori and zero axes are refused with a location.
 #include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/certify/scene.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
@@ -223,4 +224,34 @@ TEST(TorusDistance, ContactAndInput) {
   } catch (const core::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("axis"), std::string::npos) << e.what();
   }
+}
+
+TEST(TorusDistance, BatchAndSceneContract) {
+  // A batch line with a torus: the distance envelope; classify with a torus: an input error at
+  // $.a, the batch goes on.
+  auto ok = certify::process_batch_line(
+      R"({"id":7,"op":"distance","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],)"
+      R"("major_radius":3,"minor_radius":1},"b":"z = 5","digits":20})",
+      1, certify::Mode::Filtered);
+  EXPECT_EQ(ok.find("status")->text(), "certified");
+  EXPECT_EQ(ok.find("result")->find("distance")->find("lower")->text(), "4");
+  auto bad = certify::process_batch_line(
+      R"({"op":"classify","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],)"
+      R"("major_radius":3,"minor_radius":1},"b":"z = 5"})",
+      2, certify::Mode::Filtered);
+  EXPECT_EQ(bad.find("status")->text(), "error");
+  EXPECT_EQ(bad.find("error")->find("json_path")->text(), "$.a");
+  // A scene naming a torus: distance accepted; intersect refused on reading (nothing runs).
+  auto doc = core::io::parse_json(
+      R"({"surfaces":{"T":{"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,)"
+      R"("minor_radius":1},"P":"z = 5"},"queries":[{"op":"distance","a":"P","b":"T"}]})",
+      "scene");
+  auto scene = certify::read_scene(doc, "scene", certify::Mode::Filtered);
+  auto res = certify::run_query(scene, scene.queries[0]);
+  EXPECT_EQ(res.find("result")->find("distance")->find("upper")->text(), "4");
+  auto doc2 = core::io::parse_json(
+      R"({"surfaces":{"T":{"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,)"
+      R"("minor_radius":1},"P":"z = 5"},"queries":[{"op":"intersect","a":"P","b":"T"}]})",
+      "scene");
+  EXPECT_THROW(certify::read_scene(doc2, "scene", certify::Mode::Filtered), core::InputError);
 }

@@ -3,13 +3,15 @@
 // A Scene names surfaces and lists queries; read_scene validates the whole document before
 // anything is computed (so a bad scene produces an error and no report). run_query computes
 // only what its op needs: "classify" builds the pencil and decides the topology, nothing else;
-// "intersect" adds the branches of the curve (traced or produced as conics).
+// "intersect" adds the branches of the curve (traced or produced as conics); "distance" takes
+// any two surfaces (quadrics or tori), the other ops need two quadrics (checked on reading).
 // process_batch reads JSON lines and writes one JSON line per input line, in input order,
 // using N worker threads; a bad line yields an error line and the batch goes on.
 #pragma once
 
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
+#include "surfcert/core/surface.hpp"
 
 #include <iosfwd>
 #include <string>
@@ -29,9 +31,9 @@ struct Query {
 };
 
 struct Scene {
-  std::vector<std::pair<std::string, core::QuadricMatrix>> surfaces;
+  std::vector<std::pair<std::string, core::Surface>> surfaces; ///< quadrics or tori
   std::vector<Query> queries;
-  const core::QuadricMatrix& surface(const std::string& name) const;
+  const core::Surface& surface(const std::string& name) const;
 };
 
 /// Throws core::InputError on any problem (with JSON path, line, column).
