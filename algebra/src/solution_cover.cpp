@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace surfcert::algebra {
 
@@ -163,6 +164,38 @@ SolutionCover cover_real_solutions(const std::array<MPoly, 3>& F, const Rational
   arb_clear(y);
   arb_clear(z);
   discard(c, prec);
+  c.ok = true;
+  return c;
+}
+
+SolutionCover cover_real_solutions_2d(const MPoly& F, const MPoly& G, const Rational& width0) {
+  SolutionCover c;
+  if (F.degree(2) > 0 || G.degree(2) > 0)
+    throw std::invalid_argument("cover_real_solutions_2d: the equations involve z");
+  c.system = {F, G, MPoly::var(2)};
+  const MPoly ex = resultant(F, G, 1), ey = resultant(F, G, 0);
+  c.bivariate_degree = {F.total_degree(), G.total_degree()};
+  if (ex.is_zero() || ey.is_zero()) {
+    c.note = "the two equations share a curve of solutions";
+    return c;
+  }
+  const std::array<const MPoly*, 2> e{&ex, &ey};
+  for (size_t k = 0; k < 2; ++k) {
+    UPolyZ u = to_univariate(*e[k], static_cast<int>(k));
+    c.eliminant_degree[k] = u.degree();
+    c.factors[k] = distinct_factors(u);
+    for (const auto& f : c.factors[k])
+      c.squarefree_degree[k] += f.degree();
+    c.roots[k] = isolate(c.factors[k], width0);
+  }
+  UPolyZ z;
+  fmpz_poly_set_coeff_si(z.raw_mut(), 1, 1);
+  c.factors[2] = {z};
+  c.roots[2] = {RootInterval{Rational(0), Rational(0), 0}};
+  for (size_t i = 0; i < c.roots[0].size(); ++i)
+    for (size_t j = 0; j < c.roots[1].size(); ++j)
+      c.boxes.push_back({i, j, 0});
+  discard(c, precision_for_width(width0));
   c.ok = true;
   return c;
 }

@@ -15,8 +15,30 @@ Torus make_torus(const std::array<Rational, 3>& centre, const std::array<Rationa
   return Torus{centre, axis, R, r};
 }
 
+Rational eval_poly(const std::vector<Rational>& c, const Rational& t) {
+  Rational v;
+  for (size_t i = c.size(); i-- > 0;)
+    v = v * t + c[i];
+  return v;
+}
+
+CanalSurface make_canal(std::array<std::vector<Rational>, 3> spine, std::vector<Rational> radius,
+                        const Rational& t0, const Rational& t1) {
+  if (!(t0 < t1)) throw std::invalid_argument("canal interval needs t0 < t1");
+  bool moving = false;
+  for (const auto& c : spine)
+    for (size_t i = 1; i < c.size(); ++i)
+      moving = moving || !c[i].is_zero();
+  if (!moving) throw std::invalid_argument("canal spine is a single point (use a sphere)");
+  if (radius.empty() || eval_poly(radius, t0).sign() <= 0 || eval_poly(radius, t1).sign() <= 0)
+    throw std::invalid_argument("canal radius must be positive at both ends");
+  return CanalSurface{std::move(spine), std::move(radius), t0, t1};
+}
+
 std::string surface_kind(const Surface& s) {
-  return std::holds_alternative<Torus>(s) ? "torus" : "quadric";
+  if (std::holds_alternative<Torus>(s)) return "torus";
+  if (std::holds_alternative<CanalSurface>(s)) return "canal";
+  return "quadric";
 }
 
 } // namespace surfcert::core

@@ -2,6 +2,7 @@
 #include "surfcert/certify/distance/ball.hpp"
 
 #include "surfcert/certify/curve.hpp"
+#include "surfcert/certify/distance/canal_distance.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/certify/distance/torus_distance.hpp"
@@ -352,11 +353,16 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   out.solid = solid;
   if (!qa && !qb) {
     out.status = Status::Undecided;
-    out.note = "not supported yet: distance between two tori";
+    out.note = "not supported yet: distance between two non-quadric surfaces (" +
+               core::surface_kind(a) + ", " + core::surface_kind(b) + ")";
     return out;
   }
-  const auto& t = std::get<core::Torus>(qa ? b : a);
-  out = quadric_torus_distance(qa ? *qa : *qb, t, digits, qa != nullptr);
+  const core::QuadricMatrix& q = qa ? *qa : *qb;
+  const core::Surface& other = qa ? b : a;
+  if (const auto* t = std::get_if<core::Torus>(&other))
+    out = quadric_torus_distance(q, *t, digits, qa != nullptr);
+  else
+    out = quadric_canal_distance(q, std::get<core::CanalSurface>(other), digits, qa != nullptr);
   out.solid = solid;
   if (solid)
     out.note += (out.note.empty() ? "" : "; ") +

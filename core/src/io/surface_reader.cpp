@@ -290,9 +290,75 @@ QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::
                    "an object without them");
 }
 
+namespace {
+
+// A polynomial as a coefficient list [c0, c1, ...] (constant first) or a single number.
+std::vector<Rational> read_coeffs(const Json& v, const std::string& source,
+                                  const std::string& path) {
+  std::vector<Rational> c;
+  if (!v.is_array()) {
+    c.push_back(read_number(v, source, path));
+    return c;
+  }
+  if (v.size() == 0)
+    throw InputError(at(v, source, path), "coefficients [c0, c1, ...] (constant first)", "[]");
+  for (size_t i = 0; i < v.size(); ++i)
+    c.push_back(read_number(v.items()[i], source, json_path_index(path, i)));
+  return c;
+}
+
+Surface read_canal(const Json& v, const std::string& source, const std::string& path,
+                   bool capsule) {
+  std::array<std::vector<Rational>, 3> spine;
+  std::vector<Rational> radius;
+  Rational t0(0), t1(1);
+  const std::string rp = json_path_child(path, "radius");
+  if (capsule) {
+    check_fields(v, {"type", "from", "to", "radius"}, source, path);
+    auto a =
+        read_vector(require(v, "from", source, path), 3, source, json_path_child(path, "from"));
+    auto b = read_vector(require(v, "to", source, path), 3, source, json_path_child(path, "to"));
+    if (a == b)
+      throw InputError(at(require(v, "to", source, path), source, json_path_child(path, "to")),
+                       "an end point different from \"from\" (else use a sphere)",
+                       "the same point");
+    for (size_t i = 0; i < 3; ++i)
+      spine[i] = {a[i], b[i] - a[i]};
+    radius = {read_positive(require(v, "radius", source, path), source, rp)};
+  } else {
+    check_fields(v, {"type", "spine", "radius", "interval"}, source, path);
+    const std::string sp = json_path_child(path, "spine");
+    const Json& sj = require(v, "spine", source, path);
+    if (!sj.is_array() || sj.size() != 3)
+      throw InputError(at(sj, source, sp),
+                       "three coefficient lists [[x0, x1, ...], [y...], [z...]]",
+                       type_name(sj.type()));
+    for (size_t i = 0; i < 3; ++i)
+      spine[i] = read_coeffs(sj.items()[i], source, json_path_index(sp, i));
+    radius = read_coeffs(require(v, "radius", source, path), source, rp);
+    const std::string ip = json_path_child(path, "interval");
+    auto iv = read_vector(require(v, "interval", source, path), 2, source, ip);
+    t0 = iv[0];
+    t1 = iv[1];
+    if (!(t0 < t1))
+      throw InputError(at(require(v, "interval", source, path), source, ip),
+                       "[t0, t1] with t0 < t1", "[" + t0.to_string() + ", " + t1.to_string() + "]");
+  }
+  try {
+    return make_canal(std::move(spine), std::move(radius), t0, t1);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(at(v, source, path), "a canal surface (" + std::string(e.what()) + ")",
+                     "an invalid one");
+  }
+}
+
+} // namespace
+
 Surface read_surface(const Json& v, const std::string& source, const std::string& path) {
   if (!v.is_object()) return read_quadric(v, source, path);
   const Json* tj = v.find("type");
+  if (tj && tj->is_string() && (tj->text() == "canal" || tj->text() == "capsule"))
+    return read_canal(v, source, path, tj->text() == "capsule");
   if (!tj || !tj->is_string() || tj->text() != "torus") return read_quadric(v, source, path);
   check_fields(v, {"type", "center", "axis", "major_radius", "minor_radius"}, source, path);
   std::string cp = json_path_child(path, "center"), ap = json_path_child(path, "axis");

@@ -51,6 +51,10 @@ struct SolutionCover {
 /// The cover of the real solutions of F (see above), intervals refined to width <= width0.
 SolutionCover cover_real_solutions(const std::array<MPoly, 3>& F, const core::Rational& width0);
 
+/// The same for two equations F(x, y) = G(x, y) = 0 in the plane (z unused: its single
+/// "interval" is [0, 0]).
+SolutionCover cover_real_solutions_2d(const MPoly& F, const MPoly& G, const core::Rational& width0);
+
 /// Narrows every kept box's intervals to width <= width and discards boxes proved empty.
 void refine_cover(SolutionCover& c, const core::Rational& width);
 

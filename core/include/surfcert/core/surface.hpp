@@ -1,19 +1,40 @@
 // surfcert::core::Surface: any surface the distance queries accept: a quadric (planes
-// included) or a ring torus. Quadric-only operations (classify, intersect) take the
-// QuadricMatrix alternative and report an input error for the others.
+// included), a ring torus, or a canal surface. Quadric-only operations (classify, intersect)
+// take the QuadricMatrix alternative and report an input error for the others.
+//
+// CanalSurface: the boundary of the union of the balls B(C(t), r(t)), t in [t0, t1] (seed 000
+// §4's envelope of spheres, closed by the end spheres: a capsule is the segment case with a
+// constant radius). C and r are polynomials with rational coefficients (constant term first).
+// Invariants (checked by make_canal): t0 < t1; C not constant; r(t0) > 0 and r(t1) > 0
+// (positivity on the whole interval is checked exactly where the distance is computed).
 #pragma once
 
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/torus.hpp"
 
+#include <array>
 #include <string>
 #include <variant>
+#include <vector>
 
 namespace surfcert::core {
 
-using Surface = std::variant<QuadricMatrix, Torus>;
+struct CanalSurface {
+  std::array<std::vector<Rational>, 3> spine; ///< C(t) coordinate polynomials
+  std::vector<Rational> radius;               ///< r(t)
+  Rational t0, t1;
+};
 
-/// "quadric" or "torus".
+/// Throws std::invalid_argument when an invariant fails (the reader reports an InputError).
+CanalSurface make_canal(std::array<std::vector<Rational>, 3> spine, std::vector<Rational> radius,
+                        const Rational& t0, const Rational& t1);
+
+/// Value of a coefficient list (constant first) at t.
+Rational eval_poly(const std::vector<Rational>& c, const Rational& t);
+
+using Surface = std::variant<QuadricMatrix, Torus, CanalSurface>;
+
+/// "quadric", "torus" or "canal".
 std::string surface_kind(const Surface& s);
 
 } // namespace surfcert::core

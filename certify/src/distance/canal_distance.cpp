@@ -1,0 +1,512 @@
+#include "surfcert/certify/distance/canal_distance.hpp"
+
+#include "surfcert/algebra/real_roots.hpp"
+#include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/point_quadric.hpp"
+
+#include <arb.h>
+#include <flint/fmpz_mpoly_factor.h>
+#include <flint/fmpz_poly_factor.h>
+
+#include <cmath>
+#include <optional>
+
+namespace surfcert::certify {
+
+using algebra::MPoly;
+using core::Integer;
+using core::Rational;
+
+namespace {
+
+bool is_plane(const core::QuadricMatrix& q) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (!q(i, j).is_zero()) return false;
+  return true;
+}
+
+long bits_for(long digits) {
+  return static_cast<long>(static_cast<double>(digits) * 3.33) + 64;
+}
+
+// Ball value of a rational coefficient list at the ball t.
+void eval_ball(arb_t out, const std::vector<Rational>& c, const arb_t t, long prec) {
+  Ball b;
+  arb_zero(out);
+  for (size_t i = c.size(); i-- > 0;) {
+    arb_mul(out, out, t, prec);
+    arb_set_fmpq(b.v, c[i].raw(), prec);
+    arb_add(out, out, b.v, prec);
+  }
+}
+
+std::vector<Rational> derivative(const std::vector<Rational>& c) {
+  std::vector<Rational> d;
+  for (size_t i = 1; i < c.size(); ++i)
+    d.push_back(c[i] * Rational(static_cast<long>(i)));
+  if (d.empty()) d.push_back(Rational(0));
+  return d;
+}
+
+// Exact: does the polynomial vanish somewhere in [t0, t1]? (isolation + exact refinement)
+bool has_root_in(const std::vector<Rational>& c, const Rational& t0, const Rational& t1) {
+  algebra::UPolyQ p = algebra::UPolyQ::from_coeffs(c);
+  if (p.degree() <= 0) return p.is_zero();
+  algebra::UPolyZ z = p.primitive_integer();
+  fmpz_poly_factor_t f;
+  fmpz_poly_factor_init(f);
+  fmpz_poly_factor_squarefree(f, z.raw());
+  algebra::UPolyZ sq;
+  fmpz_poly_one(sq.raw_mut());
+  for (slong i = 0; i < f->num; ++i)
+    fmpz_poly_mul(sq.raw_mut(), sq.raw(), f->p + i);
+  fmpz_poly_factor_clear(f);
+  algebra::RootSeparation s = algebra::isolate_real_roots(sq);
+  for (size_t i = 0; i + 1 < s.separators.size(); ++i) {
+    Rational lo = s.separators[i], hi = s.separators[i + 1];
+    // The root lies in (lo, hi); decide its position against t0 and t1 by refinement.
+    for (int k = 0; k < 4000; ++k) {
+      if (hi < t0 || lo > t1) break;             // outside
+      if (!(lo < t0) && !(hi > t1)) return true; // inside
+      if (lo == hi) return !(lo < t0) && !(lo > t1);
+      if (sq.sign_at(t0) == 0 || sq.sign_at(t1) == 0) return true;
+      algebra::refine_root(sq, lo, hi, (hi - lo) * Rational(1, 2));
+    }
+  }
+  return false;
+}
+
+// dist(x, S1) for a rational point x, as a ball (exact point-quadric sextic, or a plane's
+// closed form); the foot (approximate) in `foot`. nullopt when undecided.
+bool point_distance(arb_t out, const std::array<Rational, 3>& x, const core::QuadricMatrix& q,
+                    long digits, std::array<double, 3>& foot) {
+  const long prec = bits_for(digits + 10);
+  if (is_plane(q)) {
+    Rational v = q(3, 3), nn;
+    for (int i = 0; i < 3; ++i) {
+      v += Rational(2) * q(i, 3) * x[static_cast<size_t>(i)];
+      nn += Rational(4) * q(i, 3) * q(i, 3);
+    }
+    Rational d2 = v * v / nn;
+    arb_set_fmpq(out, d2.raw(), prec);
+    arb_sqrt(out, out, prec);
+    for (size_t i = 0; i < 3; ++i)
+      foot[i] = x[i].to_double_approx() -
+                (v / nn).to_double_approx() * 2 * q(static_cast<int>(i), 3).to_double_approx();
+    return true;
+  }
+  PointQuadricResult pq = point_quadric_critical(x, q, digits + 5);
+  if (!pq.ok || pq.criticals.empty()) return false;
+  Ball hi;
+  arb_set_str(out, pq.criticals.front().lower.c_str(), prec);
+  arb_set_str(hi.v, pq.criticals.front().upper.c_str(), prec);
+  arb_union(out, out, hi.v, prec);
+  foot = pq.criticals.front().foot;
+  return true;
+}
+
+struct Candidate {
+  Ball lo, up; // lower bound of phi over the t-interval; phi(t_c) (a ball)
+  Rational tc; // the rational parameter of the upper bound
+  std::array<double, 3> p{}, q{};
+};
+
+// phi(t_c) = dist(C(t_c), S1) - r(t_c), and the lower bound over [ta, tb] (see header).
+bool candidate(Candidate& cd, const core::QuadricMatrix& q, const core::CanalSurface& c,
+               const Rational& ta, const Rational& tb, long digits) {
+  const long prec = bits_for(digits + 10);
+  cd.tc = (ta + tb) * Rational(1, 2);
+  std::array<Rational, 3> x;
+  for (size_t i = 0; i < 3; ++i)
+    x[i] = core::eval_poly(c.spine[i], cd.tc);
+  Ball d, rc;
+  if (!point_distance(d.v, x, q, digits + 8, cd.p)) return false;
+  Rational rtc = core::eval_poly(c.radius, cd.tc);
+  arb_set_fmpq(rc.v, rtc.raw(), prec);
+  arb_sub(cd.up.v, d.v, rc.v, prec);
+  // sup |C(T) - C(t_c)| and sup r(T) over the interval ball T.
+  Ball T, tb_, dc, s, rT;
+  arb_set_fmpq(T.v, ta.raw(), prec);
+  arb_set_fmpq(tb_.v, tb.raw(), prec);
+  arb_union(T.v, T.v, tb_.v, prec);
+  for (size_t i = 0; i < 3; ++i) {
+    Ball ci, xi;
+    eval_ball(ci.v, c.spine[i], T.v, prec);
+    arb_set_fmpq(xi.v, x[i].raw(), prec);
+    arb_sub(ci.v, ci.v, xi.v, prec);
+    arb_addmul(s.v, ci.v, ci.v, prec);
+  }
+  arb_sqrtpos(s.v, s.v, prec);
+  eval_ball(rT.v, c.radius, T.v, prec);
+  arf_t a;
+  arf_init(a);
+  arb_get_ubound_arf(a, s.v, prec);
+  arb_set_arf(s.v, a);
+  arb_get_ubound_arf(a, rT.v, prec);
+  arb_set_arf(rT.v, a);
+  arf_clear(a);
+  arb_sub(cd.lo.v, d.v, s.v, prec);
+  arb_sub(cd.lo.v, cd.lo.v, rT.v, prec);
+  // The pair at t_c (approximate): foot p on S1, q on the sphere of C(t_c) toward p.
+  double n = 0;
+  for (size_t i = 0; i < 3; ++i)
+    n += (cd.p[i] - x[i].to_double_approx()) * (cd.p[i] - x[i].to_double_approx());
+  n = std::sqrt(n);
+  for (size_t i = 0; i < 3; ++i)
+    cd.q[i] = x[i].to_double_approx() +
+              (n > 0 ? rtc.to_double_approx() * (cd.p[i] - x[i].to_double_approx()) / n : 0);
+  return true;
+}
+
+// The (alpha, t) system over Z (variables x = alpha, y = t).
+// Returns F, G and det(I + alpha M3).
+std::array<MPoly, 3> canal_system(const core::QuadricMatrix& q, const core::CanalSurface& c) {
+  Integer den(1);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      fmpz_lcm(den.raw_mut(), den.raw(), q(i, j).den().raw());
+  auto Mq = [&](int i, int j) { return MPoly((q(i, j) * Rational(den)).num()); };
+  Integer dc(1), dr(1);
+  for (const auto& s : c.spine)
+    for (const auto& v : s)
+      fmpz_lcm(dc.raw_mut(), dc.raw(), v.den().raw());
+  const auto rp = derivative(c.radius);
+  for (const auto& v : rp)
+    fmpz_lcm(dr.raw_mut(), dr.raw(), v.den().raw());
+  const MPoly al = MPoly::var(0), t = MPoly::var(1);
+  auto poly_t = [&](const std::vector<Rational>& cf, const Integer& scale) {
+    MPoly r, pw(1);
+    for (const auto& v : cf) {
+      r = r + MPoly((v * Rational(scale)).num()) * pw;
+      pw = pw * t;
+    }
+    return r;
+  };
+  std::array<MPoly, 3> C, Cp;
+  for (size_t i = 0; i < 3; ++i) {
+    C[i] = poly_t(c.spine[i], dc);
+    Cp[i] = poly_t(derivative(c.spine[i]), dc);
+  }
+  // A = I + alpha M3; adjugate and determinant.
+  std::array<std::array<MPoly, 3>, 3> A;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      A[static_cast<size_t>(i)][static_cast<size_t>(j)] =
+          (i == j ? MPoly(1) : MPoly(0)) + al * Mq(i, j);
+  auto a = [&](size_t i, size_t j) -> const MPoly& { return A[i][j]; };
+  std::array<std::array<MPoly, 3>, 3> adj;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      // adj[i][j] = cofactor of a(j, i)
+      size_t r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      adj[i][j] = a(r0, c0) * a(r1, c1) - a(r0, c1) * a(r1, c0);
+    }
+  const MPoly D = a(0, 0) * adj[0][0] + a(0, 1) * adj[1][0] + a(0, 2) * adj[2][0];
+  std::array<MPoly, 3> V, Np;
+  for (size_t i = 0; i < 3; ++i)
+    V[i] = C[i] - al * MPoly(dc) * Mq(static_cast<int>(i), 3);
+  for (size_t i = 0; i < 3; ++i)
+    Np[i] = adj[i][0] * V[0] + adj[i][1] * V[1] + adj[i][2] * V[2];
+  const MPoly den_p = MPoly(dc) * D; // p = Np / den_p
+  MPoly F = Mq(3, 3) * den_p * den_p;
+  for (size_t i = 0; i < 3; ++i) {
+    F = F + MPoly(2) * Mq(static_cast<int>(i), 3) * Np[i] * den_p;
+    for (size_t j = 0; j < 3; ++j)
+      F = F + Np[i] * Mq(static_cast<int>(i), static_cast<int>(j)) * Np[j];
+  }
+  std::array<MPoly, 3> u; // dc D (C - p)
+  for (size_t i = 0; i < 3; ++i)
+    u[i] = C[i] * D - Np[i];
+  const MPoly uc = u[0] * Cp[0] + u[1] * Cp[1] + u[2] * Cp[2];
+  bool const_r = true;
+  for (const auto& v : rp)
+    const_r = const_r && v.is_zero();
+  if (const_r) return {F, uc, D};
+  const MPoly rpt = poly_t(rp, dr), uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  return {F, MPoly(dr) * MPoly(dr) * uc * uc - MPoly(dc) * MPoly(dc) * rpt * rpt * uu, D};
+}
+
+// Divides F and G by their common factors that involve alpha only (see the caller); false
+// (with a note) when a common factor involves t.
+bool strip_alpha_factors(MPoly& F, MPoly& G, const MPoly& D, std::string& note) {
+  MPoly H = algebra::gcd(F, G);
+  if (H.is_constant()) return true;
+  fmpz_mpoly_factor_t fac;
+  fmpz_mpoly_factor_init(fac, MPoly::ctx());
+  if (!fmpz_mpoly_factor(fac, H.raw(), MPoly::ctx())) {
+    fmpz_mpoly_factor_clear(fac, MPoly::ctx());
+    note = "factorisation failed";
+    return false;
+  }
+  bool ok = true;
+  for (slong i = 0; i < fac->num && ok; ++i) {
+    MPoly h;
+    fmpz_mpoly_set(h.raw_mut(), fac->poly + i, MPoly::ctx());
+    MPoly quo;
+    if (h.degree(1) > 0 || !fmpz_mpoly_divides(quo.raw_mut(), D.raw(), h.raw(), MPoly::ctx())) {
+      ok = false; // a genuine curve of critical pairs (or the spine on the quadric)
+      note = "the canal system has a curve of solutions (a common factor not from the "
+             "parametrisation)";
+      break;
+    }
+    for (MPoly* P : {&F, &G})
+      for (;;) {
+        MPoly qd;
+        if (!fmpz_mpoly_divides(qd.raw_mut(), P->raw(), h.raw(), MPoly::ctx())) break;
+        *P = qd;
+      }
+  }
+  fmpz_mpoly_factor_clear(fac, MPoly::ctx());
+  return ok;
+}
+
+} // namespace
+
+DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::CanalSurface& c,
+                                      long digits, bool quadric_first) {
+  DistanceResult out;
+  auto pair_out = [&](const Candidate& cd) {
+    out.pairs.push_back(quadric_first ? std::array<std::array<double, 3>, 2>{cd.p, cd.q}
+                                      : std::array<std::array<double, 3>, 2>{cd.q, cd.p});
+  };
+  if (has_root_in(c.radius, c.t0, c.t1)) {
+    out.status = Status::Undecided;
+    out.note = "the canal radius vanishes inside the parameter interval";
+    return out;
+  }
+  // Interior critical parameters: an exact cover of the (alpha, t) system, or for a plane the
+  // roots of the derivative of phi.
+  std::vector<algebra::UPolyZ> tfactors;    // plane: factors of the critical-t polynomial
+  std::vector<algebra::RootInterval> tints; // and their isolated roots
+  std::optional<algebra::SolutionCover> cover;
+  bool plane = is_plane(q);
+  if (plane) {
+    // |n| phi(t) = s (n.C(t) - delta) - |n| r(t): interior critical t solve
+    // (n.C')^2 = |n|^2 r'^2 (squared: a superset).
+    std::vector<Rational> nc(1, Rational(0)), rp = derivative(c.radius);
+    Rational nn;
+    for (size_t i = 0; i < 3; ++i) {
+      const Rational ni = Rational(2) * q(static_cast<int>(i), 3);
+      nn += ni * ni;
+      auto d = derivative(c.spine[i]);
+      if (nc.size() < d.size()) nc.resize(d.size());
+      for (size_t k = 0; k < d.size(); ++k)
+        nc[k] += ni * d[k];
+    }
+    // The spine crossing the plane (n.C(t) = delta inside the interval): they meet.
+    std::vector<Rational> side(1, q(3, 3));
+    for (size_t i = 0; i < 3; ++i) {
+      const auto& ci = c.spine[i];
+      if (side.size() < ci.size()) side.resize(ci.size());
+      for (size_t k = 0; k < ci.size(); ++k)
+        side[k] += Rational(2) * q(static_cast<int>(i), 3) * ci[k];
+    }
+    if (has_root_in(side, c.t0, c.t1)) {
+      out.status = Status::Certified;
+      out.lower = out.upper = "0";
+      out.minimizers = "infinite";
+      out.note = "the spine crosses the plane: they meet";
+      return out;
+    }
+    algebra::UPolyQ a = algebra::UPolyQ::from_coeffs(nc), b = algebra::UPolyQ::from_coeffs(rp);
+    algebra::UPolyQ e = a * a - algebra::UPolyQ(nn) * b * b;
+    if (e.is_zero()) {
+      // phi constant on the interval (a segment parallel to the plane, constant radius): the
+      // ends carry the value; every t is a minimizer.
+      out.minimizers = "infinite";
+    } else if (e.degree() > 0) {
+      algebra::UPolyZ z = e.primitive_integer();
+      fmpz_poly_factor_t f;
+      fmpz_poly_factor_init(f);
+      fmpz_poly_factor(f, z.raw());
+      for (slong i = 0; i < f->num; ++i) {
+        algebra::UPolyZ w;
+        fmpz_poly_set(w.raw_mut(), f->p + i);
+        algebra::RootSeparation s = algebra::isolate_real_roots(w);
+        for (size_t k = 0; k + 1 < s.separators.size(); ++k)
+          tints.push_back({s.separators[k], s.separators[k + 1], tfactors.size()});
+        tfactors.push_back(std::move(w));
+      }
+      fmpz_poly_factor_clear(f);
+    }
+  } else {
+    auto [F, G, Dalpha] = canal_system(q, c);
+    // Common factors in alpha alone come from the parametrisation (alpha with
+    // det(I + alpha Q3) = 0: p(alpha, t) has a removable pole there, or the foot is a circle
+    // because C(t) is on an axis of revolution, which happens at isolated t unless the whole
+    // spine lies on that axis: checked below at the middle parameter). Any other common
+    // factor is a genuine curve of critical pairs: not supported yet.
+    std::string curve_note;
+    if (!strip_alpha_factors(F, G, Dalpha, curve_note)) {
+      out.status = Status::Undecided;
+      out.note = "not supported yet: " + curve_note;
+      return out;
+    }
+    {
+      // Two unrelated inner parameters both with a circle of feet: the spine lies on an axis.
+      int continua = 0;
+      for (const Rational& frac : {Rational(17, 41), Rational(29, 53)}) {
+        std::array<Rational, 3> xm;
+        const Rational tm = c.t0 + (c.t1 - c.t0) * frac;
+        for (size_t i = 0; i < 3; ++i)
+          xm[i] = core::eval_poly(c.spine[i], tm);
+        PointQuadricResult pm = point_quadric_critical(xm, q, 15);
+        bool cont = false;
+        for (const auto& cd : pm.criticals)
+          cont = cont || cd.continuum;
+        continua += cont ? 1 : 0;
+      }
+      if (continua == 2) {
+        out.status = Status::Undecided;
+        out.note = "not supported yet: the spine lies on an axis of revolution of the quadric (a "
+                   "continuum of feet along the whole spine)";
+        return out;
+      }
+    }
+    cover = algebra::cover_real_solutions_2d(F, G, Rational(1, 16));
+    out.system_degrees = {F.total_degree(), G.total_degree()};
+    out.bivariate_degrees = {F.degree(0), G.degree(0)};
+    out.univariate_degrees = {cover->eliminant_degree[0], cover->eliminant_degree[1]};
+    out.squarefree_degrees = {cover->squarefree_degree[0], cover->squarefree_degree[1]};
+    out.eliminated_degree = static_cast<int>(cover->eliminant_degree[1]);
+    if (!cover->ok) {
+      out.status = Status::Undecided;
+      out.note =
+          "not supported yet: the canal system has a curve of solutions (" + cover->note + ")";
+      return out;
+    }
+  }
+  // Relative width 10^-digits; the point-quadric enclosures are 10^-(digits + 8) wide.
+  const long target_bits = static_cast<long>(static_cast<double>(digits) * 3.33) + 4;
+  Candidate e0, e1;
+  if (!candidate(e0, q, c, c.t0, c.t0, digits) || !candidate(e1, q, c, c.t1, c.t1, digits)) {
+    out.status = Status::Undecided;
+    out.note = "point-quadric distance undecided at an end of the spine";
+    return out;
+  }
+  const long prec = bits_for(digits + 10);
+  std::vector<Candidate> best;
+  Ball L, U;
+  bool done = false;
+  for (long bits = 16; !done; bits *= 2) {
+    Rational width(1);
+    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
+    std::vector<std::pair<Rational, Rational>> ts;
+    if (cover) {
+      algebra::refine_cover(*cover, width);
+      for (const auto& b : cover->boxes)
+        ts.emplace_back(cover->roots[1][b[1]].lo, cover->roots[1][b[1]].hi);
+    } else {
+      for (auto& r : tints) { // plane: the exact critical parameters, refined by bisection
+        algebra::refine_root(tfactors[r.factor], r.lo, r.hi, width);
+        ts.emplace_back(r.lo, r.hi);
+      }
+    }
+    std::vector<Candidate> cands;
+    for (auto [lo, hi] : ts) {
+      if (hi < c.t0 || lo > c.t1) continue;
+      if (lo < c.t0) lo = c.t0;
+      if (hi > c.t1) hi = c.t1;
+      Candidate cd;
+      if (!candidate(cd, q, c, lo, hi, digits)) {
+        out.status = Status::Undecided;
+        out.note = "point-quadric distance undecided inside the interval";
+        return out;
+      }
+      cands.push_back(std::move(cd));
+    }
+    // The ends.
+    for (Candidate* e : {&e0, &e1}) {
+      Candidate cd;
+      arb_set(cd.lo.v, e->lo.v);
+      arb_set(cd.up.v, e->up.v);
+      cd.tc = e->tc;
+      cd.p = e->p;
+      cd.q = e->q;
+      cands.push_back(std::move(cd));
+    }
+    arf_t l, u, w;
+    arf_init(l);
+    arf_init(u);
+    arf_init(w);
+    arf_pos_inf(l);
+    arf_pos_inf(u);
+    for (const auto& cd : cands) {
+      arf_t x;
+      arf_init(x);
+      arb_get_lbound_arf(x, cd.lo.v, prec);
+      if (arf_cmp(x, l) < 0) arf_set(l, x);
+      arb_get_ubound_arf(x, cd.up.v, prec);
+      if (arf_cmp(x, u) < 0) arf_set(u, x);
+      arf_clear(x);
+    }
+    best.clear();
+    for (auto& cd : cands) {
+      arf_t x;
+      arf_init(x);
+      arb_get_lbound_arf(x, cd.lo.v, prec);
+      if (arf_cmp(x, u) <= 0) best.push_back(std::move(cd));
+      arf_clear(x);
+    }
+    arb_set_arf(L.v, l);
+    arb_set_arf(U.v, u);
+    arf_sub(w, u, l, prec, ARF_RND_UP);
+    arf_abs(l, l);
+    arf_mul_2exp_si(l, l, -target_bits);
+    done = arf_cmp(w, l) <= 0;
+    arf_clear(l);
+    arf_clear(u);
+    arf_clear(w);
+    if (bits > 2 * target_bits + 256) break;
+  }
+  // One minimizer per critical point: candidates from several boxes over the same parameter
+  // (several alpha boxes, or an interior box at an end) with the same foot are merged.
+  {
+    std::vector<Candidate> uniq;
+    for (auto& cd : best) {
+      bool dup = false;
+      for (const auto& u : uniq) {
+        double dp = std::hypot(cd.p[0] - u.p[0], cd.p[1] - u.p[1], cd.p[2] - u.p[2]),
+               sc = 1 + std::hypot(u.p[0], u.p[1], u.p[2]);
+        dup = dup || dp <= 1e-9 * sc;
+      }
+      if (!dup) uniq.push_back(std::move(cd));
+    }
+    best = std::move(uniq);
+  }
+  out.critical_candidates = static_cast<int>(best.size());
+  arf_t l, u;
+  arf_init(l);
+  arf_init(u);
+  arb_get_lbound_arf(l, L.v, prec);
+  arb_get_ubound_arf(u, U.v, prec);
+  if (arf_sgn(l) > 0) { // S1 misses every ball: the distance is min phi
+    out.status = done ? Status::Certified : Status::Undecided;
+    if (!done) out.note = "the enclosure did not reach the requested width";
+    out.lower = decimal_bound(l, false, digits + 2);
+    out.upper = decimal_bound(u, true, digits + 2);
+    out.approx = 0.5 * (arf_get_d(l, ARF_RND_NEAR) + arf_get_d(u, ARF_RND_NEAR));
+    if (out.minimizers.empty()) out.minimizers = std::to_string(best.size());
+    for (const auto& cd : best)
+      pair_out(cd);
+    if (best.size() > 1 && out.minimizers != "infinite")
+      out.note = "several candidates agree to the requested precision: listed as minimizers "
+                 "(equality not proven)";
+  } else if (arf_sgn(u) < 0 && q.kind() != core::QuadricKind::Ellipsoid) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the quadric enters the canal solid and, being unbounded, leaves it: they meet";
+  } else {
+    out.status = Status::Undecided;
+    out.note = arf_sgn(u) < 0 ? "the quadric enters the canal solid; it may lie inside it"
+                              : "touching? min phi not separated from 0";
+  }
+  arf_clear(l);
+  arf_clear(u);
+  return out;
+}
+
+} // namespace surfcert::certify

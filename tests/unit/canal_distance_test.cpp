@@ -1,0 +1,147 @@
+// Certified distance between a quadric and a canal surface (seed 000 §4), each against an
+// independent route:
+// - capsules (segment AB, radius r) against spheres: dist(c, AB) - r - rho in closed form,
+//   with the nearest point inside the segment, at an end, and with the sphere around it;
+// - capsule against planes: min over the ends of the signed distance, minus r (a segment
+//   parallel to the plane gives a continuum);
+// - a parabolic spine with a growing radius against a sphere: a dense float search over t;
+// - rigid motions of both surfaces (integer quaternions) leave the enclosure unchanged;
+// - input: a capsule with equal ends, an empty interval, a radius not positive at an end.
+#include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/io/json.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace surfcert;
+
+namespace {
+
+core::Surface eq(const std::string& s) {
+  return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
+}
+core::Surface js(const std::string& json) {
+  return core::io::read_surface(core::io::parse_json(json, "t"), "t", "$");
+}
+const char* kCapsule = R"({"type":"capsule","from":[0,0,0],"to":[4,0,0],"radius":1})";
+
+void expect_value(const certify::DistanceResult& r, double v, const std::string& ctx) {
+  ASSERT_EQ(r.status, certify::Status::Certified) << ctx << " " << r.note;
+  EXPECT_LE(std::stod(r.lower), v + 1e-14 * (1 + v)) << ctx;
+  EXPECT_GE(std::stod(r.upper), v - 1e-14 * (1 + v)) << ctx;
+  EXPECT_LE(std::stod(r.upper) - std::stod(r.lower), 1e-14 * (1 + v)) << ctx;
+}
+
+} // namespace
+
+TEST(CanalDistance, CapsuleAgainstSpheres) {
+  auto c = js(kCapsule);
+  // Foot inside the segment: |(2,5,0) - (2,0,0)| - 1 - 1.
+  auto r = certify::surface_distance(eq("(x-2)^2+(y-5)^2+z^2=1"), c, 15, false);
+  expect_value(r, 3.0, "inside");
+  EXPECT_EQ(r.minimizers, "1");
+  // Foot at the end B = (4,0,0): |(7,4,0) - B| - 2 = 3, in the end cap.
+  expect_value(certify::surface_distance(eq("(x-7)^2+(y-4)^2+z^2=1"), c, 15, false), 3.0, "end");
+  // Irrational: c = (-1, 1, 1): |c - A| = sqrt(3): sqrt(3) - 1 - 1/2.
+  expect_value(certify::surface_distance(eq("(x+1)^2+(y-1)^2+(z-1)^2=1/4"), c, 15, false),
+               std::sqrt(3.0) - 1.5, "irrational");
+  // A sphere around the capsule: rho - max |c - C(t)| - r = 10 - 2 - 1 at both ends.
+  auto s = certify::surface_distance(eq("(x-2)^2+y^2+z^2=100"), c, 15, false);
+  expect_value(s, 7.0, "around");
+  EXPECT_EQ(s.minimizers, "2");
+  // Swapping the surfaces swaps the points.
+  auto w = certify::surface_distance(c, eq("(x-2)^2+(y-5)^2+z^2=1"), 15, false);
+  ASSERT_EQ(w.status, certify::Status::Certified);
+  ASSERT_FALSE(w.pairs.empty());
+  EXPECT_NEAR(w.pairs[0][0][1], 1.0, 1e-12); // on the capsule
+  EXPECT_NEAR(w.pairs[0][1][1], 4.0, 1e-12); // on the sphere
+  // 60 digits: the same value, width 1e-60.
+  auto p = certify::surface_distance(eq("(x+1)^2+(y-1)^2+(z-1)^2=1/4"), c, 60, false);
+  ASSERT_EQ(p.status, certify::Status::Certified);
+  EXPECT_EQ(p.lower.substr(0, 50), p.upper.substr(0, 50));
+  EXPECT_EQ(p.lower.substr(0, 20), "0.232050807568877293"); // sqrt(3) - 3/2 (bc)
+}
+
+TEST(CanalDistance, CapsuleAgainstPlanes) {
+  auto c = js(kCapsule);
+  auto par = certify::surface_distance(eq("y = 3"), c, 15, false); // parallel: a continuum
+  expect_value(par, 2.0, "parallel");
+  EXPECT_EQ(par.minimizers, "infinite");
+  // Tilted: the nearer end B: (10 - 4)/sqrt(2) - 1.
+  expect_value(certify::surface_distance(eq("x + y = 10"), c, 15, false), 6 / std::sqrt(2.0) - 1,
+               "tilted");
+  auto cut = certify::surface_distance(eq("x = 2"), c, 15, false);
+  ASSERT_EQ(cut.status, certify::Status::Certified);
+  EXPECT_EQ(cut.upper, "0");
+}
+
+TEST(CanalDistance, PolynomialSpineAndRadiusAgainstFloatSearch) {
+  // C(t) = (t, t^2, 0), r(t) = 1 + t/10, t in [-1, 2], against the sphere at (1, 6, 0), rho 1.
+  auto k = js(R"({"type":"canal","spine":[[0,1],[0,0,1],[0]],"radius":[1,"1/10"],)"
+              R"("interval":[-1,2]})");
+  auto r = certify::surface_distance(eq("(x-1)^2+(y-6)^2+z^2=1"), k, 20, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  double best = 1e300;
+  for (int i = 0; i <= 3000000; ++i) {
+    double t = -1 + 3.0 * i / 3000000;
+    best = std::min(best, std::hypot(t - 1, t * t - 6) - 1 - (1 + t / 10));
+  }
+  EXPECT_LE(std::stod(r.lower), best);
+  EXPECT_LT(best - std::stod(r.upper), 1e-11);
+  // The same pair moved by a rational rigid motion: quaternion (1, 2, 2, 1)/ 10 plus (1/3, -2, 5).
+  const long R[3][3] = {{-2, 0, 10}, {10, 0, 2}, {0, 10, 0}}; // not used: see below
+  (void)R;
+  // Rotation matrix of (w,x,y,z) = (1,2,2,1): entries / 10.
+  const long w = 1, x = 2, y = 2, z = 1, n = 10;
+  const long M[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                        {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
+                        {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
+  const core::Rational tr[3] = {core::Rational(1, 3), core::Rational(-2), core::Rational(5)};
+  // Spine: C'(t) = M C(t)/n + tr, coefficient by coefficient.
+  const std::vector<core::Rational> cx{0, 1}, cy{0, 0, 1}, cz{0};
+  std::array<std::vector<core::Rational>, 3> sp;
+  for (size_t i = 0; i < 3; ++i) {
+    sp[i].assign(3, core::Rational(0));
+    const std::vector<core::Rational>* comp[3] = {&cx, &cy, &cz};
+    for (size_t j = 0; j < 3; ++j)
+      for (size_t d = 0; d < comp[j]->size(); ++d)
+        sp[i][d] += core::Rational(M[i][j], n) * (*comp[j])[d];
+    sp[i][0] += tr[i];
+  }
+  core::Surface km = core::make_canal(sp, {core::Rational(1), core::Rational(1, 10)},
+                                      core::Rational(-1), core::Rational(2));
+  // Sphere centre M (1,6,0)/n + tr, radius 1.
+  core::Rational cm[3];
+  for (size_t i = 0; i < 3; ++i)
+    cm[i] = core::Rational(M[i][0] * 1 + M[i][1] * 6, n) + tr[i];
+  core::Mat4 s;
+  s[0][0] = s[1][1] = s[2][2] = core::Rational(1);
+  core::Rational c2;
+  for (size_t i = 0; i < 3; ++i) {
+    s[i][3] = s[3][i] = -cm[i];
+    c2 += cm[i] * cm[i];
+  }
+  s[3][3] = c2 - core::Rational(1);
+  auto m = certify::surface_distance(core::Surface(core::QuadricMatrix(s)), km, 20, false);
+  ASSERT_EQ(m.status, certify::Status::Certified) << m.note;
+  EXPECT_EQ(m.lower.substr(0, 18), r.lower.substr(0, 18));
+}
+
+TEST(CanalDistance, InputErrors) {
+  EXPECT_THROW(js(R"({"type":"capsule","from":[1,2,3],"to":[1,2,3],"radius":1})"),
+               core::InputError);
+  EXPECT_THROW(js(R"({"type":"canal","spine":[[0,1],[0],[0]],"radius":1,"interval":[2,1]})"),
+               core::InputError);
+  EXPECT_THROW(js(R"({"type":"canal","spine":[[0,1],[0],[0]],"radius":[1,-1],"interval":[0,2]})"),
+               core::InputError);
+  EXPECT_THROW(js(R"({"type":"capsule","from":[0,0,0],"to":[1,0,0],"radius":-1})"),
+               core::InputError);
+  // A radius vanishing inside the interval: never a guess.
+  auto r = certify::surface_distance(
+      eq("x^2+y^2+(z-9)^2=1"),
+      js(R"({"type":"canal","spine":[[0,1],[0],[0]],"radius":["1/4",-1,1],"interval":[-2,2]})"), 15,
+      false);
+  EXPECT_NE(r.status, certify::Status::Certified);
+}
