@@ -266,3 +266,31 @@ TEST(QuadricPairDistance, EllipsoidAgainstUnboundedQuadrics) {
   auto v = certify::surface_distance(q("z = x^2 + 2*y^2"), q("z = x^2 + 2*y^2 + 1"), 15, false);
   EXPECT_NE(v.status, certify::Status::Certified) << v.lower;
 }
+
+TEST(QuadricPairDistance, GapsOf2ToTheMinus40AndTouching) {
+  // Congruent ellipsoids 4 + 2^-40 apart along x: the gap is exactly 2^-40 (Minkowski, tips).
+  const std::string g = "1/1099511627776";
+  auto r = certify::surface_distance(q("x^2/4 + y^2 + z^2/9 = 1"),
+                                     q("(x - 4 - " + g + ")^2/4 + y^2 + z^2/9 = 1"), 20, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  certify::DistanceResult exact;
+  exact.lower = exact.upper = "9.094947017729282379150390625e-13"; // 2^-40
+  EXPECT_TRUE(overlap(r, exact)) << r.lower << " " << r.upper;
+  EXPECT_EQ(r.minimizers, "1");
+  // 2^-100: still certified, still the exact gap.
+  auto s = certify::surface_distance(
+      q("x^2/4 + y^2 + z^2/9 = 1"),
+      q("(x - 4 - 1/1267650600228229401496703205376)^2/4 + y^2 + z^2/9 = 1"), 15, false);
+  ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
+  certify::DistanceResult e100;
+  e100.lower = e100.upper = "7.8886090522101180541172856528278622967320643510902300477027893066"
+                            "40625e-31"; // 2^-100
+  EXPECT_TRUE(overlap(s, e100)) << s.lower;
+  // Touching (gap 0): distance 0 with the contact point as witness.
+  auto t = certify::surface_distance(q("x^2/4 + y^2 + z^2/9 = 1"),
+                                     q("(x - 4)^2/4 + y^2 + z^2/9 = 1"), 15, false);
+  ASSERT_EQ(t.status, certify::Status::Certified);
+  EXPECT_EQ(t.upper, "0");
+  ASSERT_FALSE(t.pairs.empty());
+  EXPECT_NEAR(t.pairs[0][0][0], 2.0, 1e-9);
+}
