@@ -1,6 +1,7 @@
 #include "surfcert/algebra/mpoly.hpp"
 
 #include <flint/fmpz_mpoly_factor.h>
+#include <flint/fmpz_poly.h>
 
 #include <stdexcept>
 #include <vector>
@@ -102,8 +103,93 @@ bool operator==(const MPoly& a, const MPoly& b) {
   return fmpz_mpoly_equal(a.v_, b.v_, shared_ctx());
 }
 
+namespace {
+
+// Resultant in `var` of two polynomials that involve only `var` and `keep`, by evaluation at
+// integer points of `keep` (univariate modular resultants, FLINT) and exact interpolation.
+// A point where a leading coefficient in `var` vanishes is skipped (the specialisation would
+// not commute with the resultant there). The degree bound is the Bezout bound
+// tdeg(a) tdeg(b); one extra point checks the interpolant. Empty when it does not apply.
+bool resultant_by_interpolation(MPoly& out, const MPoly& a, const MPoly& b, int var, int keep) {
+  const long bound = a.total_degree() * b.total_degree();
+  const long da = a.degree(var), db = b.degree(var);
+  if (bound <= 0 || da <= 0 || db <= 0) return false;
+  std::vector<fmpz> xs, ys;
+  fmpz_t k, v;
+  fmpz_init(k);
+  fmpz_init(v);
+  fmpz_mpoly_t sa, sb;
+  fmpz_mpoly_init(sa, shared_ctx());
+  fmpz_mpoly_init(sb, shared_ctx());
+  fmpz_poly_t pa, pb;
+  fmpz_poly_init(pa);
+  fmpz_poly_init(pb);
+  bool ok = true;
+  for (long x = 0; static_cast<long>(xs.size()) < bound + 2 && x < 4 * bound + 100; ++x) {
+    const long pt = (x % 2 == 0) ? x / 2 : -(x + 1) / 2; // 0, -1, 1, -2, 2, ...
+    fmpz_set_si(k, pt);
+    if (!fmpz_mpoly_evaluate_one_fmpz(sa, a.raw(), keep, k, shared_ctx()) ||
+        !fmpz_mpoly_evaluate_one_fmpz(sb, b.raw(), keep, k, shared_ctx()) ||
+        !fmpz_mpoly_get_fmpz_poly(pa, sa, var, shared_ctx()) ||
+        !fmpz_mpoly_get_fmpz_poly(pb, sb, var, shared_ctx())) {
+      ok = false;
+      break;
+    }
+    if (fmpz_poly_degree(pa) != da || fmpz_poly_degree(pb) != db) continue;
+    fmpz_poly_resultant(v, pa, pb);
+    fmpz xv, yv;
+    fmpz_init_set(&xv, k);
+    fmpz_init_set(&yv, v);
+    xs.push_back(xv);
+    ys.push_back(yv);
+  }
+  ok = ok && static_cast<long>(xs.size()) == bound + 2;
+  if (ok) {
+    fmpz_poly_t r;
+    fmpz_poly_init(r);
+    // Interpolate through the first bound + 1 points, check the last one.
+    fmpz_poly_interpolate_fmpz_vec(r, xs.data(), ys.data(), bound + 1);
+    fmpz_poly_evaluate_fmpz(v, r, &xs[static_cast<size_t>(bound + 1)]);
+    ok = fmpz_equal(v, &ys[static_cast<size_t>(bound + 1)]);
+    if (ok) {
+      fmpz_mpoly_set_fmpz_poly(out.raw_mut(), r, keep, shared_ctx());
+    }
+    fmpz_poly_clear(r);
+  }
+  for (auto& x : xs)
+    fmpz_clear(&x);
+  for (auto& y : ys)
+    fmpz_clear(&y);
+  fmpz_poly_clear(pa);
+  fmpz_poly_clear(pb);
+  fmpz_mpoly_clear(sa, shared_ctx());
+  fmpz_mpoly_clear(sb, shared_ctx());
+  fmpz_clear(k);
+  fmpz_clear(v);
+  return ok;
+}
+
+// The variable other than `var` that a bivariate pair involves, or -1.
+int other_variable(const MPoly& a, const MPoly& b, int var) {
+  int other = -1;
+  for (int v = 0; v < 3; ++v) {
+    if (v == var) continue;
+    if (a.degree(v) > 0 || b.degree(v) > 0) {
+      if (other >= 0) return -1;
+      other = v;
+    }
+  }
+  return other;
+}
+
+} // namespace
+
 MPoly resultant(const MPoly& a, const MPoly& b, int var) {
   MPoly r;
+  const int keep = other_variable(a, b, var);
+  if (keep >= 0 && a.total_degree() * b.total_degree() >= 24 &&
+      resultant_by_interpolation(r, a, b, var, keep))
+    return r;
   if (!fmpz_mpoly_resultant(r.raw_mut(), a.raw(), b.raw(), var, shared_ctx()))
     throw std::runtime_error("fmpz_mpoly_resultant failed");
   return r;
