@@ -146,6 +146,12 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
     }
     if (const Json* m = q.find("mode"))
       query.mode = read_mode(*m, source, json_path_child(path, "mode"));
+    if (const Json* t = q.find("tolerance"))
+      query.tolerance = read_tolerance(*t, source, json_path_child(path, "tolerance"));
+    if (const Json* d = q.find("digits"))
+      query.digits = read_digits(*d, source, json_path_child(path, "digits"));
+    if (const Json* sd = q.find("solid"))
+      query.solid = read_bool(*sd, source, json_path_child(path, "solid"));
     s.queries.push_back(std::move(query));
   }
   return s;

@@ -249,6 +249,15 @@ TEST(TorusDistance, BatchAndSceneContract) {
   auto scene = certify::read_scene(doc, "scene", certify::Mode::Filtered);
   auto res = certify::run_query(scene, scene.queries[0]);
   EXPECT_EQ(res.find("result")->find("distance")->find("upper")->text(), "4");
+  // A scene query's "digits" is honoured (it was ignored before this test existed).
+  auto doc3 = core::io::parse_json(
+      R"({"surfaces":{"S":"x^2+y^2+z^2=1","P":"x+y+z=3"},"queries":[{"op":"distance",)"
+      R"("a":"S","b":"P","digits":40}]})",
+      "scene");
+  auto scene3 = certify::read_scene(doc3, "scene", certify::Mode::Filtered);
+  EXPECT_EQ(scene3.queries[0].digits, 40);
+  auto r3 = certify::run_query(scene3, scene3.queries[0]);
+  EXPECT_GE(r3.find("result")->find("distance")->find("lower")->text().size(), 40u);
   auto doc2 = core::io::parse_json(
       R"({"surfaces":{"T":{"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,)"
       R"("minor_radius":1},"P":"z = 5"},"queries":[{"op":"intersect","a":"P","b":"T"}]})",
