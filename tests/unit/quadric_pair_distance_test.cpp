@@ -294,3 +294,37 @@ TEST(QuadricPairDistance, GapsOf2ToTheMinus40AndTouching) {
   ASSERT_FALSE(t.pairs.empty());
   EXPECT_NEAR(t.pairs[0][0][0], 2.0, 1e-9);
 }
+
+TEST(QuadricPairDistance, CoaxialSurfacesOfRevolution) {
+  // Nested coaxial spheroids: circles of closest pairs; the value against a 2D float search
+  // over the two meridian ellipses (2 cos s, sin s) and (3 cos t, 2 sin t).
+  auto r = certify::surface_distance(q("x^2/4 + y^2/4 + z^2 = 1"), q("x^2/9 + y^2/9 + z^2/4 = 1"),
+                                     15, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.minimizers, "infinite");
+  double best = 1e300;
+  for (int i = 0; i < 3000; ++i)
+    for (int j = 0; j < 3000; ++j) {
+      double s = 2 * M_PI * i / 3000, t = 2 * M_PI * j / 3000;
+      best = std::min(best,
+                      std::hypot(2 * std::cos(s) - 3 * std::cos(t), std::sin(s) - 2 * std::sin(t)));
+    }
+  EXPECT_LE(lo(r), best);
+  EXPECT_LT(best - hi(r), 1e-5);
+  // The same pair on a tilted rational axis (1, 2, 2) through (1, -1, 2): same value.
+  auto m = motion(1, 2, 2, 1, {core::Rational(1), core::Rational(-1), core::Rational(2)});
+  auto rm = certify::surface_distance(q("x^2/4 + y^2/4 + z^2 = 1").congruent(m),
+                                      q("x^2/9 + y^2/9 + z^2/4 = 1").congruent(m), 15, false);
+  ASSERT_EQ(rm.status, certify::Status::Certified) << rm.note;
+  EXPECT_TRUE(overlap(r, rm)) << rm.lower;
+  // Closest points on the axis: a spheroid under a paraboloid, 1 at one pair.
+  auto p = certify::surface_distance(q("x^2 + y^2 + z^2/4 = 1"), q("z = x^2 + y^2 + 3"), 15, false);
+  ASSERT_EQ(p.status, certify::Status::Certified) << p.note;
+  EXPECT_NEAR(lo(p), 1.0, 1e-15);
+  EXPECT_EQ(p.minimizers, "1");
+  // Inside a coaxial cylinder: 3 - 1 along the equator circle.
+  auto c = certify::surface_distance(q("x^2 + y^2 + z^2/4 = 1"), q("x^2 + y^2 = 9"), 15, false);
+  ASSERT_EQ(c.status, certify::Status::Certified) << c.note;
+  EXPECT_NEAR(lo(c), 2.0, 1e-15);
+  EXPECT_EQ(c.minimizers, "infinite");
+}

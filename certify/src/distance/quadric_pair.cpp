@@ -4,6 +4,7 @@
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/distance/revolution.hpp"
 
 #include <arb.h>
 
@@ -239,6 +240,92 @@ private:
   long digits_;
 };
 
+// Two quadrics of revolution about one axis: the distance between the surfaces is the 2D
+// distance between their meridian conics (rotate a pair into one half-plane: the distance
+// does not grow; the conics are symmetric in X, so the 2D minimum over the whole conics is
+// attained by a same-side pair too). The meridians, as cylinders over the (x, y) plane, give
+// the same offset system with z absent: f = 0, G = 0 in two unknowns (C vanishes), covered
+// in the plane and refined by the same loop. A continuum of minimizers (circles) unless the
+// closest points lie on the axis. nullopt: not a coaxial pair (the 3D system applies).
+std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a,
+                                                    const core::QuadricMatrix& b, long digits) {
+  std::optional<Axis> ax = revolution_axis(a);
+  if (!ax) ax = revolution_axis(b);
+  if (!ax) return std::nullopt;
+  auto ma = meridian_conic(a, *ax, 1), mb = meridian_conic(b, *ax, 1);
+  if (!ma || !mb) return std::nullopt;
+  DistanceResult out;
+  const std::array<long, 3> l{3, -5, 7};
+  for (bool src_a : {true, false}) {
+    const core::QuadricMatrix& src = src_a ? *ma : *mb;
+    const core::QuadricMatrix& tgt = src_a ? *mb : *ma;
+    if (is_plane(tgt)) continue;
+    Offset o = build_offset(src, tgt, l);
+    o.source_is_a = src_a;
+    if (o.system[2].is_zero()) continue;
+    algebra::SolutionCover cover =
+        algebra::cover_real_solutions_2d(o.system[0], o.system[2], Rational(1, 16));
+    if (!cover.ok) continue;
+    out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
+    out.system_degrees = {o.system[0].total_degree(), o.system[2].total_degree()};
+    out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1]};
+    out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1]};
+    const bool compact =
+        a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid;
+    SourceQuadric s(src);
+    QuadricTarget t(s, o, digits);
+    minimize_over_cover(cover, s, t, digits, src_a, compact, out);
+    // Back to 3D: (X, Z) in the meridian half-plane of a unit vector u orthogonal to the axis.
+    std::array<double, 3> ad{ax->direction[0].to_double_approx(),
+                             ax->direction[1].to_double_approx(),
+                             ax->direction[2].to_double_approx()};
+    const double an = std::hypot(ad[0], ad[1], ad[2]);
+    for (auto& x : ad)
+      x /= an;
+    std::array<double, 3> u =
+        std::fabs(ad[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+    const double ua = u[0] * ad[0] + u[1] * ad[1] + u[2] * ad[2];
+    for (size_t i = 0; i < 3; ++i)
+      u[i] -= ua * ad[i];
+    const double un = std::hypot(u[0], u[1], u[2]);
+    bool on_axis = true;
+    std::vector<std::array<std::array<double, 3>, 2>> uniq; // X and -X: the same circle
+    for (auto pr : out.pairs) {
+      for (auto& pt : pr)
+        pt[0] = std::fabs(pt[0]);
+      bool dup = false;
+      for (const auto& u2 : uniq)
+        dup = dup || (std::hypot(u2[0][0] - pr[0][0], u2[0][1] - pr[0][1]) <=
+                          1e-9 * (1 + std::hypot(pr[0][0], pr[0][1])) &&
+                      std::hypot(u2[1][0] - pr[1][0], u2[1][1] - pr[1][1]) <=
+                          1e-9 * (1 + std::hypot(pr[1][0], pr[1][1])));
+      if (!dup) uniq.push_back(pr);
+    }
+    out.pairs = uniq;
+    for (auto& pr : out.pairs)
+      for (auto& pt : pr) {
+        const double X = std::fabs(pt[0]), Z = pt[1];
+        on_axis = on_axis && X <= 1e-12 * (1 + std::fabs(Z));
+        for (size_t i = 0; i < 3; ++i)
+          pt[i] = ax->point[i].to_double_approx() + X * u[i] / un + Z * ad[i];
+      }
+    if (out.status == Status::Certified) {
+      if (!on_axis) {
+        out.minimizers = "infinite";
+        out.note = "coaxial surfaces of revolution: circles of closest pairs (one pair per "
+                   "circle shown)";
+      } else {
+        out.note = "coaxial surfaces of revolution: the closest points lie on the axis";
+      }
+    }
+    return out;
+  }
+  out.status = Status::Undecided;
+  out.note = "not supported yet: coaxial surfaces of revolution whose meridian system "
+             "degenerates";
+  return out;
+}
+
 } // namespace
 
 DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
@@ -246,6 +333,7 @@ DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::Q
   DistanceResult out;
   // Roles: a plane is always the source (as the target its Hessian vanishes and C with it);
   // prefer a target with three distinct eigenvalues.
+  if (auto d = coaxial_pair_distance(a, b, digits)) return *d;
   std::vector<std::pair<bool, int>> orders; // (source is a, preference)
   for (bool src_a : {true, false}) {
     const core::QuadricMatrix& tgt = src_a ? b : a;

@@ -3,6 +3,7 @@
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/distance/revolution.hpp"
 #include "surfcert/certify/qsic.hpp"
 
 #include <arb.h>
@@ -348,87 +349,6 @@ DistanceResult plane_torus(const core::QuadricMatrix& pl, const core::Torus& t, 
 
 // ---- a quadric of revolution sharing the torus axis ----------------------------------------
 
-// If q is invariant under the rotations about the torus axis (quadratic block mu I + nu a a^T,
-// Q3 c + b parallel to a) and |a| is rational, its meridian conic in the half-plane
-// (X = distance to the axis, Z = height): mu X^2 + lambda Z^2 + 2 beta |a| Z + f(c) = 0.
-std::optional<core::QuadricMatrix> coaxial_meridian(const core::QuadricMatrix& q,
-                                                    const core::Torus& t) {
-  const auto& a = t.axis;
-  Rational aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-  Integer an2 = aa.num() * aa.den(); // aa a square iff num*den is (both coprime)
-  Integer root;
-  fmpz_sqrtrem(root.raw_mut(), Integer().raw_mut(), an2.raw());
-  if (!(root * root == an2)) return std::nullopt;
-  const Rational alen = Rational(root) / Rational(aa.den()); // |a|
-  auto M = [&](size_t i, size_t j) { return q(static_cast<int>(i), static_cast<int>(j)); };
-  std::array<Rational, 3> Ma, v; // M a, and M c + b
-  for (size_t i = 0; i < 3; ++i) {
-    v[i] = M(i, 3);
-    for (size_t j = 0; j < 3; ++j) {
-      Ma[i] += M(i, j) * a[j];
-      v[i] += M(i, j) * t.centre[j];
-    }
-  }
-  Rational aMa = a[0] * Ma[0] + a[1] * Ma[1] + a[2] * Ma[2];
-  const Rational lambda = aMa / aa;
-  for (size_t i = 0; i < 3; ++i)
-    if (!(Ma[i] == lambda * a[i])) return std::nullopt; // a is an eigenvector
-  // Two vectors spanning a-perp (cross products with the coordinate axes), same eigenvalue.
-  std::vector<std::array<Rational, 3>> perp;
-  for (size_t k = 0; k < 3 && perp.size() < 2; ++k) {
-    std::array<Rational, 3> e{}, u{};
-    e[k] = Rational(1);
-    u = {a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2], a[0] * e[1] - a[1] * e[0]};
-    if (u[0].is_zero() && u[1].is_zero() && u[2].is_zero()) continue;
-    if (perp.size() == 1) { // independent of the first?
-      const auto& w = perp[0];
-      std::array<Rational, 3> x{w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2],
-                                w[0] * u[1] - w[1] * u[0]};
-      if (x[0].is_zero() && x[1].is_zero() && x[2].is_zero()) continue;
-    }
-    perp.push_back(u);
-  }
-  std::optional<Rational> mu;
-  for (const auto& u : perp) {
-    std::array<Rational, 3> Mu{};
-    Rational uu;
-    for (size_t i = 0; i < 3; ++i) {
-      uu += u[i] * u[i];
-      for (size_t j = 0; j < 3; ++j)
-        Mu[i] += M(i, j) * u[j];
-    }
-    Rational m = (u[0] * Mu[0] + u[1] * Mu[1] + u[2] * Mu[2]) / uu;
-    for (size_t i = 0; i < 3; ++i)
-      if (!(Mu[i] == m * u[i])) return std::nullopt;
-    if (mu && !(*mu == m)) return std::nullopt;
-    mu = m;
-  }
-  // M c + b = beta a.
-  std::optional<Rational> beta;
-  for (size_t i = 0; i < 3; ++i) {
-    if (a[i].is_zero()) {
-      if (!v[i].is_zero()) return std::nullopt;
-      continue;
-    }
-    Rational bb = v[i] / a[i];
-    if (beta && !(*beta == bb)) return std::nullopt;
-    beta = bb;
-  }
-  Rational fc = M(3, 3);
-  for (size_t i = 0; i < 3; ++i) {
-    fc += Rational(2) * M(i, 3) * t.centre[i];
-    for (size_t j = 0; j < 3; ++j)
-      fc += t.centre[i] * M(i, j) * t.centre[j];
-  }
-  core::Mat4 g;
-  g[0][0] = *mu;
-  g[2][2] = lambda;
-  g[2][3] = g[3][2] = *beta * alen;
-  g[3][3] = fc;
-  if (mu->is_zero() && lambda.is_zero()) return std::nullopt; // a plane: the closed form applies
-  return core::QuadricMatrix(g);
-}
-
 // dist(S, T) for S coaxial with T: m = dist(K, S) is the 2D distance from (R, 0) to the
 // meridian conic (every circle point is alike), found by the exact point-quadric sextic on
 // the conic seen as a cylinder; S meets T iff m <= r (S always has points outside the solid
@@ -648,7 +568,8 @@ DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::
                                       long digits, bool quadric_first) {
   if (q.is_sphere()) return sphere_torus(q, t, digits, quadric_first);
   if (is_plane(q)) return plane_torus(q, t, digits, quadric_first);
-  if (auto mer = coaxial_meridian(q, t)) return coaxial_torus(*mer, t, digits, quadric_first);
+  if (auto mer = meridian_conic(q, Axis{t.centre, t.axis}, 2))
+    return coaxial_torus(*mer, t, digits, quadric_first);
   DistanceResult out;
   const TorusPolys tp = torus_polys(t);
   SourceQuadric src(q);
