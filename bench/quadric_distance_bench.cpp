@@ -36,10 +36,18 @@ namespace {
 using V3 = std::array<double, 3>;
 using M3 = std::array<V3, 3>;
 
-V3 add(const V3& a, const V3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+V3 add(const V3& a, const V3& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+V3 sub(const V3& a, const V3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const V3& a, const V3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double norm(const V3& a) {
+  return std::sqrt(dot(a, a));
+}
 V3 mul(const M3& r, const V3& v) { // r v
   return {dot(r[0], v), dot(r[1], v), dot(r[2], v)};
 }
@@ -263,10 +271,14 @@ V3 paraboloid_closest(double a, double b, const V3& y) {
 enum class Kind { Ellipsoid, Cylinder, Cone, Paraboloid };
 const char* kind_name(Kind k) {
   switch (k) {
-  case Kind::Ellipsoid: return "ellipsoid";
-  case Kind::Cylinder: return "cylinder";
-  case Kind::Cone: return "cone";
-  case Kind::Paraboloid: return "paraboloid";
+  case Kind::Ellipsoid:
+    return "ellipsoid";
+  case Kind::Cylinder:
+    return "cylinder";
+  case Kind::Cone:
+    return "cone";
+  case Kind::Paraboloid:
+    return "paraboloid";
   }
   return "?";
 }
@@ -282,13 +294,19 @@ struct FSurface {
   V3 project(const V3& p) const {
     V3 y = mul_t(rot, sub(p, centre)), x;
     switch (kind) {
-    case Kind::Ellipsoid: x = ellipsoid_closest(radii, y); break;
+    case Kind::Ellipsoid:
+      x = ellipsoid_closest(radii, y);
+      break;
     case Kind::Cylinder:
       x = ellipse_closest_any(radii[0], radii[1], y[0], y[1]);
       x[2] = y[2];
       break;
-    case Kind::Cone: x = cone_closest(radii[0], radii[1], y); break;
-    case Kind::Paraboloid: x = paraboloid_closest(radii[0], radii[1], y); break;
+    case Kind::Cone:
+      x = cone_closest(radii[0], radii[1], y);
+      break;
+    case Kind::Paraboloid:
+      x = paraboloid_closest(radii[0], radii[1], y);
+      break;
     }
     return add(centre, mul(rot, x));
   }
@@ -308,8 +326,8 @@ std::vector<V3> fibonacci(int n) {
 }
 
 struct FloatResult {
-  double f = 1e300;        ///< best pair distance found (upper bound up to float error)
-  double sampled = 1e300;  ///< coarse sampling alone
+  double f = 1e300;       ///< best pair distance found (upper bound up to float error)
+  double sampled = 1e300; ///< coarse sampling alone
   V3 p{}, q{};
 };
 
@@ -464,8 +482,9 @@ FSurface ellipsoid_surface(const bench::EllipsoidParams& p, const std::string& t
 
 std::string ellipsoid_text(const bench::EllipsoidParams& p) {
   char buf[200];
-  std::snprintf(buf, sizeof buf, "random_ellipsoid radii [%.2f, %.2f, %.2f] centre [%.3f, %.3f, %.3f]",
-                p.radii[0], p.radii[1], p.radii[2], p.centre[0], p.centre[1], p.centre[2]);
+  std::snprintf(buf, sizeof buf,
+                "random_ellipsoid radii [%.2f, %.2f, %.2f] centre [%.3f, %.3f, %.3f]", p.radii[0],
+                p.radii[1], p.radii[2], p.centre[0], p.centre[1], p.centre[2]);
   return buf;
 }
 
@@ -479,8 +498,8 @@ Case make_case(int set, std::mt19937_64& rng) {
     std::uniform_real_distribution<double> len(2.5, 3.5);
     auto t = random_offset(rng, len(rng));
     c.b = translated(e2.quadric, t);
-    c.fb = ellipsoid_surface(e2.params, ellipsoid_text(e2.params) + " translated by " +
-                                            vec_text(t));
+    c.fb =
+        ellipsoid_surface(e2.params, ellipsoid_text(e2.params) + " translated by " + vec_text(t));
     for (size_t i = 0; i < 3; ++i)
       c.fb.centre[i] = e2.params.centre[i] + t[i].to_double_approx();
     return c;
@@ -561,7 +580,9 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
 }
 
-std::string equation(const core::QuadricMatrix& q) { return q.to_poly().to_string() + " = 0"; }
+std::string equation(const core::QuadricMatrix& q) {
+  return q.to_poly().to_string() + " = 0";
+}
 
 bool is_zero_result(const certify::DistanceResult& r) {
   return r.status == certify::Status::Certified && r.upper == "0";
@@ -578,7 +599,8 @@ int main(int argc, char** argv) {
                            "Ellipsoid vs cylinder",
                            "Ellipsoid vs cone",
                            "Ellipsoid vs elliptic paraboloid"};
-  std::printf("# Quadric pair certified distance (quadric_distance_bench %ld %lu)\n\n", pairs, seed);
+  std::printf("# Quadric pair certified distance (quadric_distance_bench %ld %lu)\n\n", pairs,
+              seed);
   long total_violations = 0;
   for (int set = 1; set <= 5; ++set) {
     std::mt19937_64 rng(seed * 10 + static_cast<unsigned long>(set));
@@ -718,9 +740,9 @@ int main(int argc, char** argv) {
       for (size_t k = 0; k < 2; ++k) {
         const Run& run = runs[k][static_cast<size_t>(i)];
         if (!run.threw && run.r.status == certify::Status::Certified) continue;
-        std::string n = run.threw ? "exception: " + run.what
-                                  : std::string(certify::to_string(run.r.status)) + ": " +
-                                        run.r.note;
+        std::string n = run.threw
+                            ? "exception: " + run.what
+                            : std::string(certify::to_string(run.r.status)) + ": " + run.r.note;
         if (n.size() > 120) n = n.substr(0, 117) + "...";
         ++notes[std::to_string(digits_list[k]) + " digits, " + n];
         if (examples.empty() || examples.back() != i) examples.push_back(i);
@@ -736,9 +758,9 @@ int main(int argc, char** argv) {
         const Case& c = cases[static_cast<size_t>(i)];
         const Run& run = runs[0][static_cast<size_t>(i)];
         std::printf("- case %ld (15 digits: %s, [%s, %s], float f = %.6g): `%s` | `%s`\n", i,
-                    run.threw ? "exception" : certify::to_string(run.r.status),
-                    run.r.lower.c_str(), run.r.upper.c_str(), fl[static_cast<size_t>(i)].f,
-                    equation(c.a).c_str(), equation(c.b).c_str());
+                    run.threw ? "exception" : certify::to_string(run.r.status), run.r.lower.c_str(),
+                    run.r.upper.c_str(), fl[static_cast<size_t>(i)].f, equation(c.a).c_str(),
+                    equation(c.b).c_str());
       }
     }
     std::printf("\n");
