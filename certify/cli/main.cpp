@@ -6,6 +6,7 @@
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/scene.hpp"
 #include "surfcert/certify/trace/export.hpp"
+#include "surfcert/core/io/expression.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
 #include <flint/flint.h>
@@ -216,6 +217,13 @@ int cmd_distance(const std::vector<std::string>& args) {
   auto surface = [](const std::string& text, const std::string& src) -> core::Surface {
     if (!text.empty() && text[0] == '{')
       return core::io::read_surface(core::io::parse_json(text, src), src, "$");
+    core::Poly3 p = core::io::parse_polynomial(text, Location{src, 1, 1, ""});
+    if (p.total_degree() >= 3) { // an implicit surface of degree 3..6
+      if (p.total_degree() > 6)
+        throw InputError(Location{src, 1, 1, ""}, "a surface of total degree at most 6",
+                         "total degree " + std::to_string(p.total_degree()));
+      return core::ImplicitSurface{std::move(p)};
+    }
     return core::io::quadric_from_equation(text, Location{src, 1, 1, ""});
   };
   certify::DistanceResult d = certify::surface_distance(

@@ -38,6 +38,7 @@ CanalSurface make_canal(std::array<std::vector<Rational>, 3> spine, std::vector<
 std::string surface_kind(const Surface& s) {
   if (std::holds_alternative<Torus>(s)) return "torus";
   if (std::holds_alternative<CanalSurface>(s)) return "canal";
+  if (std::holds_alternative<ImplicitSurface>(s)) return "implicit";
   return "quadric";
 }
 

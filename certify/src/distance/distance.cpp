@@ -361,6 +361,8 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   const core::Surface& other = qa ? b : a;
   if (const auto* t = std::get_if<core::Torus>(&other))
     out = quadric_torus_distance(q, *t, digits, qa != nullptr);
+  else if (const auto* im = std::get_if<core::ImplicitSurface>(&other))
+    out = implicit_quadric_distance(im->f, q, digits, qa == nullptr);
   else
     out = quadric_canal_distance(q, std::get<core::CanalSurface>(other), digits, qa != nullptr);
   out.solid = solid;

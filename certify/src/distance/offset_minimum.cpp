@@ -1,5 +1,9 @@
 #include "surfcert/certify/distance/offset_minimum.hpp"
 
+#include "surfcert/algebra/real_roots.hpp"
+
+#include <flint/fmpz_poly_factor.h>
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -55,6 +59,95 @@ bool ball_quadratic_roots(const arb_t a2, const arb_t a1, const arb_t a0, Ball (
   return true;
 }
 
+SourceQuadric::SourceQuadric(algebra::MPoly f_any) : f(std::move(f_any)) {
+  for (size_t i = 0; i < 3; ++i)
+    N[i] = f.derivative(static_cast<int>(i));
+}
+
+namespace {
+
+// Exact value of an integer polynomial at a rational point.
+Rational eval_exact(const MPoly& a, const Rational (&c)[3]) {
+  Rational v;
+  fmpz_t k;
+  fmpz_init(k);
+  slong e[3];
+  for (slong i = 0; i < a.terms(); ++i) {
+    fmpz_mpoly_get_term_coeff_fmpz(k, a.raw(), i, MPoly::ctx());
+    fmpz_mpoly_get_term_exp_si(e, a.raw(), i, MPoly::ctx());
+    Rational t;
+    fmpq_set_fmpz_frac(t.raw_mut(), k, core::Integer(1).raw());
+    for (size_t j = 0; j < 3; ++j)
+      for (slong m = 0; m < e[j]; ++m)
+        t = t * c[j];
+    v += t;
+  }
+  fmpz_clear(k);
+  return v;
+}
+
+// A point of f = 0 on the line c + t n (n = grad f(c)): the real root t of the exact
+// univariate polynomial closest to 0 (isolated exactly, enclosed by a ball).
+bool project_general(const MPoly& f, const std::array<MPoly, 3>& N, const Rational (&c)[3],
+                     Ball (&p)[3], long prec) {
+  Rational n[3];
+  for (size_t i = 0; i < 3; ++i)
+    n[i] = eval_exact(N[i], c);
+  algebra::UPolyQ u; // f(c + t n), term by term
+  fmpz_t k;
+  fmpz_init(k);
+  slong e[3];
+  for (slong i = 0; i < f.terms(); ++i) {
+    fmpz_mpoly_get_term_coeff_fmpz(k, f.raw(), i, MPoly::ctx());
+    fmpz_mpoly_get_term_exp_si(e, f.raw(), i, MPoly::ctx());
+    Rational co;
+    fmpq_set_fmpz_frac(co.raw_mut(), k, core::Integer(1).raw());
+    algebra::UPolyQ t(co);
+    for (size_t j = 0; j < 3; ++j) {
+      algebra::UPolyQ lin = algebra::UPolyQ::from_coeffs({c[j], n[j]});
+      for (slong m = 0; m < e[j]; ++m)
+        t = t * lin;
+    }
+    u = u + t;
+  }
+  fmpz_clear(k);
+  if (u.degree() <= 0) return false;
+  algebra::UPolyZ z = u.primitive_integer();
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor_squarefree(fac, z.raw());
+  algebra::UPolyZ sq;
+  fmpz_poly_one(sq.raw_mut());
+  for (slong i = 0; i < fac->num; ++i)
+    fmpz_poly_mul(sq.raw_mut(), sq.raw(), fac->p + i);
+  fmpz_poly_factor_clear(fac);
+  algebra::RootSeparation s = algebra::isolate_real_roots(sq);
+  if (s.num_roots() == 0) return false;
+  std::optional<std::pair<Rational, Rational>> best;
+  Rational w(1);
+  fmpq_div_2exp(w.raw_mut(), w.raw(), static_cast<ulong>(prec));
+  for (size_t i = 0; i + 1 < s.separators.size(); ++i) {
+    Rational lo = s.separators[i], hi = s.separators[i + 1];
+    algebra::refine_root(sq, lo, hi, w);
+    const Rational mag = core::abs(lo + hi);
+    if (!best || mag < core::abs(best->first + best->second)) best = std::make_pair(lo, hi);
+  }
+  Ball t, hi;
+  arb_set_fmpq(t.v, best->first.raw(), prec);
+  arb_set_fmpq(hi.v, best->second.raw(), prec);
+  arb_union(t.v, t.v, hi.v, prec);
+  for (size_t i = 0; i < 3; ++i) {
+    Ball ci, ni;
+    arb_set_fmpq(ci.v, c[i].raw(), prec);
+    arb_set_fmpq(ni.v, n[i].raw(), prec);
+    arb_mul(p[i].v, t.v, ni.v, prec);
+    arb_add(p[i].v, p[i].v, ci.v, prec);
+  }
+  return true;
+}
+
+} // namespace
+
 SourceQuadric::SourceQuadric(const core::QuadricMatrix& q)
     : quadric(&q), f(algebra::quadric_poly(q.matrix())) {
   for (size_t i = 0; i < 3; ++i)
@@ -72,6 +165,7 @@ SourceQuadric::SourceQuadric(const core::QuadricMatrix& q)
 }
 
 bool SourceQuadric::project(const Rational (&c)[3], Ball (&p)[3], long prec) const {
+  if (f.total_degree() > 2) return project_general(f, N, c, p, prec);
   // f(c + t n) = f(c) + t |n|^2 + t^2 n^T H n / 2 with n = grad f(c): exact coefficients.
   Ball cb[3], n[3], b0, b1, b2, tmp, h;
   for (size_t k = 0; k < 3; ++k)

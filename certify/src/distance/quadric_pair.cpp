@@ -39,12 +39,10 @@ struct Offset {
   std::array<MPoly, 3> system; // f, C, G
 };
 
-Offset build_offset(const core::QuadricMatrix& src, const core::QuadricMatrix& tgt,
-                    const std::array<long, 3>& l) {
+Offset build_offset_poly(MPoly f, const core::QuadricMatrix& tgt, const std::array<long, 3>& l) {
   Offset o;
-  o.source = &src;
   o.target = &tgt;
-  o.f = algebra::quadric_poly(src.matrix());
+  o.f = std::move(f);
   o.g = algebra::quadric_poly(tgt.matrix());
   V3 X, Y;
   for (int i = 0; i < 3; ++i) {
@@ -74,6 +72,13 @@ Offset build_offset(const core::QuadricMatrix& src, const core::QuadricMatrix& t
   o.g2 = dot(o.N, Y);
   const MPoly G = MPoly(2) * o.g * Q * Q - MPoly(2) * o.g1 * P * Q + o.g2 * P * P;
   o.system = {o.f, C, G};
+  return o;
+}
+
+Offset build_offset(const core::QuadricMatrix& src, const core::QuadricMatrix& tgt,
+                    const std::array<long, 3>& l) {
+  Offset o = build_offset_poly(algebra::quadric_poly(src.matrix()), tgt, l);
+  o.source = &src;
   return o;
 }
 
@@ -383,6 +388,204 @@ DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::Q
   SourceQuadric src(*o.source);
   QuadricTarget tgt(src, o, digits);
   minimize_over_cover(cover, src, tgt, digits, o.source_is_a, compact, out);
+  return out;
+}
+
+namespace {
+
+// A sphere as the target: the distance from p is ||p - c| - rho| (closed form, Arb), a valid
+// lower bound over a box and the distance of a genuine pair at a certified point.
+class SphereTarget : public MinimumTarget {
+public:
+  SphereTarget(std::array<Rational, 3> c, Rational r2) : c_(std::move(c)), r2_(std::move(r2)) {}
+  void lower(arf_t out, const Ball (&box)[3], const Rational (&)[3], long prec) const override {
+    Ball d;
+    dist(d.v, box, prec);
+    arb_get_lbound_arf(out, d.v, prec);
+    if (arf_sgn(out) < 0) arf_zero(out);
+  }
+  std::optional<CandidatePair> upper(const Ball (&p)[3], long prec) const override {
+    CandidatePair cp;
+    dist(cp.d.v, p, prec);
+    double n = 0, rho = std::sqrt(r2_.to_double_approx());
+    for (size_t i = 0; i < 3; ++i) {
+      cp.p[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
+      n += (cp.p[i] - c_[i].to_double_approx()) * (cp.p[i] - c_[i].to_double_approx());
+    }
+    n = std::sqrt(n);
+    for (size_t i = 0; i < 3; ++i)
+      cp.q[i] =
+          c_[i].to_double_approx() + (n > 0 ? rho * (cp.p[i] - c_[i].to_double_approx()) / n : 0);
+    return cp;
+  }
+
+private:
+  void dist(arb_t out, const Ball (&p)[3], long prec) const {
+    Ball w[3], r;
+    for (size_t i = 0; i < 3; ++i) {
+      arb_set_fmpq(w[i].v, c_[i].raw(), prec);
+      arb_sub(w[i].v, p[i].v, w[i].v, prec);
+    }
+    ball_norm(out, w, prec);
+    arb_set_fmpq(r.v, r2_.raw(), prec);
+    arb_sqrt(r.v, r.v, prec);
+    arb_sub(out, out, r.v, prec);
+    arb_abs(out, out);
+  }
+  std::array<Rational, 3> c_;
+  Rational r2_;
+};
+
+} // namespace
+
+MPoly poly3_to_mpoly(const core::Poly3& p) {
+  core::Integer den(1);
+  for (const auto& [e, c] : p.terms())
+    fmpz_lcm(den.raw_mut(), den.raw(), c.den().raw());
+  MPoly r;
+  for (const auto& [e, c] : p.terms()) {
+    MPoly t((c * Rational(den)).num());
+    for (int v = 0; v < 3; ++v)
+      for (int k = 0; k < e[static_cast<size_t>(v)]; ++k)
+        t = t * MPoly::var(v);
+    r = r + t;
+  }
+  return r;
+}
+
+DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::QuadricMatrix& q,
+                                         long digits, bool implicit_first) {
+  DistanceResult out;
+  if (q.kind() != core::QuadricKind::Ellipsoid) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: an implicit surface of degree > 2 against a quadric other "
+               "than an ellipsoid";
+    return out;
+  }
+  const MPoly f = poly3_to_mpoly(fp);
+  // Contact: the sign of f at the critical points of f on the ellipsoid (connected, bounded:
+  // f takes its extreme values there). Both signs at certified points: they cross.
+  SourceQuadric ell(q);
+  const V3 gf{f.derivative(0), f.derivative(1), f.derivative(2)};
+  const V3 v = cross(ell.N, gf);
+  MPoly e1, e2;
+  const std::array<std::array<long, 3>, 2> ls{{{3, -5, 7}, {2, 7, -11}}};
+  for (size_t i = 0; i < 3; ++i) {
+    e1 = e1 + MPoly(ls[0][i]) * v[i];
+    e2 = e2 + MPoly(ls[1][i]) * v[i];
+  }
+  algebra::SolutionCover cc = algebra::cover_real_solutions({ell.f, e1, e2}, Rational(1, 16));
+  if (!cc.ok) {
+    out.status = Status::Undecided;
+    out.note = "contact not decided: the critical points of f on the ellipsoid form a curve";
+    return out;
+  }
+  bool decided = false, meet = false;
+  for (long bits = 16; bits <= 512 && !decided; bits *= 2) {
+    Rational width(1);
+    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
+    algebra::refine_cover(cc, width);
+    const long prec = algebra::precision_for_width(width) + 64;
+    bool all_signed = true, any_pos = false, any_neg = false, cert_pos = false, cert_neg = false;
+    for (const auto& b : cc.boxes) {
+      Ball box[3], val;
+      algebra::box_balls(cc, b, box[0].v, box[1].v, box[2].v, prec);
+      algebra::evaluate(val.v, f, ball_point(box), prec);
+      const bool pos = arb_is_positive(val.v), neg = arb_is_negative(val.v);
+      any_pos = any_pos || pos;
+      any_neg = any_neg || neg;
+      all_signed = all_signed && (pos || neg);
+      if ((pos && !cert_pos) || (neg && !cert_neg)) {
+        Rational centre[3];
+        for (size_t k = 0; k < 3; ++k)
+          centre[k] = (cc.roots[k][b[k]].lo + cc.roots[k][b[k]].hi) * Rational(1, 2);
+        Ball p[3], fv;
+        if (ell.project(centre, p, prec)) {
+          algebra::evaluate(fv.v, f, ball_point(p), prec);
+          cert_pos = cert_pos || arb_is_positive(fv.v);
+          cert_neg = cert_neg || arb_is_negative(fv.v);
+        }
+      }
+    }
+    if (cert_pos && cert_neg) {
+      decided = meet = true;
+    } else if (all_signed && !(any_pos && any_neg)) {
+      decided = true; // one sign at every critical point: f never vanishes on the ellipsoid
+    }
+  }
+  if (!decided) {
+    out.status = Status::Undecided;
+    out.note = "contact not decided: a critical value of f on the ellipsoid is not separated "
+               "from 0 (touching?)";
+    return out;
+  }
+  if (meet) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the surfaces meet (f takes both signs at certified points of the ellipsoid)";
+    return out;
+  }
+  if (q.is_sphere()) {
+    // Normal lines of S1 through the centre: f = 0, l.((p - c) x grad f) = 0 for two l.
+    std::array<Rational, 3> c;
+    const Rational k = q(0, 0);
+    Rational c2;
+    core::Integer den(1);
+    for (size_t i = 0; i < 3; ++i) {
+      c[i] = -q(static_cast<int>(i), 3) / k;
+      c2 += c[i] * c[i];
+      fmpz_lcm(den.raw_mut(), den.raw(), c[i].den().raw());
+    }
+    const Rational r2 = c2 - q(3, 3) / k;
+    V3 w;
+    for (size_t i = 0; i < 3; ++i)
+      w[i] = MPoly(den) * MPoly::var(static_cast<int>(i)) - MPoly((c[i] * Rational(den)).num());
+    const V3 gfv{f.derivative(0), f.derivative(1), f.derivative(2)};
+    const V3 wx = cross(w, gfv);
+    MPoly s1, s2;
+    for (size_t i = 0; i < 3; ++i) {
+      s1 = s1 + MPoly(ls[0][i]) * wx[i];
+      s2 = s2 + MPoly(ls[1][i]) * wx[i];
+    }
+    algebra::SolutionCover cover = algebra::cover_real_solutions({f, s1, s2}, Rational(1, 16));
+    if (!cover.ok) {
+      out.status = Status::Undecided;
+      out.note = "not supported yet: a curve of normal lines through the sphere's centre";
+      return out;
+    }
+    out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
+    out.system_degrees = {f.total_degree(), s1.total_degree(), s2.total_degree()};
+    out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1],
+                              cover.eliminant_degree[2]};
+    out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1],
+                              cover.squarefree_degree[2]};
+    SourceQuadric src(f);
+    SphereTarget tgt(c, r2);
+    minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
+    return out;
+  }
+  // The offset system with the implicit surface as the source, the ellipsoid as the target.
+  for (const auto& l : ls) {
+    Offset o = build_offset_poly(f, q, l);
+    o.source_is_a = implicit_first;
+    algebra::SolutionCover cover = algebra::cover_real_solutions(o.system, Rational(1, 16));
+    if (!cover.ok) continue;
+    out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
+    out.system_degrees = {o.system[0].total_degree(), o.system[1].total_degree(),
+                          o.system[2].total_degree()};
+    out.bivariate_degrees = {cover.bivariate_degree[0], cover.bivariate_degree[1]};
+    out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1],
+                              cover.eliminant_degree[2]};
+    out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1],
+                              cover.squarefree_degree[2]};
+    SourceQuadric src(f);
+    QuadricTarget tgt(src, o, digits);
+    minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
+    return out;
+  }
+  out.status = Status::Undecided;
+  out.note = "not supported yet: the offset system has a curve of solutions";
   return out;
 }
 

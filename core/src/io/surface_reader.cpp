@@ -355,6 +355,21 @@ Surface read_canal(const Json& v, const std::string& source, const std::string& 
 } // namespace
 
 Surface read_surface(const Json& v, const std::string& source, const std::string& path) {
+  // An equation of degree 3 to 6 (string or {"equation": ...}) is an implicit surface.
+  const Json* eqj = v.is_string() ? &v : (v.is_object() ? v.find("equation") : nullptr);
+  if (eqj && eqj->is_string()) {
+    const std::string epath = v.is_string() ? path : json_path_child(path, "equation");
+    Location where = at(*eqj, source, epath);
+    Poly3 p = parse_polynomial(eqj->text(), where);
+    const int d = p.total_degree();
+    if (d >= 3) {
+      if (v.is_object()) check_fields(v, {"equation"}, source, path);
+      if (d > 6)
+        throw InputError(where, "an implicit surface of total degree at most 6",
+                         "total degree " + std::to_string(d));
+      return ImplicitSurface{std::move(p)};
+    }
+  }
   if (!v.is_object()) return read_quadric(v, source, path);
   const Json* tj = v.find("type");
   if (tj && tj->is_string() && (tj->text() == "canal" || tj->text() == "capsule"))

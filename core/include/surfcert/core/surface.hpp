@@ -9,6 +9,7 @@
 // (positivity on the whole interval is checked exactly where the distance is computed).
 #pragma once
 
+#include "surfcert/core/poly3.hpp"
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/torus.hpp"
 
@@ -32,9 +33,15 @@ CanalSurface make_canal(std::array<std::vector<Rational>, 3> spine, std::vector<
 /// Value of a coefficient list (constant first) at t.
 Rational eval_poly(const std::vector<Rational>& c, const Rational& t);
 
-using Surface = std::variant<QuadricMatrix, Torus, CanalSurface>;
+/// An implicit algebraic surface f(x, y, z) = 0 of total degree 3 to 6 (quadrics are
+/// QuadricMatrix). Invariant: 3 <= total degree <= 6, rational coefficients.
+struct ImplicitSurface {
+  Poly3 f;
+};
 
-/// "quadric", "torus" or "canal".
+using Surface = std::variant<QuadricMatrix, Torus, CanalSurface, ImplicitSurface>;
+
+/// "quadric", "torus", "canal" or "implicit".
 std::string surface_kind(const Surface& s);
 
 } // namespace surfcert::core

@@ -41,7 +41,10 @@ bool ball_quadratic_roots(const arb_t a2, const arb_t a1, const arb_t a0, Ball (
 
 struct SourceQuadric {
   explicit SourceQuadric(const core::QuadricMatrix& q);
-  const core::QuadricMatrix* quadric;
+  /// Any implicit source f = 0 (integer coefficients); degree > 2 projects through the exact
+  /// real roots of the univariate f(c + t grad f(c)).
+  explicit SourceQuadric(algebra::MPoly f_any);
+  const core::QuadricMatrix* quadric = nullptr; ///< null for a non-quadric source
   algebra::MPoly f;
   std::array<algebra::MPoly, 3> N; ///< grad f
   std::array<std::array<core::Rational, 3>, 3> hess;

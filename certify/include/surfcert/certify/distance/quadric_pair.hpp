@@ -22,10 +22,18 @@
 #pragma once
 
 #include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/poly3.hpp"
 
 namespace surfcert::certify {
 
 DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                      long digits);
+
+/// An implicit surface f = 0 of degree 3 to 6 against an ellipsoid: contact from the sign of
+/// f at its critical points on the ellipsoid (certified points of both signs: they cross;
+/// one sign everywhere: disjoint), then the same offset system with f as the source
+/// (degrees n, 2n - 1, 4n - 2: practical for cubics, slow beyond). Other quadrics: undecided.
+DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::QuadricMatrix& q,
+                                         long digits, bool implicit_first);
 
 } // namespace surfcert::certify

@@ -39,7 +39,8 @@ QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::
 /// "major_radius": R, "minor_radius": r} (R > r > 0, axis nonzero); a canal surface
 /// {"type": "canal", "spine": [[x0, x1, ...], [y0, ...], [z0, ...]], "radius": [r0, r1, ...]
 /// or r, "interval": [t0, t1]} (polynomial coefficients, constant first); a capsule
-/// {"type": "capsule", "from": [x,y,z], "to": [x,y,z], "radius": r}; or any SURFACE above.
+/// {"type": "capsule", "from": [x,y,z], "to": [x,y,z], "radius": r}; an equation of total
+/// degree 3 to 6 (an implicit surface); or any SURFACE above.
 Surface read_surface(const Json& v, const std::string& source, const std::string& path);
 
 /// A quadric from an equation string (degree 1 or 2 required).
