@@ -333,8 +333,47 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
 
 } // namespace
 
+namespace {
+DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
+                                              const core::QuadricMatrix& b, long digits);
+} // namespace
+
+// Non-generic positions: when every role and combination leaves a curve of solutions, the
+// pair is moved by a fixed rational rotation (integer quaternion (2, 3, 5, 7), |q|^2 = 87)
+// and tried once more (distances are invariant; the reported points are rotated back).
 DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                      long digits) {
+  DistanceResult out = quadric_pair_distance_in_place(a, b, digits);
+  if (out.status != Status::Undecided || out.note.rfind("not supported yet: the offset", 0) != 0)
+    return out;
+  const long w = 2, x = 3, y = 5, z = 7, n = w * w + x * x + y * y + z * z;
+  const long R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                        {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
+                        {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
+  core::Mat4 P; // X = R^T X' : the moved surface is {X' : Q(R^T X') = 0}
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      P[i][j] = Rational(R[j][i], static_cast<unsigned long>(n));
+  P[3][3] = Rational(1);
+  DistanceResult moved = quadric_pair_distance_in_place(a.congruent(P), b.congruent(P), digits);
+  if (moved.status == Status::Undecided) return out;
+  for (auto& pr : moved.pairs)
+    for (auto& pt : pr) { // back: X = R^T X'
+      std::array<double, 3> q{};
+      for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j)
+          q[i] += static_cast<double>(R[j][i]) / static_cast<double>(n) * pt[j];
+      pt = q;
+    }
+  moved.note += (moved.note.empty() ? "" : "; ") +
+                std::string("solved after a rational rotation (non-generic position)");
+  return moved;
+}
+
+namespace {
+
+DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
+                                              const core::QuadricMatrix& b, long digits) {
   DistanceResult out;
   // Roles: a plane is always the source (as the target its Hessian vanishes and C with it);
   // prefer a target with three distinct eigenvalues.
@@ -390,6 +429,8 @@ DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::Q
   minimize_over_cover(cover, src, tgt, digits, o.source_is_a, compact, out);
   return out;
 }
+
+} // namespace
 
 namespace {
 
