@@ -39,6 +39,7 @@ std::string surface_kind(const Surface& s) {
   if (std::holds_alternative<Torus>(s)) return "torus";
   if (std::holds_alternative<CanalSurface>(s)) return "canal";
   if (std::holds_alternative<ImplicitSurface>(s)) return "implicit";
+  if (std::holds_alternative<ParametricSurface>(s)) return "parametric";
   return "quadric";
 }
 

@@ -3,6 +3,7 @@
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
+#include "surfcert/certify/distance/parametric_distance.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/certify/distance/torus_distance.hpp"
@@ -346,6 +347,10 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
 
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
                                 bool solid) {
+  if (const auto* pa = std::get_if<core::ParametricSurface>(&a))
+    return parametric_distance(*pa, b, digits, true);
+  if (const auto* pb = std::get_if<core::ParametricSurface>(&b))
+    return parametric_distance(*pb, a, digits, false);
   const auto* qa = std::get_if<core::QuadricMatrix>(&a);
   const auto* qb = std::get_if<core::QuadricMatrix>(&b);
   if (qa && qb) return surface_distance(*qa, *qb, digits, solid);

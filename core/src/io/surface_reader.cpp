@@ -372,6 +372,32 @@ Surface read_surface(const Json& v, const std::string& source, const std::string
   }
   if (!v.is_object()) return read_quadric(v, source, path);
   const Json* tj = v.find("type");
+  if (tj && tj->is_string() && tj->text() == "parametric") {
+    check_fields(v, {"type", "x", "y", "z", "w"}, source, path);
+    // Expressions in u and v, read by the equation parser with u -> x, v -> y.
+    auto comp = [&](const char* key, bool optional) -> Poly3 {
+      const Json* j = v.find(key);
+      const std::string kp = json_path_child(path, key);
+      if (!j) {
+        if (optional) return Poly3(Rational(1));
+        throw InputError(at(v, source, path), std::string("a field \"") + key + "\"", "none");
+      }
+      if (!j->is_string())
+        throw InputError(at(*j, source, kp), "an expression in u and v", type_name(j->type()));
+      std::string t = j->text();
+      for (char c : t)
+        if (c == 'x' || c == 'y' || c == 'z')
+          throw InputError(at(*j, source, kp), "an expression in u and v only", "\"" + t + "\"");
+      for (char& c : t) {
+        if (c == 'u') c = 'x';
+        if (c == 'v') c = 'y';
+      }
+      return parse_polynomial(t, at(*j, source, kp));
+    };
+    ParametricSurface ps{comp("x", false), comp("y", false), comp("z", false), comp("w", true)};
+    if (ps.W.is_zero()) throw InputError(at(v, source, path), "a nonzero denominator \"w\"", "0");
+    return ps;
+  }
   if (tj && tj->is_string() && (tj->text() == "canal" || tj->text() == "capsule"))
     return read_canal(v, source, path, tj->text() == "capsule");
   if (!tj || !tj->is_string() || tj->text() != "torus") return read_quadric(v, source, path);

@@ -39,9 +39,17 @@ struct ImplicitSurface {
   Poly3 f;
 };
 
-using Surface = std::variant<QuadricMatrix, Torus, CanalSurface, ImplicitSurface>;
+/// A rational parametric surface (X(u, v), Y(u, v), Z(u, v)) / W(u, v), u, v real; the
+/// polynomials are stored as Poly3 in x (= u) and y (= v). Invariant: W is not the zero
+/// polynomial and no polynomial involves z.
+struct ParametricSurface {
+  Poly3 X, Y, Z, W;
+};
 
-/// "quadric", "torus", "canal" or "implicit".
+using Surface =
+    std::variant<QuadricMatrix, Torus, CanalSurface, ImplicitSurface, ParametricSurface>;
+
+/// "quadric", "torus", "canal", "implicit" or "parametric".
 std::string surface_kind(const Surface& s);
 
 } // namespace surfcert::core

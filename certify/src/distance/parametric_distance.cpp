@@ -1,0 +1,180 @@
+#include "surfcert/certify/distance/parametric_distance.hpp"
+
+#include <flint/fmpz_mat.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+using core::Poly3;
+using core::Rational;
+
+namespace {
+
+// The monomials of degree <= d in x, y, z.
+std::vector<Poly3::Exponent> monomials(int d) {
+  std::vector<Poly3::Exponent> m;
+  for (int t = 0; t <= d; ++t)
+    for (int i = t; i >= 0; --i)
+      for (int j = t - i; j >= 0; --j)
+        m.push_back({i, j, t - i - j});
+  return m;
+}
+
+// Integer nullspace of the substitution map on degree-d forms: F(X, Y, Z, W) homogenised.
+std::vector<std::vector<Rational>> substitution_nullspace(const core::ParametricSurface& p, int d) {
+  const auto mons = monomials(d);
+  std::vector<Poly3> cols;
+  for (const auto& e : mons)
+    cols.push_back(p.X.pow(static_cast<unsigned>(e[0])) * p.Y.pow(static_cast<unsigned>(e[1])) *
+                   p.Z.pow(static_cast<unsigned>(e[2])) *
+                   p.W.pow(static_cast<unsigned>(d - e[0] - e[1] - e[2])));
+  std::map<Poly3::Exponent, size_t> rows;
+  for (const auto& c : cols)
+    for (const auto& [e, v] : c.terms())
+      rows.emplace(e, rows.size());
+  fmpz_mat_t A, N;
+  fmpz_mat_init(A, static_cast<slong>(rows.size()), static_cast<slong>(cols.size()));
+  // Integer rows: scale each column by its common denominator (the nullspace is unchanged up
+  // to scaling the unknowns, undone below).
+  std::vector<core::Integer> cden(cols.size(), core::Integer(1));
+  for (size_t j = 0; j < cols.size(); ++j) {
+    for (const auto& [e, v] : cols[j].terms())
+      fmpz_lcm(cden[j].raw_mut(), cden[j].raw(), v.den().raw());
+    for (const auto& [e, v] : cols[j].terms()) {
+      Rational s = v * Rational(cden[j]);
+      fmpz_set(fmpz_mat_entry(A, static_cast<slong>(rows[e]), static_cast<slong>(j)),
+               s.num().raw());
+    }
+  }
+  fmpz_mat_init(N, static_cast<slong>(cols.size()), static_cast<slong>(cols.size()));
+  const slong nullity = fmpz_mat_nullspace(N, A);
+  std::vector<std::vector<Rational>> out;
+  for (slong k = 0; k < nullity; ++k) {
+    std::vector<Rational> v(cols.size());
+    for (size_t j = 0; j < cols.size(); ++j) {
+      core::Integer e;
+      fmpz_set(e.raw_mut(), fmpz_mat_entry(N, static_cast<slong>(j), k));
+      v[j] = Rational(e) * Rational(cden[j]); // undo the column scaling
+    }
+    out.push_back(std::move(v));
+  }
+  fmpz_mat_clear(A);
+  fmpz_mat_clear(N);
+  return out;
+}
+
+core::QuadricMatrix to_quadric(const std::vector<Rational>& c, int d) {
+  const auto mons = monomials(d);
+  core::Mat4 m;
+  for (size_t k = 0; k < mons.size(); ++k) {
+    const auto& e = mons[k];
+    std::vector<size_t> idx;
+    for (size_t v = 0; v < 3; ++v)
+      for (int r = 0; r < e[v]; ++r)
+        idx.push_back(v);
+    while (idx.size() < 2)
+      idx.push_back(3);
+    if (idx[0] == idx[1])
+      m[idx[0]][idx[0]] += c[k];
+    else {
+      m[idx[0]][idx[1]] += c[k] * Rational(1, 2);
+      m[idx[1]][idx[0]] += c[k] * Rational(1, 2);
+    }
+  }
+  return core::QuadricMatrix(m);
+}
+
+// The top-degree homogeneous part.
+Poly3 top(const Poly3& p, int d) {
+  Poly3 r;
+  for (const auto& [e, v] : p.terms())
+    if (e[0] + e[1] + e[2] == d) r.add_term(e, v);
+  return r;
+}
+
+} // namespace
+
+std::optional<core::QuadricMatrix> implicit_quadric(const core::ParametricSurface& p) {
+  for (int d = 1; d <= 2; ++d) {
+    auto ns = substitution_nullspace(p, d);
+    if (ns.size() == 1) {
+      // Remove the content so the implicit form reads small.
+      core::Integer g(0);
+      for (const auto& c : ns[0])
+        fmpz_gcd(g.raw_mut(), g.raw(), c.num().raw());
+      if (!g.is_zero())
+        for (auto& c : ns[0])
+          c = c / Rational(g);
+      return to_quadric(ns[0], d);
+    }
+    if (ns.size() > 1) return std::nullopt; // the image is not a surface (or degenerate)
+  }
+  return std::nullopt;
+}
+
+DistanceResult parametric_distance(const core::ParametricSurface& p, const core::Surface& other,
+                                   long digits, bool parametric_first) {
+  DistanceResult out;
+  auto q = implicit_quadric(p);
+  if (!q) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: a parametric surface whose implicit equation has degree > 2";
+    return out;
+  }
+  if (std::holds_alternative<core::ParametricSurface>(other)) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: two parametric surfaces";
+    return out;
+  }
+  out = parametric_first ? surface_distance(core::Surface(*q), other, digits, false)
+                         : surface_distance(other, core::Surface(*q), digits, false);
+  // The points missed at infinity: the limit of P along every direction, when it is one point.
+  const int d =
+      std::max({p.X.total_degree(), p.Y.total_degree(), p.Z.total_degree(), p.W.total_degree()});
+  const Poly3 Wd = top(p.W, d);
+  std::string missed;
+  std::array<double, 3> m{};
+  bool point = false;
+  if (!Wd.is_zero()) {
+    point = true;
+    std::array<Rational, 3> c;
+    const Poly3* comps[3] = {&p.X, &p.Y, &p.Z};
+    const auto& [e0, w0] = *Wd.terms().begin();
+    for (size_t i = 0; i < 3; ++i) {
+      const Poly3 t = top(*comps[i], d);
+      c[i] = t.coeff(e0[0], e0[1], e0[2]) / w0;
+      point = point && t == Wd.scaled(c[i]);
+    }
+    if (point) {
+      missed = "(" + c[0].to_string() + ", " + c[1].to_string() + ", " + c[2].to_string() + ")";
+      for (size_t i = 0; i < 3; ++i)
+        m[i] = c[i].to_double_approx();
+    }
+  }
+  std::string note = "distance to the closure of the parametrised surface (implicit form " +
+                     q->to_poly().to_string() + " = 0, assumed covered up to the missed points)";
+  if (point) {
+    note += "; the parametrisation misses " + missed;
+    bool hit = false;
+    for (const auto& pr : out.pairs) {
+      const auto& s1 = parametric_first ? pr[0] : pr[1];
+      hit = hit || std::hypot(s1[0] - m[0], s1[1] - m[1], s1[2] - m[2]) <=
+                       1e-9 * (1 + std::hypot(m[0], m[1], m[2]));
+    }
+    note += hit ? ": a minimizer is that missed point (the minimum is attained only in the "
+                  "closure)"
+                : " (not a minimizer)";
+  } else if (Wd.is_zero()) {
+    note += "; limits at infinity are not finite points";
+  } else {
+    note += "; the limits at infinity form a curve (not listed)";
+  }
+  out.note = out.note.empty() ? note : out.note + "; " + note;
+  return out;
+}
+
+} // namespace surfcert::certify
