@@ -67,6 +67,14 @@ TEST(ParametricDistance, ImplicitFormOnRandomParameters) {
   auto c = certify::surface_distance(js(R"({"type":"parametric","x":"u","y":"v","z":"u^3"})"),
                                      eq("x^2+y^2+(z-5)^2=1"), 15, false);
   EXPECT_NE(c.status, certify::Status::Certified);
+  // (u^2, v, 0) covers only the half-plane x >= 0 of z = 0: a sphere meeting the plane at
+  // x = -3 must not be reported at distance 0 (the image is 2 away); one above x = 3 is 4 away.
+  auto half = js(R"({"type":"parametric","x":"u^2","y":"v","z":"0"})");
+  auto h0 = certify::surface_distance(half, eq("(x+3)^2+y^2+z^2=1"), 15, false);
+  EXPECT_NE(h0.status, certify::Status::Certified) << h0.note;
+  auto h4 = certify::surface_distance(half, eq("(x-3)^2+y^2+(z-5)^2=1"), 15, false);
+  ASSERT_EQ(h4.status, certify::Status::Certified) << h4.note;
+  EXPECT_NEAR(std::stod(h4.lower), 4.0, 1e-15);
   EXPECT_THROW(js(R"({"type":"parametric","x":"x","y":"v","z":"u"})"), core::InputError);
   EXPECT_THROW(js(R"({"type":"parametric","x":"u","y":"v"})"), core::InputError);
 }

@@ -96,6 +96,59 @@ Poly3 top(const Poly3& p, int d) {
   return r;
 }
 
+double eval_d(const Poly3& p, double u, double v) {
+  double s = 0;
+  for (const auto& [e, c] : p.terms())
+    s += c.to_double_approx() * std::pow(u, e[0]) * std::pow(v, e[1]);
+  return s;
+}
+
+// Float check (it can only withhold certification): is the point x (approximately) an image
+// P(u, v)? Gauss-Newton from the best of a grid of starts; relative residual <= 1e-8.
+bool in_image(const core::ParametricSurface& p, const std::array<double, 3>& x) {
+  auto res = [&](double u, double v, std::array<double, 3>& r) {
+    double w = eval_d(p.W, u, v);
+    if (w == 0) return false;
+    r = {eval_d(p.X, u, v) / w - x[0], eval_d(p.Y, u, v) / w - x[1], eval_d(p.Z, u, v) / w - x[2]};
+    return true;
+  };
+  auto norm = [](const std::array<double, 3>& r) { return std::hypot(r[0], r[1], r[2]); };
+  double bu = 0, bv = 0, best = 1e300;
+  std::array<double, 3> r{};
+  for (int i = -40; i <= 40; ++i)
+    for (int j = -40; j <= 40; ++j) {
+      double u = std::sinh(i / 8.0), v = std::sinh(j / 8.0);
+      if (res(u, v, r) && norm(r) < best) best = norm(r), bu = u, bv = v;
+    }
+  for (int it = 0; it < 100 && best > 0; ++it) {
+    const double h = 1e-7 * (1 + std::fabs(bu) + std::fabs(bv));
+    std::array<double, 3> r0{}, ru{}, rv{};
+    if (!res(bu, bv, r0) || !res(bu + h, bv, ru) || !res(bu, bv + h, rv)) break;
+    double J[3][2];
+    for (size_t k = 0; k < 3; ++k) {
+      J[k][0] = (ru[k] - r0[k]) / h;
+      J[k][1] = (rv[k] - r0[k]) / h;
+    }
+    double a = 0, b = 0, c = 0, g0 = 0, g1 = 0;
+    for (size_t k = 0; k < 3; ++k) {
+      a += J[k][0] * J[k][0];
+      b += J[k][0] * J[k][1];
+      c += J[k][1] * J[k][1];
+      g0 += J[k][0] * r0[k];
+      g1 += J[k][1] * r0[k];
+    }
+    const double det = a * c - b * b;
+    if (std::fabs(det) < 1e-300) break;
+    const double du = (c * g0 - b * g1) / det, dv = (a * g1 - b * g0) / det;
+    std::array<double, 3> rn{};
+    if (!res(bu - du, bv - dv, rn) || norm(rn) >= best) break;
+    bu -= du;
+    bv -= dv;
+    best = norm(rn);
+  }
+  return best <= 1e-8 * (1 + std::hypot(x[0], x[1], x[2]));
+}
+
 } // namespace
 
 std::optional<core::QuadricMatrix> implicit_quadric(const core::ParametricSurface& p) {
@@ -156,7 +209,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
     }
   }
   std::string note = "distance to the closure of the parametrised surface (implicit form " +
-                     q->to_poly().to_string() + " = 0, assumed covered up to the missed points)";
+                     q->to_poly().to_string() + " = 0; minimizers checked against the image)";
   if (point) {
     note += "; the parametrisation misses " + missed;
     bool hit = false;
@@ -168,6 +221,27 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
     note += hit ? ": a minimizer is that missed point (the minimum is attained only in the "
                   "closure)"
                 : " (not a minimizer)";
+  }
+  // Every minimizer's point must be a missed point or (approximately) an image point; else the
+  // minimum may lie on a part of the quadric the parametrisation does not cover.
+  if (out.status == Status::Certified && out.pairs.empty()) {
+    out.status = Status::Undecided;
+    note += "; no minimizer point to check against the image of the parametrisation";
+  }
+  if (out.status == Status::Certified) {
+    for (const auto& pr : out.pairs) {
+      const auto& s1 = parametric_first ? pr[0] : pr[1];
+      const bool at_missed = point && std::hypot(s1[0] - m[0], s1[1] - m[1], s1[2] - m[2]) <=
+                                          1e-9 * (1 + std::hypot(m[0], m[1], m[2]));
+      if (!at_missed && !in_image(p, s1)) {
+        out.status = Status::Undecided;
+        note += "; a minimizer was not found in the image of the parametrisation (it may cover "
+                "only part of the quadric)";
+        break;
+      }
+    }
+  }
+  if (point) {
   } else if (Wd.is_zero()) {
     note += "; limits at infinity are not finite points";
   } else {
