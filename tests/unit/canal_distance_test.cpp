@@ -72,6 +72,13 @@ TEST(CanalDistance, CapsuleAgainstPlanes) {
   // Tilted: the nearer end B: (10 - 4)/sqrt(2) - 1.
   expect_value(certify::surface_distance(eq("x + y = 10"), c, 15, false), 6 / std::sqrt(2.0) - 1,
                "tilted");
+  // A sphere half inside the capsule (bounded: needs certified points inside and outside).
+  auto half = certify::surface_distance(eq("(x-2)^2+(y-1)^2+z^2=1/4"), c, 15, false);
+  ASSERT_EQ(half.status, certify::Status::Certified) << half.note;
+  EXPECT_EQ(half.upper, "0");
+  // A small sphere entirely inside the capsule: not a contact; never guessed.
+  auto inside = certify::surface_distance(eq("(x-2)^2+y^2+z^2=1/16"), c, 15, false);
+  EXPECT_NE(inside.upper, "0");
   auto cut = certify::surface_distance(eq("x = 2"), c, 15, false);
   ASSERT_EQ(cut.status, certify::Status::Certified);
   EXPECT_EQ(cut.upper, "0");

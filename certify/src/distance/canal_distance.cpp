@@ -3,6 +3,7 @@
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 
 #include <arb.h>
@@ -262,6 +263,47 @@ bool strip_alpha_factors(MPoly& F, MPoly& G, const MPoly& D, std::string& note) 
   return ok;
 }
 
+// A certified point of the ellipsoid outside every ball B(C(t), r(t)): the extreme points of
+// the ellipsoid in the six axis directions (gradient-line projections from far points,
+// SourceQuadric), each tested with |q - C(T)| - r(T) > 0 on 512 subintervals of [t0, t1].
+bool ellipsoid_point_outside(const core::QuadricMatrix& q, const core::CanalSurface& c) {
+  SourceQuadric src(q);
+  const long prec = 128;
+  std::array<Rational, 3> base;
+  for (size_t i = 0; i < 3; ++i)
+    base[i] = core::eval_poly(c.spine[i], c.t0);
+  for (size_t axis = 0; axis < 3; ++axis)
+    for (long sign : {1L, -1L}) {
+      Rational far[3] = {base[0], base[1], base[2]};
+      far[axis] += Rational(sign * 100000);
+      Ball p[3];
+      if (!src.project(far, p, prec)) continue;
+      bool outside = true;
+      const long pieces = 512;
+      for (long k = 0; k < pieces && outside; ++k) {
+        const Rational ta = c.t0 + (c.t1 - c.t0) * Rational(k, static_cast<unsigned long>(pieces)),
+                       tb = c.t0 +
+                            (c.t1 - c.t0) * Rational(k + 1, static_cast<unsigned long>(pieces));
+        Ball T, hi, d, r;
+        arb_set_fmpq(T.v, ta.raw(), prec);
+        arb_set_fmpq(hi.v, tb.raw(), prec);
+        arb_union(T.v, T.v, hi.v, prec);
+        for (size_t i = 0; i < 3; ++i) {
+          Ball ci;
+          eval_ball(ci.v, c.spine[i], T.v, prec);
+          arb_sub(ci.v, p[i].v, ci.v, prec);
+          arb_addmul(d.v, ci.v, ci.v, prec);
+        }
+        arb_sqrtpos(d.v, d.v, prec);
+        eval_ball(r.v, c.radius, T.v, prec);
+        arb_sub(d.v, d.v, r.v, prec);
+        outside = arb_is_positive(d.v);
+      }
+      if (outside) return true;
+    }
+  return false;
+}
+
 } // namespace
 
 DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::CanalSurface& c,
@@ -499,6 +541,11 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     out.lower = out.upper = "0";
     out.minimizers = "infinite";
     out.note = "the quadric enters the canal solid and, being unbounded, leaves it: they meet";
+  } else if (arf_sgn(u) < 0 && ellipsoid_point_outside(q, c)) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the ellipsoid has certified points inside and outside the canal solid: they meet";
   } else {
     out.status = Status::Undecided;
     out.note = arf_sgn(u) < 0 ? "the quadric enters the canal solid; it may lie inside it"
