@@ -104,7 +104,8 @@ double eval_d(const Poly3& p, double u, double v) {
 }
 
 // Float check: is the point x (approximately) an image P(u, v)? Failing withholds
-// certification; passing is a float judgement (a point within ~1e-8 of a partial image passes). Gauss-Newton from the best of a grid of starts; relative residual <= 1e-8.
+// certification; passing is a float judgement (a point within ~1e-8 of a partial image passes).
+// Gauss-Newton from the best of a grid of starts; relative residual <= 1e-8.
 bool in_image(const core::ParametricSurface& p, const std::array<double, 3>& x) {
   auto res = [&](double u, double v, std::array<double, 3>& r) {
     double w = eval_d(p.W, u, v);
