@@ -204,8 +204,9 @@ int main(int argc, char** argv) {
                 "median %.0f us at 15 digits, %.0f us at 100 digits (%.1f us per extra "
                 "digit)\n\n",
                 name.c_str(), cases.size(), cert, undec, zero, m15, m100, (m100 - m15) / 85);
-    std::printf("| peer | median us | surfcert (15 digits) / peer time | max error vs certified | wrong | "
-                "overlap / no answer |\n|---|---|---|---|---|---|\n");
+    std::printf(
+        "| peer | median us | surfcert (15 digits) / peer time | max error vs certified | wrong | "
+        "overlap / no answer |\n|---|---|---|---|---|---|\n");
     std::map<std::string, PeerStats> peers;
     auto judge = [&](PeerStats& st, const Case& c, double d, bool answered) {
       ++st.n;

@@ -195,6 +195,14 @@ MPoly resultant(const MPoly& a, const MPoly& b, int var) {
   return r;
 }
 
+MPoly dot(const MVec3& a, const MVec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+MVec3 cross(const MVec3& a, const MVec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
 MPoly gcd(const MPoly& a, const MPoly& b) {
   MPoly r;
   if (!fmpz_mpoly_gcd(r.raw_mut(), a.raw(), b.raw(), shared_ctx()))

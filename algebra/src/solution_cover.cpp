@@ -172,6 +172,7 @@ SolutionCover cover_real_solutions_2d(const MPoly& F, const MPoly& G, const Rati
   SolutionCover c;
   if (F.degree(2) > 0 || G.degree(2) > 0)
     throw std::invalid_argument("cover_real_solutions_2d: the equations involve z");
+  c.dims = 2;
   c.system = {F, G, MPoly::var(2)};
   const MPoly ex = resultant(F, G, 1), ey = resultant(F, G, 0);
   c.bivariate_degree = {F.total_degree(), G.total_degree()};

@@ -125,6 +125,13 @@ QuadricMatrix QuadricMatrix::congruent(const Mat4& p) const {
   return QuadricMatrix(transpose(p) * m_ * p);
 }
 
+bool QuadricMatrix::is_plane() const {
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      if (!m_[i][j].is_zero()) return false;
+  return true;
+}
+
 QuadricKind QuadricMatrix::kind() const {
   // Upper 3x3 block definite (up to sign) <=> ellipsoid-like; then real iff det has the
   // opposite sign of the definite block's sign (e.g. diag(1,1,1,-1): det < 0).

@@ -21,13 +21,6 @@ using core::Rational;
 
 namespace {
 
-bool is_plane(const core::QuadricMatrix& q) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!q(i, j).is_zero()) return false;
-  return true;
-}
-
 long bits_for(long digits) {
   return static_cast<long>(static_cast<double>(digits) * 3.33) + 64;
 }
@@ -84,7 +77,7 @@ bool has_root_in(const std::vector<Rational>& c, const Rational& t0, const Ratio
 bool point_distance(arb_t out, const std::array<Rational, 3>& x, const core::QuadricMatrix& q,
                     long digits, std::array<double, 3>& foot) {
   const long prec = bits_for(digits + 10);
-  if (is_plane(q)) {
+  if (q.is_plane()) {
     Rational v = q(3, 3), nn;
     for (int i = 0; i < 3; ++i) {
       v += Rational(2) * q(i, 3) * x[static_cast<size_t>(i)];
@@ -323,7 +316,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
   std::vector<algebra::UPolyZ> tfactors;    // plane: factors of the critical-t polynomial
   std::vector<algebra::RootInterval> tints; // and their isolated roots
   std::optional<algebra::SolutionCover> cover;
-  bool plane = is_plane(q);
+  bool plane = q.is_plane();
   if (plane) {
     // |n| phi(t) = s (n.C(t) - delta) - |n| r(t): interior critical t solve
     // (n.C')^2 = |n|^2 r'^2 (squared: a superset).

@@ -66,13 +66,6 @@ bool conics_at_infinity_share_component(const core::QuadricMatrix& a,
   return !algebra::gcd(fa, fb).is_constant();
 }
 
-bool is_plane(const core::QuadricMatrix& q) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!q(i, j).is_zero()) return false;
-  return true;
-}
-
 // Ellipsoid (x - c)^T M (x - c) = 1 and plane n.x = delta: the ellipsoid's support in the
 // direction n is n.c + sqrt(n^T M^-1 n), so the distance is
 // (|n.c - delta| - sqrt(n^T M^-1 n)) / |n| when positive, and 0 (they meet) otherwise; the
@@ -160,9 +153,9 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   DistanceResult out;
   out.solid = solid;
   const bool a_sphere = a.is_sphere(), b_sphere = b.is_sphere();
-  if (!a_sphere && !b_sphere && (is_plane(a) || is_plane(b)) &&
+  if (!a_sphere && !b_sphere && (a.is_plane() || b.is_plane()) &&
       (a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid)) {
-    ellipsoid_plane(out, is_plane(a) ? b : a, is_plane(a) ? a : b, !is_plane(a), digits);
+    ellipsoid_plane(out, a.is_plane() ? b : a, a.is_plane() ? a : b, !a.is_plane(), digits);
     return out;
   }
   const core::QuadricMatrix& sph = a_sphere ? a : b;

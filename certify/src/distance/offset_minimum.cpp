@@ -192,6 +192,21 @@ bool SourceQuadric::project(const Rational (&c)[3], Ball (&p)[3], long prec) con
   return true;
 }
 
+int certified_sign_near(const SourceQuadric& src, const MPoly& h, const algebra::SolutionCover& c,
+                        const std::array<size_t, 3>& box, long prec, std::array<double, 3>* at) {
+  Rational centre[3];
+  for (size_t k = 0; k < 3; ++k)
+    centre[k] = (c.roots[k][box[k]].lo + c.roots[k][box[k]].hi) * Rational(1, 2);
+  Ball p[3], v;
+  if (!src.project(centre, p, prec)) return 0;
+  algebra::evaluate(v.v, h, ball_point(p), prec);
+  const int s = arb_is_positive(v.v) ? 1 : arb_is_negative(v.v) ? -1 : 0;
+  if (s != 0 && at)
+    for (size_t k = 0; k < 3; ++k)
+      (*at)[k] = arf_get_d(arb_midref(p[k].v), ARF_RND_NEAR);
+  return s;
+}
+
 namespace {
 
 bool upper_less(const Ball& a, const Ball& b, long prec) {
@@ -224,6 +239,18 @@ struct Arf {
 void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src,
                          const MinimumTarget& tgt, long digits, bool source_is_a, bool compact,
                          DistanceResult& out) {
+  // The degrees of the eliminated polynomials (compare seed 000 Table 1), from the cover.
+  const size_t dims = static_cast<size_t>(cover.dims);
+  out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
+  out.system_degrees.clear();
+  out.univariate_degrees.clear();
+  out.squarefree_degrees.clear();
+  for (size_t k = 0; k < dims; ++k) {
+    out.system_degrees.push_back(cover.system[k].total_degree());
+    out.univariate_degrees.push_back(cover.eliminant_degree[k]);
+    out.squarefree_degrees.push_back(cover.squarefree_degree[k]);
+  }
+  out.bivariate_degrees = {cover.bivariate_degree[0], cover.bivariate_degree[1]};
   const long target_bits = static_cast<long>(static_cast<double>(digits) * 3.33) + 24;
   // Widths are relative to the size of the solutions (a power of two >= every coordinate), so
   // a scene scaled by 10^8 needs no extra rounds.

@@ -19,14 +19,9 @@ using core::Rational;
 
 namespace {
 
-using V3 = std::array<MPoly, 3>;
-
-MPoly dot(const V3& a, const V3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using V3 = algebra::MVec3;
+using algebra::cross;
+using algebra::dot;
 
 // The offset system for one choice of roles (source S1: f, target S2: g), over Z.
 struct Offset {
@@ -96,13 +91,6 @@ bool distinct_eigenvalues(const core::QuadricMatrix& q) {
   Rational disc = Rational(18) * a * b * c - Rational(4) * a * a * a * c + a * a * b * b -
                   Rational(4) * b * b * b - Rational(27) * c * c;
   return !disc.is_zero();
-}
-
-bool is_plane(const core::QuadricMatrix& q) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!q(i, j).is_zero()) return false;
-  return true;
 }
 
 // Balls of the kept box, and of its centre (exact rationals).
@@ -264,17 +252,13 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
   for (bool src_a : {true, false}) {
     const core::QuadricMatrix& src = src_a ? *ma : *mb;
     const core::QuadricMatrix& tgt = src_a ? *mb : *ma;
-    if (is_plane(tgt)) continue;
+    if (tgt.is_plane()) continue;
     Offset o = build_offset(src, tgt, l);
     o.source_is_a = src_a;
     if (o.system[2].is_zero()) continue;
     algebra::SolutionCover cover =
         algebra::cover_real_solutions_2d(o.system[0], o.system[2], Rational(1, 16));
     if (!cover.ok) continue;
-    out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
-    out.system_degrees = {o.system[0].total_degree(), o.system[2].total_degree()};
-    out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1]};
-    out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1]};
     const bool compact =
         a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid;
     SourceQuadric s(src);
@@ -381,7 +365,7 @@ DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
   std::vector<std::pair<bool, int>> orders; // (source is a, preference)
   for (bool src_a : {true, false}) {
     const core::QuadricMatrix& tgt = src_a ? b : a;
-    if (is_plane(tgt)) continue;
+    if (tgt.is_plane()) continue;
     orders.emplace_back(src_a, distinct_eigenvalues(tgt) ? 0 : 1);
   }
   std::stable_sort(orders.begin(), orders.end(),
@@ -412,14 +396,6 @@ DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
     return out;
   }
   const Offset& o = *off;
-  out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
-  out.system_degrees = {o.system[0].total_degree(), o.system[1].total_degree(),
-                        o.system[2].total_degree()};
-  out.bivariate_degrees = {cover.bivariate_degree[0], cover.bivariate_degree[1]};
-  out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1],
-                            cover.eliminant_degree[2]};
-  out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1],
-                            cover.squarefree_degree[2]};
   out.critical_candidates = static_cast<int>(cover.boxes.size());
 
   const bool compact =
@@ -537,15 +513,9 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
       any_neg = any_neg || neg;
       all_signed = all_signed && (pos || neg);
       if ((pos && !cert_pos) || (neg && !cert_neg)) {
-        Rational centre[3];
-        for (size_t k = 0; k < 3; ++k)
-          centre[k] = (cc.roots[k][b[k]].lo + cc.roots[k][b[k]].hi) * Rational(1, 2);
-        Ball p[3], fv;
-        if (ell.project(centre, p, prec)) {
-          algebra::evaluate(fv.v, f, ball_point(p), prec);
-          cert_pos = cert_pos || arb_is_positive(fv.v);
-          cert_neg = cert_neg || arb_is_negative(fv.v);
-        }
+        const int sg = certified_sign_near(ell, f, cc, b, prec);
+        cert_pos = cert_pos || sg > 0;
+        cert_neg = cert_neg || sg < 0;
       }
     }
     if (cert_pos && cert_neg) {
@@ -595,12 +565,6 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
       out.note = "not supported yet: a curve of normal lines through the sphere's centre";
       return out;
     }
-    out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
-    out.system_degrees = {f.total_degree(), s1.total_degree(), s2.total_degree()};
-    out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1],
-                              cover.eliminant_degree[2]};
-    out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1],
-                              cover.squarefree_degree[2]};
     SourceQuadric src(f);
     SphereTarget tgt(c, r2);
     minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
@@ -612,14 +576,6 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
     o.source_is_a = implicit_first;
     algebra::SolutionCover cover = algebra::cover_real_solutions(o.system, Rational(1, 16));
     if (!cover.ok) continue;
-    out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
-    out.system_degrees = {o.system[0].total_degree(), o.system[1].total_degree(),
-                          o.system[2].total_degree()};
-    out.bivariate_degrees = {cover.bivariate_degree[0], cover.bivariate_degree[1]};
-    out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1],
-                              cover.eliminant_degree[2]};
-    out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1],
-                              cover.squarefree_degree[2]};
     SourceQuadric src(f);
     QuadricTarget tgt(src, o, digits);
     minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);

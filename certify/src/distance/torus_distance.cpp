@@ -19,14 +19,9 @@ using core::Rational;
 
 namespace {
 
-using V3 = std::array<MPoly, 3>;
-
-MPoly dot(const V3& a, const V3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using V3 = algebra::MVec3;
+using algebra::cross;
+using algebra::dot;
 
 Integer lcm(const Integer& a, const Integer& b) {
   Integer r;
@@ -258,13 +253,6 @@ DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, 
 }
 
 // ---- plane vs torus (closed form, exact contact test) ------------------------------------------
-
-bool is_plane(const core::QuadricMatrix& q) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!q(i, j).is_zero()) return false;
-  return true;
-}
 
 // Plane n.x = delta. dist(plane, K) |n| = alpha - sqrt(beta) with alpha = |n.c - delta| and
 // beta = R^2 |n x a|^2 / |a|^2 (K crosses the plane when alpha^2 < beta); the torus meets the
@@ -504,36 +492,16 @@ Contact quadric_torus_contact(const SourceQuadric& src, const TorusPolys& tp, bo
       Ball box[3], val;
       algebra::box_balls(cover, b, box[0].v, box[1].v, box[2].v, prec);
       algebra::evaluate(val.v, tp.T, ball_point(box), prec);
-      if (arb_is_positive(val.v))
-        any_out = true;
-      else if (arb_is_negative(val.v)) {
-        any_in = true;
-        // A certified point of S1 inside the solid torus.
-        Rational centre[3];
-        for (size_t k = 0; k < 3; ++k)
-          centre[k] = (cover.roots[k][b[k]].lo + cover.roots[k][b[k]].hi) * Rational(1, 2);
-        Ball p[3], tv;
-        if (!p_in && src.project(centre, p, prec)) {
-          algebra::evaluate(tv.v, tp.T, ball_point(p), prec);
-          if (arb_is_negative(tv.v))
-            p_in = std::array<double, 3>{arf_get_d(arb_midref(p[0].v), ARF_RND_NEAR),
-                                         arf_get_d(arb_midref(p[1].v), ARF_RND_NEAR),
-                                         arf_get_d(arb_midref(p[2].v), ARF_RND_NEAR)};
-        }
-      } else
-        all_signed = false;
-      if (arb_is_positive(val.v) && !p_out) {
-        Rational centre[3];
-        for (size_t k = 0; k < 3; ++k)
-          centre[k] = (cover.roots[k][b[k]].lo + cover.roots[k][b[k]].hi) * Rational(1, 2);
-        Ball p[3], tv;
-        if (src.project(centre, p, prec)) {
-          algebra::evaluate(tv.v, tp.T, ball_point(p), prec);
-          if (arb_is_positive(tv.v))
-            p_out = std::array<double, 3>{arf_get_d(arb_midref(p[0].v), ARF_RND_NEAR),
-                                          arf_get_d(arb_midref(p[1].v), ARF_RND_NEAR),
-                                          arf_get_d(arb_midref(p[2].v), ARF_RND_NEAR)};
-        }
+      const bool pos = arb_is_positive(val.v), neg = arb_is_negative(val.v);
+      any_out = any_out || pos;
+      any_in = any_in || neg;
+      all_signed = all_signed && (pos || neg);
+      // Certified points of S1 inside (T < 0) and outside (T > 0) the solid torus.
+      std::array<double, 3> at{};
+      if ((neg && !p_in) || (pos && !p_out)) {
+        const int s = certified_sign_near(src, tp.T, cover, b, prec, &at);
+        if (s < 0 && !p_in) p_in = at;
+        if (s > 0 && !p_out) p_out = at;
       }
     }
     // Points inside certified (and outside: certified, or a non-ellipsoid quadric's component
@@ -567,7 +535,7 @@ Contact quadric_torus_contact(const SourceQuadric& src, const TorusPolys& tp, bo
 DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::Torus& t,
                                       long digits, bool quadric_first) {
   if (q.is_sphere()) return sphere_torus(q, t, digits, quadric_first);
-  if (is_plane(q)) return plane_torus(q, t, digits, quadric_first);
+  if (q.is_plane()) return plane_torus(q, t, digits, quadric_first);
   if (auto mer = meridian_conic(q, Axis{t.centre, t.axis}, 2))
     return coaxial_torus(*mer, t, digits, quadric_first);
   DistanceResult out;
@@ -605,13 +573,6 @@ DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::
                "; e.g. a quadric of revolution sharing the torus axis)";
     return out;
   }
-  out.eliminated_degree = static_cast<int>(cover.eliminant_degree[0]);
-  out.system_degrees = {src.f.total_degree(), F2.total_degree(), F3.total_degree()};
-  out.bivariate_degrees = {cover.bivariate_degree[0], cover.bivariate_degree[1]};
-  out.univariate_degrees = {cover.eliminant_degree[0], cover.eliminant_degree[1],
-                            cover.eliminant_degree[2]};
-  out.squarefree_degrees = {cover.squarefree_degree[0], cover.squarefree_degree[1],
-                            cover.squarefree_degree[2]};
   TorusTarget tgt(t);
   minimize_over_cover(cover, src, tgt, digits, quadric_first, true, out);
   return out;

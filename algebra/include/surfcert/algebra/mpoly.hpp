@@ -50,6 +50,11 @@ private:
   fmpz_mpoly_t v_;
 };
 
+/// Vectors of polynomials (gradients, offset directions) and their products.
+using MVec3 = std::array<MPoly, 3>;
+MPoly dot(const MVec3& a, const MVec3& b);
+MVec3 cross(const MVec3& a, const MVec3& b);
+
 /// Resultant of a and b with respect to `var` (FLINT). Throws std::runtime_error when FLINT
 /// reports failure (it returns 0 for that), never returns a wrong zero silently.
 MPoly resultant(const MPoly& a, const MPoly& b, int var);

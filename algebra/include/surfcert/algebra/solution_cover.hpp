@@ -34,6 +34,7 @@ struct RootInterval {
 
 struct SolutionCover {
   bool ok = false;
+  int dims = 3; ///< 2 for cover_real_solutions_2d (z unused)
   std::string note;
   std::array<MPoly, 3> system;
   std::vector<MPoly> xy_resultants; ///< nonzero resultants in (x, y), used to discard

@@ -41,6 +41,8 @@ public:
   /// P^T A P (a change of homogeneous coordinates X = P X').
   QuadricMatrix congruent(const Mat4& p) const;
   QuadricKind kind() const;
+  /// True when the quadratic block is zero (a plane written as a degenerate quadric).
+  bool is_plane() const;
   /// True when the upper 3x3 block is a nonzero multiple of the identity and the quadric is
   /// a real ellipsoid.
   bool is_sphere() const;

@@ -53,6 +53,13 @@ struct SourceQuadric {
   bool project(const core::Rational (&c)[3], Ball (&p)[3], long prec) const;
 };
 
+/// The sign of h (+1 or -1; 0 when not certain) at a certified point of the source near the
+/// centre of a cover box (the contact tests: a point of S1 inside / outside the other
+/// surface); the point, approximately, in `at`.
+int certified_sign_near(const SourceQuadric& src, const algebra::MPoly& h,
+                        const algebra::SolutionCover& c, const std::array<size_t, 3>& box,
+                        long prec, std::array<double, 3>* at = nullptr);
+
 struct CandidatePair {
   Ball d;                         ///< distance of a pair of actual surface points
   std::array<double, 3> p{}, q{}; ///< approximate points (on S1, on S2)
