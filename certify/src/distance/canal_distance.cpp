@@ -21,10 +21,6 @@ using core::Rational;
 
 namespace {
 
-long bits_for(long digits) {
-  return static_cast<long>(static_cast<double>(digits) * 3.33) + 64;
-}
-
 // Ball value of a rational coefficient list at the ball t.
 void eval_ball(arb_t out, const std::vector<Rational>& c, const arb_t t, long prec) {
   Ball b;

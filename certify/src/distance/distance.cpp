@@ -3,6 +3,7 @@
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
+#include "surfcert/certify/distance/convex_distance.hpp"
 #include "surfcert/certify/distance/parametric_distance.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
@@ -23,24 +24,6 @@ using core::Rational;
 using core::io::Json;
 
 namespace {
-
-long bits_for(long digits) {
-  return static_cast<long>(digits * 3.33) + 64;
-}
-
-void set_enclosure(DistanceResult& out, const arb_t d, long digits) {
-  arf_t lo, hi;
-  arf_init(lo);
-  arf_init(hi);
-  arb_get_lbound_arf(lo, d, bits_for(digits));
-  arb_get_ubound_arf(hi, d, bits_for(digits));
-  if (arf_sgn(lo) < 0) arf_zero(lo); // a distance is never negative
-  out.lower = decimal_bound(lo, false, digits + 2);
-  out.upper = decimal_bound(hi, true, digits + 2);
-  out.approx = arf_get_d(arb_midref(d), ARF_RND_NEAR);
-  arf_clear(lo);
-  arf_clear(hi);
-}
 
 // The ball [lower, upper] of a critical distance.
 void critical_ball(arb_t out, const CriticalDistance& c, long prec) {
@@ -127,7 +110,7 @@ void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
   arb_sqrt(nrm.v, nrm.v, prec);
   arb_sub(d.v, g.v, sup.v, prec);
   arb_div(d.v, d.v, nrm.v, prec);
-  set_enclosure(out, d.v, digits);
+  set_distance_enclosure(out, d.v, digits);
   // The closest points (approximate): x* = c + s M^-1 n / sqrt(n^T M^-1 n) toward the plane.
   double sgn = (delta - nc).sign() > 0 ? 1 : -1, sq = std::sqrt(support2.to_double_approx());
   std::array<double, 3> x{}, f{};
@@ -148,6 +131,20 @@ void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
 
 } // namespace
 
+void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, d, bits_for(digits));
+  arb_get_ubound_arf(hi, d, bits_for(digits));
+  if (arf_sgn(lo) < 0) arf_zero(lo); // a distance is never negative
+  out.lower = decimal_bound(lo, false, digits + 2);
+  out.upper = decimal_bound(hi, true, digits + 2);
+  out.approx = arf_get_d(arb_midref(d), ARF_RND_NEAR);
+  arf_clear(lo);
+  arf_clear(hi);
+}
+
 DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                 long digits, bool solid) {
   DistanceResult out;
@@ -158,6 +155,14 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
     ellipsoid_plane(out, a.is_plane() ? b : a, a.is_plane() ? a : b, !a.is_plane(), digits);
     return out;
   }
+  // Disjoint convex solids (ellipsoids, elliptic cylinders): a separating direction
+  // certifies the distance without elimination; anything it cannot prove falls through.
+  if (auto ca = convex_quadric(a))
+    if (auto cb = convex_quadric(b))
+      if (auto r = separated_convex_distance(*ca, *cb, digits)) {
+        r->solid = solid;
+        return *r;
+      }
   const core::QuadricMatrix& sph = a_sphere ? a : b;
   const core::QuadricMatrix& other = a_sphere ? b : a;
 
@@ -262,7 +267,7 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
     arb_set_fmpq(r.v, r2.raw(), prec);
     arb_sqrt(r.v, r.v, prec);
     arb_sub(d.v, dc.v, r.v, prec); // > 0: the topology said the surfaces do not meet
-    set_enclosure(out, d.v, digits);
+    set_distance_enclosure(out, d.v, digits);
     out.minimizers = "1";
     out.critical_candidates = 1;
     out.eliminated_degree = 1;
@@ -308,7 +313,7 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
     out.note = "could not separate the critical distances from the radius at this precision";
     return out;
   }
-  set_enclosure(out, d.v, digits);
+  set_distance_enclosure(out, d.v, digits);
   // Minimizers: every critical distance whose enclosure meets the optimal one.
   int count = 0;
   bool continuum = false;

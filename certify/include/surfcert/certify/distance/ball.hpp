@@ -28,4 +28,9 @@ struct Ball {
 /// (upper bound), so the text never lies inside the enclosure it bounds.
 std::string decimal_bound(const arf_t x, bool upper, long digits);
 
+/// Working precision (bits) for an answer of `digits` decimal digits, with a 64-bit margin.
+inline long bits_for(long digits) {
+  return static_cast<long>(static_cast<double>(digits) * 3.33) + 64;
+}
+
 } // namespace surfcert::certify

@@ -14,6 +14,8 @@
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/surface.hpp"
 
+#include <arb.h>
+
 #include <array>
 #include <string>
 #include <vector>
@@ -44,6 +46,10 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
 /// two ellipsoids only.
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
                                 bool solid);
+
+/// Writes the decimal enclosure of the ball d into out (lower clamped at 0; digits + 2
+/// significant digits, rounded outward) and its midpoint as `approx`.
+void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
 
 /// {"status", "note"?, "result": {"distance": {"lower", "upper", "approx"}, "minimizers",
 /// "pairs", "critical_candidates", "eliminated_degree", "digits", "solid"}}

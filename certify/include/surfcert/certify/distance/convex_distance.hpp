@@ -1,0 +1,29 @@
+// surfcert::certify::separated_convex_distance: a certified fast path for two disjoint convex
+// solids (ellipsoid or elliptic cylinder, at least one ellipsoid), by support-function duality.
+//
+// For every direction n, the slab between the supporting planes separates the solids:
+//   L(n) = (-h_B(-n) - h_A(n)) / |n|  <=  dist(A, B),
+// and the support points p_A(n), p_B(-n) are genuine surface points, so
+//   U(n) = |p_B(-n) - p_A(n)|  >=  dist(A, B).
+// At the optimal direction both are equal; the gap U - L is quadratic in the error of n. A
+// float Newton search (double, then MPFR for more digits) only chooses n; the certificate is
+// the Arb evaluation of L and U at that exact n. L > 0 proves the solids disjoint, hence the
+// surfaces disjoint with the same distance (closest points of disjoint convex solids lie on
+// their boundaries), and the closest pair is unique (an ellipsoid is strictly convex and the
+// minimal difference vector of two convex sets is unique).
+// Returns nullopt (the caller falls back to the exact offset method) when L > 0 cannot be
+// certified or the gap does not reach the relative width 10^-digits: this path never decides
+// anything it has not proven.
+#pragma once
+
+#include "surfcert/certify/distance/convex_quadric.hpp"
+#include "surfcert/certify/distance/distance.hpp"
+
+#include <optional>
+
+namespace surfcert::certify {
+
+std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
+                                                        const ConvexQuadric& b, long digits);
+
+} // namespace surfcert::certify
