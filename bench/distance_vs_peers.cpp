@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
     }
     const double m15 = median(t15), m100 = median(t100);
     std::printf("### %s (%zu pairs)\n\nsurfcert: %ld certified, %ld undecided, %ld distance 0; "
-                "median %.0f us at 15 digits, %.0f us at 100 digits (%.1f us per extra "
+                "median %.1f us at 15 digits, %.1f us at 100 digits (%.1f us per extra "
                 "digit)\n\n",
                 name.c_str(), cases.size(), cert, undec, zero, m15, m100, (m100 - m15) / 85);
     std::printf(
@@ -254,7 +254,7 @@ int main(int argc, char** argv) {
 #endif
     for (const auto& [label, st] : peers) {
       double m = median(st.us);
-      std::printf("| %s | %.1f | %.0f | %.2e | %ld | %ld |\n", label.c_str(), m, m15 / m,
+      std::printf("| %s | %.1f | %.3g | %.2e | %ld | %ld |\n", label.c_str(), m, m15 / m,
                   st.max_err, st.wrong, st.overlap);
     }
     if (peers.empty()) std::printf("| (no peer built) | | | | | |\n");

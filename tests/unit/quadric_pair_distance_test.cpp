@@ -10,6 +10,8 @@
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
+#include "support/distance_checks.hpp"
+
 #include <gtest/gtest.h>
 
 #include <mpfr.h>
@@ -18,60 +20,16 @@
 #include <random>
 
 using namespace surfcert;
+using surfcert::testing::hi;
+using surfcert::testing::lo;
+using surfcert::testing::motion;
+using surfcert::testing::overlap;
+using surfcert::testing::scaling;
 
 namespace {
 
 core::QuadricMatrix q(const std::string& s) {
   return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
-}
-
-double lo(const certify::DistanceResult& r) {
-  return std::stod(r.lower);
-}
-double hi(const certify::DistanceResult& r) {
-  return std::stod(r.upper);
-}
-
-// [lo, hi] of two results overlap (compared in MPFR at 600 bits, decimal strings exact).
-bool overlap(const certify::DistanceResult& a, const certify::DistanceResult& b) {
-  mpfr_t la, ua, lb, ub;
-  mpfr_inits2(3000, la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(la, a.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(ua, a.upper.c_str(), 10, MPFR_RNDU);
-  mpfr_set_str(lb, b.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(ub, b.upper.c_str(), 10, MPFR_RNDU);
-  bool ok = mpfr_cmp(la, ub) <= 0 && mpfr_cmp(lb, ua) <= 0;
-  mpfr_clears(la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
-  return ok;
-}
-
-// Rigid motion x -> R x + t with R from the integer quaternion (w, x, y, z), as the 4x4
-// congruence P with Q' = P^T Q P describing the moved surface.
-core::Mat4 motion(long w, long x, long y, long z, const std::array<core::Rational, 3>& t) {
-  core::Rational n(w * w + x * x + y * y + z * z);
-  long R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                  {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
-                  {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
-  core::Mat4 p;
-  for (size_t i = 0; i < 3; ++i) {
-    core::Rational s;
-    for (size_t j = 0; j < 3; ++j) {
-      p[i][j] = core::Rational(R[j][i]) / n; // inverse rotation R^T
-      s += p[i][j] * t[j];
-    }
-    p[i][3] = -s;
-  }
-  p[3][3] = core::Rational(1);
-  return p;
-}
-
-// Scaling x -> s x as a congruence (Q'(x) = Q(x / s)).
-core::Mat4 scaling(const core::Rational& s) {
-  core::Mat4 p;
-  for (size_t i = 0; i < 3; ++i)
-    p[i][i] = core::Rational(1) / s;
-  p[3][3] = core::Rational(1);
-  return p;
 }
 
 // Distance between the ellipses y^2/4 + (z+3)^2/9 = 1 and y^2/9 + z^2/49 = 1 (the seed pair's

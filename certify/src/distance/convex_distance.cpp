@@ -14,18 +14,33 @@ namespace {
 
 using Mp = boost::multiprecision::mpfr_float;
 template <class T> using V3 = std::array<T, 3>;
+
+// Sets Boost's default MPFR precision (decimal digits for `bits` bits) for a scope.
+struct PrecisionScope {
+  explicit PrecisionScope(long bits) : saved(Mp::default_precision()) {
+    Mp::default_precision(static_cast<unsigned>(static_cast<double>(bits) / 3.3) + 5);
+  }
+  ~PrecisionScope() { Mp::default_precision(saved); }
+  PrecisionScope(const PrecisionScope&) = delete;
+  PrecisionScope& operator=(const PrecisionScope&) = delete;
+  unsigned saved;
+};
 template <class T> using M3 = std::array<std::array<T, 3>, 3>;
 
 // Conversions from exact rationals to the search scalar (the search is float: it only chooses
 // the direction that the Arb evaluation certifies).
 template <class T> T from_rational(const Rational& r);
-template <> double from_rational<double>(const Rational& r) { return r.to_double_approx(); }
+template <> double from_rational<double>(const Rational& r) {
+  return r.to_double_approx();
+}
 template <> Mp from_rational<Mp>(const Rational& r) {
   Mp x;
   fmpq_get_mpfr(x.backend().data(), r.raw(), MPFR_RNDN);
   return x;
 }
-void to_ball(arb_t b, double x) { arb_set_d(b, x); } // exact
+void to_ball(arb_t b, double x) {
+  arb_set_d(b, x);
+} // exact
 void to_ball(arb_t b, const Mp& x) {
   arf_set_mpfr(arb_midref(b), x.backend().data()); // exact
   mag_zero(arb_radref(b));
@@ -101,8 +116,8 @@ struct Directions {
 template <class T> std::vector<V3<T>> float_basis(const Directions& dirs) {
   std::vector<V3<T>> out;
   for (const auto& e : dirs.exact)
-    out.push_back(normalized(V3<T>{from_rational<T>(e[0]), from_rational<T>(e[1]),
-                                   from_rational<T>(e[2])}));
+    out.push_back(
+        normalized(V3<T>{from_rational<T>(e[0]), from_rational<T>(e[1]), from_rational<T>(e[2])}));
   return out;
 }
 
@@ -164,8 +179,8 @@ V3<T> newton_direction(const std::vector<V3<T>>& basis, const V3<T>& n, const Du
   return step;
 }
 
-// Float search (double): damped Newton with backtracking on phi. Returns false when it did
-// not reach a direction with phi > 0 (then nothing is certified here).
+// Float search (double): damped Newton with backtracking on phi. Returns false when the best
+// direction found clearly does not separate (then nothing is certified here).
 bool search_double(const Solid<double>& a, const Solid<double>& b,
                    const std::vector<V3<double>>& basis, V3<double>& n) {
   // Start: the centre-to-centre direction, projected onto the admissible directions.
@@ -205,23 +220,35 @@ bool search_double(const Solid<double>& a, const Solid<double>& b,
     }
     if (!moved || len < 1e-14) break;
   }
-  return d.phi > 0;
+  // Clearly negative: the solids overlap or nest (no separating direction exists). A separation
+  // below double resolution (gaps of 2^-100) still goes on to the exact certificate.
+  const double scale = 1 + std::sqrt(dot(d.pa, d.pa)) + std::sqrt(dot(d.pb, d.pb));
+  return d.phi > -1e-9 * scale;
 }
 
-// Plain Newton steps in MPFR at `bits` from the double direction (quadratic convergence).
+// Plain Newton steps in MPFR from the double direction (quadratic convergence), at the
+// default MPFR precision set by the caller (PrecisionScope).
 V3<Mp> refine_mpfr(const ConvexQuadric& ca, const ConvexQuadric& cb, const Directions& dirs,
-                   const V3<double>& n0, long bits) {
-  const unsigned saved = Mp::default_precision();
-  Mp::default_precision(static_cast<unsigned>(static_cast<double>(bits) / 3.3) + 5);
+                   const V3<double>& n0) {
   const Solid<Mp> a = solid_in<Mp>(ca), b = solid_in<Mp>(cb);
   const std::vector<V3<Mp>> basis = float_basis<Mp>(dirs);
   V3<Mp> n{Mp(n0[0]), Mp(n0[1]), Mp(n0[2])};
+  if (basis.size() == 2) {
+    // Project onto the admissible plane at this precision: the double direction is off it by
+    // ~1e-17, and the tangent steps would never remove that (the extended phi is not flat
+    // across the plane), capping the accuracy near 30 digits.
+    const Mp x = dot(n, basis[0]), y = dot(n, basis[1]);
+    for (size_t i = 0; i < 3; ++i)
+      n[i] = x * basis[0][i] + y * basis[1][i];
+    n = normalized(n);
+  }
+  const long bits = static_cast<long>(Mp::default_precision() * 3.33);
   for (long good = 50; good < 2 * bits; good *= 2) {
     const Dual<Mp> d = dual(a, b, n);
     const V3<Mp> step = newton_direction(basis, n, d, false);
+
     n = normalized(V3<Mp>{n[0] + step[0], n[1] + step[1], n[2] + step[2]});
   }
-  Mp::default_precision(saved);
   return n;
 }
 
@@ -367,8 +394,13 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
     if (certify_direction(a, b, nb, digits, out)) return out;
   }
   // More digits (or an ill-conditioned pair): Newton in MPFR, then certify again.
-  const V3<Mp> nm = refine_mpfr(a, b, dirs, n, bits_for(digits));
-  exact_direction(nb, dirs, nm, prec);
+  {
+    // Every MPFR temporary of the refinement and of the exact-direction conversion must carry
+    // the working precision (Boost gives new values the default precision).
+    const PrecisionScope scope(bits_for(digits));
+    const V3<Mp> nm = refine_mpfr(a, b, dirs, n);
+    exact_direction(nb, dirs, nm, prec);
+  }
   if (certify_direction(a, b, nb, digits, out)) return out;
   return std::nullopt;
 }

@@ -86,7 +86,7 @@ std::optional<ConvexQuadric> convex_quadric(const core::QuadricMatrix& q) {
       out.c[i] -= Ainv[i][j] * b[j];
     bc += b[i] * out.c[i];
   }
-  const Rational k = -(e + bc); // (x-c)^T (A/k) (x-c) = 1
+  const Rational k = -(e + bc);           // (x-c)^T (A/k) (x-c) = 1
   if (k.sign() <= 0) return std::nullopt; // a point, a line, or no real point
   for (size_t i = 0; i < 3; ++i) {
     out.cd[i] = out.c[i].to_double_approx();

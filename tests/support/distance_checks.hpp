@@ -1,0 +1,65 @@
+// Helpers shared by the distance tests: decimal enclosures compared exactly (MPFR reads the
+// decimal strings with outward rounding), and rational rigid motions / scalings as 4x4
+// congruences (Q' = P^T Q P describes the moved surface), so invariance checks stay exact.
+#pragma once
+
+#include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/quadric.hpp"
+
+#include <mpfr.h>
+
+#include <array>
+#include <string>
+
+namespace surfcert::testing {
+
+inline double lo(const certify::DistanceResult& r) {
+  return std::stod(r.lower);
+}
+inline double hi(const certify::DistanceResult& r) {
+  return std::stod(r.upper);
+}
+
+/// [lower, upper] of two results overlap (decimal strings read exactly at 3000 bits).
+inline bool overlap(const certify::DistanceResult& a, const certify::DistanceResult& b) {
+  mpfr_t la, ua, lb, ub;
+  mpfr_inits2(3000, la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(la, a.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ua, a.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(lb, b.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ub, b.upper.c_str(), 10, MPFR_RNDU);
+  bool ok = mpfr_cmp(la, ub) <= 0 && mpfr_cmp(lb, ua) <= 0;
+  mpfr_clears(la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
+  return ok;
+}
+
+/// Rigid motion x -> R x + t with R from the integer quaternion (w, x, y, z), as the 4x4
+/// congruence P with Q' = P^T Q P describing the moved surface.
+inline core::Mat4 motion(long w, long x, long y, long z, const std::array<core::Rational, 3>& t) {
+  core::Rational n(w * w + x * x + y * y + z * z);
+  long R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                  {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
+                  {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
+  core::Mat4 p;
+  for (size_t i = 0; i < 3; ++i) {
+    core::Rational s;
+    for (size_t j = 0; j < 3; ++j) {
+      p[i][j] = core::Rational(R[j][i]) / n; // inverse rotation R^T
+      s += p[i][j] * t[j];
+    }
+    p[i][3] = -s;
+  }
+  p[3][3] = core::Rational(1);
+  return p;
+}
+
+/// Scaling x -> s x as a congruence (Q'(x) = Q(x / s)).
+inline core::Mat4 scaling(const core::Rational& s) {
+  core::Mat4 p;
+  for (size_t i = 0; i < 3; ++i)
+    p[i][i] = core::Rational(1) / s;
+  p[3][3] = core::Rational(1);
+  return p;
+}
+
+} // namespace surfcert::testing
