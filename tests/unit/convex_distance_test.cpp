@@ -230,6 +230,61 @@ TEST(ConvexDistance, EllipsoidCylinderAgainstTheOffsetMethod) {
   EXPECT_GE(checked, 2);
 }
 
+TEST(ConvexDistance, SphereParaboloidAgainstThePointQuadricSextic) {
+  // Paraboloids (axis-aligned and turned by a rational rotation) against spheres outside their
+  // convex side; the reference is (point-paraboloid distance from the sextic) - rho.
+  const core::Mat4 turn = motion(2, 1, -1, 3, {core::Rational(1, 2), 0, 0});
+  struct Case {
+    const char* par;
+    long cx, cy, cz;
+  };
+  for (const Case& c :
+       {Case{"x^2 + y^2 - z = 0", 3, 0, 0}, Case{"x^2 + y^2 - z = 0", 0, 0, -5},
+        Case{"x^2/4 + y^2 - z + x/3 = 1", 4, -3, 1}, Case{"z^2 + 3y^2 + x - 2 = 0", 5, 1, 1}})
+    for (bool turned : {false, true}) {
+      core::QuadricMatrix par = q(c.par), sph = q(sphere(c.cx, c.cy, c.cz, "1/2"));
+      if (turned) par = par.congruent(turn), sph = sph.congruent(turn);
+      auto r = fast(sph, par, 20);
+      ASSERT_TRUE(r) << c.par << " " << turned;
+      // centre of the (possibly moved) sphere: -Q(i,3)/Q(0,0)
+      std::array<core::Rational, 3> cen;
+      for (int i = 0; i < 3; ++i)
+        cen[static_cast<size_t>(i)] = -sph(i, 3) / sph(0, 0);
+      auto pq = certify::point_quadric_critical(cen, par, 30);
+      ASSERT_TRUE(pq.ok);
+      mpfr_t l, u;
+      mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
+      mpfr_set_str(l, pq.criticals.front().lower.c_str(), 10, MPFR_RNDD);
+      mpfr_set_str(u, pq.criticals.front().upper.c_str(), 10, MPFR_RNDU);
+      mpfr_sub_d(l, l, 0.5, MPFR_RNDD);
+      mpfr_sub_d(u, u, 0.5, MPFR_RNDU);
+      EXPECT_TRUE(overlap(*r, ref_interval(l, u)))
+          << c.par << " " << turned << ": " << r->lower << " vs " << pq.criticals.front().lower;
+      mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
+    }
+  // A sphere inside the convex side is not separated: no answer here.
+  EXPECT_FALSE(fast(q(sphere(0, 0, 5, "1/2")), q("x^2 + y^2 - z = 0"), 15));
+  EXPECT_FALSE(fast(q("x^2 + y^2 - z = 0"), q("x^2 + y^2 - z + 1 = 0"), 15)); // no ellipsoid
+}
+
+TEST(ConvexDistance, EllipsoidParaboloidAgainstTheOffsetMethod) {
+  const auto par = q("x^2/4 + y^2 - z = 0").congruent(motion(1, 2, 0, -1, {0, 0, 1}));
+  std::mt19937_64 rng(11);
+  int checked = 0;
+  for (const auto& c : {std::array<long, 3>{4, 0, -2}, std::array<long, 3>{-3, 3, -4},
+                        std::array<long, 3>{0, -5, 0}}) {
+    auto e =
+        random_ellipsoid(rng, {core::Rational(c[0]), core::Rational(c[1]), core::Rational(c[2])});
+    auto r = fast(e, par, 15);
+    if (!r) continue;
+    auto x = certify::quadric_pair_distance(e, par, 15);
+    ASSERT_EQ(x.status, certify::Status::Certified) << x.note;
+    EXPECT_TRUE(overlap(*r, x)) << r->lower << " vs " << x.lower;
+    ++checked;
+  }
+  EXPECT_GE(checked, 2);
+}
+
 TEST(ConvexDistance, InvarianceSwapScalingTranslation) {
   const auto a = q("x^2/4 + y^2 + z^2/9 = 1"), b = q("(x-5)^2/9 + (y-1)^2/4 + (z-2)^2 = 1");
   auto r = fast(a, b, 30);
@@ -294,7 +349,9 @@ TEST(ConvexDistance, AnswersOnlyWhatItProves) {
   EXPECT_FALSE(fast(q("y^2 + z^2 = 1"), q("x^2 + z^2 = 1"), 15));        // two cylinders
   // Not convex quadrics at all: no description.
   EXPECT_FALSE(certify::convex_quadric(q("x^2 + y^2 - z^2 = 1")));
-  EXPECT_FALSE(certify::convex_quadric(q("x^2 + y^2 - z = 0")));
+  EXPECT_FALSE(certify::convex_quadric(q("x^2 - y^2 - z = 0")));   // hyperbolic paraboloid
+  EXPECT_FALSE(certify::convex_quadric(q("x^2 + y^2 - z^2 = 0"))); // cone
+  EXPECT_TRUE(certify::convex_quadric(q("x^2 + y^2 - z = 0")));    // elliptic paraboloid
   EXPECT_FALSE(certify::convex_quadric(q("x^2 + y^2 + z^2 = -1")));
   EXPECT_FALSE(certify::convex_quadric(q("x^2 + y^2 = 0")));
   EXPECT_TRUE(certify::convex_quadric(q("-x^2 - y^2 + 1 = 0"))); // orientation does not matter

@@ -56,22 +56,62 @@ template <class T> V3<T> normalized(const V3<T>& a) {
 }
 
 template <class T> struct Solid {
-  M3<T> W;
-  V3<T> c;
+  ConvexQuadric::Kind kind;
+  M3<T> W; // P = A^+ for a paraboloid
+  V3<T> c, a, b, Pb;
+  T e, ab;
 };
+template <class T> V3<T> vec_in(const std::array<Rational, 3>& v) {
+  return {from_rational<T>(v[0]), from_rational<T>(v[1]), from_rational<T>(v[2])};
+}
 template <class T> Solid<T> solid_in(const ConvexQuadric& s) {
   Solid<T> o;
-  for (size_t i = 0; i < 3; ++i) {
-    o.c[i] = from_rational<T>(s.c[i]);
+  o.kind = s.kind;
+  o.c = vec_in<T>(s.c);
+  for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
       o.W[i][j] = from_rational<T>(s.W[i][j]);
+  if (s.is_paraboloid()) {
+    o.a = vec_in<T>(*s.axis);
+    o.b = vec_in<T>(s.b);
+    o.Pb = vec_in<T>(s.Pb);
+    o.e = from_rational<T>(s.e);
+    o.ab = from_rational<T>(s.ab);
   }
   return o;
 }
 
-// h(m), the support point p(m) and the Hessian of h at m: (W - Wm Wm^T / q) / sqrt(q).
-template <class T> void support_eval(const Solid<T>& s, const V3<T>& m, T& h, V3<T>& p, M3<T>& H) {
+// Paraboloid (see convex_quadric.hpp): h(m), the support point and the Hessian
+// (a.b) [P / l - (P m a^T + a (P m)^T) / l^2 + q a a^T / l^3], l = m.a, q = m^T P m.
+// False outside the admissible half-space (h = +inf there).
+template <class T>
+bool paraboloid_eval(const Solid<T>& s, const V3<T>& m, T& h, V3<T>& p, M3<T>& H) {
+  const T l = dot(m, s.a);
+  if (!(l / s.ab > T(0))) return false;
+  V3<T> pm{T(0), T(0), T(0)};
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      pm[i] += s.W[i][j] * m[j];
+  const T sc = s.ab / l, q = dot(m, pm);
+  V3<T> y;
+  for (size_t i = 0; i < 3; ++i)
+    y[i] = sc * pm[i] - s.Pb[i];
+  const T t = -(sc * dot(m, y) + dot(s.b, y) + s.e) / (T(2) * s.ab);
+  for (size_t i = 0; i < 3; ++i)
+    p[i] = y[i] + t * s.a[i];
+  h = dot(m, p);
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      H[i][j] = s.ab * (s.W[i][j] / l - (pm[i] * s.a[j] + s.a[i] * pm[j]) / (l * l) +
+                        q * s.a[i] * s.a[j] / (l * l * l));
+  return true;
+}
+
+// h(m), the support point p(m) and the Hessian of h at m: (W - Wm Wm^T / q) / sqrt(q) for an
+// ellipsoid or cylinder. False when m is not admissible (paraboloid half-space).
+template <class T> bool support_eval(const Solid<T>& s, const V3<T>& m, T& h, V3<T>& p, M3<T>& H) {
   using std::sqrt;
+  if (s.kind == ConvexQuadric::Kind::Paraboloid) return paraboloid_eval(s, m, h, p, H);
   V3<T> wm{T(0), T(0), T(0)};
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
@@ -83,11 +123,13 @@ template <class T> void support_eval(const Solid<T>& s, const V3<T>& m, T& h, V3
     for (size_t j = 0; j < 3; ++j)
       H[i][j] = (s.W[i][j] - wm[i] * wm[j] / q) / r;
   }
+  return true;
 }
 
 // phi(n) = -h_A(n) - h_B(-n) (the separation of the slab with normal n), its gradient
 // w = p_B(-n) - p_A(n) and Hessian -(H_A(n) + H_B(-n)); phi is concave.
 template <class T> struct Dual {
+  bool finite = true;
   T phi;
   V3<T> w, pa, pb;
   M3<T> H;
@@ -96,8 +138,9 @@ template <class T> Dual<T> dual(const Solid<T>& a, const Solid<T>& b, const V3<T
   Dual<T> d;
   T ha, hb;
   M3<T> Ha, Hb;
-  support_eval(a, n, ha, d.pa, Ha);
-  support_eval(b, V3<T>{-n[0], -n[1], -n[2]}, hb, d.pb, Hb);
+  d.finite =
+      support_eval(a, n, ha, d.pa, Ha) && support_eval(b, V3<T>{-n[0], -n[1], -n[2]}, hb, d.pb, Hb);
+  if (!d.finite) return d; // phi = -inf: no slab with this normal
   d.phi = -ha - hb;
   for (size_t i = 0; i < 3; ++i) {
     d.w[i] = d.pb[i] - d.pa[i];
@@ -181,21 +224,41 @@ V3<T> newton_direction(const std::vector<V3<T>>& basis, const V3<T>& n, const Du
 
 // Float search (double): damped Newton with backtracking on phi. Returns false when the best
 // direction found clearly does not separate (then nothing is certified here).
-bool search_double(const Solid<double>& a, const Solid<double>& b,
-                   const std::vector<V3<double>>& basis, V3<double>& n) {
-  // Start: the centre-to-centre direction, projected onto the admissible directions.
-  V3<double> s{b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]}, p{0, 0, 0};
-  if (basis.size() == 3) {
-    p = s;
-  } else {
+bool search_double(const Solid<double>& a, const Solid<double>& b, const V3<double>& ca,
+                   const V3<double>& cb, const std::vector<V3<double>>& basis, V3<double>& n) {
+  // Start: the best (largest finite phi) of the centre-to-centre direction (a paraboloid's
+  // "centre" is its vertex), the basis directions and the paraboloid axes, all projected onto
+  // the admissible directions.
+  auto project = [&](const V3<double>& s) {
+    if (basis.size() == 3) return s;
+    V3<double> p{0, 0, 0};
     for (const auto& e : basis) {
       const double x = dot(s, e);
       for (size_t i = 0; i < 3; ++i)
         p[i] += x * e[i];
     }
-  }
-  n = dot(p, p) > 0 ? normalized(p) : basis[0];
-  Dual<double> d = dual(a, b, n);
+    return p;
+  };
+  std::vector<V3<double>> starts{V3<double>{cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]}};
+  for (const auto& e : basis)
+    starts.push_back(e);
+  for (const Solid<double>* s : {&a, &b})
+    if (s->kind == ConvexQuadric::Kind::Paraboloid) starts.push_back(s->a);
+  bool found = false;
+  Dual<double> d;
+  for (const auto& s0 : starts)
+    for (double sg : {1.0, -1.0}) {
+      V3<double> p = project(s0);
+      if (!(dot(p, p) > 0)) continue;
+      p = normalized(V3<double>{sg * p[0], sg * p[1], sg * p[2]});
+      Dual<double> dp = dual(a, b, p);
+      if (dp.finite && (!found || dp.phi > d.phi)) {
+        found = true;
+        n = p;
+        d = dp;
+      }
+    }
+  if (!found) return false;
   for (int it = 0; it < 100; ++it) {
     V3<double> step = newton_direction(basis, n, d, true);
     double len = std::sqrt(dot(step, step));
@@ -211,7 +274,7 @@ bool search_double(const Solid<double>& a, const Solid<double>& b,
           normalized(V3<double>{n[0] + t * step[0], n[1] + t * step[1], n[2] + t * step[2]});
       Dual<double> dm = dual(a, b, m);
       const double slack = 1e-15 * (std::abs(d.phi) + std::sqrt(dot(d.w, d.w)));
-      if (dm.phi >= d.phi - slack) {
+      if (dm.finite && dm.phi >= d.phi - slack) {
         n = m;
         d = dm;
         moved = true;
@@ -245,6 +308,7 @@ V3<Mp> refine_mpfr(const ConvexQuadric& ca, const ConvexQuadric& cb, const Direc
   const long bits = static_cast<long>(Mp::default_precision() * 3.33);
   for (long good = 50; good < 2 * bits; good *= 2) {
     const Dual<Mp> d = dual(a, b, n);
+    if (!d.finite) break;
     const V3<Mp> step = newton_direction(basis, n, d, false);
 
     n = normalized(V3<Mp>{n[0] + step[0], n[1] + step[1], n[2] + step[2]});
@@ -354,7 +418,9 @@ bool certify_direction(const ConvexQuadric& a, const ConvexQuadric& b, const Bal
 
 std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
                                                         const ConvexQuadric& b, long digits) {
-  if (a.is_cylinder() && b.is_cylinder()) return std::nullopt; // minimizers may form a line
+  // An ellipsoid (bounded, strictly convex) makes the minimum attained and its pair unique;
+  // two cylinders or paraboloids may have a line of minimizers or none.
+  if (!a.is_ellipsoid() && !b.is_ellipsoid()) return std::nullopt;
   Directions dirs;
   if (a.is_cylinder() || b.is_cylinder()) {
     const auto& ax = a.is_cylinder() ? *a.axis : *b.axis;
@@ -378,7 +444,7 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
   const Solid<double> sa = solid_in<double>(a), sb = solid_in<double>(b);
   const std::vector<V3<double>> basis = float_basis<double>(dirs);
   V3<double> n{};
-  if (!search_double(sa, sb, basis, n)) return std::nullopt;
+  if (!search_double(sa, sb, a.cd, b.cd, basis, n)) return std::nullopt;
 
   DistanceResult out;
   out.status = Status::Certified;

@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/convex_quadric.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace surfcert::certify {
 
@@ -24,6 +25,44 @@ RMat3 inverse3(const RMat3& a, const Rational& det) {
       r[i][j] = (a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]) / det;
     }
   return r;
+}
+
+std::array<double, 3> to_double(const std::array<Rational, 3>& v) {
+  return {v[0].to_double_approx(), v[1].to_double_approx(), v[2].to_double_approx()};
+}
+
+// The paraboloid's exact data from (A + a a^T)^-1 (see the header): P = A^+ =
+// (A + a a^T)^-1 - a a^T / |a|^4.
+ConvexQuadric paraboloid(const RMat3& Binv, const std::array<Rational, 3>& a,
+                         const std::array<Rational, 3>& b, const Rational& e, const Rational& ab) {
+  ConvexQuadric o;
+  o.kind = ConvexQuadric::Kind::Paraboloid;
+  o.axis = a;
+  o.b = b;
+  o.e = e;
+  o.ab = ab;
+  const Rational a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      o.W[i][j] = Binv[i][j] - a[i] * a[j] / (a2 * a2);
+      o.Wd[i][j] = o.W[i][j].to_double_approx();
+    }
+  Rational bPb;
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j)
+      o.Pb[i] += o.W[i][j] * b[j];
+    bPb += b[i] * o.Pb[i];
+  }
+  o.alpha = ab / Rational(2);
+  o.gamma = (bPb - e) / (Rational(2) * ab);
+  o.bd = to_double(b);
+  o.Pbd = to_double(o.Pb);
+  o.ad = to_double(a);
+  o.ed = e.to_double_approx();
+  o.abd = ab.to_double_approx();
+  o.alphad = o.alpha.to_double_approx();
+  o.gammad = o.gamma.to_double_approx();
+  return o;
 }
 
 } // namespace
@@ -70,14 +109,22 @@ std::optional<ConvexQuadric> convex_quadric(const core::QuadricMatrix& q) {
           break;
         }
       }
-    // b must lie in the range of A (orthogonal to the kernel), else it is a paraboloid.
-    if ((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).sign() != 0) return std::nullopt;
     RMat3 B = A; // A + a a^T: positive definite, and (A + a a^T)^-1 n = A^+ n for n . a = 0
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j)
         B[i][j] += a[i] * a[j];
     Ainv = inverse3(B, det3(B));
     out.axis = a;
+    out.kind = ConvexQuadric::Kind::Cylinder;
+    // b outside the range of A (not orthogonal to the kernel): an elliptic paraboloid.
+    const Rational ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    if (ab.sign() != 0) {
+      ConvexQuadric par = paraboloid(Ainv, a, b, e, ab);
+      // cd: the vertex (support point along the opening direction), where searches start
+      const double sg = ab.sign() > 0 ? 1 : -1;
+      par.cd = support_point_float(par, {sg * par.ad[0], sg * par.ad[1], sg * par.ad[2]});
+      return par;
+    }
   }
   // Centre c = -A^+ b (a point of the axis for a cylinder): f = (x-c)^T A (x-c) + e + b.c.
   Rational bc;
@@ -98,7 +145,43 @@ std::optional<ConvexQuadric> convex_quadric(const core::QuadricMatrix& q) {
   return out;
 }
 
+namespace {
+
+// Paraboloid support point and value in double: s = (a.b)/(n.a), y = s P n - P b,
+// t = -(s n.y + b.y + e) / (2 a.b), p = y + t a, h = n.p.
+bool paraboloid_float(const ConvexQuadric& s, const std::array<double, 3>& n, double& h,
+                      std::array<double, 3>& p) {
+  double na = 0;
+  for (size_t i = 0; i < 3; ++i)
+    na += n[i] * s.ad[i];
+  if (!(na / s.abd > 0)) return false;
+  const double sc = s.abd / na;
+  std::array<double, 3> y{};
+  double ny = 0, by = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j)
+      y[i] += sc * s.Wd[i][j] * n[j];
+    y[i] -= s.Pbd[i];
+    ny += n[i] * y[i];
+    by += s.bd[i] * y[i];
+  }
+  const double t = -(sc * ny + by + s.ed) / (2 * s.abd);
+  h = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    p[i] = y[i] + t * s.ad[i];
+    h += n[i] * p[i];
+  }
+  return true;
+}
+
+} // namespace
+
 double support_float(const ConvexQuadric& s, const std::array<double, 3>& n) {
+  if (s.is_paraboloid()) {
+    double h;
+    std::array<double, 3> p;
+    return paraboloid_float(s, n, h, p) ? h : std::numeric_limits<double>::infinity();
+  }
   double nc = 0, nwn = 0;
   for (size_t i = 0; i < 3; ++i) {
     nc += n[i] * s.cd[i];
@@ -109,6 +192,12 @@ double support_float(const ConvexQuadric& s, const std::array<double, 3>& n) {
 }
 
 std::array<double, 3> support_point_float(const ConvexQuadric& s, const std::array<double, 3>& n) {
+  if (s.is_paraboloid()) {
+    double h;
+    std::array<double, 3> p;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return paraboloid_float(s, n, h, p) ? p : std::array<double, 3>{nan, nan, nan};
+  }
   std::array<double, 3> wn{};
   double nwn = 0;
   for (size_t i = 0; i < 3; ++i) {
@@ -120,7 +209,65 @@ std::array<double, 3> support_point_float(const ConvexQuadric& s, const std::arr
   return {s.cd[0] + wn[0] / r, s.cd[1] + wn[1] / r, s.cd[2] + wn[2] / r};
 }
 
+namespace {
+
+void set_q(arb_t x, const Rational& q, long prec) {
+  arb_set_fmpq(x, q.raw(), prec);
+}
+
+// The paraboloid's h(n) and support point with balls (formulas of the header).
+void paraboloid_ball(arb_t h, Ball (*p)[3], const ConvexQuadric& s, const Ball (&n)[3], long prec) {
+  Ball na, t, sc, y[3], ny, by, tt, q, pt[3];
+  for (size_t i = 0; i < 3; ++i) {
+    set_q(t.v, (*s.axis)[i], prec);
+    arb_addmul(na.v, n[i].v, t.v, prec);
+  }
+  // admissible only when (n.a) / (a.b) > 0 is certain
+  if (!(s.ab.sign() > 0 ? arb_is_positive(na.v) : arb_is_negative(na.v))) {
+    arb_indeterminate(h);
+    return;
+  }
+  set_q(sc.v, s.ab, prec);
+  arb_div(sc.v, sc.v, na.v, prec);
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j) {
+      set_q(t.v, s.W[i][j], prec);
+      arb_addmul(y[i].v, t.v, n[j].v, prec);
+    }
+    arb_mul(y[i].v, y[i].v, sc.v, prec);
+    set_q(t.v, s.Pb[i], prec);
+    arb_sub(y[i].v, y[i].v, t.v, prec);
+    arb_addmul(ny.v, n[i].v, y[i].v, prec);
+    set_q(t.v, s.b[i], prec);
+    arb_addmul(by.v, t.v, y[i].v, prec);
+  }
+  arb_mul(tt.v, sc.v, ny.v, prec);
+  arb_add(tt.v, tt.v, by.v, prec);
+  set_q(t.v, s.e, prec);
+  arb_add(tt.v, tt.v, t.v, prec);
+  set_q(q.v, s.ab, prec);
+  arb_mul_2exp_si(q.v, q.v, 1);
+  arb_div(tt.v, tt.v, q.v, prec);
+  arb_neg(tt.v, tt.v);
+  arb_zero(h);
+  for (size_t i = 0; i < 3; ++i) {
+    set_q(t.v, (*s.axis)[i], prec);
+    arb_mul(pt[i].v, tt.v, t.v, prec);
+    arb_add(pt[i].v, pt[i].v, y[i].v, prec);
+    arb_addmul(h, n[i].v, pt[i].v, prec);
+  }
+  if (p != nullptr)
+    for (size_t i = 0; i < 3; ++i)
+      arb_swap((*p)[i].v, pt[i].v);
+}
+
+} // namespace
+
 void support_ball(arb_t h, Ball (*p)[3], const ConvexQuadric& s, const Ball (&n)[3], long prec) {
+  if (s.is_paraboloid()) {
+    paraboloid_ball(h, p, s, n, prec);
+    return;
+  }
   Ball wn[3], t, nwn, nc, r;
   for (size_t i = 0; i < 3; ++i) {
     for (size_t j = 0; j < 3; ++j) {

@@ -1,5 +1,6 @@
 // surfcert::certify::separated_convex_distance: a certified fast path for two disjoint convex
-// solids (ellipsoid or elliptic cylinder, at least one ellipsoid), by support-function duality.
+// solids (ellipsoid, elliptic cylinder or elliptic paraboloid; at least one ellipsoid), by
+// support-function duality.
 //
 // For every direction n, the slab between the supporting planes separates the solids:
 //   L(n) = (-h_B(-n) - h_A(n)) / |n|  <=  dist(A, B),
