@@ -340,6 +340,20 @@ TEST(ConvexDistance, DigitsNestAndEccentricityOneMillion) {
   EXPECT_LE(lo(*r15), best);
 }
 
+TEST(ConvexDistance, FloatModeSaysItIsUncertifiedAndAgrees) {
+  const auto a = q("x^2/4 + y^2 + z^2/9 = 1"), b = q("(x-5)^2/9 + (y-1)^2/4 + (z-2)^2 = 1");
+  auto ca = certify::convex_quadric(a), cb = certify::convex_quadric(b);
+  auto f = certify::separated_convex_distance_float(*ca, *cb);
+  auto r = certify::separated_convex_distance(*ca, *cb, 15);
+  ASSERT_TRUE(f && r);
+  EXPECT_EQ(f->status, certify::Status::Uncertified);
+  EXPECT_NE(f->note.find("NOT certified"), std::string::npos);
+  EXPECT_NEAR(f->approx, r->approx, 1e-12 * r->approx);
+  EXPECT_FALSE(certify::separated_convex_distance_float(
+      *certify::convex_quadric(q(sphere(0, 0, 0, "1"))),
+      *certify::convex_quadric(q(sphere(1, 0, 0, "1"))))); // overlapping: no separation
+}
+
 TEST(ConvexDistance, AnswersOnlyWhatItProves) {
   // overlapping, touching (d = 0 exactly) and nested pairs: no certificate of separation.
   EXPECT_FALSE(fast(q(sphere(0, 0, 0, "1")), q(sphere(1, 0, 0, "1")), 15));

@@ -4,6 +4,7 @@
 #include <flint/fmpq.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace surfcert::certify {
@@ -414,17 +415,13 @@ bool certify_direction(const ConvexQuadric& a, const ConvexQuadric& b, const Bal
   return true;
 }
 
-} // namespace
-
-std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
-                                                        const ConvexQuadric& b, long digits) {
-  // An ellipsoid (bounded, strictly convex) makes the minimum attained and its pair unique;
-  // two cylinders or paraboloids may have a line of minimizers or none.
-  if (!a.is_ellipsoid() && !b.is_ellipsoid()) return std::nullopt;
+// The admissible directions of the pair: the plane orthogonal to a cylinder's axis (an exact
+// rational basis u = axis x e_k, v = axis x u, k the smallest axis component so u != 0), or
+// R^3.
+Directions admissible_directions(const ConvexQuadric& a, const ConvexQuadric& b) {
   Directions dirs;
   if (a.is_cylinder() || b.is_cylinder()) {
     const auto& ax = a.is_cylinder() ? *a.axis : *b.axis;
-    // u = axis x e_k (k: the smallest axis component, so u != 0), v = axis x u.
     size_t k = 0;
     for (size_t i = 1; i < 3; ++i)
       if (core::abs(ax[i]) < core::abs(ax[k])) k = i;
@@ -441,6 +438,17 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
                   V3<Rational>{Rational(0), Rational(1), Rational(0)},
                   V3<Rational>{Rational(0), Rational(0), Rational(1)}};
   }
+  return dirs;
+}
+
+} // namespace
+
+std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
+                                                        const ConvexQuadric& b, long digits) {
+  // An ellipsoid (bounded, strictly convex) makes the minimum attained and its pair unique;
+  // two cylinders or paraboloids may have a line of minimizers or none.
+  if (!a.is_ellipsoid() && !b.is_ellipsoid()) return std::nullopt;
+  const Directions dirs = admissible_directions(a, b);
   const Solid<double> sa = solid_in<double>(a), sb = solid_in<double>(b);
   const std::vector<V3<double>> basis = float_basis<double>(dirs);
   V3<double> n{};
@@ -469,6 +477,44 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
   }
   if (certify_direction(a, b, nb, digits, out)) return out;
   return std::nullopt;
+}
+
+std::optional<DistanceResult> separated_convex_distance_float(const ConvexQuadric& a,
+                                                              const ConvexQuadric& b) {
+  if (!a.is_ellipsoid() && !b.is_ellipsoid()) return std::nullopt;
+  const Directions dirs = admissible_directions(a, b);
+  const Solid<double> sa = solid_in<double>(a), sb = solid_in<double>(b);
+  const std::vector<V3<double>> basis = float_basis<double>(dirs);
+  V3<double> n{};
+  if (!search_double(sa, sb, a.cd, b.cd, basis, n)) return std::nullopt;
+  const Dual<double> d = dual(sa, sb, n);
+  if (!d.finite || !(d.phi > 0)) return std::nullopt;
+  DistanceResult out;
+  out.status = Status::Uncertified;
+  out.minimizers = "1";
+  out.critical_candidates = 1;
+  V3<double> pa = d.pa, pb = d.pb;
+  if (a.is_cylinder() || b.is_cylinder()) { // slide along the cylinder's line of support
+    const auto& ax = a.is_cylinder() ? *a.axis : *b.axis;
+    const V3<double> u = normalized(
+        V3<double>{ax[0].to_double_approx(), ax[1].to_double_approx(), ax[2].to_double_approx()});
+    const double t = dot(d.w, u);
+    for (size_t i = 0; i < 3; ++i)
+      (a.is_cylinder() ? pa : pb)[i] += (a.is_cylinder() ? t : -t) * u[i];
+  }
+  const double dist =
+      std::sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]) +
+                (pb[2] - pa[2]) * (pb[2] - pa[2]));
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", std::min(d.phi, dist));
+  out.lower = buf;
+  std::snprintf(buf, sizeof buf, "%.17g", std::max(d.phi, dist));
+  out.upper = buf;
+  out.approx = dist;
+  out.pairs.push_back({pa, pb});
+  out.note = "float mode: double-precision separating-direction search, NOT certified (the slab "
+             "width and the pair distance in double; no ball arithmetic)";
+  return out;
 }
 
 } // namespace surfcert::certify
