@@ -4,6 +4,7 @@
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
 #include "surfcert/certify/distance/convex_distance.hpp"
+#include "surfcert/certify/distance/nested_convex.hpp"
 #include "surfcert/certify/distance/parametric_distance.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
@@ -158,11 +159,24 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   // Disjoint convex solids (ellipsoids, elliptic cylinders): a separating direction
   // certifies the distance without elimination; anything it cannot prove falls through.
   if (auto ca = convex_quadric(a))
-    if (auto cb = convex_quadric(b))
+    if (auto cb = convex_quadric(b)) {
       if (auto r = separated_convex_distance(*ca, *cb, digits)) {
         r->solid = solid;
         return *r;
       }
+      // Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
+      if (auto r = nested_convex_distance(*ca, *cb, digits)) {
+        if (solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
+          out.status = Status::Certified;
+          out.lower = out.upper = "0";
+          out.minimizers = "infinite";
+          out.note = "solid distance: one solid contains the other";
+          return out;
+        }
+        r->solid = solid;
+        return *r;
+      }
+    }
   const core::QuadricMatrix& sph = a_sphere ? a : b;
   const core::QuadricMatrix& other = a_sphere ? b : a;
 
