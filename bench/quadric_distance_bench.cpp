@@ -11,7 +11,8 @@
 // Float search: multi-start alternating projection (Eberly's bisection for ellipsoids and
 // ellipses, a secular equation for the paraboloid, the rulings for the cone) and a sampling
 // of the ellipsoid projected onto the other surface.
-// Usage: quadric_distance_bench [pairs=200] [seed=2026]
+// Usage: quadric_distance_bench [pairs=200] [seed=2026] [mode_pairs=20]
+// (mode_pairs: how many pairs per family also run in float and exact mode)
 #include "random_ellipsoids.hpp"
 
 #include "surfcert/certify/distance/distance.hpp"
@@ -593,6 +594,8 @@ bool is_zero_result(const certify::DistanceResult& r) {
 int main(int argc, char** argv) {
   long pairs = argc > 1 ? std::atol(argv[1]) : 200;
   unsigned long seed = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 2026;
+  // pairs per family also run in float and exact mode (the exact offset method is slow)
+  const long mode_pairs = argc > 3 ? std::atol(argv[3]) : 20;
   const char* titles[6] = {"",
                            "Separated ellipsoid pairs",
                            "Nested ellipsoid pairs (small inside big)",
@@ -662,6 +665,45 @@ int main(int argc, char** argv) {
                   cert, und, zero, err);
     }
     std::printf("\ntime per extra digit (15 -> 100, medians): %.1f us\n", (med[1] - med[0]) / 85);
+
+    // The same pairs in the two other modes at 15 digits: float (uncertified double answer
+    // where a float route exists) and exact (the offset method, no fast path), against the
+    // filtered (default) result above.
+    {
+      std::vector<double> tf, tx;
+      long f_answered = 0, x_cert = 0, x_disagree = 0;
+      double f_err = 0;
+      for (long i = 0; i < pairs && i < mode_pairs; ++i) {
+        const Case& c = cases[static_cast<size_t>(i)];
+        const Run& ref = runs[0][static_cast<size_t>(i)];
+        auto t0 = std::chrono::steady_clock::now();
+        auto rf = certify::surface_distance(c.a, c.b, 15, false, certify::Mode::Float);
+        auto t1 = std::chrono::steady_clock::now();
+        tf.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+        if (rf.status == certify::Status::Uncertified) {
+          ++f_answered;
+          if (!ref.threw && ref.r.status == certify::Status::Certified)
+            f_err = std::max(f_err, std::fabs(rf.approx - ref.r.approx) / (1 + ref.r.approx));
+        }
+        t0 = std::chrono::steady_clock::now();
+        auto rx = certify::surface_distance(c.a, c.b, 15, false, certify::Mode::Exact);
+        t1 = std::chrono::steady_clock::now();
+        tx.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+        if (rx.status == certify::Status::Certified) {
+          ++x_cert;
+          auto lx = core::Rational::from_string(rx.lower), ux = core::Rational::from_string(rx.upper);
+          auto lr = core::Rational::from_string(ref.r.lower),
+               ur = core::Rational::from_string(ref.r.upper);
+          if (lx && ux && lr && ur && (*lx > *ur || *lr > *ux)) ++x_disagree;
+        }
+      }
+      std::printf("\nmodes at 15 digits (%zu pairs): float %.1f us median, %ld answered "
+                  "(uncertified), max relative error %.2e vs the certified value; filtered "
+                  "%.1f us; exact (offset method only) %.0f us, %ld certified, %ld enclosures "
+                  "disjoint from the filtered ones\n",
+                  tf.size(), median(tf), f_answered, f_err, med[0], median(tx), x_cert,
+                  x_disagree);
+    }
 
     // Degrees (15-digit runs, offset method only).
     std::vector<double> elim, sqf;

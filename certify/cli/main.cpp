@@ -30,7 +30,8 @@ const char* kUsage =
     "  surfcert classify 'EQ_A' 'EQ_B' [--mode exact|filtered|float] [--json]\n"
     "  surfcert intersect 'EQ_A' 'EQ_B' [--mode M] [--tol T] [--json] [--export F.obj|F.ply] "
     "[--svg F.svg]\n"
-    "  surfcert distance 'SURF_A' 'SURF_B' [--digits N] [--solid] [--json]   (equations, or JSON "
+    "  surfcert distance 'SURF_A' 'SURF_B' [--digits N] [--solid] [--mode M] [--json]   "
+    "(equations, or JSON "
     "surfaces incl. {\"type\":\"torus\",...})\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N]     (JSON lines on stdin -> JSON lines on stdout)\n"
@@ -195,9 +196,14 @@ int cmd_distance(const std::vector<std::string>& args) {
   std::vector<std::string> eq;
   long digits = 15;
   bool json = false, solid = false;
+  certify::Mode mode = certify::Mode::Filtered;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--json")
       json = true;
+    else if (args[i] == "--mode" && i + 1 < args.size())
+      mode = mode_arg(args[++i]);
+    else if (args[i].rfind("--mode=", 0) == 0)
+      mode = mode_arg(args[i].substr(7));
     else if (args[i] == "--solid")
       solid = true;
     else if (args[i] == "--digits" && i + 1 < args.size()) {
@@ -227,18 +233,21 @@ int cmd_distance(const std::vector<std::string>& args) {
     return core::io::quadric_from_equation(text, Location{src, 1, 1, ""});
   };
   certify::DistanceResult d = certify::surface_distance(
-      surface(eq[0], "<argument 1>"), surface(eq[1], "<argument 2>"), digits, solid);
+      surface(eq[0], "<argument 1>"), surface(eq[1], "<argument 2>"), digits, solid, mode);
   if (json) {
     std::cout << core::io::dump(certify::distance_envelope_json(d, digits), 2) << "\n";
   } else {
     std::cout << "distance: " << certify::to_string(d.status);
-    if (!d.lower.empty())
+    if (!d.lower.empty() && d.status == certify::Status::Uncertified)
+      std::cout << " ~ " << d.upper << " (not an enclosure), minimizers " << d.minimizers;
+    else if (!d.lower.empty())
       std::cout << " in [" << d.lower << ", " << d.upper << "], minimizers " << d.minimizers;
     std::cout << "\n";
     for (const auto& p : d.pairs)
       std::cout << "  pair (" << p[0][0] << ", " << p[0][1] << ", " << p[0][2] << ") - (" << p[1][0]
                 << ", " << p[1][1] << ", " << p[1][2] << ")\n";
     if (!d.note.empty()) std::cout << "note: " << d.note << "\n";
+    if (!d.method.empty()) std::cout << "method: " << d.method << "\n";
   }
   return d.status == certify::Status::Undecided ? 3 : 0;
 }

@@ -160,7 +160,7 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
 Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   Json env;
   if (q.op == "distance") {
-    DistanceResult d = surface_distance(s.surface(q.a), s.surface(q.b), q.digits, q.solid);
+    DistanceResult d = surface_distance(s.surface(q.a), s.surface(q.b), q.digits, q.solid, q.mode);
     env = distance_envelope_json(d, q.digits);
     if (text_summary)
       *text_summary =
@@ -247,7 +247,7 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
         bool solid = false;
         if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");
         if (const Json* sd = doc.find("solid")) solid = read_bool(*sd, source, "$.solid");
-        env = distance_envelope_json(surface_distance(sa, sb, digits, solid), digits);
+        env = distance_envelope_json(surface_distance(sa, sb, digits, solid, mode), digits);
       } else if (op->text() == "intersect") {
         trace::TraceOptions opt;
         if (const Json* t = doc.find("tolerance"))

@@ -354,6 +354,28 @@ TEST(ConvexDistance, FloatModeSaysItIsUncertifiedAndAgrees) {
       *certify::convex_quadric(q(sphere(1, 0, 0, "1"))))); // overlapping: no separation
 }
 
+TEST(ConvexDistance, ModesThroughThePublicApi) {
+  // filtered = the duality certificate; exact = the offset method only (an independent route:
+  // resultants and exact isolation); float = uncertified double answer. Same pair, same value.
+  const auto a = q("x^2/4 + y^2 + z^2/9 = 1").congruent(motion(1, 1, 2, 0, {0, 0, 0})),
+             b = q("(x-5)^2/9 + (y-1)^2/4 + (z-2)^2 = 1");
+  auto fil = certify::surface_distance(a, b, 20, false);
+  auto ex = certify::surface_distance(a, b, 20, false, certify::Mode::Exact);
+  auto fl = certify::surface_distance(a, b, 20, false, certify::Mode::Float);
+  ASSERT_EQ(fil.status, certify::Status::Certified);
+  ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
+  EXPECT_EQ(fil.method, "convex_duality");
+  EXPECT_EQ(ex.method, "offset_system");
+  EXPECT_FALSE(ex.univariate_degrees.empty());
+  EXPECT_TRUE(overlap(fil, ex)) << fil.lower << " vs " << ex.lower;
+  EXPECT_EQ(fl.status, certify::Status::Uncertified);
+  EXPECT_EQ(fl.mode, certify::Mode::Float);
+  EXPECT_NEAR(fl.approx, fil.approx, 1e-12 * fil.approx);
+  auto j = certify::distance_envelope_json(ex, 20);
+  EXPECT_EQ(j.find("result")->find("mode")->text(), "exact");
+  EXPECT_EQ(j.find("result")->find("method")->text(), "offset_system");
+}
+
 TEST(ConvexDistance, AnswersOnlyWhatItProves) {
   // overlapping, touching (d = 0 exactly) and nested pairs: no certificate of separation.
   EXPECT_FALSE(fast(q(sphere(0, 0, 0, "1")), q(sphere(1, 0, 0, "1")), 15));

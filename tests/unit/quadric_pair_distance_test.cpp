@@ -93,8 +93,10 @@ double float_search(const std::array<double, 3>& c1, const std::array<double, 3>
 } // namespace
 
 TEST(QuadricPairDistance, SeedNestedPairIsNotTheDecoy) {
+  // Exact mode: the offset method itself (the default mode answers this pair by the nested
+  // convex duality, tested in nested_distance_test).
   auto a = q("x^2 + y^2/4 + (z+3)^2/9 = 1"), b = q("x^2/4 + y^2/9 + z^2/49 = 1");
-  auto r = certify::surface_distance(a, b, 15, false);
+  auto r = certify::surface_distance(a, b, 15, false, certify::Mode::Exact);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   const double f = seed_pair_float();
   EXPECT_NEAR(f, 0.530229360238, 1e-11); // the float search agrees with the value
@@ -113,7 +115,7 @@ TEST(QuadricPairDistance, SeedNestedPairIsNotTheDecoy) {
   }
   EXPECT_FALSE(r.univariate_degrees.empty());
   // Swapping the surfaces swaps the points and keeps the enclosure.
-  auto s = certify::surface_distance(b, a, 15, false);
+  auto s = certify::surface_distance(b, a, 15, false, certify::Mode::Exact);
   ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
   EXPECT_TRUE(overlap(r, s));
   ASSERT_FALSE(s.pairs.empty());
@@ -170,13 +172,17 @@ TEST(QuadricPairDistance, RigidMotionsScalingAndPrecision) {
        {core::Rational(1000000), core::Rational(-1000000), core::Rational(1000000)}}};
   for (size_t k = 0; k < quats.size(); ++k) {
     auto p = motion(quats[k][0], quats[k][1], quats[k][2], quats[k][3], moves[k]);
-    auto m = certify::surface_distance(a.congruent(p), b.congruent(p), 15, false);
+    // exact mode (the offset method) on the moved pair, against the default answer
+    auto m =
+        certify::surface_distance(a.congruent(p), b.congruent(p), 15, false, certify::Mode::Exact);
     ASSERT_EQ(m.status, certify::Status::Certified) << k << " " << m.note;
+    EXPECT_EQ(m.method, "offset_system");
     EXPECT_TRUE(overlap(r, m)) << k << ": " << m.lower << " vs " << r.lower;
   }
   // Scaling by s scales d by s (s = 10^8 and 10^-8).
   for (const auto& s : {core::Rational(100000000), core::Rational(1, 100000000)}) {
-    auto m = certify::surface_distance(a.congruent(scaling(s)), b.congruent(scaling(s)), 15, false);
+    auto m = certify::surface_distance(a.congruent(scaling(s)), b.congruent(scaling(s)), 15, false,
+                                       certify::Mode::Exact);
     ASSERT_EQ(m.status, certify::Status::Certified) << m.note;
     EXPECT_NEAR(lo(m) / s.to_double_approx(), lo(r), 1e-13 * lo(r));
   }

@@ -146,8 +146,10 @@ void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
   arf_clear(hi);
 }
 
-DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                                long digits, bool solid) {
+namespace {
+
+DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                long digits, bool solid, Mode mode) {
   DistanceResult out;
   out.solid = solid;
   const bool a_sphere = a.is_sphere(), b_sphere = b.is_sphere();
@@ -158,10 +160,17 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   }
   // Disjoint convex solids (ellipsoids, elliptic cylinders): a separating direction
   // certifies the distance without elimination; anything it cannot prove falls through.
-  if (auto ca = convex_quadric(a))
+  if (auto ca = convex_quadric(a); ca && mode != Mode::Exact)
     if (auto cb = convex_quadric(b)) {
+      if (mode == Mode::Float)
+        if (auto r = separated_convex_distance_float(*ca, *cb)) {
+          r->solid = solid;
+          r->method = "convex_duality_float";
+          return *r;
+        }
       if (auto r = separated_convex_distance(*ca, *cb, digits)) {
         r->solid = solid;
+        r->method = "convex_duality";
         return *r;
       }
       // Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
@@ -174,6 +183,7 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
           return out;
         }
         r->solid = solid;
+        if (r->method.empty()) r->method = "nested_convex_duality";
         return *r;
       }
     }
@@ -181,7 +191,7 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   const core::QuadricMatrix& other = a_sphere ? b : a;
 
   // Do the surfaces meet? The certified topology decides.
-  QsicResult t = classify_qsic(a, b, Mode::Filtered);
+  QsicResult t = classify_qsic(a, b, mode == Mode::Exact ? Mode::Exact : Mode::Filtered);
   if (t.status != Status::Certified) {
     out.status = Status::Undecided;
     out.note = "topology not certified";
@@ -357,17 +367,31 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   return out;
 }
 
+} // namespace
+
+DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                long digits, bool solid, Mode mode) {
+  DistanceResult r = quadric_distance(a, b, digits, solid, mode);
+  r.mode = mode;
+  if (r.method.empty() && !r.univariate_degrees.empty()) r.method = "offset_system";
+  return r;
+}
+
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
-                                bool solid) {
-  if (const auto* pa = std::get_if<core::ParametricSurface>(&a))
-    return parametric_distance(*pa, b, digits, true);
-  if (const auto* pb = std::get_if<core::ParametricSurface>(&b))
-    return parametric_distance(*pb, a, digits, false);
-  const auto* qa = std::get_if<core::QuadricMatrix>(&a);
-  const auto* qb = std::get_if<core::QuadricMatrix>(&b);
-  if (qa && qb) return surface_distance(*qa, *qb, digits, solid);
+                                bool solid, Mode mode) {
   DistanceResult out;
   out.solid = solid;
+  out.mode = mode;
+  const auto* pa = std::get_if<core::ParametricSurface>(&a);
+  const auto* pb = std::get_if<core::ParametricSurface>(&b);
+  if (pa || pb) {
+    out = pa ? parametric_distance(*pa, b, digits, true) : parametric_distance(*pb, a, digits, false);
+    out.mode = mode;
+    return out;
+  }
+  const auto* qa = std::get_if<core::QuadricMatrix>(&a);
+  const auto* qb = std::get_if<core::QuadricMatrix>(&b);
+  if (qa && qb) return surface_distance(*qa, *qb, digits, solid, mode);
   if (!qa && !qb) {
     out.status = Status::Undecided;
     out.note = "not supported yet: distance between two non-quadric surfaces (" +
@@ -383,6 +407,8 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   else
     out = quadric_canal_distance(q, std::get<core::CanalSurface>(other), digits, qa != nullptr);
   out.solid = solid;
+  out.mode = mode;
+  if (out.method.empty() && !out.univariate_degrees.empty()) out.method = "offset_system";
   if (solid)
     out.note += (out.note.empty() ? "" : "; ") +
                 std::string("solid applies to two ellipsoids only: surface distance");
@@ -438,6 +464,8 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
   }
   res.set("digits", Json::number(digits));
   res.set("solid", Json::boolean(r.solid));
+  res.set("mode", Json::string(to_string(r.mode)));
+  if (!r.method.empty()) res.set("method", Json::string(r.method));
   o.set("result", res);
   return o;
 }

@@ -27,8 +27,8 @@ namespace surfcert::certify {
 std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
                                                         const ConvexQuadric& b, long digits);
 
-/// Float mode: the same search in double only, status Uncertified (lower/upper are the double
-/// slab width and pair distance, not an enclosure); nullopt when no separating direction is
+/// Float mode: the same search in double only, status Uncertified (lower = upper = the double
+/// distance of the float pair, not an enclosure); nullopt when no separating direction is
 /// found.
 std::optional<DistanceResult> separated_convex_distance_float(const ConvexQuadric& a,
                                                               const ConvexQuadric& b);

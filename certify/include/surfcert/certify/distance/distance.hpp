@@ -36,23 +36,33 @@ struct DistanceResult {
   /// seed 000 Table 1). Empty when the closed forms or the point-quadric sextic applied.
   std::vector<long> system_degrees, bivariate_degrees, univariate_degrees, squarefree_degrees;
   bool solid = false; ///< solid distance requested (0 when the volumes overlap)
+  /// Which route produced the answer ("convex_duality", "nested_convex_duality",
+  /// "offset_system", "closed_form", ...); empty when not recorded.
+  std::string method;
+  Mode mode = Mode::Filtered; ///< the mode the query ran in
 };
 
+/// mode: Filtered (default) tries the elimination-free certificates first (convex duality
+/// for separated or nested convex solids, the torus circle bound) and falls back to the exact
+/// offset method; Exact runs the offset method (and the exact topology) only; Float returns
+/// the double-precision answer of the convex search, status Uncertified, when one exists, and
+/// otherwise answers as Filtered.
 DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                                long digits, bool solid);
+                                long digits, bool solid, Mode mode = Mode::Filtered);
 
 /// Any two supported surfaces: two quadrics as above; a quadric and a ring torus
 /// (quadric_torus_distance). Two tori: undecided ("not supported yet"). `solid` applies to
 /// two ellipsoids only.
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
-                                bool solid);
+                                bool solid, Mode mode = Mode::Filtered);
 
 /// Writes the decimal enclosure of the ball d into out (lower clamped at 0; digits + 2
 /// significant digits, rounded outward) and its midpoint as `approx`.
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
 
 /// {"status", "note"?, "result": {"distance": {"lower", "upper", "approx"}, "minimizers",
-/// "pairs", "critical_candidates", "eliminated_degree", "digits", "solid"}}
+/// "pairs", "critical_candidates", "eliminated_degree", "digits", "solid", "mode",
+/// "method"?}}
 core::io::Json distance_envelope_json(const DistanceResult& r, long digits);
 
 } // namespace surfcert::certify
