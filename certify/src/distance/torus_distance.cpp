@@ -4,6 +4,7 @@
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/revolution.hpp"
+#include "surfcert/certify/distance/torus_fast.hpp"
 #include "surfcert/certify/qsic.hpp"
 
 #include <arb.h>
@@ -534,6 +535,18 @@ Contact quadric_torus_contact(const SourceQuadric& src, const TorusPolys& tp, bo
 
 DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::Torus& t,
                                       long digits, bool quadric_first) {
+  // An ellipsoid outside the solid torus: the elimination-free certificate (torus_fast.hpp).
+  // Spheres and coaxial ellipsoids of revolution keep their closed forms (exact, and a circle
+  // of minimizers is what the fast path refuses).
+  if (q.kind() == core::QuadricKind::Ellipsoid && !q.is_sphere() &&
+      !meridian_conic(q, Axis{t.centre, t.axis}, 2))
+    if (const auto e = convex_quadric(q); e && e->is_ellipsoid())
+      if (auto fast = ellipsoid_torus_fast(*e, t, digits, quadric_first)) return *fast;
+  return quadric_torus_distance_exact(q, t, digits, quadric_first);
+}
+
+DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const core::Torus& t,
+                                            long digits, bool quadric_first) {
   if (q.is_sphere()) return sphere_torus(q, t, digits, quadric_first);
   if (q.is_plane()) return plane_torus(q, t, digits, quadric_first);
   if (auto mer = meridian_conic(q, Axis{t.centre, t.axis}, 2))

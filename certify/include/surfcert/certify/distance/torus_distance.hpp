@@ -21,7 +21,14 @@
 namespace surfcert::certify {
 
 /// quadric_first: the quadric is the query's first surface (pairs reported in query order).
+/// A (non-spherical, non-coaxial) ellipsoid outside the solid torus is answered by
+/// ellipsoid_torus_fast (torus_fast.hpp) when it proves its enclosure, else by the methods above.
 DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::Torus& t,
                                       long digits, bool quadric_first);
+
+/// The methods above only (closed forms, contact test, offset system): the independent route
+/// the fast path is tested against.
+DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const core::Torus& t,
+                                            long digits, bool quadric_first);
 
 } // namespace surfcert::certify
