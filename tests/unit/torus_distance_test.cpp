@@ -110,7 +110,15 @@ TEST(TorusDistance, EllipsoidAgainstFloatSearchAndRigidMotions) {
       certify::surface_distance(eq("(x-1)^2 + (y-2)^2/4 + 4*(z-4)^2/9 = 1"), torus(tj), 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_LE((hi(r) - lo(r)) / lo(r), 1e-14);
-  EXPECT_EQ(r.system_degrees, (std::vector<long>{2, 2, 4})); // seed 000 Table 1: torus
+  // Exact mode: the offset system itself (the default mode answers by the circle bound),
+  // with the seed 000 Table 1 torus degrees, and the same enclosure.
+  auto ex = certify::surface_distance(eq("(x-1)^2 + (y-2)^2/4 + 4*(z-4)^2/9 = 1"), torus(tj), 15,
+                                      false, certify::Mode::Exact);
+  ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
+  EXPECT_EQ(ex.system_degrees, (std::vector<long>{2, 2, 4}));
+  EXPECT_EQ(ex.method, "offset_system");
+  EXPECT_LE(lo(ex), hi(r));
+  EXPECT_LE(lo(r), hi(ex));
   // Float search: ellipsoid samples against the torus distance |dist(x, K) - r|.
   double best = 1e300;
   const double an = 3;

@@ -385,7 +385,8 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   const auto* pa = std::get_if<core::ParametricSurface>(&a);
   const auto* pb = std::get_if<core::ParametricSurface>(&b);
   if (pa || pb) {
-    out = pa ? parametric_distance(*pa, b, digits, true) : parametric_distance(*pb, a, digits, false);
+    out =
+        pa ? parametric_distance(*pa, b, digits, true) : parametric_distance(*pb, a, digits, false);
     out.mode = mode;
     return out;
   }
@@ -401,7 +402,8 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   const core::QuadricMatrix& q = qa ? *qa : *qb;
   const core::Surface& other = qa ? b : a;
   if (const auto* t = std::get_if<core::Torus>(&other))
-    out = quadric_torus_distance(q, *t, digits, qa != nullptr);
+    out = mode == Mode::Exact ? quadric_torus_distance_exact(q, *t, digits, qa != nullptr)
+                              : quadric_torus_distance(q, *t, digits, qa != nullptr);
   else if (const auto* im = std::get_if<core::ImplicitSurface>(&other))
     out = implicit_quadric_distance(im->f, q, digits, qa == nullptr);
   else
