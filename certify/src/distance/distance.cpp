@@ -152,41 +152,44 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
                                 long digits, bool solid, Mode mode) {
   DistanceResult out;
   out.solid = solid;
+  // Disjoint convex solids (ellipsoids, elliptic cylinders and paraboloids): a separating
+  // direction certifies the distance without elimination; anything it cannot prove falls
+  // through. First, since it is the cheapest certificate.
+  if (mode != Mode::Exact)
+    if (auto ca = convex_quadric(a))
+      if (auto cb = convex_quadric(b)) {
+        if (mode == Mode::Float)
+          if (auto r = separated_convex_distance_float(*ca, *cb)) {
+            r->solid = solid;
+            r->method = "convex_duality_float";
+            return *r;
+          }
+        if (auto r = separated_convex_distance(*ca, *cb, digits)) {
+          r->solid = solid;
+          r->method = "convex_duality";
+          return *r;
+        }
+        // Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
+        if (auto r = nested_convex_distance(*ca, *cb, digits)) {
+          if (solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
+            out.status = Status::Certified;
+            out.lower = out.upper = "0";
+            out.minimizers = "infinite";
+            out.note = "solid distance: one solid contains the other";
+            out.method = "nested_convex_duality";
+            return out;
+          }
+          r->solid = solid;
+          if (r->method.empty()) r->method = "nested_convex_duality";
+          return *r;
+        }
+      }
   const bool a_sphere = a.is_sphere(), b_sphere = b.is_sphere();
   if (!a_sphere && !b_sphere && (a.is_plane() || b.is_plane()) &&
       (a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid)) {
     ellipsoid_plane(out, a.is_plane() ? b : a, a.is_plane() ? a : b, !a.is_plane(), digits);
     return out;
   }
-  // Disjoint convex solids (ellipsoids, elliptic cylinders): a separating direction
-  // certifies the distance without elimination; anything it cannot prove falls through.
-  if (auto ca = convex_quadric(a); ca && mode != Mode::Exact)
-    if (auto cb = convex_quadric(b)) {
-      if (mode == Mode::Float)
-        if (auto r = separated_convex_distance_float(*ca, *cb)) {
-          r->solid = solid;
-          r->method = "convex_duality_float";
-          return *r;
-        }
-      if (auto r = separated_convex_distance(*ca, *cb, digits)) {
-        r->solid = solid;
-        r->method = "convex_duality";
-        return *r;
-      }
-      // Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
-      if (auto r = nested_convex_distance(*ca, *cb, digits)) {
-        if (solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
-          out.status = Status::Certified;
-          out.lower = out.upper = "0";
-          out.minimizers = "infinite";
-          out.note = "solid distance: one solid contains the other";
-          return out;
-        }
-        r->solid = solid;
-        if (r->method.empty()) r->method = "nested_convex_duality";
-        return *r;
-      }
-    }
   const core::QuadricMatrix& sph = a_sphere ? a : b;
   const core::QuadricMatrix& other = a_sphere ? b : a;
 
