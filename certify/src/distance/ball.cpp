@@ -17,4 +17,25 @@ std::string decimal_bound(const arf_t x, bool upper, long digits) {
   return out;
 }
 
+bool relative_enclosure(arb_t d, const arb_t lo, const arb_t hi, long digits, long prec) {
+  if (!arb_is_positive(lo) || !arb_is_finite(hi)) return false;
+  arf_t l, h;
+  arf_init(l);
+  arf_init(h);
+  arb_get_lbound_arf(l, lo, prec);
+  arb_get_ubound_arf(h, hi, prec);
+  Ball width, tol, lower;
+  arb_set_arf(width.v, h);
+  arb_set_arf(lower.v, l);
+  arb_sub(width.v, width.v, lower.v, prec);
+  arb_set_ui(tol.v, 10);
+  arb_pow_ui(tol.v, tol.v, static_cast<ulong>(digits), prec);
+  arb_div(tol.v, lower.v, tol.v, prec);
+  const bool ok = arb_le(width.v, tol.v) != 0;
+  if (ok) arb_set_interval_arf(d, l, h, prec);
+  arf_clear(l);
+  arf_clear(h);
+  return ok;
+}
+
 } // namespace surfcert::certify

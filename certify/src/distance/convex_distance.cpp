@@ -387,24 +387,8 @@ bool certify_direction(const ConvexQuadric& a, const ConvexQuadric& b, const Bal
   arb_add(L.v, ha.v, hb.v, prec);
   arb_neg(L.v, L.v);
   arb_div(L.v, L.v, len.v, prec);
-  if (!arb_is_positive(L.v) || !arb_is_finite(U.v)) return false;
-  arf_t lo, hi;
-  arf_init(lo);
-  arf_init(hi);
-  arb_get_lbound_arf(lo, L.v, prec);
-  arb_get_ubound_arf(hi, U.v, prec);
-  Ball d, width, tol;
-  arb_set_interval_arf(d.v, lo, hi, prec);
-  arb_set_arf(width.v, hi);
-  arb_set_arf(tmp.v, lo);
-  arb_sub(width.v, width.v, tmp.v, prec);
-  arb_set_ui(tol.v, 10);
-  arb_pow_ui(tol.v, tol.v, static_cast<ulong>(digits), prec);
-  arb_div(tol.v, tmp.v, tol.v, prec);
-  const bool ok = arb_le(width.v, tol.v) != 0;
-  arf_clear(lo);
-  arf_clear(hi);
-  if (!ok) return false;
+  Ball d;
+  if (!relative_enclosure(d.v, L.v, U.v, digits, prec)) return false;
   set_distance_enclosure(out, d.v, digits);
   std::array<std::array<double, 3>, 2> pr{};
   for (size_t i = 0; i < 3; ++i) {

@@ -908,29 +908,13 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
   arf_pos_inf(L);
   for (const auto& I : alive_)
     if (arf_cmp(arb_midref(I.lb.v), L) < 0) arf_set(L, arb_midref(I.lb.v));
-  Ball lo, hi, d, width, tol;
+  Ball lo, hi, d;
   arb_set_arf(lo.v, L);
   arb_sub(lo.v, lo.v, M.r.v, prec);
   arb_set_arf(hi.v, best_);
   arb_sub(hi.v, hi.v, M.r.v, prec);
   arf_clear(L);
-  if (!arb_is_positive(lo.v) || !arb_is_finite(hi.v)) return std::nullopt;
-  arf_t l, h;
-  arf_init(l);
-  arf_init(h);
-  arb_get_lbound_arf(l, lo.v, prec);
-  arb_get_ubound_arf(h, hi.v, prec);
-  arb_set_interval_arf(d.v, l, h, prec);
-  arb_set_arf(width.v, h);
-  arb_set_arf(lo.v, l);
-  arb_sub(width.v, width.v, lo.v, prec);
-  arb_set_ui(tol.v, 10);
-  arb_pow_ui(tol.v, tol.v, static_cast<ulong>(digits_), prec);
-  arb_div(tol.v, lo.v, tol.v, prec);
-  const bool ok = arb_le(width.v, tol.v) != 0;
-  arf_clear(l);
-  arf_clear(h);
-  if (!ok) return std::nullopt;
+  if (!relative_enclosure(d.v, lo.v, hi.v, digits_, prec)) return std::nullopt;
 
   DistanceResult out;
   out.status = Status::Certified;

@@ -28,6 +28,11 @@ struct Ball {
 /// (upper bound), so the text never lies inside the enclosure it bounds.
 std::string decimal_bound(const arf_t x, bool upper, long digits);
 
+/// The enclosure [lower(lo), upper(hi)] of a minimum from a certified lower bound `lo` and a
+/// certified upper bound `hi`: true when lo > 0 and hi is finite for certain and
+/// upper - lower <= 10^-digits lower; d then holds that interval (the answer at `digits`).
+bool relative_enclosure(arb_t d, const arb_t lo, const arb_t hi, long digits, long prec);
+
 /// Working precision (bits) for an answer of `digits` decimal digits, with a 64-bit margin.
 inline long bits_for(long digits) {
   return static_cast<long>(static_cast<double>(digits) * 3.33) + 64;
