@@ -9,6 +9,7 @@
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/certify/distance/torus_distance.hpp"
+#include "surfcert/certify/distance/torus_pair.hpp"
 
 #include "surfcert/algebra/mpoly.hpp"
 
@@ -397,6 +398,19 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   const auto* qb = std::get_if<core::QuadricMatrix>(&b);
   if (qa && qb) return surface_distance(*qa, *qb, digits, solid, mode);
   if (!qa && !qb) {
+    const auto* ta = std::get_if<core::Torus>(&a);
+    const auto* tb = std::get_if<core::Torus>(&b);
+    if (ta && tb) { // every mode: the circle bound is the only route for two tori
+      if (auto r = torus_pair_distance(*ta, *tb, digits)) {
+        r->solid = solid;
+        r->mode = mode;
+        return *r;
+      }
+      out.status = Status::Undecided;
+      out.note = "two tori whose tubes may meet, nest, or have a continuum of minimizers "
+                 "(coaxial): not supported yet";
+      return out;
+    }
     out.status = Status::Undecided;
     out.note = "not supported yet: distance between two non-quadric surfaces (" +
                core::surface_kind(a) + ", " + core::surface_kind(b) + ")";
