@@ -167,7 +167,9 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
           "distance: " + std::string(to_string(d.status)) +
           (d.lower.empty() ? ""
                            : " in [" + d.lower + ", " + d.upper + "], minimizers " + d.minimizers) +
-          (d.note.empty() ? "" : "\nnote: " + d.note) + "\n";
+          (d.note.empty() ? "" : "\nnote: " + d.note) +
+          (d.method.empty() ? "" : "\nmethod: " + d.method + " (mode " + to_string(d.mode) + ")") +
+          "\n";
   } else if (q.op == "intersect") {
     const auto& a = std::get<core::QuadricMatrix>(s.surface(q.a));
     const auto& b = std::get<core::QuadricMatrix>(s.surface(q.b));
