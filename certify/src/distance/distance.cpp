@@ -3,6 +3,7 @@
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
+#include "surfcert/certify/distance/capsule_pair.hpp"
 #include "surfcert/certify/distance/convex_distance.hpp"
 #include "surfcert/certify/distance/nested_convex.hpp"
 #include "surfcert/certify/distance/parametric_distance.hpp"
@@ -400,6 +401,14 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   if (!qa && !qb) {
     const auto* ta = std::get_if<core::Torus>(&a);
     const auto* tb = std::get_if<core::Torus>(&b);
+    const auto* ca = std::get_if<core::CanalSurface>(&a);
+    const auto* cb = std::get_if<core::CanalSurface>(&b);
+    if (ca && cb)
+      if (auto r = capsule_pair_distance(*ca, *cb, digits)) {
+        r->solid = solid;
+        r->mode = mode;
+        return *r;
+      }
     if (ta && tb) { // every mode: the circle bound is the only route for two tori
       if (auto r = torus_pair_distance(*ta, *tb, digits)) {
         r->solid = solid;
