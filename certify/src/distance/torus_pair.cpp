@@ -1,12 +1,11 @@
 #include "surfcert/certify/distance/torus_pair.hpp"
 
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/periodic_bnb.hpp"
 
 #include <arb.h>
 
-#include <algorithm>
 #include <cmath>
-#include <vector>
 
 namespace surfcert::certify {
 
@@ -106,221 +105,81 @@ void circle_circle(Dual& f, Ball (*point)[3], const Circle& c1, const Circle& c2
   arb_mul_2exp_si(f.d.v, f.d.v, -1);
 }
 
-struct Interval {
-  arf_struct mid[1];
-  mag_struct rad[1]; // the t-interval [mid - rad, mid + rad], exact dyadic
-  Ball lower, upper;
-  Interval() {
-    arf_init(mid);
-    mag_init(rad);
-  }
-  Interval(const Interval& o) : Interval() {
-    arf_set(mid, o.mid);
-    mag_set(rad, o.rad);
-    arb_set(lower.v, o.lower.v);
-    arb_set(upper.v, o.upper.v);
-  }
-  Interval& operator=(const Interval& o) {
-    arf_set(mid, o.mid);
-    mag_set(rad, o.rad);
-    arb_set(lower.v, o.lower.v);
-    arb_set(upper.v, o.upper.v);
-    return *this;
-  }
-  ~Interval() {
-    arf_clear(mid);
-    mag_clear(rad);
-  }
-};
-
-void bound(Interval& I, const Circle& c1, const Circle& c2, long prec) {
-  Ball t, tm, dt;
-  arb_set_arf(tm.v, I.mid);
-  arb_set(t.v, tm.v);
-  mag_set(arb_radref(t.v), I.rad);
-  Dual whole, at;
-  circle_circle(whole, nullptr, c1, c2, t.v, prec);
-  circle_circle(at, nullptr, c1, c2, tm.v, prec);
-  // mean-value form f(t_m) + f'(T) [-rad, rad]
-  arb_zero(dt.v);
-  mag_set(arb_radref(dt.v), I.rad);
-  Ball mv;
-  arb_mul(mv.v, whole.d.v, dt.v, prec);
-  arb_add(mv.v, mv.v, at.v.v, prec);
-  arf_t a, b;
-  arf_init(a);
-  arf_init(b);
-  arb_get_lbound_arf(a, whole.v.v, prec);
-  if (arb_is_finite(mv.v)) {
-    arb_get_lbound_arf(b, mv.v, prec);
-    if (arf_cmp(b, a) > 0) arf_set(a, b);
-  }
-  arb_set_arf(I.lower.v, a);
-  arb_get_ubound_arf(b, at.v.v, prec);
-  arb_set_arf(I.upper.v, b);
-  arf_clear(a);
-  arf_clear(b);
-}
-
 } // namespace
 
 std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const core::Torus& b,
                                                   long digits) {
   const long prec = bits_for(digits + 10);
   const Circle c1(a, prec), c2(b, prec);
-  Ball r12;
-  {
-    Ball r;
-    set_q(r12.v, a.r, prec);
-    set_q(r.v, b.r, prec);
-    arb_add(r12.v, r12.v, r.v, prec);
-  }
-  // 32 starting intervals of t in [0, 2), shifted by 1/64 so symmetric positions are interior
-  const int N = 32;
-  std::vector<Interval> live;
-  for (int k = 0; k < N; ++k) {
-    Interval I;
-    arf_set_si_2exp_si(I.mid, 2 * (2 * k + 1) + 1, -6); // (2k + 1)/32 + 1/64 = t_mid
-    mag_set_ui_2exp_si(I.rad, 1, -5);                   // 1/32
-    live.push_back(I);
-  }
-  arf_t best, lowest;
-  arf_init(best);
-  arf_init(lowest);
-  std::optional<DistanceResult> out;
-  const int max_rounds = static_cast<int>(4 * prec);
-  for (int round = 0; round < max_rounds; ++round) {
-    arf_pos_inf(best);
-    for (auto& I : live) {
-      bound(I, c1, c2, prec);
-      if (arf_cmp(arb_midref(I.upper.v), best) < 0) arf_set(best, arb_midref(I.upper.v));
+  Ball r12, r;
+  set_q(r12.v, a.r, prec);
+  set_q(r.v, b.r, prec);
+  arb_add(r12.v, r12.v, r.v, prec);
+  // f over T: the better of the interval extension and the mean-value form
+  // f(t_m) + f'(T) [-rad, rad]; f(t_m) itself is the upper bound.
+  auto bound = [&](const arb_t tm, const arb_t T, arf_t lower, arf_t upper) {
+    Dual whole, at;
+    circle_circle(whole, nullptr, c1, c2, T, prec);
+    circle_circle(at, nullptr, c1, c2, tm, prec);
+    Ball dt, mv;
+    arb_zero(dt.v);
+    mag_set(arb_radref(dt.v), arb_radref(T));
+    arb_mul(mv.v, whole.d.v, dt.v, prec);
+    arb_add(mv.v, mv.v, at.v.v, prec);
+    arb_get_lbound_arf(lower, whole.v.v, prec);
+    if (arb_is_finite(mv.v)) {
+      arf_t m;
+      arf_init(m);
+      arb_get_lbound_arf(m, mv.v, prec);
+      if (arf_cmp(m, lower) > 0) arf_set(lower, m);
+      arf_clear(m);
     }
-    // drop intervals that cannot hold the minimum
-    std::vector<Interval> keep;
-    arf_pos_inf(lowest);
-    for (const auto& I : live)
-      if (arf_cmp(arb_midref(I.lower.v), best) <= 0) {
-        keep.push_back(I);
-        if (arf_cmp(arb_midref(I.lower.v), lowest) < 0) arf_set(lowest, arb_midref(I.lower.v));
-      }
-    live.swap(keep);
-    if (live.size() > 96) break; // a continuum of minimizers (coaxial tori), or too flat
-    // d in [lowest - r1 - r2, best - r1 - r2]
-    Ball lo, hi, d;
-    arb_set_arf(lo.v, lowest);
-    arb_sub(lo.v, lo.v, r12.v, prec);
-    arb_set_arf(hi.v, best);
-    arb_sub(hi.v, hi.v, r12.v, prec);
-    if (arb_is_negative(hi.v)) break; // the tubes overlap: not this route's answer
-    if (relative_enclosure(d.v, lo.v, hi.v, digits, prec)) {
-      if (static_cast<int>(live.size()) >= N * 3 / 4) break; // nearly the whole circle
-      DistanceResult r;
-      r.status = Status::Certified;
-      set_distance_enclosure(r, d.v, digits);
-      // one pair per group of adjacent intervals (its best interval's midpoint)
-      std::sort(live.begin(), live.end(),
-                [](const Interval& x, const Interval& y) { return arf_cmp(x.mid, y.mid) < 0; });
-      std::vector<std::vector<const Interval*>> groups;
-      for (const auto& I : live) {
-        bool adjacent = false;
-        if (!groups.empty()) {
-          const Interval& p = *groups.back().back();
-          arf_t gap, rr;
-          arf_init(gap);
-          arf_init(rr);
-          arf_sub(gap, I.mid, p.mid, prec, ARF_RND_NEAR);
-          arf_set_mag(rr, I.rad);
-          arf_add(rr, rr, rr, prec, ARF_RND_UP);
-          adjacent = arf_cmp(gap, rr) <= 0;
-          arf_clear(gap);
-          arf_clear(rr);
-        }
-        if (adjacent)
-          groups.back().push_back(&I);
-        else
-          groups.push_back({&I});
-      }
-      if (groups.size() > 1) { // the circle wraps: first and last may be one group
-        const Interval& f = *groups.front().front();
-        const Interval& l = *groups.back().back();
-        if (arf_cmp_si(f.mid, 0) >= 0 && arf_cmp_si(l.mid, 2) <= 0) {
-          arf_t s;
-          arf_init(s);
-          arf_sub_si(s, l.mid, 2, prec, ARF_RND_NEAR);
-          arf_sub(s, f.mid, s, prec, ARF_RND_NEAR);
-          arf_t rr;
-          arf_init(rr);
-          arf_set_mag(rr, f.rad);
-          arf_add(rr, rr, rr, prec, ARF_RND_UP);
-          if (arf_cmp(s, rr) <= 0) {
-            groups.front().insert(groups.front().end(), groups.back().begin(), groups.back().end());
-            groups.pop_back();
-          }
-          arf_clear(s);
-          arf_clear(rr);
-        }
-      }
-      for (const auto& g : groups) {
-        const Interval* bestI = g.front();
-        for (const Interval* I : g)
-          if (arf_cmp(arb_midref(I->upper.v), arb_midref(bestI->upper.v)) < 0) bestI = I;
-        Ball tm, p[3];
-        Dual f;
-        arb_set_arf(tm.v, bestI->mid);
-        circle_circle(f, &p, c1, c2, tm.v, prec);
-        // nearest point of K2 to p (double): o2 + R2 (radial unit), then both surface points
-        std::array<double, 3> pd{}, q{}, w{}, nd{};
-        double h = 0, fd = arf_get_d(arb_midref(f.v.v), ARF_RND_NEAR);
-        for (size_t i = 0; i < 3; ++i) {
-          pd[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
-          nd[i] = arf_get_d(arb_midref(c2.n[i].v), ARF_RND_NEAR);
-          w[i] = pd[i] - b.centre[i].to_double_approx();
-          h += w[i] * nd[i];
-        }
-        double rl = 0;
-        for (size_t i = 0; i < 3; ++i)
-          rl += (w[i] - h * nd[i]) * (w[i] - h * nd[i]);
-        rl = std::sqrt(rl);
-        for (size_t i = 0; i < 3; ++i)
-          q[i] = b.centre[i].to_double_approx() +
-                 (rl > 0 ? b.R.to_double_approx() * (w[i] - h * nd[i]) / rl : 0);
-        std::array<std::array<double, 3>, 2> pr{};
-        const double ra = a.r.to_double_approx(), rb = b.r.to_double_approx();
-        for (size_t i = 0; i < 3; ++i) {
-          const double dir = fd > 0 ? (q[i] - pd[i]) / fd : 0;
-          pr[0][i] = pd[i] + ra * dir;
-          pr[1][i] = q[i] - rb * dir;
-        }
-        r.pairs.push_back(pr);
-      }
-      r.minimizers = std::to_string(groups.size());
-      r.critical_candidates = static_cast<int>(groups.size());
-      r.method = "torus_circle_pair";
-      r.note = "disjoint tubes: distance of the core circles minus both tube radii, by branch "
-               "and bound over one circle (Arb)";
-      if (groups.size() > 1)
-        r.note += "; several minimizing pairs at distances that agree to the requested "
-                  "precision: listed as minimizers (their equality is not proven)";
-      out = std::move(r);
-      break;
+    arb_get_ubound_arf(upper, at.v.v, prec);
+  };
+  PeriodicMinimum pm;
+  if (!periodic_minimize(bound, r12.v, digits, prec, pm)) return std::nullopt;
+  DistanceResult res;
+  res.status = Status::Certified;
+  set_distance_enclosure(res, pm.enclosure.v, digits);
+  for (const auto& tm : pm.minimizers) {
+    Ball p[3];
+    Dual f;
+    circle_circle(f, &p, c1, c2, tm.v, prec);
+    // nearest point of K2 to p (double): o2 + R2 (radial unit), then both surface points
+    std::array<double, 3> pd{}, q{}, w{}, nd{};
+    double h = 0, fd = arf_get_d(arb_midref(f.v.v), ARF_RND_NEAR);
+    for (size_t i = 0; i < 3; ++i) {
+      pd[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
+      nd[i] = arf_get_d(arb_midref(c2.n[i].v), ARF_RND_NEAR);
+      w[i] = pd[i] - b.centre[i].to_double_approx();
+      h += w[i] * nd[i];
     }
-    // bisect every interval that still matters
-    std::vector<Interval> next;
-    for (const auto& I : live) {
-      for (int sgn : {-1, 1}) {
-        Interval c;
-        mag_mul_2exp_si(c.rad, I.rad, -1);
-        arf_set_mag(c.mid, c.rad);
-        if (sgn < 0) arf_neg(c.mid, c.mid);
-        arf_add(c.mid, c.mid, I.mid, ARF_PREC_EXACT, ARF_RND_DOWN); // exact
-        next.push_back(c);
-      }
+    double rl = 0;
+    for (size_t i = 0; i < 3; ++i)
+      rl += (w[i] - h * nd[i]) * (w[i] - h * nd[i]);
+    rl = std::sqrt(rl);
+    for (size_t i = 0; i < 3; ++i)
+      q[i] = b.centre[i].to_double_approx() +
+             (rl > 0 ? b.R.to_double_approx() * (w[i] - h * nd[i]) / rl : 0);
+    std::array<std::array<double, 3>, 2> pr{};
+    const double ra = a.r.to_double_approx(), rb = b.r.to_double_approx();
+    for (size_t i = 0; i < 3; ++i) {
+      const double dir = fd > 0 ? (q[i] - pd[i]) / fd : 0;
+      pr[0][i] = pd[i] + ra * dir;
+      pr[1][i] = q[i] - rb * dir;
     }
-    live.swap(next);
+    res.pairs.push_back(pr);
   }
-  arf_clear(best);
-  arf_clear(lowest);
-  return out;
+  const size_t groups = pm.minimizers.size();
+  res.minimizers = std::to_string(groups);
+  res.critical_candidates = static_cast<int>(groups);
+  res.method = "torus_circle_pair";
+  res.note = "disjoint tubes: distance of the core circles minus both tube radii, by branch "
+             "and bound over one circle (Arb)";
+  if (groups > 1)
+    res.note += "; several minimizing pairs at distances that agree to the requested "
+                "precision: listed as minimizers (their equality is not proven)";
+  return res;
 }
 
 } // namespace surfcert::certify

@@ -1,0 +1,34 @@
+// surfcert::certify::periodic_minimize: certified branch and bound for the minimum of a
+// function f(t) on the circle t in [0, 2) (closed loops: a core circle, the generators of a
+// cone), shared by the torus pair and the cone routes.
+//
+// The caller's bound(t_mid, T) returns a certified lower bound of f over the ball T and an
+// upper bound that is a value of f (or of anything >= min f); intervals whose lower bound
+// exceeds the best upper bound are dropped, the rest bisected (exact dyadic endpoints: 32
+// starting intervals shifted by 1/64 so symmetric positions stay interior, together covering
+// [0, 2) exactly) until the enclosure [min lower - shift, best upper - shift] has relative
+// width <= 10^-digits. Surviving intervals are grouped (adjacent ones, across t = 0 too), one
+// representative each: the minimizers. Fails (false) when the enclosure is not positive, when
+// too many intervals survive (a continuum of minimizers, or a flat minimum) or when the round
+// budget runs out.
+#pragma once
+
+#include "surfcert/certify/distance/ball.hpp"
+
+#include <functional>
+#include <vector>
+
+namespace surfcert::certify {
+
+struct PeriodicMinimum {
+  Ball enclosure;               ///< [min f - shift, ...] with the requested relative width
+  std::vector<Ball> minimizers; ///< one exact t (zero radius) per group of survivors
+};
+
+using PeriodicBound =
+    std::function<void(const arb_t t_mid, const arb_t T, arf_t lower, arf_t upper)>;
+
+bool periodic_minimize(const PeriodicBound& bound, const arb_t shift, long digits, long prec,
+                       PeriodicMinimum& out);
+
+} // namespace surfcert::certify
