@@ -4,6 +4,7 @@
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
 #include "surfcert/certify/distance/capsule_pair.hpp"
+#include "surfcert/certify/distance/cone_distance.hpp"
 #include "surfcert/certify/distance/convex_distance.hpp"
 #include "surfcert/certify/distance/nested_convex.hpp"
 #include "surfcert/certify/distance/parametric_distance.hpp"
@@ -157,34 +158,46 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
   // Disjoint convex solids (ellipsoids, elliptic cylinders and paraboloids): a separating
   // direction certifies the distance without elimination; anything it cannot prove falls
   // through. First, since it is the cheapest certificate.
-  if (mode != Mode::Exact)
-    if (auto ca = convex_quadric(a))
-      if (auto cb = convex_quadric(b)) {
-        if (mode == Mode::Float)
-          if (auto r = separated_convex_distance_float(*ca, *cb)) {
-            r->solid = solid;
-            r->method = "convex_duality_float";
-            return *r;
-          }
-        if (auto r = separated_convex_distance(*ca, *cb, digits)) {
-          r->solid = solid;
-          r->method = "convex_duality";
-          return *r;
-        }
-        // Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
-        if (auto r = nested_convex_distance(*ca, *cb, digits)) {
-          if (solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
-            out.status = Status::Certified;
-            out.lower = out.upper = "0";
-            out.minimizers = "infinite";
-            out.note = "solid distance: one solid contains the other";
-            out.method = "nested_convex_duality";
-            return out;
-          }
-          r->solid = solid;
-          if (r->method.empty()) r->method = "nested_convex_duality";
-          return *r;
-        }
+  const auto ca = mode != Mode::Exact ? convex_quadric(a) : std::nullopt;
+  const auto cb = ca ? convex_quadric(b) : std::nullopt;
+  if (ca && cb) {
+    if (mode == Mode::Float)
+      if (auto r = separated_convex_distance_float(*ca, *cb)) {
+        r->solid = solid;
+        r->method = "convex_duality_float";
+        return *r;
+      }
+    if (auto r = separated_convex_distance(*ca, *cb, digits)) {
+      r->solid = solid;
+      r->method = "convex_duality";
+      return *r;
+    }
+    // Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
+    if (auto r = nested_convex_distance(*ca, *cb, digits)) {
+      if (solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
+        out.status = Status::Certified;
+        out.lower = out.upper = "0";
+        out.minimizers = "infinite";
+        out.note = "solid distance: one solid contains the other";
+        out.method = "nested_convex_duality";
+        return out;
+      }
+      r->solid = solid;
+      if (r->method.empty()) r->method = "nested_convex_duality";
+      return *r;
+    }
+  }
+  // An ellipsoid and a cone: the minimum over the cone's generator lines.
+  if (ca && ca->is_ellipsoid() && !cb)
+    if (auto r = ellipsoid_cone_distance(*ca, b, digits, true)) {
+      r->solid = solid;
+      return *r;
+    }
+  if (mode != Mode::Exact && !ca)
+    if (auto e = convex_quadric(b); e && e->is_ellipsoid())
+      if (auto r = ellipsoid_cone_distance(*e, a, digits, false)) {
+        r->solid = solid;
+        return *r;
       }
   const bool a_sphere = a.is_sphere(), b_sphere = b.is_sphere();
   if (!a_sphere && !b_sphere && (a.is_plane() || b.is_plane()) &&

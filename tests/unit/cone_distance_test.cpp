@@ -1,0 +1,115 @@
+// Ellipsoid against a quadratic cone through the generator lines (cone_distance.hpp), against
+// independent routes:
+// - sphere vs cone: (critical distance from the centre by the point-quadric sextic) - rho, for
+//   a right circular cone (two symmetric minimizers) and a tilted elliptic cone;
+// - random ellipsoids vs a rotated elliptic cone: the exact offset method (Mode::Exact) gives
+//   overlapping enclosures;
+// - it answers only what it proves: crossing, a sphere on the axis (a circle of minimizers) and
+//   more than 25 digits go to the exact route.
+#include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
+
+#include "support/distance_checks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <mpfr.h>
+
+#include <random>
+
+using namespace surfcert;
+using surfcert::testing::motion;
+using surfcert::testing::overlap;
+
+namespace {
+
+core::QuadricMatrix q(const std::string& s) {
+  return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
+}
+
+// [lower - rho, upper - rho] of the smallest critical distance from c, outward rounded.
+certify::DistanceResult sextic_minus(const std::array<core::Rational, 3>& c,
+                                     const core::QuadricMatrix& cone, long rho_num, long rho_den) {
+  auto pq = certify::point_quadric_critical(c, cone, 30);
+  EXPECT_TRUE(pq.ok);
+  certify::DistanceResult r;
+  mpfr_t l, u, t;
+  mpfr_inits2(4000, l, u, t, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(l, pq.criticals.front().lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, pq.criticals.front().upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_si(t, rho_num, MPFR_RNDN);
+  mpfr_div_si(t, t, rho_den, MPFR_RNDU);
+  mpfr_sub(l, l, t, MPFR_RNDD);
+  mpfr_set_si(t, rho_num, MPFR_RNDN);
+  mpfr_div_si(t, t, rho_den, MPFR_RNDD);
+  mpfr_sub(u, u, t, MPFR_RNDU);
+  char* s = nullptr;
+  mpfr_asprintf(&s, "%.40RDe", l);
+  r.lower = s;
+  mpfr_free_str(s);
+  mpfr_asprintf(&s, "%.40RUe", u);
+  r.upper = s;
+  mpfr_free_str(s);
+  mpfr_clears(l, u, t, static_cast<mpfr_ptr>(nullptr));
+  return r;
+}
+
+} // namespace
+
+TEST(ConeDistance, SphereAgainstThePointQuadricSextic) {
+  const auto round = q("x^2 + y^2 - z^2 = 0");
+  auto r = certify::surface_distance(q("(x-4)^2 + y^2 + z^2 = 1"), round, 15, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.method, "cone_generator_bound");
+  EXPECT_EQ(r.minimizers, "2"); // the generators x = z and x = -z
+  EXPECT_TRUE(overlap(r, sextic_minus({4, 0, 0}, round, 1, 1))) << r.lower;
+  // a tilted elliptic cone with its vertex at (1/2, -1, 0)
+  const auto tilted = q("x^2 + 2y^2 - z^2/3 + x*y/7 + y*z/5 = 0")
+                          .congruent(motion(1, 0, 0, 0, {core::Rational(1, 2), -1, 0}));
+  auto t = certify::surface_distance(q("(x-5)^2 + (y-1)^2 + (z-1)^2 = 1/4"), tilted, 20, false);
+  ASSERT_EQ(t.status, certify::Status::Certified) << t.note;
+  EXPECT_EQ(t.method, "cone_generator_bound");
+  EXPECT_TRUE(overlap(t, sextic_minus({5, 1, 1}, tilted, 1, 2))) << t.lower;
+}
+
+TEST(ConeDistance, RandomEllipsoidsAgainstTheOffsetMethod) {
+  const auto cone =
+      q("x^2/4 + y^2 - z^2 = 0").congruent(motion(2, 1, -1, 1, {1, core::Rational(1, 3), -2}));
+  std::mt19937_64 rng(31);
+  std::uniform_int_distribution<int> ax(30, 100), qd(-4, 4), off(-6, 6);
+  int checked = 0;
+  for (int i = 0; i < 10 && checked < 3; ++i) {
+    core::Mat4 m;
+    for (size_t k = 0; k < 3; ++k) {
+      core::Rational a(ax(rng), 100);
+      m[k][k] = core::Rational(1) / (a * a);
+    }
+    m[3][3] = core::Rational(-1);
+    long w = 0, x = 0, y = 0, z = 0;
+    while (w == 0 && x == 0 && y == 0 && z == 0)
+      w = qd(rng), x = qd(rng), y = qd(rng), z = qd(rng);
+    auto e = core::QuadricMatrix(m).congruent(motion(w, x, y, z, {off(rng), off(rng), off(rng)}));
+    auto r = certify::surface_distance(e, cone, 15, false);
+    if (r.method != "cone_generator_bound") continue; // crossing draws: the exact route
+    auto ex = certify::surface_distance(e, cone, 15, false, certify::Mode::Exact);
+    ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
+    EXPECT_TRUE(overlap(r, ex)) << "case " << i << ": " << r.lower << " vs " << ex.lower;
+    EXPECT_EQ(r.minimizers, ex.minimizers) << "case " << i;
+    ++checked;
+  }
+  EXPECT_GE(checked, 2);
+}
+
+TEST(ConeDistance, AnswersOnlyWhatItProves) {
+  const auto round = q("x^2 + y^2 - z^2 = 0");
+  auto cross = certify::surface_distance(q("(x-1)^2 + y^2 + (z-1)^2 = 1/4"), round, 15, false);
+  EXPECT_NE(cross.method, "cone_generator_bound");
+  EXPECT_EQ(cross.status, certify::Status::Certified); // the exact route: they meet
+  EXPECT_EQ(cross.upper, "0");
+  auto axis = certify::surface_distance(q("x^2 + y^2 + (z-5)^2 = 1"), round, 15, false);
+  EXPECT_NE(axis.method, "cone_generator_bound"); // a circle of minimizers
+  auto many = certify::surface_distance(q("(x-4)^2 + y^2 + z^2 = 1"), round, 40, false);
+  EXPECT_NE(many.method, "cone_generator_bound");
+  EXPECT_EQ(many.status, certify::Status::Certified);
+}
