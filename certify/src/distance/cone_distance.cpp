@@ -330,18 +330,7 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
     Du whole, at;
     slab(whole, nullptr, M, *c, n0, T, prec);
     slab(at, nullptr, M, *c, n0, tm, prec);
-    Ball dt, mv;
-    mag_set(arb_radref(dt.v), arb_radref(T));
-    arb_mul(mv.v, whole.d.v, dt.v, prec);
-    arb_add(mv.v, mv.v, at.v.v, prec);
-    arb_get_lbound_arf(lower, whole.v.v, prec);
-    if (arb_is_finite(mv.v)) {
-      arf_t m;
-      arf_init(m);
-      arb_get_lbound_arf(m, mv.v, prec);
-      if (arf_cmp(m, lower) > 0) arf_set(lower, m);
-      arf_clear(m);
-    }
+    mean_value_lower(lower, whole.v.v, whole.d.v, at.v.v, T, prec);
     if (!arf_is_finite(lower)) arf_neg_inf(lower);
     Ball d;
     pair_at(d.v, nullptr, nullptr, n0, tm);

@@ -50,6 +50,22 @@ bool adjacent(const Interval& x, const Interval& y, long shift, long prec) {
 
 } // namespace
 
+void mean_value_lower(arf_t lower, const arb_t f_T, const arb_t df_T, const arb_t f_tm,
+                      const arb_t T, long prec) {
+  Ball dt, mv;
+  mag_set(arb_radref(dt.v), arb_radref(T));
+  arb_mul(mv.v, df_T, dt.v, prec);
+  arb_add(mv.v, mv.v, f_tm, prec);
+  arb_get_lbound_arf(lower, f_T, prec);
+  if (arb_is_finite(mv.v)) {
+    arf_t m;
+    arf_init(m);
+    arb_get_lbound_arf(m, mv.v, prec);
+    if (arf_cmp(m, lower) > 0) arf_set(lower, m);
+    arf_clear(m);
+  }
+}
+
 bool periodic_minimize(const PeriodicBound& bound, const arb_t shift, long digits, long prec,
                        PeriodicMinimum& out) {
   const int N = 32;

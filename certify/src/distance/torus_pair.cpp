@@ -115,25 +115,12 @@ std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const co
   set_q(r12.v, a.r, prec);
   set_q(r.v, b.r, prec);
   arb_add(r12.v, r12.v, r.v, prec);
-  // f over T: the better of the interval extension and the mean-value form
-  // f(t_m) + f'(T) [-rad, rad]; f(t_m) itself is the upper bound.
+  // lower bound over T by the mean-value form; f(t_m) itself is the upper bound
   auto bound = [&](const arb_t tm, const arb_t T, arf_t lower, arf_t upper) {
     Dual whole, at;
     circle_circle(whole, nullptr, c1, c2, T, prec);
     circle_circle(at, nullptr, c1, c2, tm, prec);
-    Ball dt, mv;
-    arb_zero(dt.v);
-    mag_set(arb_radref(dt.v), arb_radref(T));
-    arb_mul(mv.v, whole.d.v, dt.v, prec);
-    arb_add(mv.v, mv.v, at.v.v, prec);
-    arb_get_lbound_arf(lower, whole.v.v, prec);
-    if (arb_is_finite(mv.v)) {
-      arf_t m;
-      arf_init(m);
-      arb_get_lbound_arf(m, mv.v, prec);
-      if (arf_cmp(m, lower) > 0) arf_set(lower, m);
-      arf_clear(m);
-    }
+    mean_value_lower(lower, whole.v.v, whole.d.v, at.v.v, T, prec);
     arb_get_ubound_arf(upper, at.v.v, prec);
   };
   PeriodicMinimum pm;

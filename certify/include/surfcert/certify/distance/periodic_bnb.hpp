@@ -28,6 +28,11 @@ struct PeriodicMinimum {
 using PeriodicBound =
     std::function<void(const arb_t t_mid, const arb_t T, arf_t lower, arf_t upper)>;
 
+/// The lower bound of f over the ball T: the better of the interval extension f(T) and the
+/// mean-value form f(t_m) + f'(T) (T - t_m) (used when finite).
+void mean_value_lower(arf_t lower, const arb_t f_T, const arb_t df_T, const arb_t f_tm,
+                      const arb_t T, long prec);
+
 bool periodic_minimize(const PeriodicBound& bound, const arb_t shift, long digits, long prec,
                        PeriodicMinimum& out);
 
