@@ -1,7 +1,6 @@
 #include "surfcert/certify/distance/convex_distance.hpp"
 
-#include <boost/multiprecision/mpfr.hpp>
-#include <flint/fmpq.h>
+#include "surfcert/certify/distance/mp_float.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -13,19 +12,8 @@ using core::Rational;
 
 namespace {
 
-using Mp = boost::multiprecision::mpfr_float;
 template <class T> using V3 = std::array<T, 3>;
 
-// Sets Boost's default MPFR precision (decimal digits for `bits` bits) for a scope.
-struct PrecisionScope {
-  explicit PrecisionScope(long bits) : saved(Mp::default_precision()) {
-    Mp::default_precision(static_cast<unsigned>(static_cast<double>(bits) / 3.3) + 5);
-  }
-  ~PrecisionScope() { Mp::default_precision(saved); }
-  PrecisionScope(const PrecisionScope&) = delete;
-  PrecisionScope& operator=(const PrecisionScope&) = delete;
-  unsigned saved;
-};
 template <class T> using M3 = std::array<std::array<T, 3>, 3>;
 
 // Conversions from exact rationals to the search scalar (the search is float: it only chooses
@@ -35,16 +23,13 @@ template <> double from_rational<double>(const Rational& r) {
   return r.to_double_approx();
 }
 template <> Mp from_rational<Mp>(const Rational& r) {
-  Mp x;
-  fmpq_get_mpfr(x.backend().data(), r.raw(), MPFR_RNDN);
-  return x;
+  return mp_from(r);
 }
 void to_ball(arb_t b, double x) {
   arb_set_d(b, x);
 } // exact
 void to_ball(arb_t b, const Mp& x) {
-  arf_set_mpfr(arb_midref(b), x.backend().data()); // exact
-  mag_zero(arb_radref(b));
+  mp_to_ball(b, x);
 }
 
 template <class T> T dot(const V3<T>& a, const V3<T>& b) {
@@ -291,7 +276,7 @@ bool search_double(const Solid<double>& a, const Solid<double>& b, const V3<doub
 }
 
 // Plain Newton steps in MPFR from the double direction (quadratic convergence), at the
-// default MPFR precision set by the caller (PrecisionScope).
+// default MPFR precision set by the caller (MpPrecision).
 V3<Mp> refine_mpfr(const ConvexQuadric& ca, const ConvexQuadric& cb, const Directions& dirs,
                    const V3<double>& n0) {
   const Solid<Mp> a = solid_in<Mp>(ca), b = solid_in<Mp>(cb);
@@ -455,7 +440,7 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
   {
     // Every MPFR temporary of the refinement and of the exact-direction conversion must carry
     // the working precision (Boost gives new values the default precision).
-    const PrecisionScope scope(bits_for(digits));
+    const MpPrecision scope(bits_for(digits));
     const V3<Mp> nm = refine_mpfr(a, b, dirs, n);
     exact_direction(nb, dirs, nm, prec);
   }

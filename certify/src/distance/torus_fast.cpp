@@ -1,6 +1,6 @@
 #include "surfcert/certify/distance/torus_fast.hpp"
 
-#include <boost/multiprecision/mpfr.hpp>
+#include "surfcert/certify/distance/mp_float.hpp"
 #include <flint/fmpq.h>
 
 #include <algorithm>
@@ -15,7 +15,6 @@ using core::Rational;
 namespace {
 
 using D3 = std::array<double, 3>;
-using Mp = boost::multiprecision::mpfr_float;
 template <class T> using V3 = std::array<T, 3>;
 
 constexpr double kPi = 3.14159265358979323846;
@@ -470,21 +469,8 @@ bool upper_at(Upper& U, const ArbModel& M, const Ball (&n0)[3], double r) {
 
 // ---- MPFR refinement of (tau*, n*) for many digits --------------------------------------
 
-// Sets Boost's default MPFR precision for a scope (every temporary gets it).
-struct PrecisionScope {
-  explicit PrecisionScope(long bits) : saved(Mp::default_precision()) {
-    Mp::default_precision(static_cast<unsigned>(static_cast<double>(bits) / 3.3) + 5);
-  }
-  ~PrecisionScope() { Mp::default_precision(saved); }
-  PrecisionScope(const PrecisionScope&) = delete;
-  PrecisionScope& operator=(const PrecisionScope&) = delete;
-  unsigned saved;
-};
-
 Mp mp(const Rational& r) {
-  Mp x;
-  fmpq_get_mpfr(x.backend().data(), r.raw(), MPFR_RNDN);
-  return x;
+  return mp_from(r);
 }
 
 // Newton on the stationarity system of the closest pair (K(tau), p_E(n)):
@@ -863,7 +849,7 @@ bool Search::place_stars(const std::vector<std::vector<size_t>>& groups, long bi
     if (!gd.ok) return false;
     Star sa;
     {
-      const PrecisionScope scope(bits);
+      const MpPrecision scope(bits);
       Mp tau;
       V3<Mp> n;
       if (!refine_mpfr(e_, t_, frame_, bits, gd.tau, gd.n, gd.f, tau, n)) return false;
