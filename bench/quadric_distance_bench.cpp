@@ -691,7 +691,8 @@ int main(int argc, char** argv) {
         tx.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
         if (rx.status == certify::Status::Certified) {
           ++x_cert;
-          auto lx = core::Rational::from_string(rx.lower), ux = core::Rational::from_string(rx.upper);
+          auto lx = core::Rational::from_string(rx.lower),
+               ux = core::Rational::from_string(rx.upper);
           auto lr = core::Rational::from_string(ref.r.lower),
                ur = core::Rational::from_string(ref.r.upper);
           if (lx && ux && lr && ur && (*lx > *ur || *lr > *ux)) ++x_disagree;
@@ -701,8 +702,7 @@ int main(int argc, char** argv) {
                   "(uncertified), max relative error %.2e vs the certified value; filtered "
                   "%.1f us; exact (offset method only) %.0f us, %ld certified, %ld enclosures "
                   "disjoint from the filtered ones\n",
-                  tf.size(), median(tf), f_answered, f_err, med[0], median(tx), x_cert,
-                  x_disagree);
+                  tf.size(), median(tf), f_answered, f_err, med[0], median(tx), x_cert, x_disagree);
     }
 
     // Degrees (15-digit runs, offset method only).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
 #include "surfcert/core/quadric.hpp"
 
 #include <mpfr.h>
@@ -12,6 +13,11 @@
 #include <string>
 
 namespace surfcert::testing {
+
+/// A quadric from an equation (test input, location "t").
+inline core::QuadricMatrix q(const std::string& s) {
+  return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
+}
 
 inline double lo(const certify::DistanceResult& r) {
   return std::stod(r.lower);

@@ -21,12 +21,9 @@
 using namespace surfcert;
 using surfcert::testing::motion;
 using surfcert::testing::overlap;
+using surfcert::testing::q;
 
 namespace {
-
-core::QuadricMatrix q(const std::string& s) {
-  return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
-}
 
 // [lower - rho, upper - rho] of the smallest critical distance from c, outward rounded.
 certify::DistanceResult sextic_minus(const std::array<core::Rational, 3>& c,

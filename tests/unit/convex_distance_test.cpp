@@ -27,13 +27,10 @@ using surfcert::testing::hi;
 using surfcert::testing::lo;
 using surfcert::testing::motion;
 using surfcert::testing::overlap;
+using surfcert::testing::q;
 using surfcert::testing::scaling;
 
 namespace {
-
-core::QuadricMatrix q(const std::string& s) {
-  return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
-}
 
 std::optional<certify::DistanceResult> fast(const core::QuadricMatrix& a,
                                             const core::QuadricMatrix& b, long digits) {

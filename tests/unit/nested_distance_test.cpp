@@ -15,6 +15,8 @@
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
+#include "support/distance_checks.hpp"
+
 #include <gtest/gtest.h>
 
 #include <mpfr.h>
@@ -24,25 +26,19 @@
 #include <random>
 
 using namespace surfcert;
+using surfcert::testing::hi;
+using surfcert::testing::lo;
+using surfcert::testing::motion;
+using surfcert::testing::overlap;
+using surfcert::testing::q;
 
 namespace {
-
-core::QuadricMatrix q(const std::string& s) {
-  return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
-}
 
 std::optional<certify::DistanceResult> nested(const core::QuadricMatrix& a,
                                               const core::QuadricMatrix& b, long digits) {
   auto ca = certify::convex_quadric(a), cb = certify::convex_quadric(b);
   if (!ca || !cb) return std::nullopt;
   return certify::nested_convex_distance(*ca, *cb, digits);
-}
-
-double lo(const certify::DistanceResult& r) {
-  return std::stod(r.lower);
-}
-double hi(const certify::DistanceResult& r) {
-  return std::stod(r.upper);
 }
 
 // The decimal enclosures, read exactly (outward) at 4000 bits.
@@ -57,11 +53,6 @@ struct Enclosure {
   Enclosure& operator=(const Enclosure&) = delete;
   ~Enclosure() { mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr)); }
 };
-
-bool overlap(const certify::DistanceResult& a, const certify::DistanceResult& b) {
-  const Enclosure x(a), y(b);
-  return mpfr_cmp(x.l, y.u) <= 0 && mpfr_cmp(y.l, x.u) <= 0;
-}
 
 // b's enclosure inside a's.
 bool inside(const certify::DistanceResult& b, const certify::DistanceResult& a) {
@@ -85,26 +76,6 @@ bool width_ok(const certify::DistanceResult& r, long digits) {
   const bool ok = mpfr_cmp(w, t) <= 0;
   mpfr_clears(w, t, static_cast<mpfr_ptr>(nullptr));
   return ok;
-}
-
-// Rigid motion x -> R x + t with R from the integer quaternion (w, x, y, z), as the 4x4
-// congruence P with Q' = P^T Q P describing the moved surface.
-core::Mat4 motion(long w, long x, long y, long z, const std::array<core::Rational, 3>& t) {
-  core::Rational n(w * w + x * x + y * y + z * z);
-  long R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                  {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
-                  {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
-  core::Mat4 p;
-  for (size_t i = 0; i < 3; ++i) {
-    core::Rational s;
-    for (size_t j = 0; j < 3; ++j) {
-      p[i][j] = core::Rational(R[j][i]) / n; // inverse rotation R^T
-      s += p[i][j] * t[j];
-    }
-    p[i][3] = -s;
-  }
-  p[3][3] = core::Rational(1);
-  return p;
 }
 
 // A random ellipsoid (or, axes[2] == 0, an elliptic cylinder along the rotated z axis):

@@ -24,13 +24,10 @@ using surfcert::testing::hi;
 using surfcert::testing::lo;
 using surfcert::testing::motion;
 using surfcert::testing::overlap;
+using surfcert::testing::q;
 using surfcert::testing::scaling;
 
 namespace {
-
-core::QuadricMatrix q(const std::string& s) {
-  return core::io::quadric_from_equation(s, {"t", 1, 1, ""});
-}
 
 // Distance between the ellipses y^2/4 + (z+3)^2/9 = 1 and y^2/9 + z^2/49 = 1 (the seed pair's
 // section by x = 0) by a float search: dense sampling of both, then Newton on the critical

@@ -28,7 +28,7 @@ namespace surfcert::certify {
 /// e: the ellipsoid (convex_quadric(...) of kind Ellipsoid); cone: any quadric (nullopt when it
 /// is not a real cone with a rational vertex); ellipsoid_first: query order of the pairs.
 std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
-                                                      const core::QuadricMatrix& cone,
-                                                      long digits, bool ellipsoid_first);
+                                                      const core::QuadricMatrix& cone, long digits,
+                                                      bool ellipsoid_first);
 
 } // namespace surfcert::certify
