@@ -522,9 +522,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     if (out.minimizers.empty()) out.minimizers = std::to_string(best.size());
     for (const auto& cd : best)
       pair_out(cd);
-    if (best.size() > 1 && out.minimizers != "infinite")
-      out.note = "several candidates agree to the requested precision: listed as minimizers "
-                 "(equality not proven)";
+    if (out.minimizers != "infinite") note_unproven_ties(out, best.size());
   } else if (arf_sgn(u) < 0 && q.kind() != core::QuadricKind::Ellipsoid) {
     out.status = Status::Certified;
     out.lower = out.upper = "0";

@@ -356,9 +356,7 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
   out.note = "ellipsoid and cone do not meet: minimum over the cone's generator lines of the "
              "line-ellipsoid distance, by branch and bound with slab (support-function) lower "
              "bounds (Arb)";
-  if (pm.minimizers.size() > 1)
-    out.note += "; several minimizing pairs at distances that agree to the requested precision: "
-                "listed as minimizers (their equality is not proven)";
+  note_unproven_ties(out, pm.minimizers.size());
   return out;
 }
 

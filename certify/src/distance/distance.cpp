@@ -135,6 +135,13 @@ void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
 
 } // namespace
 
+void note_unproven_ties(DistanceResult& out, size_t count) {
+  if (count < 2) return;
+  out.note += std::string(out.note.empty() ? "" : "; ") +
+              "several minimizing pairs at distances that agree to the requested precision: "
+              "listed as minimizers (their equality is not proven)";
+}
+
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
   arf_t lo, hi;
   arf_init(lo);
@@ -379,9 +386,7 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
   }
   out.minimizers = continuum ? "infinite" : std::to_string(count);
   out.status = Status::Certified;
-  if (count > 1 && !continuum)
-    out.note = "several critical points at distances that agree to the requested precision: listed "
-               "as minimizers";
+  if (!continuum) note_unproven_ties(out, static_cast<size_t>(count));
   return out;
 }
 

@@ -1185,9 +1185,7 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
              " surface lies strictly inside the other; d = min over unit directions of h_outer "
              "- h_inner (support functions), certified by a branch and bound with "
              "Krawczyk-proven critical directions; no elimination needed";
-  if (mins.size() > 1)
-    out.note += "; several critical pairs at distances that agree to the requested precision: "
-                "listed as minimizers (their equality is not proven)";
+  note_unproven_ties(out, mins.size());
   for (const Tight* t : mins) {
     AB m[2], n[3];
     for (int j = 0; j < k; ++j)

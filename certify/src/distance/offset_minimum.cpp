@@ -341,9 +341,7 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
     out.note = "the enclosure did not reach the requested width";
   } else {
     out.status = Status::Certified;
-    if (cover.boxes.size() > 1)
-      out.note = "several critical pairs at distances that agree to the requested precision: "
-                 "listed as minimizers (their equality is not proven)";
+    note_unproven_ties(out, cover.boxes.size());
   }
 }
 

@@ -929,9 +929,7 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
              "circle (support-function duality lower bounds with Taylor forms, Arb; genuine "
              "pairs: support points and their exact distance to the torus); no elimination "
              "needed";
-  if (reps.size() > 1)
-    out.note += "; several closest pairs at distances that agree to the requested precision: "
-                "listed as minimizers (their equality is not proven)";
+  note_unproven_ties(out, reps.size());
   return out;
 }
 

@@ -163,9 +163,7 @@ std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const co
   res.method = "torus_circle_pair";
   res.note = "disjoint tubes: distance of the core circles minus both tube radii, by branch "
              "and bound over one circle (Arb)";
-  if (groups > 1)
-    res.note += "; several minimizing pairs at distances that agree to the requested "
-                "precision: listed as minimizers (their equality is not proven)";
+  note_unproven_ties(res, groups);
   return res;
 }
 

@@ -56,6 +56,10 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
                                 bool solid, Mode mode = Mode::Filtered);
 
+/// When count > 1: appends to the note that the listed minimizers agree to the requested
+/// precision without their equality being proven (the wording every route uses for ties).
+void note_unproven_ties(DistanceResult& out, size_t count);
+
 /// Writes the decimal enclosure of the ball d into out (lower clamped at 0; digits + 2
 /// significant digits, rounded outward) and its midpoint as `approx`.
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
