@@ -1,5 +1,9 @@
 #include "surfcert/algebra/upoly.hpp"
 
+#include <flint/fmpz_poly_factor.h>
+
+#include <algorithm>
+
 namespace surfcert::algebra {
 
 UPolyZ UPolyZ::from_coeffs(const std::vector<Integer>& c) {
@@ -106,6 +110,25 @@ std::string UPolyQ::to_string(const char* var) const {
   for (long i = 0; i <= degree(); ++i)
     c.push_back(coeff(i));
   return poly_text(c, var);
+}
+
+std::vector<Rational> rational_roots(const UPolyQ& p) {
+  std::vector<Rational> out;
+  if (p.degree() < 1) return out;
+  const UPolyZ z = p.primitive_integer();
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor(fac, z.raw());
+  for (slong i = 0; i < fac->num; ++i)
+    if (fmpz_poly_degree(fac->p + i) == 1) { // a x + b: root -b / a
+      Integer a, b;
+      fmpz_poly_get_coeff_fmpz(a.raw_mut(), fac->p + i, 1);
+      fmpz_poly_get_coeff_fmpz(b.raw_mut(), fac->p + i, 0);
+      out.push_back(Rational(-b, a));
+    }
+  fmpz_poly_factor_clear(fac);
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 } // namespace surfcert::algebra

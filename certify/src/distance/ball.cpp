@@ -38,4 +38,16 @@ bool relative_enclosure(arb_t d, const arb_t lo, const arb_t hi, long digits, lo
   return ok;
 }
 
+std::array<double, 2> outward_interval(const arb_t x) {
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, x, 64);
+  arb_get_ubound_arf(hi, x, 64);
+  const std::array<double, 2> out{arf_get_d(lo, ARF_RND_FLOOR), arf_get_d(hi, ARF_RND_CEIL)};
+  arf_clear(lo);
+  arf_clear(hi);
+  return out;
+}
+
 } // namespace surfcert::certify

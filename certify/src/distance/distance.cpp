@@ -10,6 +10,7 @@
 #include "surfcert/certify/distance/parametric_distance.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
+#include "surfcert/certify/distance/symmetry.hpp"
 #include "surfcert/certify/distance/torus_distance.hpp"
 #include "surfcert/certify/distance/torus_pair.hpp"
 
@@ -135,11 +136,14 @@ void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
 
 } // namespace
 
+const char* const kUnprovenTiesNote =
+    "several minimizing pairs at distances that agree to the requested precision: "
+    "listed as minimizers (their equality is not proven)";
+
 void note_unproven_ties(DistanceResult& out, size_t count) {
   if (count < 2) return;
-  out.note += std::string(out.note.empty() ? "" : "; ") +
-              "several minimizing pairs at distances that agree to the requested precision: "
-              "listed as minimizers (their equality is not proven)";
+  out.note += std::string(out.note.empty() ? "" : "; ") + kUnprovenTiesNote;
+  out.ties = "unproven";
 }
 
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
@@ -365,13 +369,14 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
   set_distance_enclosure(out, d.v, digits);
   // Minimizers: every critical distance whose enclosure meets the optimal one.
   int count = 0;
-  bool continuum = false;
+  bool continuum = false, same_exact = true; // every tied critical at one exact |x - p|^2
   for (const auto& cd : pq.criticals) {
     Ball x;
     critical_ball(x.v, cd, prec);
     if (!arb_overlaps(x.v, best == &pq.criticals.front() ? dmin.v : dmax.v)) continue;
     ++count;
     continuum = continuum || cd.continuum;
+    same_exact = same_exact && cd.d2_exact && cd.d2 == best->d2 && best->d2_exact;
     // The pair: the foot point on the quadric, and the sphere point on the ray from the centre.
     std::array<double, 3> f = cd.foot, s{};
     double n = 0;
@@ -386,7 +391,14 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
   }
   out.minimizers = continuum ? "infinite" : std::to_string(count);
   out.status = Status::Certified;
-  if (!continuum) note_unproven_ties(out, static_cast<size_t>(count));
+  if (!continuum && count > 1 && same_exact) {
+    out.ties = "proven";
+    out.note += std::string(out.note.empty() ? "" : "; ") + "the " + std::to_string(count) +
+                " minimizing pairs are at exactly the same distance (proven: the same exact "
+                "rational squared distance from the centre to the foot points)";
+  } else if (!continuum) {
+    note_unproven_ties(out, static_cast<size_t>(count));
+  }
   return out;
 }
 
@@ -397,11 +409,15 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   DistanceResult r = quadric_distance(a, b, digits, solid, mode);
   r.mode = mode;
   if (r.method.empty() && !r.univariate_degrees.empty()) r.method = "offset_system";
+  if (r.ties == "unproven" && !r.tie_regions.empty())
+    prove_ties(r, core::Surface(a), core::Surface(b));
   return r;
 }
 
-DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
-                                bool solid, Mode mode) {
+namespace {
+
+DistanceResult any_surface_distance(const core::Surface& a, const core::Surface& b, long digits,
+                                    bool solid, Mode mode) {
   DistanceResult out;
   out.solid = solid;
   out.mode = mode;
@@ -461,6 +477,19 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   return out;
 }
 
+} // namespace
+
+DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
+                                bool solid, Mode mode) {
+  DistanceResult r = any_surface_distance(a, b, digits, solid, mode);
+  // Two quadrics went through the overload above, which already tried.
+  if (r.ties == "unproven" && !r.tie_regions.empty() &&
+      !(std::holds_alternative<core::QuadricMatrix>(a) &&
+        std::holds_alternative<core::QuadricMatrix>(b)))
+    prove_ties(r, a, b);
+  return r;
+}
+
 Json distance_envelope_json(const DistanceResult& r, long digits) {
   Json o = Json::object();
   o.set("status", Json::string(to_string(r.status)));
@@ -512,6 +541,7 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
   res.set("solid", Json::boolean(r.solid));
   res.set("mode", Json::string(to_string(r.mode)));
   if (!r.method.empty()) res.set("method", Json::string(r.method));
+  if (!r.ties.empty()) res.set("ties", Json::string(r.ties));
   o.set("result", res);
   return o;
 }

@@ -1186,6 +1186,18 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
              "- h_inner (support functions), certified by a branch and bound with "
              "Krawczyk-proven critical directions; no elimination needed";
   note_unproven_ties(out, mins.size());
+  // Tie regions (symmetry.hpp): the unit directions of the proven boxes, pairwise disjoint
+  // (`distinct` above), each holding one critical direction; every minimizing direction lies in
+  // one of them.
+  out.tie_directions = true;
+  for (const Tight* t : mins) {
+    AB n[3];
+    unit_direction(n, C, t->ch, t->E);
+    std::vector<std::array<double, 2>> reg;
+    for (const AB& x : n)
+      reg.push_back(outward_interval(x.v));
+    out.tie_regions.push_back(std::move(reg));
+  }
   for (const Tight* t : mins) {
     AB m[2], n[3];
     for (int j = 0; j < k; ++j)

@@ -234,6 +234,29 @@ struct Arf {
   ~Arf() { arf_clear(v); }
 };
 
+// Tie regions (symmetry.hpp) from the kept boxes: every closest source point solves the system,
+// so lies in a kept box; a box whose three intervals each meet no other root interval of
+// their eliminant holds at most one solution (each coordinate is then that interval's root).
+// Boxes failing the test leave the tie unproven (no regions).
+void add_tie_regions(DistanceResult& out, const algebra::SolutionCover& cover) {
+  if (cover.boxes.size() < 2) return;
+  for (const auto& b : cover.boxes)
+    for (size_t k = 0; k < 3; ++k) {
+      const auto& r = cover.roots[k][b[k]];
+      for (size_t m = 0; m < cover.roots[k].size(); ++m)
+        if (m != b[k] && !(cover.roots[k][m].hi < r.lo || cover.roots[k][m].lo > r.hi)) return;
+    }
+  for (const auto& b : cover.boxes) {
+    Ball x[3];
+    algebra::box_balls(cover, b, x[0].v, x[1].v, x[2].v, 128);
+    std::vector<std::array<double, 2>> reg;
+    for (const Ball& c : x)
+      reg.push_back(outward_interval(c.v));
+    out.tie_regions.push_back(std::move(reg));
+  }
+  out.tie_directions = false;
+}
+
 } // namespace
 
 void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src,
@@ -342,6 +365,7 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
   } else {
     out.status = Status::Certified;
     note_unproven_ties(out, cover.boxes.size());
+    add_tie_regions(out, cover);
   }
 }
 

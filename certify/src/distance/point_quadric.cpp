@@ -208,6 +208,8 @@ void rational_singular_root(const Data& dt, const Rational& a0, long digits,
   std::array<double, 3> ps = to_doubles(pstar);
   if (d2 == h2) {
     CriticalDistance cd;
+    cd.d2_exact = true;
+    cd.d2 = d2;
     cd.foot = ps;
     enclose_sqrt(cd, d2, digits);
     out.push_back(cd);
@@ -229,6 +231,8 @@ void rational_singular_root(const Data& dt, const Rational& a0, long digits,
   }
   for (int s : {-1, 1}) {
     CriticalDistance cd;
+    cd.d2_exact = true;
+    cd.d2 = d2;
     for (int i = 0; i < 3; ++i)
       cd.foot[static_cast<size_t>(i)] =
           ps[static_cast<size_t>(i)] + s * len * ed[static_cast<size_t>(i)];

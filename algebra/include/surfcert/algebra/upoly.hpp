@@ -118,4 +118,8 @@ private:
   fmpq_poly_t v_;
 };
 
+/// The distinct rational roots of p (nonzero), in increasing order: the linear factors of its
+/// FLINT factorisation over Z.
+std::vector<Rational> rational_roots(const UPolyQ& p);
+
 } // namespace surfcert::algebra

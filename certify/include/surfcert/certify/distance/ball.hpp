@@ -4,6 +4,7 @@
 
 #include <arb.h>
 
+#include <array>
 #include <string>
 
 namespace surfcert::certify {
@@ -32,6 +33,9 @@ std::string decimal_bound(const arf_t x, bool upper, long digits);
 /// certified upper bound `hi`: true when lo > 0 and hi is finite for certain and
 /// upper - lower <= 10^-digits lower; d then holds that interval (the answer at `digits`).
 bool relative_enclosure(arb_t d, const arb_t lo, const arb_t hi, long digits, long prec);
+
+/// [lo, hi] in doubles rounded outward, containing the ball x (infinite when x is).
+std::array<double, 2> outward_interval(const arb_t x);
 
 /// Working precision (bits) for an answer of `digits` decimal digits, with a 64-bit margin.
 inline long bits_for(long digits) {

@@ -40,6 +40,15 @@ struct DistanceResult {
   /// "offset_system", "closed_form", ...); empty when not recorded.
   std::string method;
   Mode mode = Mode::Filtered; ///< the mode the query ran in
+  /// Several minimizers: "unproven" (their distances agree to the requested precision only)
+  /// or "proven" (equal distances proven by an exact symmetry, symmetry.hpp); empty for one
+  /// minimizer or a continuum.
+  std::string ties;
+  /// For that proof, from routes that can give them: one region per minimizer (outward double
+  /// intervals, three per point or direction) such that every global minimizer lies in a
+  /// region and no region holds two; directions (unit normals) when tie_directions.
+  std::vector<std::vector<std::array<double, 2>>> tie_regions;
+  bool tie_directions = false;
 };
 
 /// mode: Filtered (default) tries the elimination-free certificates first (convex duality
@@ -57,8 +66,12 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
                                 bool solid, Mode mode = Mode::Filtered);
 
 /// When count > 1: appends to the note that the listed minimizers agree to the requested
-/// precision without their equality being proven (the wording every route uses for ties).
+/// precision without their equality being proven (the wording every route uses for ties), and
+/// sets out.ties = "unproven".
 void note_unproven_ties(DistanceResult& out, size_t count);
+
+/// The sentence note_unproven_ties appends (prove_ties replaces it when it proves the tie).
+extern const char* const kUnprovenTiesNote;
 
 /// Writes the decimal enclosure of the ball d into out (lower clamped at 0; digits + 2
 /// significant digits, rounded outward) and its midpoint as `approx`.
@@ -66,7 +79,7 @@ void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
 
 /// {"status", "note"?, "result": {"distance": {"lower", "upper", "approx"}, "minimizers",
 /// "pairs", "critical_candidates", "eliminated_degree", "digits", "solid", "mode",
-/// "method"?}}
+/// "method"?, "ties"?}}
 core::io::Json distance_envelope_json(const DistanceResult& r, long digits);
 
 } // namespace surfcert::certify

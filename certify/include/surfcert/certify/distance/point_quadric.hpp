@@ -29,6 +29,10 @@ struct CriticalDistance {
   std::array<double, 3> foot{}; ///< a foot point (approximate)
   bool continuum = false;       ///< a whole circle (or more) of foot points at this distance
   bool singular_point = false;  ///< the foot point is a singular point of Q (cone vertex)
+  /// The squared distance as an exact rational when known (a rational multiplier with
+  /// D(alpha) = 0: the symmetric foot points of a surface of revolution share it exactly).
+  bool d2_exact = false;
+  core::Rational d2;
 };
 
 struct PointQuadricResult {
