@@ -239,3 +239,58 @@ TEST(Symmetry, AmbiguousImagesProveNothing) {
   certify::prove_ties(r, S(kInner), S(kOuter));
   EXPECT_EQ(r.ties, "proven");
 }
+
+TEST(Symmetry, TorusRoutesProveTies) {
+  // A prolate ellipsoid (semi-axes 3/2, 1/2, 1/2) centred in the hole of the torus R = 3,
+  // r = 1 about z: closed form d = 3 - 1 - 3/2 = 1/2 at (+-3/2, 0, 0); both the circle bound
+  // (filtered) and the offset system (exact) must prove the two pairs equal.
+  const core::Surface e = S("4*x^2/9 + 4*y^2 + 4*z^2 = 1");
+  const core::Surface t(core::make_torus({Rational(0), Rational(0), Rational(0)},
+                                         {Rational(0), Rational(0), Rational(1)}, Rational(3),
+                                         Rational(1)));
+  for (auto mode : {certify::Mode::Filtered, certify::Mode::Exact}) {
+    const auto r = certify::surface_distance(e, t, 15, false, mode);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_LE(std::stod(r.lower), 0.5);
+    EXPECT_GE(std::stod(r.upper), 0.5);
+    EXPECT_EQ(r.minimizers, "2");
+    EXPECT_EQ(r.ties, "proven") << r.note;
+    expect_orbit(r, certify::common_symmetries(e, t));
+  }
+}
+
+TEST(Symmetry, TwoToriProveTies) {
+  // Core circles (2 cos a, 2 sin a, 0) and (0, 2 cos b, 3 + 2 sin b), tubes 1/2: two closest
+  // pairs, mirror images under y -> -y. Independent value: a double grid + Newton search of
+  // the core-circle distance.
+  const core::Surface A(core::make_torus({Rational(0), Rational(0), Rational(0)},
+                                         {Rational(0), Rational(0), Rational(1)}, Rational(2),
+                                         Rational(1, 2)));
+  const core::Surface B(core::make_torus({Rational(0), Rational(0), Rational(3)},
+                                         {Rational(1), Rational(0), Rational(0)}, Rational(2),
+                                         Rational(1, 2)));
+  const auto r = certify::surface_distance(A, B, 15, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.minimizers, "2");
+  EXPECT_EQ(r.ties, "proven") << r.note;
+  expect_orbit(r, certify::common_symmetries(A, B));
+  auto dist = [](double a, double b) {
+    const double dx = 2 * std::cos(a), dy = 2 * std::sin(a) - 2 * std::cos(b),
+                 dz = -3 - 2 * std::sin(b);
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+  };
+  double best = 1e9, ba = 0, bb = 0;
+  for (int i = 0; i < 400; ++i)
+    for (int j = 0; j < 400; ++j) {
+      const double a = i * M_PI / 200, b = j * M_PI / 200, v = dist(a, b);
+      if (v < best) best = v, ba = a, bb = b;
+    }
+  for (int it = 0; it < 60; ++it) { // coordinate-wise golden refinement
+    double h = 1e-2 / (1 << std::min(it, 30));
+    for (double da : {-h, h})
+      if (dist(ba + da, bb) < best) best = dist(ba + da, bb), ba += da;
+    for (double db : {-h, h})
+      if (dist(ba, bb + db) < best) best = dist(ba, bb + db), bb += db;
+  }
+  EXPECT_NEAR(r.approx, best - 1, 1e-9);
+}

@@ -145,6 +145,25 @@ bool periodic_minimize(const PeriodicBound& bound, const arb_t shift, long digit
     Ball t;
     arb_set_arf(t.v, b->mid);
     out.minimizers.push_back(std::move(t));
+    Ball hull;
+    for (size_t k = 0; k < g.size(); ++k) {
+      Ball T, two;
+      arb_set_arf(T.v, g[k]->mid);
+      mag_set(arb_radref(T.v), g[k]->rad);
+      arf_t gap;
+      arf_init(gap);
+      arf_sub(gap, g[k]->mid, g.front()->mid, prec, ARF_RND_DOWN);
+      if (arf_cmp_si(gap, 1) > 0) { // joined across t = 0: the same points at t - 2
+        arb_set_si(two.v, 2);
+        arb_sub(T.v, T.v, two.v, prec);
+      }
+      arf_clear(gap);
+      if (k == 0)
+        arb_swap(hull.v, T.v);
+      else
+        arb_union(hull.v, hull.v, T.v, prec);
+    }
+    out.group_hulls.push_back(std::move(hull));
   }
   return true;
 }

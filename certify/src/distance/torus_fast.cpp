@@ -930,6 +930,35 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
              "pairs: support points and their exact distance to the torus); no elimination "
              "needed";
   note_unproven_ties(out, reps.size());
+  // Tie regions (symmetry.hpp): per cluster the core points K(tau) over its intervals, which
+  // hold every minimizing tau (the branch and bound dropped the others); an isometry keeping
+  // the torus maps its core circle onto itself.
+  for (const auto& g : groups) {
+    Ball hull[3];
+    bool first = true;
+    for (size_t i : g) {
+      Ball T, a, b, sn, cs, k;
+      arb_set_d(a.v, alive_[i].a);
+      arb_set_d(b.v, alive_[i].b);
+      arb_union(T.v, a.v, b.v, prec);
+      arb_sin_cos_pi(sn.v, cs.v, T.v, prec);
+      for (size_t l = 0; l < 3; ++l) {
+        arb_mul(k.v, cs.v, M.u[l].v, prec);
+        arb_addmul(k.v, sn.v, M.v[l].v, prec);
+        arb_mul(k.v, k.v, M.R.v, prec);
+        arb_add(k.v, k.v, M.o[l].v, prec);
+        if (first)
+          arb_swap(hull[l].v, k.v);
+        else
+          arb_union(hull[l].v, hull[l].v, k.v, prec);
+      }
+      first = false;
+    }
+    std::vector<std::array<double, 2>> reg;
+    for (const Ball& x : hull)
+      reg.push_back(outward_interval(x.v));
+    out.tie_regions.push_back(std::move(reg));
+  }
   return out;
 }
 

@@ -164,6 +164,17 @@ std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const co
   res.note = "disjoint tubes: distance of the core circles minus both tube radii, by branch "
              "and bound over one circle (Arb)";
   note_unproven_ties(res, groups);
+  // Tie regions (symmetry.hpp): the points K1(t) over each group of survivors, which hold
+  // every minimizing t; an isometry keeping both tori maps each core circle onto itself.
+  for (const auto& T : pm.group_hulls) {
+    Ball p[3];
+    Dual f;
+    circle_circle(f, &p, c1, c2, T.v, prec);
+    std::vector<std::array<double, 2>> reg;
+    for (const Ball& x : p)
+      reg.push_back(outward_interval(x.v));
+    res.tie_regions.push_back(std::move(reg));
+  }
   return res;
 }
 

@@ -23,6 +23,9 @@ namespace surfcert::certify {
 struct PeriodicMinimum {
   Ball enclosure;               ///< [min f - shift, ...] with the requested relative width
   std::vector<Ball> minimizers; ///< one exact t (zero radius) per group of survivors
+  /// Per group, a ball holding all its survivors (a group across t = 0 is written around 0):
+  /// every minimizing t lies in one of them, modulo 2.
+  std::vector<Ball> group_hulls;
 };
 
 using PeriodicBound =
