@@ -8,6 +8,7 @@
 #include "surfcert/certify/distance/convex_distance.hpp"
 #include "surfcert/certify/distance/nested_convex.hpp"
 #include "surfcert/certify/distance/parametric_distance.hpp"
+#include "surfcert/certify/distance/plane_quadric.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/certify/distance/symmetry.hpp"
@@ -215,6 +216,13 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
       (a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid)) {
     ellipsoid_plane(out, a.is_plane() ? b : a, a.is_plane() ? a : b, !a.is_plane(), digits);
     return out;
+  }
+  // A plane and any other quadric (spheres go below): decided exactly on the parallel levels.
+  if ((a.is_plane() || b.is_plane()) && !a_sphere && !b_sphere) {
+    DistanceResult r =
+        plane_quadric_distance(a.is_plane() ? a : b, a.is_plane() ? b : a, digits, a.is_plane());
+    r.solid = solid;
+    return r;
   }
   const core::QuadricMatrix& sph = a_sphere ? a : b;
   const core::QuadricMatrix& other = a_sphere ? b : a;

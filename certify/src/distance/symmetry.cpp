@@ -260,10 +260,19 @@ std::vector<Isometry> common_symmetries(const core::Surface& a, const core::Surf
         d[k] = centres[i][k] - centres[j][k];
       if (!is_zero(d)) dirs.push_back(d);
     }
+  // The coordinate axes and the normals e_i +- e_j of the mirrors that swap two coordinates
+  // (symmetric polynomials such as x^3 + y^3 + z^3 have those).
   for (size_t k = 0; k < 3; ++k) {
     V3 e{Rational(0), Rational(0), Rational(0)};
     e[k] = Rational(1);
     dirs.push_back(e);
+    for (size_t l = k + 1; l < 3; ++l)
+      for (int sg : {1, -1}) {
+        V3 d{Rational(0), Rational(0), Rational(0)};
+        d[k] = Rational(1);
+        d[l] = Rational(sg);
+        dirs.push_back(d);
+      }
   }
   auto unique = [](std::vector<V3>& v) {
     for (auto& x : v)
@@ -274,7 +283,7 @@ std::vector<Isometry> common_symmetries(const core::Surface& a, const core::Surf
     v = std::move(u);
   };
   unique(dirs);
-  const size_t n0 = std::min<size_t>(dirs.size(), 12); // bounded work: 12 + 66 directions
+  const size_t n0 = std::min<size_t>(dirs.size(), 16); // bounded work: 16 + 120 directions
   for (size_t i = 0; i < n0; ++i)
     for (size_t j = i + 1; j < n0; ++j) {
       const V3 c = cross(dirs[i], dirs[j]);
