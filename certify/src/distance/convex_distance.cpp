@@ -384,6 +384,10 @@ bool certify_direction(const ConvexQuadric& a, const ConvexQuadric& b, const Bal
   return true;
 }
 
+bool cross_is_zero(const V3<Rational>& x, const V3<Rational>& y) {
+  return x[1] * y[2] == x[2] * y[1] && x[2] * y[0] == x[0] * y[2] && x[0] * y[1] == x[1] * y[0];
+}
+
 // The admissible directions of the pair: the plane orthogonal to a cylinder's axis (an exact
 // rational basis u = axis x e_k, v = axis x u, k the smallest axis component so u != 0), or
 // R^3.
@@ -415,8 +419,12 @@ Directions admissible_directions(const ConvexQuadric& a, const ConvexQuadric& b)
 std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
                                                         const ConvexQuadric& b, long digits) {
   // An ellipsoid (bounded, strictly convex) makes the minimum attained and its pair unique;
-  // two cylinders or paraboloids may have a line of minimizers or none.
-  if (!a.is_ellipsoid() && !b.is_ellipsoid()) return std::nullopt;
+  // two paraboloids may have no minimizer. Two cylinders with parallel axes are accepted (the
+  // directions orthogonal to the common axis are admissible for both; the caller reports the
+  // line of closest pairs); crossed cylinders have their closed form (cylinder_pair.hpp).
+  const bool parallel_cylinders =
+      a.is_cylinder() && b.is_cylinder() && cross_is_zero(*a.axis, *b.axis);
+  if (!a.is_ellipsoid() && !b.is_ellipsoid() && !parallel_cylinders) return std::nullopt;
   const Directions dirs = admissible_directions(a, b);
   const Solid<double> sa = solid_in<double>(a), sb = solid_in<double>(b);
   const std::vector<V3<double>> basis = float_basis<double>(dirs);

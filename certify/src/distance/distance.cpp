@@ -6,6 +6,7 @@
 #include "surfcert/certify/distance/capsule_pair.hpp"
 #include "surfcert/certify/distance/cone_distance.hpp"
 #include "surfcert/certify/distance/convex_distance.hpp"
+#include "surfcert/certify/distance/cylinder_pair.hpp"
 #include "surfcert/certify/distance/nested_convex.hpp"
 #include "surfcert/certify/distance/parametric_distance.hpp"
 #include "surfcert/certify/distance/plane_quadric.hpp"
@@ -167,6 +168,16 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
                                 long digits, bool solid, Mode mode) {
   DistanceResult out;
   out.solid = solid;
+  // Two elliptic cylinders (closed form when crossed, duality when parallel), in every mode:
+  // the offset system has a curve of solutions for them.
+  if (a.kind() != core::QuadricKind::Ellipsoid && b.kind() != core::QuadricKind::Ellipsoid &&
+      !a.is_plane() && !b.is_plane())
+    if (const auto ya = convex_quadric(a); ya && ya->is_cylinder())
+      if (const auto yb = convex_quadric(b); yb && yb->is_cylinder())
+        if (auto r = cylinder_pair_distance(*ya, *yb, digits)) {
+          r->solid = solid;
+          return *r;
+        }
   // Disjoint convex solids (ellipsoids, elliptic cylinders and paraboloids): a separating
   // direction certifies the distance without elimination; anything it cannot prove falls
   // through. First, since it is the cheapest certificate.
@@ -417,8 +428,7 @@ DistanceResult surface_distance(const core::QuadricMatrix& a, const core::Quadri
   DistanceResult r = quadric_distance(a, b, digits, solid, mode);
   r.mode = mode;
   if (r.method.empty() && !r.univariate_degrees.empty()) r.method = "offset_system";
-  if (r.ties == "unproven" && !r.tie_regions.empty())
-    prove_ties(r, core::Surface(a), core::Surface(b));
+  if (r.ties == "unproven") prove_ties(r, core::Surface(a), core::Surface(b));
   return r;
 }
 
@@ -491,9 +501,8 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
                                 bool solid, Mode mode) {
   DistanceResult r = any_surface_distance(a, b, digits, solid, mode);
   // Two quadrics went through the overload above, which already tried.
-  if (r.ties == "unproven" && !r.tie_regions.empty() &&
-      !(std::holds_alternative<core::QuadricMatrix>(a) &&
-        std::holds_alternative<core::QuadricMatrix>(b)))
+  if (r.ties == "unproven" && !(std::holds_alternative<core::QuadricMatrix>(a) &&
+                                std::holds_alternative<core::QuadricMatrix>(b)))
     prove_ties(r, a, b);
   return r;
 }

@@ -332,6 +332,13 @@ std::vector<Isometry> common_symmetries(const core::Surface& a, const core::Surf
 
 void prove_ties(DistanceResult& r, const core::Surface& a, const core::Surface& b) {
   const size_t n = r.tie_regions.size();
+  if (r.minimizers == "infinite") { // a continuum: ties between listed points mean nothing
+    const std::string unproven = std::string("; ") + kUnprovenTiesNote;
+    const size_t at = r.note.find(unproven);
+    if (at != std::string::npos) r.note.erase(at, unproven.size());
+    r.ties.clear();
+    return;
+  }
   if (r.ties != "unproven" || n < 2) return;
   for (const auto& reg : r.tie_regions)
     if (reg.empty() || reg.size() % 3 != 0 || reg.size() != r.tie_regions[0].size()) return;

@@ -1,0 +1,173 @@
+// Two elliptic cylinders (cylinder_pair.hpp), each result against an independent route:
+// - circular cylinders, crossed: the distance of the two axis lines |(c2 - c1).(a x b)| /
+//   |a x b| minus both radii (MPFR), random rational axes (fixed seed, printed on failure);
+//   parallel: the planar centre distance minus the radii;
+// - elliptic cylinders (crossed and parallel): a float sampling of both surfaces never goes
+//   below the certified lower bound and comes close to it; the pair lies on both surfaces;
+// - rigid motions, scaling by 10^6, swapping, digits 15/100; overlapping crossed cylinders
+//   are left to the exact topology (distance 0).
+#include "surfcert/certify/distance/cylinder_pair.hpp"
+
+#include "support/distance_checks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <mpfr.h>
+
+#include <cmath>
+#include <random>
+
+using namespace surfcert;
+using core::Rational;
+using surfcert::testing::hi;
+using surfcert::testing::lo;
+using surfcert::testing::motion;
+using surfcert::testing::overlap;
+using surfcert::testing::q;
+
+namespace {
+
+std::string r(long v) {
+  return "(" + std::to_string(v) + ")";
+}
+
+// (x - c) - ((x - c).a) a / |a|^2 has squared length rho^2: a circular cylinder as an equation.
+std::string circular(const std::array<long, 3>& c, const std::array<long, 3>& a, long rho) {
+  const std::string X = "(x-" + r(c[0]) + ")", Y = "(y-" + r(c[1]) + ")", Z = "(z-" + r(c[2]) + ")";
+  const long aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  const std::string dot =
+      "(" + r(a[0]) + "*" + X + "+" + r(a[1]) + "*" + Y + "+" + r(a[2]) + "*" + Z + ")";
+  return X + "^2+" + Y + "^2+" + Z + "^2 - " + dot + "^2/" + r(aa) + " = " + r(rho * rho);
+}
+
+double eval(const core::QuadricMatrix& m, const std::array<double, 3>& x) {
+  const double X[4] = {x[0], x[1], x[2], 1};
+  double s = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      s += m(i, j).to_double_approx() * X[i] * X[j];
+  return s;
+}
+
+certify::DistanceResult dist(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                             long digits = 15) {
+  return certify::surface_distance(a, b, digits, false);
+}
+
+} // namespace
+
+TEST(CylinderPair, CrossedCircularClosedForm) {
+  std::mt19937 rng(4242);
+  std::uniform_int_distribution<long> c(-9, 9), ax(-4, 4), rad(1, 3);
+  int checked = 0;
+  for (int k = 0; k < 30; ++k) {
+    std::array<long, 3> c1{c(rng), c(rng), c(rng)}, c2{c(rng), c(rng), c(rng)},
+        a{ax(rng), ax(rng), ax(rng)}, b{ax(rng), ax(rng), ax(rng)};
+    const long r1 = rad(rng), r2 = rad(rng);
+    const std::array<long, 3> n{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                                a[0] * b[1] - a[1] * b[0]};
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+    const long num =
+        std::labs(n[0] * (c2[0] - c1[0]) + n[1] * (c2[1] - c1[1]) + n[2] * (c2[2] - c1[2]));
+    const long nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    // axis distance num / sqrt(nn); disjoint iff num^2 > (r1 + r2)^2 nn
+    if (num * num <= (r1 + r2) * (r1 + r2) * nn) continue;
+    const auto A = q(circular(c1, a, r1)), B = q(circular(c2, b, r2));
+    for (long digits : {15L, 100L}) {
+      const auto res = dist(A, B, digits);
+      ASSERT_EQ(res.status, certify::Status::Certified) << "seed 4242 case " << k << res.note;
+      EXPECT_EQ(res.method, "cylinder_closed_form");
+      EXPECT_EQ(res.minimizers, "1");
+      mpfr_t d, l, u;
+      mpfr_inits2(1000, d, l, u, static_cast<mpfr_ptr>(nullptr));
+      mpfr_set_si(d, nn, MPFR_RNDN);
+      mpfr_sqrt(d, d, MPFR_RNDN);
+      mpfr_si_div(d, num, d, MPFR_RNDN);
+      mpfr_sub_si(d, d, r1 + r2, MPFR_RNDN);
+      mpfr_set_str(l, res.lower.c_str(), 10, MPFR_RNDD);
+      mpfr_set_str(u, res.upper.c_str(), 10, MPFR_RNDU);
+      EXPECT_TRUE(mpfr_cmp(l, d) <= 0 && mpfr_cmp(d, u) <= 0)
+          << "seed 4242 case " << k << " digits " << digits << ": " << res.lower;
+      mpfr_clears(d, l, u, static_cast<mpfr_ptr>(nullptr));
+    }
+    const auto res = dist(A, B);
+    for (const auto& p : res.pairs) {
+      EXPECT_NEAR(eval(A, p[0]), 0, 1e-9 * (1 + std::fabs(eval(A, {0, 0, 0}))));
+      EXPECT_NEAR(eval(B, p[1]), 0, 1e-9 * (1 + std::fabs(eval(B, {0, 0, 0}))));
+      EXPECT_NEAR(std::hypot(p[0][0] - p[1][0], p[0][1] - p[1][1], p[0][2] - p[1][2]), res.approx,
+                  1e-9);
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 8);
+}
+
+TEST(CylinderPair, ParallelCircularClosedForm) {
+  // Axes along (1, 2, 2); centres differ by (6, 0, -3), orthogonal to the axis: 3 sqrt(5) - 3.
+  const auto A = q(circular({0, 0, 0}, {1, 2, 2}, 1)), B = q(circular({6, 0, -3}, {1, 2, 2}, 2));
+  const auto res = dist(A, B, 50);
+  ASSERT_EQ(res.status, certify::Status::Certified) << res.note;
+  EXPECT_EQ(res.minimizers, "infinite");
+  EXPECT_NEAR(lo(res), 3 * std::sqrt(5.0) - 3, 1e-14);
+  EXPECT_LE(lo(res), 3 * std::sqrt(5.0) - 3 + 1e-15);
+}
+
+TEST(CylinderPair, EllipticAgainstSampling) {
+  // Crossed: x^2/4 + y^2 = 1 (axis z) and (y - 6)^2/9 + (x + z)^2/2 = 1 (axis (1, 0, -1));
+  // parallel: both along z. Points of each surface sampled on a grid.
+  struct Case {
+    const char *a, *b;
+  } cases[] = {{"x^2/4 + y^2 = 1", "(y - 6)^2/9 + (x + z)^2/2 = 1"},
+               {"x^2/4 + y^2 = 1", "(x - 5)^2/9 + (y - 3)^2 + (x - 5)*(y - 3)/2 = 1"}};
+  for (const auto& cs : cases) {
+    const auto A = q(cs.a), B = q(cs.b);
+    const auto res = dist(A, B);
+    ASSERT_EQ(res.status, certify::Status::Certified) << cs.b << res.note;
+    ASSERT_FALSE(res.pairs.empty());
+    EXPECT_NEAR(eval(A, res.pairs[0][0]), 0, 1e-9);
+    EXPECT_NEAR(eval(B, res.pairs[0][1]), 0, 1e-9);
+    // Sample: A as (2 cos s, sin s, z); B by solving its equation along y-lines (grid).
+    double best = 1e300;
+    std::vector<std::array<double, 3>> pa, pb;
+    for (int i = 0; i < 360; ++i)
+      for (int j = -10; j <= 10; ++j) {
+        const double s = 2 * M_PI * i / 360;
+        pa.push_back({2 * std::cos(s), std::sin(s), j * 0.5});
+      }
+    // B points: project grid points of a box onto B along x by the quadratic in x.
+    for (int i = -60; i <= 60; ++i)
+      for (int j = -10; j <= 10; ++j) {
+        const double y = 3 + i * 0.1, z = j * 0.5;
+        // B(x) = a2 x^2 + a1 x + a0 along the line (x, y, z)
+        const double f0 = eval(B, {0, y, z}), f1 = eval(B, {1, y, z}), fm = eval(B, {-1, y, z});
+        const double a2 = (f1 + fm) / 2 - f0, a1 = (f1 - fm) / 2, disc = a1 * a1 - 4 * a2 * f0;
+        if (a2 == 0 || disc < 0) continue;
+        for (int sg : {-1, 1})
+          pb.push_back({(-a1 + sg * std::sqrt(disc)) / (2 * a2), y, z});
+      }
+    for (const auto& x : pa)
+      for (const auto& y : pb) {
+        const double d = std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]);
+        if (d < best) best = d;
+      }
+    EXPECT_GE(best, lo(res) - 1e-12) << cs.b;
+    EXPECT_LT(best - res.approx, 0.2) << cs.b;
+  }
+}
+
+TEST(CylinderPair, MotionsScalingSwapsAndOverlap) {
+  const auto A = q("x^2/4 + y^2 = 1"), B = q("(y - 6)^2/9 + (x + z)^2/2 = 1");
+  const auto base = dist(A, B, 30);
+  const auto m = motion(2, -1, 3, 1, {Rational(5), Rational(-7, 2), Rational(1, 3)});
+  EXPECT_TRUE(overlap(base, dist(A.congruent(m), B.congruent(m), 30)));
+  const auto sw = dist(B, A, 30);
+  EXPECT_TRUE(overlap(base, sw));
+  ASSERT_FALSE(sw.pairs.empty());
+  EXPECT_NEAR(sw.pairs[0][0][1], base.pairs[0][1][1], 1e-9);
+  const auto sc = surfcert::testing::scaling(Rational(1000000));
+  const auto big = dist(A.congruent(sc), B.congruent(sc), 15);
+  EXPECT_NEAR(big.approx / 1e6, base.approx, 1e-14 * base.approx);
+  // Crossing cylinders meet: the exact topology answers 0.
+  const auto x = dist(q("x^2 + y^2 = 1"), q("(x - 1)^2 + z^2 = 1"));
+  EXPECT_EQ(x.upper, "0");
+}
