@@ -67,27 +67,6 @@ std::vector<std::vector<Rational>> substitution_nullspace(const core::Parametric
   return out;
 }
 
-core::QuadricMatrix to_quadric(const std::vector<Rational>& c, int d) {
-  const auto mons = monomials(d);
-  core::Mat4 m;
-  for (size_t k = 0; k < mons.size(); ++k) {
-    const auto& e = mons[k];
-    std::vector<size_t> idx;
-    for (size_t v = 0; v < 3; ++v)
-      for (int r = 0; r < e[v]; ++r)
-        idx.push_back(v);
-    while (idx.size() < 2)
-      idx.push_back(3);
-    if (idx[0] == idx[1])
-      m[idx[0]][idx[0]] += c[k];
-    else {
-      m[idx[0]][idx[1]] += c[k] * Rational(1, 2);
-      m[idx[1]][idx[0]] += c[k] * Rational(1, 2);
-    }
-  }
-  return core::QuadricMatrix(m);
-}
-
 // The top-degree homogeneous part.
 Poly3 top(const Poly3& p, int d) {
   Poly3 r;
@@ -152,8 +131,8 @@ bool in_image(const core::ParametricSurface& p, const std::array<double, 3>& x) 
 
 } // namespace
 
-std::optional<core::QuadricMatrix> implicit_quadric(const core::ParametricSurface& p) {
-  for (int d = 1; d <= 2; ++d) {
+std::optional<core::Poly3> implicit_polynomial(const core::ParametricSurface& p, int max_degree) {
+  for (int d = 1; d <= max_degree; ++d) {
     auto ns = substitution_nullspace(p, d);
     if (ns.size() == 1) {
       // Remove the content so the implicit form reads small.
@@ -163,29 +142,43 @@ std::optional<core::QuadricMatrix> implicit_quadric(const core::ParametricSurfac
       if (!g.is_zero())
         for (auto& c : ns[0])
           c = c / Rational(g);
-      return to_quadric(ns[0], d);
+      const auto mons = monomials(d);
+      Poly3 f;
+      for (size_t k = 0; k < mons.size(); ++k)
+        if (!ns[0][k].is_zero()) f.add_term(mons[k], ns[0][k]);
+      return f;
     }
     if (ns.size() > 1) return std::nullopt; // the image is not a surface (or degenerate)
   }
   return std::nullopt;
 }
 
+std::optional<core::QuadricMatrix> implicit_quadric(const core::ParametricSurface& p) {
+  const auto f = implicit_polynomial(p, 2);
+  if (!f) return std::nullopt;
+  return core::QuadricMatrix::from_poly(*f);
+}
+
 DistanceResult parametric_distance(const core::ParametricSurface& p, const core::Surface& other,
                                    long digits, bool parametric_first) {
   DistanceResult out;
-  auto q = implicit_quadric(p);
-  if (!q) {
+  const auto f = implicit_polynomial(p, 6);
+  if (!f) {
     out.status = Status::Undecided;
-    out.note = "not supported yet: a parametric surface whose implicit equation has degree > 2";
+    out.note = "not supported yet: a parametric surface whose implicit equation has degree > 6 "
+               "(or whose image is not a surface)";
     return out;
   }
+  const core::Surface implicit = f->total_degree() <= 2
+                                     ? core::Surface(core::QuadricMatrix::from_poly(*f))
+                                     : core::Surface(core::ImplicitSurface{*f});
   if (std::holds_alternative<core::ParametricSurface>(other)) {
     out.status = Status::Undecided;
     out.note = "not supported yet: two parametric surfaces";
     return out;
   }
-  out = parametric_first ? surface_distance(core::Surface(*q), other, digits, false)
-                         : surface_distance(other, core::Surface(*q), digits, false);
+  out = parametric_first ? surface_distance(implicit, other, digits, false)
+                         : surface_distance(other, implicit, digits, false);
   // The points missed at infinity: the limit of P along every direction, when it is one point.
   const int d =
       std::max({p.X.total_degree(), p.Y.total_degree(), p.Z.total_degree(), p.W.total_degree()});
@@ -210,7 +203,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
     }
   }
   std::string note = "distance to the closure of the parametrised surface (implicit form " +
-                     q->to_poly().to_string() + " = 0; minimizers checked against the image)";
+                     f->to_string() + " = 0; minimizers checked against the image)";
   if (point) {
     note += "; the parametrisation misses " + missed;
     bool hit = false;
