@@ -28,13 +28,21 @@ std::vector<UPolyZ> distinct_factors(const UPolyZ& p) {
   return out;
 }
 
+// An element of the ideal (a, b) free of `var`: the Sylvester resultant, except when neither
+// polynomial involves `var` (FLINT's resultant of two constants in `var` is 1, which would
+// silently drop every solution): then a itself (or b when a is constant) already qualifies.
+MPoly eliminant(const MPoly& a, const MPoly& b, int var) {
+  if (a.degree(var) <= 0 && b.degree(var) <= 0) return a.is_constant() ? b : a;
+  return resultant(a, b, var);
+}
+
 // Eliminant onto variable `keep` (0 = x, 1 = y from resultants in (x, y); `other` is the
 // variable eliminated second). Tries the pairs in order; zero when all vanish identically.
 MPoly eliminate_pair(const std::vector<MPoly>& R, int other) {
   for (size_t i = 0; i < R.size(); ++i)
     for (size_t j = i + 1; j < R.size(); ++j) {
       if (R[i].is_zero() || R[j].is_zero()) continue;
-      MPoly e = resultant(R[i], R[j], other);
+      MPoly e = eliminant(R[i], R[j], other);
       if (!e.is_zero()) return e;
     }
   return MPoly();
@@ -115,12 +123,12 @@ SolutionCover cover_real_solutions(const std::array<MPoly, 3>& F, const Rational
   SolutionCover c;
   c.system = F;
   // (x, y) resultants: z eliminated from pairs of equations; (y, z) ones: x eliminated.
-  std::vector<MPoly> rz{resultant(F[0], F[1], 2), resultant(F[0], F[2], 2)};
-  std::vector<MPoly> rx{resultant(F[0], F[1], 0), resultant(F[0], F[2], 0)};
+  std::vector<MPoly> rz{eliminant(F[0], F[1], 2), eliminant(F[0], F[2], 2)};
+  std::vector<MPoly> rx{eliminant(F[0], F[1], 0), eliminant(F[0], F[2], 0)};
   MPoly ex = eliminate_pair(rz, 1), ey = eliminate_pair(rz, 0), ez = eliminate_pair(rx, 1);
   if (ex.is_zero() || ey.is_zero() || ez.is_zero()) {
-    rz.push_back(resultant(F[1], F[2], 2));
-    rx.push_back(resultant(F[1], F[2], 0));
+    rz.push_back(eliminant(F[1], F[2], 2));
+    rx.push_back(eliminant(F[1], F[2], 0));
     if (ex.is_zero()) ex = eliminate_pair(rz, 1);
     if (ey.is_zero()) ey = eliminate_pair(rz, 0);
     if (ez.is_zero()) ez = eliminate_pair(rx, 1);
@@ -174,7 +182,7 @@ SolutionCover cover_real_solutions_2d(const MPoly& F, const MPoly& G, const Rati
     throw std::invalid_argument("cover_real_solutions_2d: the equations involve z");
   c.dims = 2;
   c.system = {F, G, MPoly::var(2)};
-  const MPoly ex = resultant(F, G, 1), ey = resultant(F, G, 0);
+  const MPoly ex = eliminant(F, G, 1), ey = eliminant(F, G, 0);
   c.bivariate_degree = {F.total_degree(), G.total_degree()};
   if (ex.is_zero() || ey.is_zero()) {
     c.note = "the two equations share a curve of solutions";
