@@ -5,6 +5,7 @@
 #include "surfcert/certify/distance/canal_distance.hpp"
 #include "surfcert/certify/distance/capsule_pair.hpp"
 #include "surfcert/certify/distance/cone_distance.hpp"
+#include "surfcert/certify/distance/contact_sampling.hpp"
 #include "surfcert/certify/distance/convex_distance.hpp"
 #include "surfcert/certify/distance/cylinder_pair.hpp"
 #include "surfcert/certify/distance/nested_convex.hpp"
@@ -284,6 +285,16 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
       out.minimizers = curve ? "infinite" : std::to_string(m.isolated_points);
       if (have) out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
+      return out;
+    }
+    if (curve && meet_by_sign_change(a, b, w)) {
+      out.status = Status::Certified;
+      out.lower = out.upper = "0";
+      out.minimizers = "infinite";
+      out.pairs.push_back({w, w});
+      out.note = "the surfaces meet (certified topology: " + std::string(m.id) +
+                 "; an affine common point proven by certified points of a connected surface "
+                 "on both sides of the other; the pair is an approximate common point)";
       return out;
     }
     if (curve || !t.special_points_complete) {

@@ -1,0 +1,32 @@
+// surfcert::certify::meet_by_sign_change: a certificate that two quadrics have a common affine
+// point, for the cases the projective classification leaves open (a real intersection curve
+// whose conics at infinity share a component may lie at infinity only: cylinder against a
+// paraboloid of the same axis direction, two cones with one conic at infinity).
+//
+// If a quadric A is connected and the other quadric's polynomial g takes both signs on A, then
+// g vanishes somewhere on A (intermediate values along a path in A): the surfaces meet at an
+// affine point. Points of A are certified balls (the root of f on the gradient line through a
+// rational grid point, Arb) and the sign of g on each ball is certified; connectedness is
+// decided exactly from the inertia of the quadratic block and of the 4x4 matrix (two-sheeted
+// hyperboloids, hyperbolic cylinders and pairs of parallel planes are the disconnected real
+// quadrics). The sampling grid (several scales around the origin) only chooses where to look:
+// failure to find both signs proves nothing and returns false. The witness is approximate (a
+// float bisection between the two certified points, projected on A).
+#pragma once
+
+#include "surfcert/core/quadric.hpp"
+
+#include <array>
+
+namespace surfcert::certify {
+
+/// True when a connected quadric among a, b is proven to have points on both sides of the
+/// other; `witness` then holds an approximate common point.
+bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                         std::array<double, 3>& witness);
+
+/// Exact: false for the disconnected real quadrics (two-sheeted hyperboloid, hyperbolic
+/// cylinder, two parallel planes), true otherwise.
+bool quadric_connected(const core::QuadricMatrix& q);
+
+} // namespace surfcert::certify

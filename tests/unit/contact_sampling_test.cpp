@@ -1,0 +1,85 @@
+// Contact by sign change (contact_sampling.hpp):
+// - quadric_connected against the textbook list of real quadrics (connected: ellipsoid,
+//   paraboloids, one-sheeted hyperboloid, cone, cylinders, crossing planes; disconnected:
+//   two-sheeted hyperboloid, hyperbolic cylinder, parallel planes), also after rational rigid
+//   motions and scalings (the answer is a congruence invariant);
+// - pairs whose real intersection the projective classification leaves "maybe at infinity"
+//   (a cylinder and a paraboloid with parallel axes, two translated cones): proven to meet,
+//   the witness lies on both surfaces (double check); surface_distance answers 0;
+// - disjoint pairs are never reported as meeting (a connected surface on one side of the other).
+#include "surfcert/certify/distance/contact_sampling.hpp"
+
+#include "support/distance_checks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace surfcert;
+using core::Rational;
+using surfcert::testing::motion;
+using surfcert::testing::q;
+
+namespace {
+
+double eval(const core::QuadricMatrix& m, const std::array<double, 3>& x) {
+  const double X[4] = {x[0], x[1], x[2], 1};
+  double s = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      s += m(i, j).to_double_approx() * X[i] * X[j];
+  return s;
+}
+
+} // namespace
+
+TEST(ContactSampling, ConnectednessOfTheRealQuadrics) {
+  const std::pair<const char*, bool> table[] = {{"x^2 + 2y^2 + 3z^2 = 1", true},
+                                                {"x^2 + y^2 - z = 0", true},
+                                                {"x^2 - y^2 - z = 0", true},
+                                                {"x^2 + y^2 - z^2 = 1", true},
+                                                {"x^2 + y^2 - z^2 = 0", true},
+                                                {"x^2 + 4y^2 = 1", true},
+                                                {"x^2 - z = 0", true},
+                                                {"x^2 - y^2 = 0", true},
+                                                {"x^2 + y^2 - z^2 = -1", false},
+                                                {"x^2 - y^2 = 1", false},
+                                                {"x^2 = 1", false},
+                                                {"-x^2 - y^2 + z^2 = 1", false}};
+  const auto m = motion(1, 2, -3, 1, {Rational(2, 3), Rational(-5), Rational(1, 7)});
+  const auto s = surfcert::testing::scaling(Rational(1000));
+  for (const auto& [eq, connected] : table) {
+    EXPECT_EQ(certify::quadric_connected(q(eq)), connected) << eq;
+    EXPECT_EQ(certify::quadric_connected(q(eq).congruent(m)), connected) << eq << " moved";
+    EXPECT_EQ(certify::quadric_connected(q(eq).congruent(s)), connected) << eq << " scaled";
+  }
+}
+
+TEST(ContactSampling, MeetingPairsLeftOpenByTheClassification) {
+  const std::pair<const char*, const char*> pairs[] = {
+      {"x^2 + y^2 = 1", "x^2 + (y - 5)^2 - z = 0"},
+      {"x^2 + y^2 - z^2 = 0", "(x - 5)^2 + y^2 - z^2 = 0"},
+      {"x^2 + 4y^2 = 4", "(x - 3)^2 + 4(y - 1)^2 - 2z = 0"}};
+  for (const auto& [a, b] : pairs) {
+    std::array<double, 3> w{};
+    ASSERT_TRUE(certify::meet_by_sign_change(q(a), q(b), w)) << a << " | " << b;
+    const double scale = 1 + std::hypot(w[0], w[1], w[2]);
+    EXPECT_NEAR(eval(q(a), w), 0, 1e-8 * scale * scale) << a;
+    EXPECT_NEAR(eval(q(b), w), 0, 1e-8 * scale * scale) << b;
+    const auto r = certify::surface_distance(q(a), q(b), 15, false);
+    EXPECT_EQ(r.status, certify::Status::Certified) << a << " | " << b << ": " << r.note;
+    EXPECT_EQ(r.upper, "0") << a << " | " << b;
+  }
+}
+
+TEST(ContactSampling, DisjointPairsNeverMeet) {
+  const std::pair<const char*, const char*> pairs[] = {
+      {"x^2 + y^2 = 1", "(x - 5)^2 + y^2 = 1"},
+      {"x^2 + y^2 - z = 0", "x^2 + y^2 - z + 3 = 0"},
+      {"x^2 + 2y^2 + 3z^2 = 1", "x^2 + y^2 - z - 5 = 0"},
+      {"x^2 + y^2 - z^2 = -1", "x^2 + y^2 + z^2 = 1/4"}};
+  for (const auto& [a, b] : pairs) {
+    std::array<double, 3> w{};
+    EXPECT_FALSE(certify::meet_by_sign_change(q(a), q(b), w)) << a << " | " << b;
+  }
+}
