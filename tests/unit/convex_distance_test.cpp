@@ -389,3 +389,35 @@ TEST(ConvexDistance, AnswersOnlyWhatItProves) {
   EXPECT_FALSE(certify::convex_quadric(q("x^2 + y^2 = 0")));
   EXPECT_TRUE(certify::convex_quadric(q("-x^2 - y^2 + 1 = 0"))); // orientation does not matter
 }
+
+TEST(ConvexDistance, UnboundedStrictlyConvexPairs) {
+  // Two elliptic paraboloids opening away from each other: closed form 3 at the vertices;
+  // a paraboloid above an elliptic cylinder (axis x): 4 at (0, 0, 0) - (0, 0, -4). Tilted:
+  // a sampled grid of both surfaces never goes below the certified lower bound.
+  auto r = fast(q("x^2 + y^2 - z = 0"), q("x^2 + y^2 + z + 3 = 0"), 30);
+  ASSERT_TRUE(r);
+  EXPECT_LE(lo(*r), 3);
+  EXPECT_GE(hi(*r), 3);
+  EXPECT_EQ(r->minimizers, "1");
+  r = fast(q("x^2 + y^2 - z = 0"), q("y^2 + (z + 5)^2 = 1"), 15);
+  ASSERT_TRUE(r);
+  EXPECT_LE(lo(*r), 4);
+  EXPECT_GE(hi(*r), 4);
+  r = fast(q("x^2 + 2y^2 - z = 0"), q("(x - 5)^2 + y^2 + z + x*y/4 = 0"), 15);
+  ASSERT_TRUE(r);
+  double best = 1e300;
+  for (int i = -60; i <= 60; ++i)
+    for (int j = -30; j <= 30; ++j) {
+      const double x1 = i * 0.05, y1 = j * 0.05, z1 = x1 * x1 + 2 * y1 * y1;
+      for (int k = -60; k <= 60; k += 2)
+        for (int l = -30; l <= 30; l += 2) {
+          const double x2 = 5 + k * 0.05, y2 = l * 0.05,
+                       z2 = -((x2 - 5) * (x2 - 5) + y2 * y2 + x2 * y2 / 4);
+          best = std::min(best, std::hypot(x1 - x2, y1 - y2, z1 - z2));
+        }
+    }
+  EXPECT_GE(best, lo(*r) - 1e-12);
+  EXPECT_LT(best - r->approx, 0.1);
+  // Same-direction paraboloids only approach each other: never certified here.
+  EXPECT_FALSE(fast(q("x^2 + y^2 - z = 0"), q("x^2 + y^2 - z + 3 = 0"), 15));
+}

@@ -424,7 +424,11 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
   // line of closest pairs); crossed cylinders have their closed form (cylinder_pair.hpp).
   const bool parallel_cylinders =
       a.is_cylinder() && b.is_cylinder() && cross_is_zero(*a.axis, *b.axis);
-  if (!a.is_ellipsoid() && !b.is_ellipsoid() && !parallel_cylinders) return std::nullopt;
+  // A paraboloid is strictly convex too: with it the pair is unique, and a certified L = U
+  // shows the minimum is attained (unbounded solids may otherwise only approach each other).
+  const bool strictly_convex =
+      a.is_ellipsoid() || b.is_ellipsoid() || a.is_paraboloid() || b.is_paraboloid();
+  if (!strictly_convex && !parallel_cylinders) return std::nullopt;
   const Directions dirs = admissible_directions(a, b);
   const Solid<double> sa = solid_in<double>(a), sb = solid_in<double>(b);
   const std::vector<V3<double>> basis = float_basis<double>(dirs);
