@@ -13,6 +13,7 @@
 #include "surfcert/certify/distance/plane_quadric.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
+#include "surfcert/certify/distance/solid_relation.hpp"
 #include "surfcert/certify/distance/symmetry.hpp"
 #include "surfcert/certify/distance/torus_distance.hpp"
 #include "surfcert/certify/distance/torus_pair.hpp"
@@ -500,9 +501,6 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
   out.solid = solid;
   out.mode = mode;
   if (out.method.empty() && !out.univariate_degrees.empty()) out.method = "offset_system";
-  if (solid)
-    out.note += (out.note.empty() ? "" : "; ") +
-                std::string("solid applies to two ellipsoids only: surface distance");
   return out;
 }
 
@@ -511,6 +509,9 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
                                 bool solid, Mode mode) {
   DistanceResult r = any_surface_distance(a, b, digits, solid, mode);
+  if (solid && !(std::holds_alternative<core::QuadricMatrix>(a) &&
+                 std::holds_alternative<core::QuadricMatrix>(b)))
+    apply_solid_option(r, a, b);
   // Two quadrics went through the overload above, which already tried.
   if (r.ties == "unproven" && !(std::holds_alternative<core::QuadricMatrix>(a) &&
                                 std::holds_alternative<core::QuadricMatrix>(b)))

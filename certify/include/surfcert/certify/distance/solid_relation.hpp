@@ -1,0 +1,33 @@
+// surfcert::certify::solids_nested: for two CLOSED surfaces (ellipsoids, ring tori, canal
+// surfaces) whose surfaces are known to be disjoint, whether one solid contains the other.
+//
+// With disjoint boundaries and connected solids, either one solid lies inside the other or the
+// solids are disjoint (a connected boundary lies wholly inside or wholly outside the other
+// solid). So one certified point of each boundary, tested for being inside the other solid,
+// decides: a point of surface a inside solid b (or of b inside a) means nested; both outside
+// means disjoint solids, whose distance is then the surface distance. Points are Arb balls
+// holding a genuine surface point (an ellipsoid's axis point, a torus's outer equator point, a
+// canal surface's support point in direction x, its parameter enclosed by a certified branch
+// and bound); the tests are certified signs (ellipsoid and torus polynomials; for a canal
+// surface the minimum over t of |p - C(t)|^2 - r(t)^2, by branch and bound with Arb).
+// Anything not certified returns 0 (undecided), never a guess.
+#pragma once
+
+#include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/surface.hpp"
+
+namespace surfcert::certify {
+
+/// True for the surfaces that bound a solid here: real ellipsoids, tori, canal surfaces.
+bool is_closed_surface(const core::Surface& s);
+
+/// Precondition: the surfaces are disjoint. +1: one solid contains the other; -1: the solids
+/// are disjoint; 0: not decided (or a surface is not closed).
+int solids_nested(const core::Surface& a, const core::Surface& b);
+
+/// Applies the `solid` option to a certified surface distance r between closed surfaces:
+/// nested solids give 0, disjoint solids keep r, undecided nesting makes r undecided with the
+/// enclosure [0, upper]. Meeting surfaces (distance 0) stay 0.
+void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::Surface& b);
+
+} // namespace surfcert::certify

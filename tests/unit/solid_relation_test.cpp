@@ -1,0 +1,110 @@
+// Solid distance for closed surfaces (solid_relation.hpp), against configurations whose answer
+// is known by construction (closed forms), and invariance:
+// - a sphere inside a torus tube, a sphere around a whole torus, a sphere in the hole, a far
+//   sphere; a capsule inside a sphere and a sphere inside a capsule; a small torus inside a big
+//   torus's tube; a canal with a varying radius around a point sphere; disjoint pairs;
+// - surface_distance with `solid`: 0 for nested solids, the surface distance for disjoint ones
+//   (closed forms: R + r, far gaps), the same after rational rigid motions of both surfaces
+//   (integer quaternions) and with the surfaces swapped;
+// - open surfaces keep the surface distance and say so.
+#include "surfcert/certify/distance/solid_relation.hpp"
+
+#include "support/distance_checks.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace surfcert;
+using core::Rational;
+using surfcert::testing::q;
+
+namespace {
+
+using V3 = std::array<Rational, 3>;
+
+core::Surface torus(V3 c, V3 a, Rational R, Rational r) {
+  return core::Surface(core::make_torus(c, a, R, r));
+}
+core::Surface sphere(V3 c, Rational r) {
+  const auto P = core::Poly3::variable(0) - core::Poly3(c[0]),
+             Q = core::Poly3::variable(1) - core::Poly3(c[1]),
+             S = core::Poly3::variable(2) - core::Poly3(c[2]);
+  return core::Surface(core::QuadricMatrix::from_poly(P * P + Q * Q + S * S - core::Poly3(r * r)));
+}
+core::Surface capsule(V3 a, V3 b, Rational r) {
+  std::array<std::vector<Rational>, 3> spine;
+  for (size_t i = 0; i < 3; ++i)
+    spine[i] = {a[i], b[i] - a[i]};
+  return core::Surface(core::make_canal(spine, {r}, Rational(0), Rational(1)));
+}
+
+// The rotation of the integer quaternion (1, 2, -1, 3) (divided by its norm 15) and a shift.
+V3 rot(const V3& x) {
+  const long w = 1, a = 2, b = -1, c = 3;
+  const long R[3][3] = {{w * w + a * a - b * b - c * c, 2 * (a * b - w * c), 2 * (a * c + w * b)},
+                        {2 * (a * b + w * c), w * w - a * a + b * b - c * c, 2 * (b * c - w * a)},
+                        {2 * (a * c - w * b), 2 * (b * c + w * a), w * w - a * a - b * b + c * c}};
+  V3 y;
+  for (size_t i = 0; i < 3; ++i) {
+    y[i] = Rational(0);
+    for (size_t j = 0; j < 3; ++j)
+      y[i] += Rational(R[i][j], 15) * x[j];
+  }
+  return y;
+}
+V3 moved(const V3& x) {
+  V3 y = rot(x);
+  y[0] += Rational(7, 3);
+  y[1] += Rational(-2);
+  y[2] += Rational(1, 5);
+  return y;
+}
+
+const V3 O{Rational(0), Rational(0), Rational(0)}, Z{Rational(0), Rational(0), Rational(1)};
+
+} // namespace
+
+TEST(SolidRelation, KnownConfigurations) {
+  const auto T = torus(O, Z, 3, 1);
+  EXPECT_EQ(certify::solids_nested(T, sphere({3, 0, 0}, Rational(1, 4))), 1); // in the tube
+  EXPECT_EQ(certify::solids_nested(T, sphere(O, 10)), 1);                     // around it
+  EXPECT_EQ(certify::solids_nested(T, sphere(O, 1)), -1);                     // in the hole
+  EXPECT_EQ(certify::solids_nested(T, sphere({10, 0, 0}, 1)), -1);
+  const auto C = capsule({-1, 0, 0}, {1, 0, 0}, Rational(1, 2));
+  EXPECT_EQ(certify::solids_nested(C, sphere(O, 5)), 1);
+  EXPECT_EQ(certify::solids_nested(sphere({Rational(1, 2), 0, 0}, Rational(1, 4)), C), 1);
+  EXPECT_EQ(certify::solids_nested(C, sphere({5, 0, 0}, 1)), -1);
+  // A small torus inside the tube of a big one, and two disjoint tori.
+  const auto big = torus(O, Z, 10, 3);
+  EXPECT_EQ(certify::solids_nested(big, torus({10, 0, 0}, {0, 1, 0}, 1, Rational(1, 2))), 1);
+  EXPECT_EQ(certify::solids_nested(big, torus({30, 0, 0}, Z, 2, 1)), -1);
+  // A cone frustum with spherical caps (radius 1 + t on [0, 2]) around a small sphere.
+  const auto frustum = core::Surface(
+      core::make_canal({std::vector<Rational>{0, 2}, {0}, {0}}, {Rational(1), Rational(1)}, 0, 2));
+  EXPECT_EQ(certify::solids_nested(frustum, sphere({2, 0, 0}, Rational(1, 3))), 1);
+  EXPECT_EQ(certify::solids_nested(frustum, sphere({2, 10, 0}, Rational(1, 3))), -1);
+}
+
+TEST(SolidRelation, SolidDistanceThroughTheApi) {
+  const auto T = torus(O, Z, 3, 1);
+  auto r = certify::surface_distance(T, sphere({3, 0, 0}, Rational(1, 4)), 15, true);
+  EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.upper, "0");
+  EXPECT_TRUE(r.solid);
+  r = certify::surface_distance(T, sphere({3, 0, 0}, Rational(1, 4)), 15, false);
+  EXPECT_NEAR(surfcert::testing::lo(r), 0.75, 1e-15); // surface distance 1 - 1/4
+  r = certify::surface_distance(T, sphere({10, 0, 0}, 1), 15, true);
+  EXPECT_NEAR(surfcert::testing::lo(r), 5, 1e-14); // 10 - 1 - (3 + 1)
+  EXPECT_NE(r.note.find("solids are disjoint"), std::string::npos) << r.note;
+  // Rigid motion of both surfaces, and the swap: the same answers.
+  const auto Tm = torus(moved(O), rot(Z), 3, 1);
+  const auto Sm = sphere(moved({3, 0, 0}), Rational(1, 4));
+  r = certify::surface_distance(Sm, Tm, 15, true);
+  EXPECT_EQ(r.upper, "0") << r.note;
+  const auto Fm = sphere(moved({10, 0, 0}), 1);
+  r = certify::surface_distance(Fm, Tm, 15, true);
+  EXPECT_NEAR(surfcert::testing::lo(r), 5, 1e-13) << r.note;
+  // Open surfaces: the surface distance, with a note.
+  r = certify::surface_distance(T, core::Surface(q("z = 7")), 15, true);
+  EXPECT_NEAR(surfcert::testing::lo(r), 6, 1e-14);
+  EXPECT_NE(r.note.find("closed surfaces"), std::string::npos) << r.note;
+}
