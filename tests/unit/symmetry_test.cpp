@@ -294,3 +294,21 @@ TEST(Symmetry, TwoToriProveTies) {
   }
   EXPECT_NEAR(r.approx, best - 1, 1e-9);
 }
+
+TEST(Symmetry, CanalRouteProvesTies) {
+  // Spine (t, 0, 4 - t^2), t in [-2, 2], radius 1/2, against the unit sphere: |C(t)|^2 =
+  // t^2 + (4 - t^2)^2 is least at t^2 = 7/2 (value 15/4), so d = sqrt(15)/2 - 3/2 at t =
+  // +-sqrt(7/2): two pairs, mirror images under x -> -x (the spine reversed onto itself).
+  const auto canal =
+      core::Surface(core::make_canal({std::vector<Rational>{Rational(0), Rational(1)},
+                                      {Rational(0)},
+                                      {Rational(4), Rational(0), Rational(-1)}},
+                                     {Rational(1, 2)}, Rational(-2), Rational(2)));
+  const auto sphere = S("x^2 + y^2 + z^2 = 1");
+  const auto r = certify::surface_distance(canal, sphere, 30, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.minimizers, "2");
+  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_NEAR(r.approx, std::sqrt(15.0) / 2 - 1.5, 1e-15);
+  expect_orbit(r, certify::common_symmetries(canal, sphere));
+}

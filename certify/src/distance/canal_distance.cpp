@@ -10,6 +10,7 @@
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -98,8 +99,9 @@ bool point_distance(arb_t out, const std::array<Rational, 3>& x, const core::Qua
 }
 
 struct Candidate {
-  Ball lo, up; // lower bound of phi over the t-interval; phi(t_c) (a ball)
-  Rational tc; // the rational parameter of the upper bound
+  Ball lo, up;     // lower bound of phi over the t-interval; phi(t_c) (a ball)
+  Rational tc;     // the rational parameter of the upper bound
+  Rational ta, tb; // the t-interval (hull of the merged ones): a tie region is C([ta, tb])
   std::array<double, 3> p{}, q{};
 };
 
@@ -108,6 +110,8 @@ bool candidate(Candidate& cd, const core::QuadricMatrix& q, const core::CanalSur
                const Rational& ta, const Rational& tb, long digits) {
   const long prec = bits_for(digits + 10);
   cd.tc = (ta + tb) * Rational(1, 2);
+  cd.ta = ta;
+  cd.tb = tb;
   std::array<Rational, 3> x;
   for (size_t i = 0; i < 3; ++i)
     x[i] = core::eval_poly(c.spine[i], cd.tc);
@@ -454,6 +458,8 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
       arb_set(cd.lo.v, e->lo.v);
       arb_set(cd.up.v, e->up.v);
       cd.tc = e->tc;
+      cd.ta = e->ta;
+      cd.tb = e->tb;
       cd.p = e->p;
       cd.q = e->q;
       cands.push_back(std::move(cd));
@@ -498,10 +504,14 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     std::vector<Candidate> uniq;
     for (auto& cd : best) {
       bool dup = false;
-      for (const auto& u : uniq) {
+      for (auto& u : uniq) {
         double dp = std::hypot(cd.p[0] - u.p[0], cd.p[1] - u.p[1], cd.p[2] - u.p[2]),
                sc = 1 + std::hypot(u.p[0], u.p[1], u.p[2]);
-        dup = dup || dp <= 1e-9 * sc;
+        if (!dup && dp <= 1e-9 * sc) { // merged: its interval joins the kept one's region
+          dup = true;
+          u.ta = std::min(u.ta, cd.ta);
+          u.tb = std::max(u.tb, cd.tb);
+        }
       }
       if (!dup) uniq.push_back(std::move(cd));
     }
@@ -523,6 +533,26 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     for (const auto& cd : best)
       pair_out(cd);
     if (out.minimizers != "infinite") note_unproven_ties(out, best.size());
+    // Tie regions (symmetry.hpp): the spine points C([ta, tb]); every minimizing parameter
+    // lies in a kept interval, and a symmetry of both surfaces maps spine points to spine
+    // points with the same phi.
+    for (const auto& cd : best) {
+      Ball T, a, b;
+      arb_set_fmpq(a.v, cd.ta.raw(), prec);
+      arb_set_fmpq(b.v, cd.tb.raw(), prec);
+      arb_union(T.v, a.v, b.v, prec);
+      std::vector<std::array<double, 2>> reg;
+      for (size_t i = 0; i < 3; ++i) {
+        Ball v, k;
+        for (size_t j = c.spine[i].size(); j-- > 0;) {
+          arb_mul(v.v, v.v, T.v, prec);
+          arb_set_fmpq(k.v, c.spine[i][j].raw(), prec);
+          arb_add(v.v, v.v, k.v, prec);
+        }
+        reg.push_back(outward_interval(v.v));
+      }
+      out.tie_regions.push_back(std::move(reg));
+    }
   } else if (arf_sgn(u) < 0 && q.kind() != core::QuadricKind::Ellipsoid) {
     out.status = Status::Certified;
     out.lower = out.upper = "0";
