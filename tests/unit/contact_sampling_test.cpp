@@ -83,3 +83,57 @@ TEST(ContactSampling, DisjointPairsNeverMeet) {
     EXPECT_FALSE(certify::meet_by_sign_change(q(a), q(b), w)) << a << " | " << b;
   }
 }
+
+namespace {
+
+double torus_eq(const core::Torus& t, const std::array<double, 3>& p) {
+  double w2 = 0, s = 0, aa = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    const double w = p[i] - t.centre[i].to_double_approx(), a = t.axis[i].to_double_approx();
+    w2 += w * w;
+    s += w * a;
+    aa += a * a;
+  }
+  const double R = t.R.to_double_approx(), r = t.r.to_double_approx();
+  const double k = w2 + R * R - r * r;
+  return k * k - 4 * R * R * (w2 - s * s / aa);
+}
+
+} // namespace
+
+TEST(ContactSampling, ToriAndCanalSurfacesThatMeet) {
+  const auto A = core::make_torus({0, 0, 0}, {0, 0, 1}, 3, 1);
+  const auto B = core::make_torus({3, 0, 0}, {0, 1, 0}, 1, Rational(1, 2)); // through A's tube
+  std::array<double, 3> w{};
+  ASSERT_TRUE(certify::surfaces_meet_by_sign_change(core::Surface(A), core::Surface(B), w));
+  EXPECT_NEAR(torus_eq(A, w), 0, 1e-8);
+  EXPECT_NEAR(torus_eq(B, w), 0, 1e-8);
+  auto r = certify::surface_distance(core::Surface(A), core::Surface(B), 15, false);
+  EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.upper, "0");
+  EXPECT_EQ(r.method, "sign_change_contact");
+  // A parabolic canal crossing the torus, and an implicit quartic (x^4 + y^4 + z^4 = 16)
+  // through it.
+  const auto K = core::Surface(
+      core::make_canal({std::vector<Rational>{0, 1}, {0}, {4, 0, -1}}, {Rational(1, 2)}, -2, 2));
+  r = certify::surface_distance(core::Surface(A), K, 15, false);
+  EXPECT_EQ(r.upper, "0") << r.note;
+  core::Poly3 f;
+  f.add_term({4, 0, 0}, 1);
+  f.add_term({0, 4, 0}, 1);
+  f.add_term({0, 0, 4}, 1);
+  f.add_term({0, 0, 0}, -16);
+  ASSERT_TRUE(certify::surfaces_meet_by_sign_change(core::Surface(A),
+                                                    core::Surface(core::ImplicitSurface{f}), w));
+  EXPECT_NEAR(torus_eq(A, w), 0, 1e-8);
+  EXPECT_NEAR(std::pow(w[0], 4) + std::pow(w[1], 4) + std::pow(w[2], 4), 16, 1e-8);
+  // Disjoint: two tori far apart, a torus and a canal above it; interlocked tori at distance 1
+  // (a continuum): never reported as meeting.
+  EXPECT_FALSE(certify::surfaces_meet_by_sign_change(
+      core::Surface(A), core::Surface(core::make_torus({20, 0, 0}, {1, 1, 0}, 2, 1)), w));
+  const auto K2 = core::Surface(
+      core::make_canal({std::vector<Rational>{0, 1}, {0}, {9}}, {Rational(1, 2)}, -2, 2));
+  EXPECT_FALSE(certify::surfaces_meet_by_sign_change(core::Surface(A), K2, w));
+  EXPECT_FALSE(certify::surfaces_meet_by_sign_change(
+      core::Surface(A), core::Surface(core::make_torus({3, 0, 0}, {0, 1, 0}, 3, 1)), w));
+}

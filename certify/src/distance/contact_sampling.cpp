@@ -2,6 +2,7 @@
 
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
+#include "surfcert/certify/distance/solid_relation.hpp"
 
 #include <cmath>
 
@@ -54,40 +55,159 @@ std::array<double, 3> project_d(const core::QuadricMatrix& q, std::array<double,
   return x;
 }
 
-bool one_side(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-              std::array<double, 3>& witness) {
+// Ball of radius 0 at a double point.
+void point_ball(Ball (&p)[3], const std::array<double, 3>& x) {
+  for (size_t l = 0; l < 3; ++l)
+    arb_set_d(p[l].v, x[l]);
+}
+
+// Samples of a connected quadric: certified points on the gradient lines of a rational grid at
+// several scales; stops once both sides of `other` are seen.
+bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& other,
+                         std::array<double, 3> (&at)[2]) {
   if (!quadric_connected(a)) return false;
-  const SourceQuadric src(a), other(b);
+  const SourceQuadric src(a);
   const long prec = 128;
   bool have[2] = {false, false};
-  std::array<double, 3> at[2]{};
   for (long scale : {1L, 4L, 16L, 64L, 256L, 1024L}) {
     for (int i = -2; i <= 2; ++i)
       for (int j = -2; j <= 2; ++j)
         for (int k = -2; k <= 2; ++k) {
-          // Slightly irrational-looking offsets keep the grid off symmetry planes.
+          // Odd offsets keep the grid off symmetry planes.
           const Rational c[3] = {Rational(scale * (2 * i) + 1, 7), Rational(scale * (2 * j) - 1, 5),
                                  Rational(scale * (2 * k) + 1, 3)};
-          Ball p[3], v;
+          Ball p[3];
           if (!src.project(c, p, prec)) continue;
-          algebra::evaluate(v.v, other.f, ball_point(p), prec);
-          const int s = arb_is_positive(v.v) ? 1 : arb_is_negative(v.v) ? 0 : -1;
-          if (s < 0 || have[s]) continue;
-          have[s] = true;
+          const int sd = side_of(other, p);
+          if (sd == 0) continue;
+          const size_t w = sd > 0 ? 1 : 0;
+          if (have[w]) continue;
+          have[w] = true;
           for (size_t l = 0; l < 3; ++l)
-            at[s][l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
+            at[w][l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
         }
+    if (have[0] && have[1]) return true;
+  }
+  return false;
+}
+
+// A ring torus point at angles (theta, phi) = pi (s, t), as balls.
+void torus_point(Ball (&p)[3], const core::Torus& t, const Rational& s, const Rational& u,
+                 long prec) {
+  size_t k = 0;
+  for (size_t i = 1; i < 3; ++i)
+    if (core::abs(t.axis[i]) < core::abs(t.axis[k])) k = i;
+  std::array<Rational, 3> e{Rational(0), Rational(0), Rational(0)};
+  e[k] = Rational(1);
+  const auto& a = t.axis;
+  const std::array<Rational, 3> U{a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2],
+                                  a[0] * e[1] - a[1] * e[0]};
+  const std::array<Rational, 3> V{a[1] * U[2] - a[2] * U[1], a[2] * U[0] - a[0] * U[2],
+                                  a[0] * U[1] - a[1] * U[0]};
+  Ball nu, nv, na, ss, cs, sp, cp, rad, R, r, tmp;
+  for (size_t i = 0; i < 3; ++i) {
+    Ball x;
+    arb_set_fmpq(x.v, U[i].raw(), prec);
+    arb_addmul(nu.v, x.v, x.v, prec);
+    arb_set_fmpq(x.v, V[i].raw(), prec);
+    arb_addmul(nv.v, x.v, x.v, prec);
+    arb_set_fmpq(x.v, a[i].raw(), prec);
+    arb_addmul(na.v, x.v, x.v, prec);
+  }
+  arb_rsqrt(nu.v, nu.v, prec);
+  arb_rsqrt(nv.v, nv.v, prec);
+  arb_rsqrt(na.v, na.v, prec);
+  arb_sin_cos_pi_fmpq(ss.v, cs.v, s.raw(), prec);
+  arb_sin_cos_pi_fmpq(sp.v, cp.v, u.raw(), prec);
+  arb_set_fmpq(R.v, t.R.raw(), prec);
+  arb_set_fmpq(r.v, t.r.raw(), prec);
+  arb_mul(rad.v, r.v, cp.v, prec);
+  arb_add(rad.v, rad.v, R.v, prec); // R + r cos phi
+  for (size_t i = 0; i < 3; ++i) {
+    Ball ui, vi, ai;
+    arb_set_fmpq(ui.v, U[i].raw(), prec);
+    arb_mul(ui.v, ui.v, nu.v, prec);
+    arb_set_fmpq(vi.v, V[i].raw(), prec);
+    arb_mul(vi.v, vi.v, nv.v, prec);
+    arb_set_fmpq(ai.v, a[i].raw(), prec);
+    arb_mul(ai.v, ai.v, na.v, prec);
+    arb_mul(tmp.v, cs.v, ui.v, prec);
+    arb_addmul(tmp.v, ss.v, vi.v, prec);
+    arb_mul(tmp.v, tmp.v, rad.v, prec);
+    arb_set_fmpq(p[i].v, t.centre[i].raw(), prec);
+    arb_add(p[i].v, p[i].v, tmp.v, prec);
+    arb_mul(tmp.v, r.v, sp.v, prec);
+    arb_addmul(p[i].v, tmp.v, ai.v, prec);
+  }
+}
+
+// Samples of a torus on a grid of angles; the witness by bisection along the parameter segment
+// (a path on the torus) between the two sides.
+bool torus_side_points(const core::Torus& t, const core::Surface& other,
+                       std::array<double, 3>& witness) {
+  const long prec = 128;
+  bool have[2] = {false, false};
+  Rational par[2][2];
+  for (int n : {16, 64}) {
+    for (int i = 0; i < 2 * n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const Rational s(2 * i + 1, static_cast<unsigned long>(2 * n)),
+            u(4 * j + 1, static_cast<unsigned long>(2 * n));
+        Ball p[3];
+        torus_point(p, t, s, u, prec);
+        const int sd = side_of(other, p);
+        if (sd == 0) continue;
+        const size_t w = sd > 0 ? 1 : 0;
+        if (have[w]) continue;
+        have[w] = true;
+        par[w][0] = s;
+        par[w][1] = u;
+      }
     if (have[0] && have[1]) break;
   }
   if (!have[0] || !have[1]) return false;
+  Rational lo[2] = {par[0][0], par[0][1]}, hi[2] = {par[1][0], par[1][1]};
+  for (int it = 0; it < 50; ++it) {
+    const Rational m[2] = {(lo[0] + hi[0]) * Rational(1, 2), (lo[1] + hi[1]) * Rational(1, 2)};
+    Ball p[3];
+    torus_point(p, t, m[0], m[1], prec);
+    const int sd = side_of(other, p);
+    if (sd == 0) {
+      lo[0] = m[0];
+      lo[1] = m[1];
+      break;
+    }
+    (sd > 0 ? hi : lo)[0] = m[0];
+    (sd > 0 ? hi : lo)[1] = m[1];
+  }
+  Ball p[3];
+  torus_point(p, t, lo[0], lo[1], prec);
+  for (size_t l = 0; l < 3; ++l)
+    witness[l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
+  return true;
+}
+
+bool one_side(const core::Surface& a, const core::Surface& b, std::array<double, 3>& witness) {
+  if (const auto* t = std::get_if<core::Torus>(&a)) return torus_side_points(*t, b, witness);
+  const auto* qa = std::get_if<core::QuadricMatrix>(&a);
+  if (!qa) return false;
+  std::array<double, 3> at[2]{};
+  if (!quadric_side_points(*qa, b, at)) return false;
   // Approximate common point: bisection between the two points, projected on a.
   std::array<double, 3> lo = at[0], hi = at[1];
   for (int it = 0; it < 60; ++it) {
     std::array<double, 3> m{};
     for (size_t l = 0; l < 3; ++l)
       m[l] = 0.5 * (lo[l] + hi[l]);
-    m = project_d(a, m);
-    (eval_d(b, m) > 0 ? hi : lo) = m;
+    m = project_d(*qa, m);
+    Ball mb[3];
+    point_ball(mb, m);
+    const int sd = side_of(b, mb);
+    if (sd == 0) {
+      lo = m;
+      break;
+    }
+    (sd > 0 ? hi : lo) = m;
   }
   witness = lo;
   return true;
@@ -97,6 +217,11 @@ bool one_side(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
 
 bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                          std::array<double, 3>& witness) {
+  return surfaces_meet_by_sign_change(core::Surface(a), core::Surface(b), witness);
+}
+
+bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b,
+                                  std::array<double, 3>& witness) {
   return one_side(a, b, witness) || one_side(b, a, witness);
 }
 

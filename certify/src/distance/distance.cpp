@@ -509,13 +509,30 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
                                 bool solid, Mode mode) {
   DistanceResult r = any_surface_distance(a, b, digits, solid, mode);
-  if (solid && !(std::holds_alternative<core::QuadricMatrix>(a) &&
-                 std::holds_alternative<core::QuadricMatrix>(b)))
-    apply_solid_option(r, a, b);
+  const bool two_quadrics = std::holds_alternative<core::QuadricMatrix>(a) &&
+                            std::holds_alternative<core::QuadricMatrix>(b);
+  const bool parametric = std::holds_alternative<core::ParametricSurface>(a) ||
+                          std::holds_alternative<core::ParametricSurface>(b);
+  // Left undecided (tubes that may meet, a canal that may cross a torus, ...): a sign change
+  // of one surface's equation along the other, connected one proves contact.
+  std::array<double, 3> w{};
+  if (r.status == Status::Undecided && !two_quadrics && !parametric &&
+      surfaces_meet_by_sign_change(a, b, w)) {
+    const std::string why = r.note;
+    r = DistanceResult();
+    r.status = Status::Certified;
+    r.mode = mode;
+    r.lower = r.upper = "0";
+    r.minimizers = "infinite";
+    r.pairs.push_back({w, w});
+    r.method = "sign_change_contact";
+    r.note = "the surfaces meet: certified points of a connected surface on both sides of the "
+             "other (the pair is an approximate common point)" +
+             (why.empty() ? std::string() : "; the other routes said: " + why);
+  }
   // Two quadrics went through the overload above, which already tried.
-  if (r.ties == "unproven" && !(std::holds_alternative<core::QuadricMatrix>(a) &&
-                                std::holds_alternative<core::QuadricMatrix>(b)))
-    prove_ties(r, a, b);
+  if (r.ties == "unproven" && !two_quadrics) prove_ties(r, a, b);
+  if (solid && !two_quadrics) apply_solid_option(r, a, b);
   return r;
 }
 

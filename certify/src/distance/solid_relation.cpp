@@ -239,6 +239,37 @@ int inside(const core::Surface& s, const Ball (&p)[3]) {
 
 } // namespace
 
+int side_of(const core::Surface& s, const Ball (&p)[3]) {
+  if (is_closed_surface(s)) return -inside(s, p);
+  Ball v;
+  if (const auto* q = std::get_if<core::QuadricMatrix>(&s)) {
+    Ball X[4];
+    for (size_t i = 0; i < 3; ++i)
+      arb_set(X[i].v, p[i].v);
+    arb_one(X[3].v);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) {
+        Ball m, t;
+        arb_set_fmpq(m.v, (*q)(i, j).raw(), kPrec);
+        arb_mul(t.v, X[i].v, X[j].v, kPrec);
+        arb_addmul(v.v, m.v, t.v, kPrec);
+      }
+  } else if (const auto* im = std::get_if<core::ImplicitSurface>(&s)) {
+    for (const auto& [e, c] : im->f.terms()) {
+      Ball t, x;
+      arb_set_fmpq(t.v, c.raw(), kPrec);
+      for (size_t i = 0; i < 3; ++i) {
+        arb_pow_ui(x.v, p[i].v, static_cast<ulong>(e[i]), kPrec);
+        arb_mul(t.v, t.v, x.v, kPrec);
+      }
+      arb_add(v.v, v.v, t.v, kPrec);
+    }
+  } else {
+    return 0;
+  }
+  return arb_is_positive(v.v) ? 1 : arb_is_negative(v.v) ? -1 : 0;
+}
+
 bool is_closed_surface(const core::Surface& s) {
   return ellipsoid(s) || std::holds_alternative<core::Torus>(s) ||
          std::holds_alternative<core::CanalSurface>(s);

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "surfcert/core/quadric.hpp"
+#include "surfcert/core/surface.hpp"
 
 #include <array>
 
@@ -24,6 +25,13 @@ namespace surfcert::certify {
 /// other; `witness` then holds an approximate common point.
 bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                          std::array<double, 3>& witness);
+
+/// Any two surfaces: the sampled (connected) surface is a quadric (gradient-line projections of
+/// a rational grid) or a ring torus (a grid of angles, rational multiples of pi); the other
+/// surface's side is certified by solid_relation.hpp's side_of (quadric, torus, canal,
+/// implicit). Witness approximate (bisection along a path on the sampled surface).
+bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b,
+                                  std::array<double, 3>& witness);
 
 /// Exact: false for the disconnected real quadrics (two-sheeted hyperboloid, hyperbolic
 /// cylinder, two parallel planes), true otherwise.

@@ -13,6 +13,7 @@
 // Anything not certified returns 0 (undecided), never a guess.
 #pragma once
 
+#include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/core/surface.hpp"
 
@@ -24,6 +25,12 @@ bool is_closed_surface(const core::Surface& s);
 /// Precondition: the surfaces are disjoint. +1: one solid contains the other; -1: the solids
 /// are disjoint; 0: not decided (or a surface is not closed).
 int solids_nested(const core::Surface& a, const core::Surface& b);
+
+/// The certified side of the ball point p (which must not meet the surface for an answer):
+/// -1 inside a closed surface's solid (or where a quadric's or implicit polynomial is
+/// negative), +1 outside (positive), 0 not certified. The surface is the zero set of a
+/// continuous function with exactly these signs, so a sign change along a path meets it.
+int side_of(const core::Surface& s, const Ball (&p)[3]);
 
 /// Applies the `solid` option to a certified surface distance r between closed surfaces:
 /// nested solids give 0, disjoint solids keep r, undecided nesting makes r undecided with the
