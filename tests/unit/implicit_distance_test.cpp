@@ -67,7 +67,17 @@ TEST(ImplicitDistance, CubicGraphAgainstSpheres) {
 
 TEST(ImplicitDistance, InputLimits) {
   EXPECT_THROW(surf("x^7 + y^2 + z^2 = 1"), core::InputError);
-  // Against an unbounded quadric: not supported yet, never guessed.
+  // Against an unbounded quadric that it crosses (x^3 = x^2 + 5 near x = 2.1): contact proven
+  // by a sign change along the paraboloid; the witness lies on both.
   auto r = certify::surface_distance(surf("z = x^3"), surf("z = x^2 + y^2 + 5"), 15, false);
-  EXPECT_NE(r.status, certify::Status::Certified);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.upper, "0");
+  ASSERT_FALSE(r.pairs.empty());
+  const auto& w = r.pairs[0][0];
+  EXPECT_NEAR(w[2], w[0] * w[0] * w[0], 1e-8 * (1 + std::fabs(w[2])));
+  EXPECT_NEAR(w[2], w[0] * w[0] + w[1] * w[1] + 5, 1e-8 * (1 + std::fabs(w[2])));
+  // A bump z (x^2 + y^2 + 1) = 1 over the plane z = -1: the infimum 1 is approached at
+  // infinity only; not supported, never guessed.
+  auto u = certify::surface_distance(surf("z*(x^2 + y^2 + 1) = 1"), surf("z = -1"), 15, false);
+  EXPECT_NE(u.status, certify::Status::Certified) << u.note;
 }

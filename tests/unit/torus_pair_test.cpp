@@ -181,10 +181,13 @@ TEST(TorusPair, ContinuaAndCrossingTubesStayUndecided) {
   auto c = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 0.5}),
                                      torus({{0, 0, 5}, {0, 0, 1}, 2, 0.5}), 15, false);
   EXPECT_EQ(c.status, certify::Status::Undecided) << c.lower;
-  // crossing tubes
+  // crossing tubes (radial ranges [2.5, 3.5] and, along the x-axis, [3, 4]): not the circle
+  // route's case; the contact is proven by a sign change along one torus
   auto x = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 0.5}),
                                      torus({{5.5, 0, 0}, {0, 0, 1}, 2, 0.5}), 15, false);
-  EXPECT_EQ(x.status, certify::Status::Undecided) << x.lower;
+  EXPECT_EQ(x.status, certify::Status::Certified) << x.note;
+  EXPECT_EQ(x.upper, "0");
+  EXPECT_EQ(x.method, "sign_change_contact");
   // linked circles each through the other's centre: (3, 0, 0) on K1 is at distance 3 from
   // every point of K2, a continuum of minimizers
   auto l = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 0.5}),
