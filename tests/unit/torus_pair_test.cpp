@@ -194,3 +194,38 @@ TEST(TorusPair, ContinuaAndCrossingTubesStayUndecided) {
                                      torus({{3, 0, 0}, {0, 1, 0}, 3, 0.5}), 15, false);
   EXPECT_EQ(l.status, certify::Status::Undecided) << l.lower;
 }
+
+TEST(TorusPair, NestedTubes) {
+  // A small torus inside the tube of a big one: d = r_out - r_in - max_s dist(K_in(s), K_out),
+  // with dist(p, K_out) = sqrt((rho - R)^2 + h^2) in closed form; the maximum over s by a fine
+  // float sampling plus golden refinement (independent of the Arb branch and bound).
+  const T out{{0, 0, 0}, {0, 0, 1}, 10, 3}, in{{10, 0, 0.5}, {1, 1, 1}, 1, 0.5};
+  auto dist_out = [&](const std::array<double, 3>& p) {
+    return std::hypot(std::hypot(p[0], p[1]) - 10, p[2]);
+  };
+  double best = -1, bs = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double s = 2 * M_PI * i / 20000, v = dist_out(on(in, s));
+    if (v > best) best = v, bs = s;
+  }
+  for (double h = 1e-3; h > 1e-13; h *= 0.5)
+    for (double ds : {-h, h})
+      if (dist_out(on(in, bs + ds)) > best) best = dist_out(on(in, bs + ds)), bs += ds;
+  for (bool swap : {false, true}) {
+    const auto r = swap ? certify::surface_distance(torus(in), torus(out), 15, false)
+                        : certify::surface_distance(torus(out), torus(in), 15, false);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_NEAR(r.approx, 3 - 0.5 - best, 1e-12);
+    EXPECT_NE(r.note.find("nested tubes"), std::string::npos) << r.note;
+    ASSERT_EQ(r.pairs.size(), 1u);
+    const auto& inner_pt = r.pairs[0][swap ? 0 : 1];
+    const auto& outer_pt = r.pairs[0][swap ? 1 : 0];
+    EXPECT_NEAR(dist_out(outer_pt), 3, 1e-9); // on the outer torus
+    EXPECT_NEAR(
+        std::hypot(inner_pt[0] - outer_pt[0], inner_pt[1] - outer_pt[1], inner_pt[2] - outer_pt[2]),
+        r.approx, 1e-9);
+  }
+  // Solid distance: one tube contains the other.
+  const auto s = certify::surface_distance(torus(out), torus(in), 15, true);
+  EXPECT_EQ(s.upper, "0") << s.note;
+}

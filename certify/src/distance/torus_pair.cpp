@@ -6,6 +6,7 @@
 #include <arb.h>
 
 #include <cmath>
+#include <vector>
 
 namespace surfcert::certify {
 
@@ -105,10 +106,95 @@ void circle_circle(Dual& f, Ball (*point)[3], const Circle& c1, const Circle& c2
   arb_mul_2exp_si(f.d.v, f.d.v, -1);
 }
 
+// One tube nested in the other: d = min_t (r_out - r_in - dist(K_in(t), K_out)) when positive.
+// (Every point q within r_in of K_in(t) has dist(q, K_out) <= dist(K_in(t), K_out) + r_in
+// < r_out, so the inner tube lies inside the outer one; the farthest inner surface point from
+// K_out is on the ray from the nearest point of K_out through K_in(t).)
+std::optional<DistanceResult> nested_tubes(const core::Torus& in, const core::Torus& out,
+                                           bool inner_is_a, long digits) {
+  const long prec = bits_for(digits + 10);
+  const Circle ci(in, prec), co(out, prec);
+  Ball shift, r;
+  set_q(shift.v, in.r, prec); // shift = r_in - r_out: min(-f) - shift = r_out - r_in - max f
+  set_q(r.v, out.r, prec);
+  arb_sub(shift.v, shift.v, r.v, prec);
+  auto bound = [&](const arb_t tm, const arb_t T, arf_t lower, arf_t upper) {
+    Dual whole, at;
+    circle_circle(whole, nullptr, ci, co, T, prec);
+    circle_circle(at, nullptr, ci, co, tm, prec);
+    arb_neg(whole.v.v, whole.v.v);
+    arb_neg(whole.d.v, whole.d.v);
+    arb_neg(at.v.v, at.v.v);
+    mean_value_lower(lower, whole.v.v, whole.d.v, at.v.v, T, prec);
+    arb_get_ubound_arf(upper, at.v.v, prec);
+  };
+  PeriodicMinimum pm;
+  if (!periodic_minimize(bound, shift.v, digits, prec, pm)) return std::nullopt;
+  DistanceResult res;
+  res.status = Status::Certified;
+  set_distance_enclosure(res, pm.enclosure.v, digits);
+  const double ri = in.r.to_double_approx(), ro = out.r.to_double_approx();
+  for (const auto& tm : pm.minimizers) {
+    Ball p[3];
+    Dual f;
+    circle_circle(f, &p, ci, co, tm.v, prec);
+    // nearest point k of K_out to c = K_in(t), then the two surface points on the ray k -> c
+    std::array<double, 3> c{}, k{}, nd{};
+    double h = 0;
+    for (size_t i = 0; i < 3; ++i) {
+      c[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
+      nd[i] = arf_get_d(arb_midref(co.n[i].v), ARF_RND_NEAR);
+      h += (c[i] - out.centre[i].to_double_approx()) * nd[i];
+    }
+    double rl = 0;
+    std::array<double, 3> w{};
+    for (size_t i = 0; i < 3; ++i) {
+      w[i] = c[i] - out.centre[i].to_double_approx() - h * nd[i];
+      rl += w[i] * w[i];
+    }
+    rl = std::sqrt(rl);
+    double fd = 0;
+    for (size_t i = 0; i < 3; ++i) {
+      k[i] = out.centre[i].to_double_approx() + (rl > 0 ? out.R.to_double_approx() * w[i] / rl : 0);
+      fd += (c[i] - k[i]) * (c[i] - k[i]);
+    }
+    fd = std::sqrt(fd);
+    std::array<std::array<double, 3>, 2> pr{};
+    for (size_t i = 0; i < 3; ++i) {
+      const double dir = fd > 0 ? (c[i] - k[i]) / fd : 0;
+      pr[inner_is_a ? 0 : 1][i] = c[i] + ri * dir;
+      pr[inner_is_a ? 1 : 0][i] = k[i] + ro * dir;
+    }
+    res.pairs.push_back(pr);
+  }
+  const size_t groups = pm.minimizers.size();
+  res.minimizers = std::to_string(groups);
+  res.critical_candidates = static_cast<int>(groups);
+  res.method = "torus_circle_pair";
+  res.note = std::string("nested tubes: the ") + (inner_is_a ? "first" : "second") +
+             " torus lies inside the other's tube; d = r_out - r_in - max dist(K_in, K_out), by "
+             "branch and bound over the inner circle (Arb)";
+  note_unproven_ties(res, groups);
+  for (const auto& T : pm.group_hulls) {
+    Ball p[3];
+    Dual f;
+    circle_circle(f, &p, ci, co, T.v, prec);
+    std::vector<std::array<double, 2>> reg;
+    for (const Ball& x : p)
+      reg.push_back(outward_interval(x.v));
+    res.tie_regions.push_back(std::move(reg));
+  }
+  return res;
+}
+
 } // namespace
 
 std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const core::Torus& b,
                                                   long digits) {
+  if (b.r > a.r)
+    if (auto r = nested_tubes(a, b, true, digits)) return r;
+  if (a.r > b.r)
+    if (auto r = nested_tubes(b, a, false, digits)) return r;
   const long prec = bits_for(digits + 10);
   const Circle c1(a, prec), c2(b, prec);
   Ball r12, r;

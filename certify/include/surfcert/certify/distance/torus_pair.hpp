@@ -12,9 +12,12 @@
 // f(t_m) as an upper bound (a value of f, hence >= the minimum), intervals above the best
 // upper bound dropped, the rest bisected until the relative width of the distance is
 // <= 10^-digits. The tubes are proven disjoint when min f > r1 + r2 is certain.
-// Returns nullopt (the caller reports undecided) when the tubes may meet or nest, or when the
-// minimizers may form a continuum (coaxial tori: the surviving intervals cover the circle or
-// exceed the budget). Ties are reported as in the other distance routes (equality not proven).
+// Nested tubes (one torus inside the other's tube): d = min_t (r_out - r_in - dist(K_in(t),
+// K_out)) when positive, by the same branch and bound (a maximisation of the circle distance);
+// positivity proves the nesting. Returns nullopt (the caller tries a contact proof, else
+// reports undecided) when the tubes may meet, or when the minimizers may form a continuum
+// (coaxial tori: the surviving intervals cover the circle or exceed the budget). Ties: proven
+// by symmetry where possible (symmetry.hpp), else reported as not proven.
 #pragma once
 
 #include "surfcert/certify/distance/distance.hpp"
