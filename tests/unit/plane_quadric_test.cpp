@@ -168,12 +168,22 @@ TEST(PlaneQuadric, TiesLinesPlanesAndNonAttainment) {
 
 TEST(PlaneQuadric, ContactWitnessesLieOnBoth) {
   const std::vector<std::pair<const char*, const char*>> cases = {
-      {"z = 5", "x^2 + y^2 = 1"},         {"x + y + z = 5", "x^2 + y^2 = 1"},
-      {"z = 5", "x^2 + y^2 - z^2 = 0"},   {"z = 0", "x^2 + y^2 - z^2 = 0"},
-      {"x = 5", "x^2 - y^2 - z = 0"},     {"z - 5 = 0", "x - 1 = 0"},
-      {"x + 2y - 2z = 3", "y^2 - 4 = 0"}, {"x - z = 5", "x^2 + y^2 - z^2 = 1"},
-      {"y = 0", "x*y - z = 0"},           {"2x + y = 1", "x^2 - 3y^2 + z^2 - 2 = 0"},
-      {"z = 1", "x^2 + 4y^2 - z = 0"}};
+      {"z = 5", "x^2 + y^2 = 1"},
+      {"x + y + z = 5", "x^2 + y^2 = 1"},
+      {"z = 5", "x^2 + y^2 - z^2 = 0"},
+      {"z = 0", "x^2 + y^2 - z^2 = 0"},
+      {"x = 5", "x^2 - y^2 - z = 0"},
+      {"z - 5 = 0", "x - 1 = 0"},
+      {"x + 2y - 2z = 3", "y^2 - 4 = 0"},
+      {"x - z = 5", "x^2 + y^2 - z^2 = 1"},
+      {"y = 0", "x*y - z = 0"},
+      {"2x + y = 1", "x^2 - 3y^2 + z^2 - 2 = 0"},
+      {"z = 1", "x^2 + 4y^2 - z = 0"},
+      // found by random testing: a rotated hyperbolic cylinder whose section form is positive
+      // on both coordinate directions (the witness needs the vertex direction)
+      {"z = 7", "(278/6727)*x*x + (-4080/6727)*x*y + (-1560/6727)*x*z + (25188/6727)*x + "
+                "(12550/6727)*y*y + (5640/6727)*y*z + (-149020/6727)*y + (-1296/6727)*z*z + "
+                "(-27696/6727)*z + (431301/6727) = 0"}};
   for (const auto& [p, s] : cases) {
     const auto r = pq(p, s);
     ASSERT_EQ(r.status, certify::Status::Certified) << p << " | " << s;

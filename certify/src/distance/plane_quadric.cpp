@@ -200,24 +200,28 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
   if (det.sign() < 0) { // indefinite: every level is met; a witness on a line through (0, 0)
     const Rational f0 = f.c[0];
     if (f0.is_zero()) return meet("a hyperbola or two lines", "infinite", 0, 0);
-    const Rational ts[] = {Rational(0),  Rational(1),    Rational(-1),   Rational(2),
-                           Rational(-2), Rational(1, 2), Rational(-1, 2)};
-    for (const Rational& t : ts) {
-      const Rational at = A[0][0] + Rational(2) * A[0][1] * t + A[1][1] * t * t;
-      if (at.sign() * f0.sign() < 0) { // lambda^2 at + 2 lambda g.(1, t) + f0 = 0 has roots
-        const double a = at.to_double_approx(), gb = (g[0].c[0] + g[1].c[0] * t).to_double_approx(),
+    // A direction (du, dv) where the form has the sign opposite to f0 (exists: A indefinite):
+    // (1, 0), (0, 1), the vertex direction (1, -A01/A11') of A(1, t), or, when A11 = 0, a
+    // point of the linear A(1, t). Along it lambda^2 a + 2 lambda g.d + f0 has a real root.
+    std::vector<std::array<Rational, 2>> dirs = {{Rational(1), Rational(0)},
+                                                 {Rational(0), Rational(1)}};
+    if (!A[1][1].is_zero())
+      dirs.push_back({Rational(1), -A[0][1] / A[1][1]});
+    else
+      dirs.push_back({Rational(1), (-A[0][0] - Rational(f0.sign())) / (Rational(2) * A[0][1])});
+    for (const auto& d : dirs) {
+      const Rational at =
+          A[0][0] * d[0] * d[0] + Rational(2) * A[0][1] * d[0] * d[1] + A[1][1] * d[1] * d[1];
+      if (at.sign() * f0.sign() < 0) {
+        const double a = at.to_double_approx(),
+                     gb = (g[0].c[0] * d[0] + g[1].c[0] * d[1]).to_double_approx(),
                      c0 = f0.to_double_approx();
         const double lam = (-gb + std::sqrt(gb * gb - a * c0)) / a;
-        return meet("a hyperbola or two lines", "infinite", lam, lam * t.to_double_approx());
+        return meet("a hyperbola or two lines", "infinite", lam * d[0].to_double_approx(),
+                    lam * d[1].to_double_approx());
       }
     }
-    if (A[1][1].sign() * f0.sign() < 0) {
-      const double a = A[1][1].to_double_approx(), gb = g[1].c[0].to_double_approx(),
-                   c0 = f0.to_double_approx();
-      return meet("a hyperbola or two lines", "infinite", 0,
-                  (-gb + std::sqrt(gb * gb - a * c0)) / a);
-    }
-    return meet("a hyperbola or two lines", "infinite", 0, 0); // witness not placed
+    return meet("a hyperbola or two lines", "infinite", 0, 0); // unreachable: A indefinite
   }
 
   if (det.sign() > 0) { // definite: S = {m <= 0}, m = f - g^T A^-1 g (sign normalised)
