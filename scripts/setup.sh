@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pkgs="build-essential cmake libgmp-dev libmpfr-dev libmpfi-dev libflint-dev libflint-arb-dev
-      libcalcium-dev libcgal-dev libboost-dev libgtest-dev librsvg2-bin libxml2-utils"
+      libcalcium-dev libcgal-dev libboost-dev libgtest-dev librsvg2-bin libxml2-utils python3"
 missing=""
 for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
 if [ -n "$missing" ]; then

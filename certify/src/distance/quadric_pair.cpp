@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/quadric_pair.hpp"
 
 #include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/certify/distance/at_infinity.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
@@ -259,8 +260,8 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
     algebra::SolutionCover cover =
         algebra::cover_real_solutions_2d(o.system[0], o.system[2], Rational(1, 16));
     if (!cover.ok) continue;
-    const bool compact =
-        a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid;
+    const bool compact = a.kind() == core::QuadricKind::Ellipsoid ||
+                         b.kind() == core::QuadricKind::Ellipsoid || minimum_attained(a, b);
     SourceQuadric s(src);
     QuadricTarget t(s, o, digits);
     minimize_over_cover(cover, s, t, digits, src_a, compact, out);
@@ -398,8 +399,8 @@ DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
   const Offset& o = *off;
   out.critical_candidates = static_cast<int>(cover.boxes.size());
 
-  const bool compact =
-      a.kind() == core::QuadricKind::Ellipsoid || b.kind() == core::QuadricKind::Ellipsoid;
+  const bool compact = a.kind() == core::QuadricKind::Ellipsoid ||
+                       b.kind() == core::QuadricKind::Ellipsoid || minimum_attained(a, b);
   SourceQuadric src(*o.source);
   QuadricTarget tgt(src, o, digits);
   minimize_over_cover(cover, src, tgt, digits, o.source_is_a, compact, out);

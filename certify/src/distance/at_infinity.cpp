@@ -1,0 +1,80 @@
+#include "surfcert/certify/distance/at_infinity.hpp"
+
+#include "surfcert/algebra/inertia.hpp"
+
+namespace surfcert::certify {
+
+using core::Rational;
+
+namespace {
+
+using V3 = std::array<Rational, 3>;
+using M3 = std::array<V3, 3>;
+
+M3 block(const core::QuadricMatrix& q) {
+  M3 m;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      m[i][j] = q(static_cast<int>(i), static_cast<int>(j));
+  return m;
+}
+
+V3 cross(const V3& x, const V3& y) {
+  return {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+}
+
+Rational form(const M3& m, const V3& x, const V3& y) {
+  Rational s;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      s += x[i] * m[i][j] * y[j];
+  return s;
+}
+
+bool zero(const V3& v) {
+  return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();
+}
+
+algebra::Inertia inertia3(const M3& m) {
+  core::Mat4 x;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      x[i][j] = m[i][j];
+  return algebra::inertia_ldlt(x);
+}
+
+// 1: the conic at infinity of `m` is a point and misses `other`'s; 0: it is a point or a
+// double line meeting `other`'s, or another shape (not decided here); -1 never used.
+bool disjoint_from(const M3& m, const M3& other) {
+  const algebra::Inertia in = inertia3(m);
+  if (in.rank() == 2 && in.semidefinite()) { // a single real point: the kernel direction
+    V3 k{Rational(0), Rational(0), Rational(0)};
+    for (size_t i = 0; i < 3 && zero(k); ++i)
+      for (size_t j = i + 1; j < 3 && zero(k); ++j)
+        k = cross(m[i], m[j]);
+    return !zero(k) && !form(other, k, k).is_zero();
+  }
+  if (in.rank() == 1) { // the double line r.u = 0: the other form must be definite on it
+    V3 r = m[0];
+    for (size_t i = 1; i < 3 && zero(r); ++i)
+      r = m[i];
+    size_t kk = 0;
+    for (size_t i = 1; i < 3; ++i)
+      if (core::abs(r[i]) < core::abs(r[kk])) kk = i;
+    V3 e{Rational(0), Rational(0), Rational(0)};
+    e[kk] = Rational(1);
+    const V3 e1 = cross(r, e), e2 = cross(r, e1);
+    const Rational a = form(other, e1, e1), b = form(other, e1, e2), c = form(other, e2, e2);
+    return (a * c - b * b).sign() > 0;
+  }
+  return false;
+}
+
+} // namespace
+
+bool minimum_attained(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
+  const M3 ma = block(a), mb = block(b);
+  return disjoint_from(ma, mb) || disjoint_from(mb, ma);
+}
+
+} // namespace surfcert::certify
