@@ -202,8 +202,10 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
         m[i] = c[i].to_double_approx();
     }
   }
-  std::string note = "distance to the closure of the parametrised surface (implicit form " +
-                     f->to_string() + " = 0; minimizers checked against the image)";
+  std::string note =
+      "distance to the closure of the parametrised surface (implicit form " + f->to_string() +
+      " = 0; minimizers checked against the image by a float search: a minimizer found outside it "
+      "withholds certification, one found inside it is a float judgement)";
   if (point) {
     note += "; the parametrisation misses " + missed;
     bool hit = false;
