@@ -177,10 +177,13 @@ TEST(TorusPair, SwapKeepsTheEnclosure) {
 }
 
 TEST(TorusPair, ContinuaAndCrossingTubesStayUndecided) {
-  // coaxial tori one above the other: a circle of minimizers
+  // coaxial tori one above the other: a circle of minimizers, certified (meridian circles
+  // (3, 0) and (2, 5), radii 1/2: sqrt(26) - 1)
   auto c = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 0.5}),
                                      torus({{0, 0, 5}, {0, 0, 1}, 2, 0.5}), 15, false);
-  EXPECT_EQ(c.status, certify::Status::Undecided) << c.lower;
+  EXPECT_EQ(c.status, certify::Status::Certified) << c.note;
+  EXPECT_EQ(c.minimizers, "infinite");
+  EXPECT_NEAR(c.approx, std::sqrt(26.0) - 1, 1e-15);
   // crossing tubes (radial ranges [2.5, 3.5] and, along the x-axis, [3, 4]): not the circle
   // route's case; the contact is proven by a sign change along one torus
   auto x = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 0.5}),
@@ -228,4 +231,50 @@ TEST(TorusPair, NestedTubes) {
   // Solid distance: one tube contains the other.
   const auto s = certify::surface_distance(torus(out), torus(in), 15, true);
   EXPECT_EQ(s.upper, "0") << s.note;
+}
+
+namespace {
+
+// Points of a torus on an angle grid (doubles).
+std::vector<std::array<double, 3>> torus_points(const T& t, int n, int m) {
+  std::vector<std::array<double, 3>> out;
+  const double an = std::sqrt(t.a[0] * t.a[0] + t.a[1] * t.a[1] + t.a[2] * t.a[2]);
+  for (int i = 0; i < n; ++i) {
+    const auto k = on(t, 2 * M_PI * i / n);
+    double w[3] = {k[0] - t.c[0], k[1] - t.c[1], k[2] - t.c[2]};
+    const double wn = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    for (int j = 0; j < m; ++j) {
+      const double ph = 2 * M_PI * j / m;
+      std::array<double, 3> p{};
+      for (size_t l = 0; l < 3; ++l)
+        p[l] = k[l] + t.r * (std::cos(ph) * w[l] / wn + std::sin(ph) * t.a[l] / an);
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+TEST(TorusPair, CoaxialToriAgainstSampling) {
+  // Apart, nested (a thin tube inside a thick one, shifted), and meeting; the sampled distance
+  // of both surfaces never goes below the certified lower bound and comes close to it.
+  const T a{{0, 0, 0}, {1, 2, 2}, 3, 0.5};
+  const T cases[] = {{{0.5, 1, 1}, {-2, -4, -4}, 2, 0.25},      // apart (h = 1.5 along the axis)
+                     {{0.01, 0.02, 0.02}, {1, 2, 2}, 3.1, 0.2}, // inside the tube
+                     {{0.1, 0.2, 0.2}, {1, 2, 2}, 3, 0.5}};     // meeting
+  const auto pa = torus_points(a, 120, 40);
+  for (const T& b : cases) {
+    const auto r = certify::surface_distance(torus(a), torus(b), 15, false);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_EQ(r.minimizers, "infinite");
+    EXPECT_EQ(r.method, "torus_coaxial_closed_form");
+    const auto pb = torus_points(b, 120, 40);
+    double best = 1e300;
+    for (const auto& p : pa)
+      for (const auto& q : pb)
+        best = std::min(best, std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]));
+    EXPECT_GE(best, lo(r) - 1e-12) << r.note;
+    EXPECT_LT(best - r.approx, 0.15) << r.note;
+  }
 }

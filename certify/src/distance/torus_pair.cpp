@@ -187,10 +187,115 @@ std::optional<DistanceResult> nested_tubes(const core::Torus& in, const core::To
   return res;
 }
 
+// Coaxial tori (one axis line): the distance of the meridian circles in the half-plane
+// (rho, z) (rotating both surfaces together keeps every distance, and |p - q| >= the meridian
+// distance), so a closed form; circles of closest pairs.
+std::optional<DistanceResult> coaxial_tori(const core::Torus& a, const core::Torus& b,
+                                           long digits) {
+  const auto& x = a.axis;
+  std::array<Rational, 3> dc, y = b.axis;
+  for (size_t i = 0; i < 3; ++i)
+    dc[i] = b.centre[i] - a.centre[i];
+  auto cross_zero = [](const std::array<Rational, 3>& u, const std::array<Rational, 3>& v) {
+    return u[1] * v[2] == u[2] * v[1] && u[2] * v[0] == u[0] * v[2] && u[0] * v[1] == u[1] * v[0];
+  };
+  if (!cross_zero(x, y) || !cross_zero(x, dc)) return std::nullopt;
+  const Rational xx = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+  const Rational hx = dc[0] * x[0] + dc[1] * x[1] + dc[2] * x[2]; // h = hx / |x|
+  const Rational h2 = hx * hx / xx, dR = a.R - b.R;
+  const Rational D2 = dR * dR + h2, s = a.r + b.r, del = core::abs(a.r - b.r);
+  DistanceResult out;
+  out.method = "torus_coaxial_closed_form";
+  out.minimizers = "infinite";
+  out.status = Status::Certified;
+  // Meridian-plane points as 3D doubles: e orthogonal to the axis, n the unit axis.
+  const double xn = std::sqrt(xx.to_double_approx());
+  std::array<double, 3> n{}, e{};
+  for (size_t i = 0; i < 3; ++i)
+    n[i] = x[i].to_double_approx() / xn;
+  {
+    size_t k = 0;
+    for (size_t i = 1; i < 3; ++i)
+      if (std::fabs(n[i]) < std::fabs(n[k])) k = i;
+    std::array<double, 3> ek{0, 0, 0};
+    ek[k] = 1;
+    e = {n[1] * ek[2] - n[2] * ek[1], n[2] * ek[0] - n[0] * ek[2], n[0] * ek[1] - n[1] * ek[0]};
+    const double en = std::hypot(e[0], e[1], e[2]);
+    for (auto& v : e)
+      v /= en;
+  }
+  const double h = hx.to_double_approx() / xn;
+  auto at = [&](double rho, double z) {
+    std::array<double, 3> p{};
+    for (size_t i = 0; i < 3; ++i)
+      p[i] = a.centre[i].to_double_approx() + rho * e[i] + z * n[i];
+    return p;
+  };
+  // Meridian circles: A at (R_A, 0) radius r_A, B at (R_B, h) radius r_B.
+  const double cA[2] = {a.R.to_double_approx(), 0}, cB[2] = {b.R.to_double_approx(), h};
+  const double Dd = std::sqrt(D2.to_double_approx());
+  double u[2] = {1, 0};
+  if (Dd > 0) {
+    u[0] = (cB[0] - cA[0]) / Dd;
+    u[1] = (cB[1] - cA[1]) / Dd;
+  }
+  const long prec = bits_for(digits + 10);
+  Ball D, S, d;
+  arb_set_fmpq(D.v, D2.raw(), prec);
+  arb_sqrt(D.v, D.v, prec);
+  const double ra = a.r.to_double_approx(), rb = b.r.to_double_approx();
+  if (D2 > s * s) { // external: D - r_A - r_B
+    arb_set_fmpq(S.v, s.raw(), prec);
+    arb_sub(d.v, D.v, S.v, prec);
+    out.pairs.push_back(
+        {at(cA[0] + ra * u[0], cA[1] + ra * u[1]), at(cB[0] - rb * u[0], cB[1] - rb * u[1])});
+    out.note = "coaxial tori: the meridian circles are apart; d = |c_A - c_B| - r_A - r_B in the "
+               "meridian half-plane (exact comparison, Arb); circles of closest pairs (one shown)";
+  } else if (D2 < del * del || (D2.is_zero() && !del.is_zero())) { // nested: |r_A - r_B| - D
+    arb_set_fmpq(S.v, del.raw(), prec);
+    arb_sub(d.v, S.v, D.v, prec);
+    const bool a_inner = a.r < b.r;
+    const double* ci = a_inner ? cA : cB;
+    const double* co = a_inner ? cB : cA;
+    const double ri = a_inner ? ra : rb, ro = a_inner ? rb : ra;
+    double w[2] = {1, 0};
+    if (Dd > 0) {
+      w[0] = (ci[0] - co[0]) / Dd;
+      w[1] = (ci[1] - co[1]) / Dd;
+    }
+    const auto pi = at(ci[0] + ri * w[0], ci[1] + ri * w[1]),
+               po = at(co[0] + ro * w[0], co[1] + ro * w[1]);
+    out.pairs.push_back(a_inner ? std::array<std::array<double, 3>, 2>{pi, po}
+                                : std::array<std::array<double, 3>, 2>{po, pi});
+    out.note = std::string("coaxial tori: the ") + (a_inner ? "first" : "second") +
+               " tube lies inside the other; d = |r_A - r_B| - |c_A - c_B| in the meridian "
+               "half-plane (exact comparison, Arb); " +
+               (D2.is_zero() ? "the whole surfaces are equidistant" : "circles of closest pairs") +
+               " (one pair shown)";
+  } else if (D2.is_zero() && del.is_zero()) {
+    out.lower = out.upper = "0";
+    out.note = "the tori coincide";
+    return out;
+  } else { // the meridian circles meet: the tori meet along circles
+    out.lower = out.upper = "0";
+    // a common meridian point: radical line of the two circles
+    const double t = (D2.to_double_approx() + ra * ra - rb * rb) / (2 * Dd);
+    const double hh = std::sqrt(std::max(0.0, ra * ra - t * t));
+    const auto w = at(cA[0] + t * u[0] - hh * u[1], cA[1] + t * u[1] + hh * u[0]);
+    out.pairs.push_back({w, w});
+    out.note = "coaxial tori whose meridian circles meet: the tori meet along circles";
+    return out;
+  }
+  set_distance_enclosure(out, d.v, digits);
+  out.critical_candidates = 1;
+  return out;
+}
+
 } // namespace
 
 std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const core::Torus& b,
                                                   long digits) {
+  if (auto r = coaxial_tori(a, b, digits)) return r;
   if (b.r > a.r)
     if (auto r = nested_tubes(a, b, true, digits)) return r;
   if (a.r > b.r)

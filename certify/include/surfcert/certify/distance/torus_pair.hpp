@@ -12,7 +12,9 @@
 // f(t_m) as an upper bound (a value of f, hence >= the minimum), intervals above the best
 // upper bound dropped, the rest bisected until the relative width of the distance is
 // <= 10^-digits. The tubes are proven disjoint when min f > r1 + r2 is certain.
-// Nested tubes (one torus inside the other's tube): d = min_t (r_out - r_in - dist(K_in(t),
+// Coaxial tori (one axis line): the distance of the two meridian circles in the half-plane, a
+// closed form (apart, one tube inside the other, or meeting along circles), minimizers
+// "infinite" (circles of pairs). Nested tubes (one torus inside the other's tube): d = min_t (r_out - r_in - dist(K_in(t),
 // K_out)) when positive, by the same branch and bound (a maximisation of the circle distance);
 // positivity proves the nesting. Returns nullopt (the caller tries a contact proof, else
 // reports undecided) when the tubes may meet, or when the minimizers may form a continuum
