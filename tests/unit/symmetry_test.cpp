@@ -312,3 +312,16 @@ TEST(Symmetry, CanalRouteProvesTies) {
   EXPECT_NEAR(r.approx, std::sqrt(15.0) / 2 - 1.5, 1e-15);
   expect_orbit(r, certify::common_symmetries(canal, sphere));
 }
+
+TEST(Symmetry, ConeRouteProvesTies) {
+  // The unit sphere at (5, 0, 0) and the cone x^2 + y^2 = z^2: d = 5/sqrt(2) - 1, reached on the
+  // generators through (1, 0, +-1), mirror images under z -> -z (generator lines up to sign).
+  const auto cone = S("x^2 + y^2 - z^2 = 0"), sphere = S("(x-5)^2 + y^2 + z^2 = 1");
+  const auto r = certify::surface_distance(cone, sphere, 15, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.method, "cone_generator_bound");
+  EXPECT_EQ(r.minimizers, "2");
+  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_NEAR(r.approx, 5 / std::sqrt(2.0) - 1, 1e-14);
+  expect_orbit(r, certify::common_symmetries(cone, sphere));
+}

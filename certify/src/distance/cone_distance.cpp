@@ -5,6 +5,7 @@
 #include <arb.h>
 
 #include <cmath>
+#include <vector>
 
 namespace surfcert::certify {
 
@@ -357,6 +358,24 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
              "line-ellipsoid distance, by branch and bound with slab (support-function) lower "
              "bounds (Arb)";
   note_unproven_ties(out, pm.minimizers.size());
+  // Tie regions (symmetry.hpp): per group the unit directions of its generator lines (up to
+  // sign: a symmetry keeps the vertex and maps lines to lines); every minimizing line is in one.
+  out.tie_lines = true;
+  for (const auto& T : pm.group_hulls) {
+    Du g[3];
+    generator(g, M, *c, T.v, prec);
+    Ball len;
+    for (const auto& x : g)
+      arb_addmul(len.v, x.v.v, x.v.v, prec);
+    arb_sqrt(len.v, len.v, prec);
+    std::vector<std::array<double, 2>> reg;
+    for (const auto& x : g) {
+      Ball u;
+      arb_div(u.v, x.v.v, len.v, prec);
+      reg.push_back(outward_interval(u.v));
+    }
+    out.tie_regions.push_back(std::move(reg));
+  }
   return out;
 }
 

@@ -368,7 +368,7 @@ void prove_ties(DistanceResult& r, const core::Surface& a, const core::Surface& 
     Ball P[3][3], t[3];
     for (size_t i = 0; i < 3; ++i) {
       arb_set_fmpq(t[i].v, g.t[i].raw(), prec);
-      if (r.tie_directions) arb_zero(t[i].v); // directions: n -> P n
+      if (r.tie_directions || r.tie_lines) arb_zero(t[i].v); // directions: n -> P n
       for (size_t j = 0; j < 3; ++j)
         arb_set_fmpq(P[i][j].v, g.P[i][j].raw(), prec);
     }
@@ -386,6 +386,14 @@ void prove_ties(DistanceResult& r, const core::Surface& a, const core::Surface& 
         bool meets = true;
         for (size_t c = 0; c < dim && meets; ++c)
           meets = arb_overlaps(img[c].v, box[k][c].v);
+        if (!meets && r.tie_lines) { // a line's direction up to sign: the image negated
+          meets = true;
+          for (size_t c = 0; c < dim && meets; ++c) {
+            Ball neg;
+            arb_neg(neg.v, img[c].v);
+            meets = arb_overlaps(neg.v, box[k][c].v);
+          }
+        }
         if (meets) {
           ++hits;
           j = k;

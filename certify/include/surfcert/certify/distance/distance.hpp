@@ -49,6 +49,9 @@ struct DistanceResult {
   /// region and no region holds two; directions (unit normals) when tie_directions.
   std::vector<std::vector<std::array<double, 2>>> tie_regions;
   bool tie_directions = false;
+  /// Regions are unit directions of lines through a fixed point (a cone's generators): the
+  /// image of a region is taken with both signs.
+  bool tie_lines = false;
 };
 
 /// mode: Filtered (default) tries the elimination-free certificates first (convex duality

@@ -13,8 +13,9 @@
 // to sign. Parametric surfaces have no candidates (never claimed).
 //
 // prove_ties: the route that found the minimizers supplies regions (outward double enclosures,
-// in point space where g acts as x -> P x + t, or in unit-direction space where it acts as
-// n -> P n) with two guarantees: (a) every global minimizer lies in one of the regions, and
+// in point space where g acts as x -> P x + t, in unit-direction space where it acts as
+// n -> P n, or as line directions up to sign, where the image is taken with both signs) with
+// two guarantees: (a) every global minimizer lies in one of the regions, and
 // (b) each region holds at most one global minimizer. If g(region i) meets only region j, the
 // minimizer in i (when there is one) maps to a global minimizer in j; when these arrows connect
 // every region to every other, all regions hold a minimizer and all minimal distances are
