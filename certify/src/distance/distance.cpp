@@ -3,6 +3,7 @@
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
+#include "surfcert/certify/distance/canal_pair.hpp"
 #include "surfcert/certify/distance/capsule_pair.hpp"
 #include "surfcert/certify/distance/cone_distance.hpp"
 #include "surfcert/certify/distance/contact_sampling.hpp"
@@ -484,6 +485,12 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
                  "(coaxial): not supported yet";
       return out;
     }
+    if ((ca || ta) && (cb || tb))
+      if (auto r = canal_pair_distance(a, b, digits)) {
+        r->solid = solid;
+        r->mode = mode;
+        return *r;
+      }
     out.status = Status::Undecided;
     out.note = "not supported yet: distance between two non-quadric surfaces (" +
                core::surface_kind(a) + ", " + core::surface_kind(b) + ")";
