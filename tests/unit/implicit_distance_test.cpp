@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <mpfr.h>
+
 #include <cmath>
 
 using namespace surfcert;
@@ -80,4 +82,37 @@ TEST(ImplicitDistance, InputLimits) {
   // infinity only; not supported, never guessed.
   auto u = certify::surface_distance(surf("z*(x^2 + y^2 + 1) = 1"), surf("z = -1"), 15, false);
   EXPECT_NE(u.status, certify::Status::Certified) << u.note;
+}
+
+TEST(ImplicitDistance, BoundedQuarticAgainstPlanes) {
+  // x^4 + y^4 + z^4 = 1 (bounded: its leading form is definite). Against x + y + z = 5 the
+  // nearest point is (a, a, a), 3 a^4 = 1: d = (5 - 3^(3/4)) / sqrt(3); against z = 5, 4 at
+  // (0, 0, 1); z = 1/2 cuts it (0 with both signs certified); an unbounded cubic crossing the
+  // plane is proven to meet it (its bounded-surface route is refused, the sign change answers).
+  const auto quartic = surf("x^4 + y^4 + z^4 = 1");
+  auto r = certify::surface_distance(quartic, surf("x + y + z = 5"), 30, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  mpfr_t d, l, u, t;
+  mpfr_inits2(400, d, l, u, t, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_ui(t, 3, MPFR_RNDN);
+  mpfr_rootn_ui(d, t, 4, MPFR_RNDN);
+  mpfr_pow_ui(d, d, 3, MPFR_RNDN);
+  mpfr_ui_sub(d, 5, d, MPFR_RNDN);
+  mpfr_sqrt(t, t, MPFR_RNDN);
+  mpfr_div(d, d, t, MPFR_RNDN);
+  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  EXPECT_TRUE(mpfr_cmp(l, d) <= 0 && mpfr_cmp(d, u) <= 0) << r.lower << " " << r.upper;
+  mpfr_clears(d, l, u, t, static_cast<mpfr_ptr>(nullptr));
+  ASSERT_FALSE(r.pairs.empty());
+  EXPECT_NEAR(r.pairs[0][0][0], std::pow(3.0, -0.25), 1e-9);
+  r = certify::surface_distance(surf("z = 5"), quartic, 15, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_LE(std::stod(r.lower), 4);
+  EXPECT_GE(std::stod(r.upper), 4);
+  r = certify::surface_distance(quartic, surf("z = 1/2"), 15, false);
+  EXPECT_EQ(r.upper, "0") << r.note;
+  r = certify::surface_distance(surf("x^3 + y^3 + z^3 = 1"), surf("z = 5"), 15, false);
+  EXPECT_EQ(r.upper, "0") << r.note;
+  EXPECT_EQ(r.method, "sign_change_contact");
 }

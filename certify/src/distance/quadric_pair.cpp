@@ -454,6 +454,119 @@ private:
   Rational r2_;
 };
 
+// A plane n.x = delta as the target: the distance of a point is |n.x - delta| / |n|.
+class PlaneTarget : public MinimumTarget {
+public:
+  PlaneTarget(std::array<Rational, 3> n, Rational delta)
+      : n_(std::move(n)), delta_(std::move(delta)) {}
+  void lower(arf_t out, const Ball (&box)[3], const Rational (&)[3], long prec) const override {
+    Ball d;
+    dist(d.v, box, prec);
+    arb_get_lbound_arf(out, d.v, prec);
+    if (arf_sgn(out) < 0) arf_zero(out);
+  }
+  std::optional<CandidatePair> upper(const Ball (&p)[3], long prec) const override {
+    CandidatePair cp;
+    dist(cp.d.v, p, prec);
+    Ball l;
+    value(l.v, p, prec);
+    const double nn = n_[0].to_double_approx() * n_[0].to_double_approx() +
+                      n_[1].to_double_approx() * n_[1].to_double_approx() +
+                      n_[2].to_double_approx() * n_[2].to_double_approx();
+    const double ld = arf_get_d(arb_midref(l.v), ARF_RND_NEAR);
+    for (size_t i = 0; i < 3; ++i) {
+      cp.p[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
+      cp.q[i] = cp.p[i] - ld * n_[i].to_double_approx() / nn; // the foot on the plane
+    }
+    return cp;
+  }
+
+private:
+  void value(arb_t out, const Ball (&p)[3], long prec) const {
+    Ball t;
+    arb_set_fmpq(out, delta_.raw(), prec);
+    arb_neg(out, out);
+    for (size_t i = 0; i < 3; ++i) {
+      arb_set_fmpq(t.v, n_[i].raw(), prec);
+      arb_addmul(out, t.v, p[i].v, prec);
+    }
+  }
+  void dist(arb_t out, const Ball (&p)[3], long prec) const {
+    Ball nn, t;
+    value(out, p, prec);
+    arb_abs(out, out);
+    for (const auto& x : n_) {
+      arb_set_fmpq(t.v, x.raw(), prec);
+      arb_addmul(nn.v, t.v, t.v, prec);
+    }
+    arb_sqrt(nn.v, nn.v, prec);
+    arb_div(out, out, nn.v, prec);
+  }
+  std::array<Rational, 3> n_;
+  Rational delta_;
+};
+
+// The leading form of f is definite on the unit cube's faces (certified by bisection in Arb):
+// then |f| grows like |x|^deg at infinity and the zero set is bounded.
+bool leading_form_definite(const core::Poly3& f) {
+  const int d = f.total_degree();
+  if (d < 2 || d % 2 != 0) return false;
+  core::Poly3 top;
+  for (const auto& [e, c] : f.terms())
+    if (e[0] + e[1] + e[2] == d) top.add_term(e, c);
+  const long prec = 128;
+  int sign = 0;
+  struct Sq {
+    int axis, side;
+    Rational a0, a1, b0, b1;
+  };
+  std::vector<Sq> live;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {-1, 1})
+      live.push_back({axis, side, Rational(-1), Rational(1), Rational(-1), Rational(1)});
+  for (int round = 0; round < 14 && !live.empty(); ++round) {
+    std::vector<Sq> next;
+    for (const Sq& q : live) {
+      Ball X[3], lo, hi, v, t;
+      for (int k = 0, free = 0; k < 3; ++k) {
+        if (k == q.axis) {
+          arb_set_si(X[k].v, q.side);
+          continue;
+        }
+        const Rational& l = free == 0 ? q.a0 : q.b0;
+        const Rational& h = free == 0 ? q.a1 : q.b1;
+        arb_set_fmpq(lo.v, l.raw(), prec);
+        arb_set_fmpq(hi.v, h.raw(), prec);
+        arb_union(X[k].v, lo.v, hi.v, prec);
+        ++free;
+      }
+      for (const auto& [e, c] : top.terms()) {
+        arb_set_fmpq(t.v, c.raw(), prec);
+        for (size_t k = 0; k < 3; ++k) {
+          Ball pw;
+          arb_pow_ui(pw.v, X[k].v, static_cast<ulong>(e[k]), prec);
+          arb_mul(t.v, t.v, pw.v, prec);
+        }
+        arb_add(v.v, v.v, t.v, prec);
+      }
+      const int sg = arb_is_positive(v.v) ? 1 : arb_is_negative(v.v) ? -1 : 0;
+      if (sg != 0) {
+        if (sign != 0 && sg != sign) return false;
+        sign = sg;
+        continue;
+      }
+      const Rational am = (q.a0 + q.a1) * Rational(1, 2), bm = (q.b0 + q.b1) * Rational(1, 2);
+      next.push_back({q.axis, q.side, q.a0, am, q.b0, bm});
+      next.push_back({q.axis, q.side, am, q.a1, q.b0, bm});
+      next.push_back({q.axis, q.side, q.a0, am, bm, q.b1});
+      next.push_back({q.axis, q.side, am, q.a1, bm, q.b1});
+    }
+    if (next.size() > 20000) return false;
+    live = std::move(next);
+  }
+  return live.empty() && sign != 0;
+}
+
 } // namespace
 
 MPoly poly3_to_mpoly(const core::Poly3& p) {
@@ -471,15 +584,130 @@ MPoly poly3_to_mpoly(const core::Poly3& p) {
   return r;
 }
 
+namespace {
+
+// A bounded implicit surface f = 0 (definite leading form) against any quadric g = 0 (planes
+// included). Contact: the extreme values of g on each compact component of {f = 0} are
+// critical values (f = 0, grad f x grad g = 0; singular points of f satisfy it too), so
+// certified points of both signs mean they cross and one strict sign at every critical point
+// means g never vanishes there. Disjoint: the offset system with f as the source (a plane: the
+// points of f = 0 whose normal is parallel to the plane's) over the exact solution cover; the
+// minimum is attained since f = 0 is bounded.
+DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::QuadricMatrix& q,
+                                        long digits, bool implicit_first) {
+  DistanceResult out;
+  if (!leading_form_definite(fp)) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: an implicit surface of degree > 2 against a quadric other "
+               "than an ellipsoid, unless the implicit surface is proven bounded (definite "
+               "leading form)";
+    return out;
+  }
+  const MPoly f = poly3_to_mpoly(fp);
+  const MPoly g = algebra::quadric_poly(q.matrix());
+  const V3 gf{f.derivative(0), f.derivative(1), f.derivative(2)};
+  const V3 gg{g.derivative(0), g.derivative(1), g.derivative(2)};
+  const V3 v = cross(gf, gg);
+  const std::array<std::array<long, 3>, 2> ls{{{3, -5, 7}, {2, 7, -11}}};
+  MPoly e1, e2;
+  for (size_t i = 0; i < 3; ++i) {
+    e1 = e1 + MPoly(ls[0][i]) * v[i];
+    e2 = e2 + MPoly(ls[1][i]) * v[i];
+  }
+  algebra::SolutionCover cc = algebra::cover_real_solutions({f, e1, e2}, Rational(1, 16));
+  if (!cc.ok) {
+    out.status = Status::Undecided;
+    out.note = "contact not decided: the critical points of the quadric's equation on the "
+               "implicit surface form a curve";
+    return out;
+  }
+  SourceQuadric src(f);
+  bool decided = false, meet = false;
+  for (long bits = 16; bits <= 512 && !decided; bits *= 2) {
+    Rational width(1);
+    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
+    algebra::refine_cover(cc, width);
+    const long prec = algebra::precision_for_width(width) + 64;
+    bool all_signed = true, any_pos = false, any_neg = false, cert_pos = false, cert_neg = false;
+    for (const auto& b : cc.boxes) {
+      Ball box[3], val;
+      algebra::box_balls(cc, b, box[0].v, box[1].v, box[2].v, prec);
+      algebra::evaluate(val.v, g, ball_point(box), prec);
+      const bool pos = arb_is_positive(val.v), neg = arb_is_negative(val.v);
+      any_pos = any_pos || pos;
+      any_neg = any_neg || neg;
+      all_signed = all_signed && (pos || neg);
+      if ((pos && !cert_pos) || (neg && !cert_neg)) {
+        const int sg = certified_sign_near(src, g, cc, b, prec);
+        cert_pos = cert_pos || sg > 0;
+        cert_neg = cert_neg || sg < 0;
+      }
+    }
+    if (cert_pos && cert_neg)
+      decided = meet = true;
+    else if (all_signed && !(any_pos && any_neg) && !cc.boxes.empty())
+      decided = true;
+  }
+  if (!decided) {
+    out.status = Status::Undecided;
+    out.note = "contact not decided: a critical value of the quadric's equation on the implicit "
+               "surface is not separated from 0 (touching?)";
+    return out;
+  }
+  if (meet) {
+    out.status = Status::Certified;
+    out.lower = out.upper = "0";
+    out.minimizers = "infinite";
+    out.note = "the surfaces meet (the quadric's equation takes both signs at certified points "
+               "of the bounded implicit surface)";
+    return out;
+  }
+  if (q.is_plane()) {
+    const std::array<Rational, 3> n{q(0, 3), q(1, 3), q(2, 3)};
+    const Rational delta = -q(3, 3) * Rational(1, 2);
+    V3 nv;
+    core::Integer den(1);
+    for (const auto& x : n)
+      fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
+    for (size_t i = 0; i < 3; ++i)
+      nv[i] = MPoly((n[i] * Rational(den)).num());
+    const V3 w = cross(gf, nv);
+    MPoly s1, s2;
+    for (size_t i = 0; i < 3; ++i) {
+      s1 = s1 + MPoly(ls[0][i]) * w[i];
+      s2 = s2 + MPoly(ls[1][i]) * w[i];
+    }
+    algebra::SolutionCover cover = algebra::cover_real_solutions({f, s1, s2}, Rational(1, 16));
+    if (!cover.ok) {
+      out.status = Status::Undecided;
+      out.note = "not supported yet: a curve of points whose normal is parallel to the plane's";
+      return out;
+    }
+    PlaneTarget tgt(n, delta);
+    minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
+    return out;
+  }
+  for (const auto& l : ls) {
+    Offset o = build_offset_poly(f, q, l);
+    o.source_is_a = implicit_first;
+    algebra::SolutionCover cover = algebra::cover_real_solutions(o.system, Rational(1, 16));
+    if (!cover.ok) continue;
+    QuadricTarget tgt(src, o, digits);
+    minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
+    return out;
+  }
+  out.status = Status::Undecided;
+  out.note = "not supported yet: the offset system has a curve of solutions";
+  return out;
+}
+
+} // namespace
+
 DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::QuadricMatrix& q,
                                          long digits, bool implicit_first) {
   DistanceResult out;
-  if (q.kind() != core::QuadricKind::Ellipsoid) {
-    out.status = Status::Undecided;
-    out.note = "not supported yet: an implicit surface of degree > 2 against a quadric other "
-               "than an ellipsoid";
-    return out;
-  }
+  if (q.kind() != core::QuadricKind::Ellipsoid)
+    return bounded_implicit_quadric(fp, q, digits, implicit_first);
   const MPoly f = poly3_to_mpoly(fp);
   // Contact: the sign of f at the critical points of f on the ellipsoid (connected, bounded:
   // f takes its extreme values there). Both signs at certified points: they cross.
