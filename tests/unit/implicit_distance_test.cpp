@@ -116,3 +116,25 @@ TEST(ImplicitDistance, BoundedQuarticAgainstPlanes) {
   EXPECT_EQ(r.upper, "0") << r.note;
   EXPECT_EQ(r.method, "sign_change_contact");
 }
+
+TEST(ImplicitDistance, CubicAgainstATorus) {
+  // x^3 + y^3 + z^3 = 100 (the graph z = cbrt(100 - x^3 - y^3)) against the torus R = 3, r = 1
+  // about z: sampled graph points, with the closed-form distance to the torus, are never
+  // closer than the certified lower bound and come close to it; two minimizers, mirror images
+  // under x <-> y (a proven tie); closed form 100^(1/3) - 4 at (4.64.., 0, 0) and (0, 4.64.., 0).
+  const auto cubic = surf("x^3 + y^3 + z^3 = 100");
+  const core::Surface torus(core::make_torus({0, 0, 0}, {0, 0, 1}, 3, 1));
+  const auto r = certify::surface_distance(cubic, torus, 15, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.minimizers, "2");
+  EXPECT_EQ(r.ties, "proven") << r.note;
+  double best = 1e300;
+  for (int i = -600; i <= 600; ++i)
+    for (int j = -600; j <= 600; ++j) {
+      const double x = i * 0.01, y = j * 0.01, z = std::cbrt(100 - x * x * x - y * y * y);
+      best = std::min(best, std::fabs(std::hypot(std::hypot(x, y) - 3, z) - 1));
+    }
+  EXPECT_GE(best, std::stod(r.lower) - 1e-12);
+  EXPECT_LT(best - r.approx, 0.05); // the graph is steep where z = 0: coarse sampling there
+  EXPECT_NEAR(r.approx, std::cbrt(100.0) - 4, 1e-14);
+}

@@ -3,7 +3,6 @@
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
-#include "surfcert/certify/distance/canal_pair.hpp"
 #include "surfcert/certify/distance/capsule_pair.hpp"
 #include "surfcert/certify/distance/cone_distance.hpp"
 #include "surfcert/certify/distance/contact_sampling.hpp"
@@ -15,6 +14,7 @@
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/certify/distance/solid_relation.hpp"
+#include "surfcert/certify/distance/sphere_family.hpp"
 #include "surfcert/certify/distance/symmetry.hpp"
 #include "surfcert/certify/distance/torus_distance.hpp"
 #include "surfcert/certify/distance/torus_pair.hpp"
@@ -485,8 +485,18 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
                  "(coaxial): not supported yet";
       return out;
     }
+    const auto* ia = std::get_if<core::ImplicitSurface>(&a);
+    const auto* ib = std::get_if<core::ImplicitSurface>(&b);
+    if ((ia && tb) || (ta && ib)) {
+      out = ia ? implicit_torus_distance(ia->f, *tb, digits, true)
+               : implicit_torus_distance(ib->f, *ta, digits, false);
+      out.solid = solid;
+      out.mode = mode;
+      if (out.method.empty() && !out.univariate_degrees.empty()) out.method = "offset_system";
+      return out;
+    }
     if ((ca || ta) && (cb || tb))
-      if (auto r = canal_pair_distance(a, b, digits)) {
+      if (auto r = sphere_family_distance(a, b, digits)) {
         r->solid = solid;
         r->mode = mode;
         return *r;

@@ -1,5 +1,7 @@
 #include "surfcert/certify/distance/torus_distance.hpp"
 
+#include "surfcert/certify/distance/quadric_pair.hpp"
+
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
@@ -533,6 +535,31 @@ Contact quadric_torus_contact(const SourceQuadric& src, const TorusPolys& tp, bo
 
 } // namespace
 
+namespace {
+
+// The offset system from a source S1 to the torus (normal line coplanar with the axis and
+// meeting the core circle), minimised over its exact solution cover.
+void offset_to_torus(const SourceQuadric& src, const core::Torus& t, const TorusPolys& tp,
+                     long digits, bool source_first, DistanceResult& out) {
+  const MPoly na = dot(src.N, tp.A), s = dot(tp.W, tp.A);
+  const MPoly F2 = dot(src.N, cross(tp.W, tp.A));
+  V3 u;
+  for (size_t i = 0; i < 3; ++i)
+    u[i] = na * tp.W[i] - s * src.N[i];
+  const MPoly F3 = dot(u, u) - MPoly(tp.DR2) * na * na;
+  algebra::SolutionCover cover = algebra::cover_real_solutions({src.f, F2, F3}, Rational(1, 16));
+  if (!cover.ok) {
+    out.status = Status::Undecided;
+    out.note = "not supported yet: the offset system has a curve of solutions (" + cover.note +
+               "; e.g. a surface of revolution sharing the torus axis)";
+    return;
+  }
+  TorusTarget tgt(t);
+  minimize_over_cover(cover, src, tgt, digits, source_first, true, out);
+}
+
+} // namespace
+
 DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::Torus& t,
                                       long digits, bool quadric_first) {
   // An ellipsoid outside the solid torus: the elimination-free certificate (torus_fast.hpp).
@@ -572,22 +599,49 @@ DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const 
     out.pairs.push_back({witness, witness});
     return out;
   }
-  // The offset system: normal line coplanar with the axis and meeting K.
-  const MPoly na = dot(src.N, tp.A), s = dot(tp.W, tp.A);
-  const MPoly F2 = dot(src.N, cross(tp.W, tp.A));
-  V3 u;
-  for (size_t i = 0; i < 3; ++i)
-    u[i] = na * tp.W[i] - s * src.N[i];
-  const MPoly F3 = dot(u, u) - MPoly(tp.DR2) * na * na;
-  algebra::SolutionCover cover = algebra::cover_real_solutions({src.f, F2, F3}, Rational(1, 16));
-  if (!cover.ok) {
+  offset_to_torus(src, t, tp, digits, quadric_first, out);
+  return out;
+}
+
+DistanceResult implicit_torus_distance(const core::Poly3& f, const core::Torus& t, long digits,
+                                       bool implicit_first) {
+  DistanceResult out;
+  const TorusPolys tp = torus_polys(t);
+  SourceQuadric src(poly3_to_mpoly(f));
+  // Contact: T's least value on each component of f = 0 is a critical value (T grows at
+  // infinity), so T > 0 at every critical point of T on f = 0 (singular points of f included:
+  // the cross product vanishes there) proves the surface outside the solid torus. Anything else
+  // is left to the caller's contact proofs.
+  V3 gT{tp.T.derivative(0), tp.T.derivative(1), tp.T.derivative(2)};
+  const V3 v = cross(src.N, gT);
+  const std::array<std::array<long, 3>, 2> l{{{3, -5, 7}, {2, 7, -11}}};
+  MPoly e1, e2;
+  for (size_t i = 0; i < 3; ++i) {
+    e1 = e1 + MPoly(l[0][i]) * v[i];
+    e2 = e2 + MPoly(l[1][i]) * v[i];
+  }
+  algebra::SolutionCover cc = algebra::cover_real_solutions({src.f, e1, e2}, Rational(1, 16));
+  bool outside = false;
+  for (long bits = 16; cc.ok && bits <= 512 && !outside; bits *= 2) {
+    Rational width(1);
+    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
+    algebra::refine_cover(cc, width);
+    const long prec = algebra::precision_for_width(width) + 64;
+    bool all_pos = true;
+    for (const auto& b : cc.boxes) {
+      Ball box[3], val;
+      algebra::box_balls(cc, b, box[0].v, box[1].v, box[2].v, prec);
+      algebra::evaluate(val.v, tp.T, ball_point(box), prec);
+      all_pos = all_pos && arb_is_positive(val.v);
+    }
+    outside = all_pos;
+  }
+  if (!outside) {
     out.status = Status::Undecided;
-    out.note = "not supported yet: the offset system has a curve of solutions (" + cover.note +
-               "; e.g. a quadric of revolution sharing the torus axis)";
+    out.note = "contact not decided: the implicit surface may meet or enter the solid torus";
     return out;
   }
-  TorusTarget tgt(t);
-  minimize_over_cover(cover, src, tgt, digits, quadric_first, true, out);
+  offset_to_torus(src, t, tp, digits, implicit_first, out);
   return out;
 }
 

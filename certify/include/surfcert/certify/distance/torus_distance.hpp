@@ -16,6 +16,7 @@
 #pragma once
 
 #include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/poly3.hpp"
 #include "surfcert/core/torus.hpp"
 
 namespace surfcert::certify {
@@ -30,5 +31,12 @@ DistanceResult quadric_torus_distance(const core::QuadricMatrix& q, const core::
 /// the fast path is tested against.
 DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const core::Torus& t,
                                             long digits, bool quadric_first);
+
+/// An implicit surface f = 0 (degree 3 to 6) against a ring torus: disjointness from T > 0 at
+/// every critical point of the torus equation T on f = 0 (T's least value on each component),
+/// then the same offset system with f as the source; undecided otherwise (the caller's
+/// contact proofs may still show that they meet).
+DistanceResult implicit_torus_distance(const core::Poly3& f, const core::Torus& t, long digits,
+                                       bool implicit_first);
 
 } // namespace surfcert::certify
