@@ -137,3 +137,19 @@ TEST(ContactSampling, ToriAndCanalSurfacesThatMeet) {
   EXPECT_FALSE(certify::surfaces_meet_by_sign_change(
       core::Surface(A), core::Surface(core::make_torus({3, 0, 0}, {0, 1, 0}, 3, 1)), w));
 }
+
+TEST(ContactSampling, CanalSurfacesThatMeet) {
+  // A parabolic canal whose end ball sits inside a capsule's tube (they cross), and the same
+  // canal far above it (disjoint: never reported as meeting).
+  const auto K = core::Surface(
+      core::make_canal({std::vector<Rational>{0, 1}, {0}, {9, 0, -1}}, {Rational(1, 2)}, -2, 2));
+  auto capsule = [](long z) {
+    return core::Surface(core::make_canal({std::vector<Rational>{0, 4}, {0}, {z}}, {1}, 0, 1));
+  };
+  std::array<double, 3> w{};
+  EXPECT_TRUE(certify::surfaces_meet_by_sign_change(K, capsule(5), w));
+  const auto r = certify::surface_distance(K, capsule(5), 15, false);
+  EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.upper, "0");
+  EXPECT_FALSE(certify::surfaces_meet_by_sign_change(K, capsule(20), w));
+}

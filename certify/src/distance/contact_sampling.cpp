@@ -4,7 +4,9 @@
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/solid_relation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace surfcert::certify {
 
@@ -187,8 +189,56 @@ bool torus_side_points(const core::Torus& t, const core::Surface& other,
   return true;
 }
 
+// The unit direction of the stereographic parameters (u, v): exact rationals.
+std::array<Rational, 3> stereo(const Rational& u, const Rational& v) {
+  const Rational n = Rational(1) + u * u + v * v;
+  return {Rational(2) * u / n, Rational(2) * v / n, (Rational(1) - u * u - v * v) / n};
+}
+
+// Support points of a canal solid in a grid of directions: genuine points of its outer
+// boundary (the boundary of the unbounded complement of a connected solid: connected), the
+// witness by bisection between the two sides over the directions (approximate).
+bool canal_side_points(const core::CanalSurface& c, const core::Surface& other,
+                       std::array<double, 3>& witness) {
+  bool have[2] = {false, false};
+  Rational par[2][2];
+  for (int i = -6; i <= 6; ++i)
+    for (int j = -6; j <= 6; ++j) {
+      const Rational u(i, 3), v(j, 3);
+      Ball p[3];
+      if (!canal_support_point(c, stereo(u, v), p)) continue;
+      const int sd = side_of(other, p);
+      if (sd == 0) continue;
+      const size_t w = sd > 0 ? 1 : 0;
+      if (have[w]) continue;
+      have[w] = true;
+      par[w][0] = u;
+      par[w][1] = v;
+    }
+  if (!have[0] || !have[1]) return false;
+  Rational lo[2] = {par[0][0], par[0][1]}, hi[2] = {par[1][0], par[1][1]};
+  Ball p[3];
+  for (int it = 0; it < 40; ++it) {
+    const Rational m[2] = {(lo[0] + hi[0]) * Rational(1, 2), (lo[1] + hi[1]) * Rational(1, 2)};
+    if (!canal_support_point(c, stereo(m[0], m[1]), p)) break;
+    const int sd = side_of(other, p);
+    if (sd == 0) {
+      lo[0] = m[0];
+      lo[1] = m[1];
+      break;
+    }
+    (sd > 0 ? hi : lo)[0] = m[0];
+    (sd > 0 ? hi : lo)[1] = m[1];
+  }
+  canal_support_point(c, stereo(lo[0], lo[1]), p);
+  for (size_t l = 0; l < 3; ++l)
+    witness[l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
+  return true;
+}
+
 bool one_side(const core::Surface& a, const core::Surface& b, std::array<double, 3>& witness) {
   if (const auto* t = std::get_if<core::Torus>(&a)) return torus_side_points(*t, b, witness);
+  if (const auto* c = std::get_if<core::CanalSurface>(&a)) return canal_side_points(*c, b, witness);
   const auto* qa = std::get_if<core::QuadricMatrix>(&a);
   if (!qa) return false;
   std::array<double, 3> at[2]{};
@@ -220,9 +270,128 @@ bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix
   return surfaces_meet_by_sign_change(core::Surface(a), core::Surface(b), witness);
 }
 
+namespace {
+
+// A float distance-like function that vanishes exactly on the surface (for polishing the
+// approximate witness only; never used in a decision).
+double level(const core::Surface& s, const std::array<double, 3>& x) {
+  if (const auto* q = std::get_if<core::QuadricMatrix>(&s)) {
+    std::array<double, 3> g{};
+    for (int i = 0; i < 3; ++i) {
+      double v = (*q)(i, 3).to_double_approx();
+      for (int j = 0; j < 3; ++j)
+        v += (*q)(i, j).to_double_approx() * x[static_cast<size_t>(j)];
+      g[static_cast<size_t>(i)] = 2 * v;
+    }
+    const double n = std::hypot(g[0], g[1], g[2]);
+    return eval_d(*q, x) / (n > 0 ? n : 1);
+  }
+  if (const auto* t = std::get_if<core::Torus>(&s)) {
+    double w[3], h = 0, an = 0;
+    for (size_t i = 0; i < 3; ++i) {
+      w[i] = x[i] - t->centre[i].to_double_approx();
+      h += w[i] * t->axis[i].to_double_approx();
+      an += t->axis[i].to_double_approx() * t->axis[i].to_double_approx();
+    }
+    h /= std::sqrt(an);
+    const double rho = std::sqrt(std::max(0.0, w[0] * w[0] + w[1] * w[1] + w[2] * w[2] - h * h));
+    return std::hypot(rho - t->R.to_double_approx(), h) - t->r.to_double_approx();
+  }
+  if (const auto* c = std::get_if<core::CanalSurface>(&s)) {
+    auto ev = [](const std::vector<Rational>& p, double t) {
+      double v = 0;
+      for (size_t k = p.size(); k-- > 0;)
+        v = v * t + p[k].to_double_approx();
+      return v;
+    };
+    auto f = [&](double t) {
+      return std::hypot(x[0] - ev(c->spine[0], t), x[1] - ev(c->spine[1], t),
+                        x[2] - ev(c->spine[2], t)) -
+             ev(c->radius, t);
+    };
+    const double t0 = c->t0.to_double_approx(), t1 = c->t1.to_double_approx();
+    double bt = t0, best = f(t0);
+    for (int k = 1; k <= 400; ++k) {
+      const double t = t0 + (t1 - t0) * k / 400;
+      if (f(t) < best) best = f(t), bt = t;
+    }
+    for (double h = (t1 - t0) / 400; h > 1e-15 * (1 + std::fabs(bt)); h *= 0.5)
+      for (double dt : {-h, h})
+        if (bt + dt >= t0 && bt + dt <= t1 && f(bt + dt) < best) best = f(bt + dt), bt += dt;
+    return best;
+  }
+  if (const auto* im = std::get_if<core::ImplicitSurface>(&s)) {
+    auto F = [&](const std::array<double, 3>& y) {
+      double v = 0;
+      for (const auto& [e, cf] : im->f.terms())
+        v += cf.to_double_approx() * std::pow(y[0], e[0]) * std::pow(y[1], e[1]) *
+             std::pow(y[2], e[2]);
+      return v;
+    };
+    const double f0 = F(x), hh = 1e-7 * (1 + std::hypot(x[0], x[1], x[2]));
+    double g2 = 0;
+    for (size_t i = 0; i < 3; ++i) {
+      std::array<double, 3> y = x;
+      y[i] += hh;
+      const double d = (F(y) - f0) / hh;
+      g2 += d * d;
+    }
+    return f0 / (g2 > 0 ? std::sqrt(g2) : 1);
+  }
+  return 0;
+}
+
+// Gauss-Newton on (level_a, level_b) = 0 from the sampled point: the minimum-norm step of the
+// 2 x 3 system (finite-difference Jacobian). Keeps the best point found.
+double polish_witness(const core::Surface& a, const core::Surface& b, std::array<double, 3>& w) {
+  auto res = [&](const std::array<double, 3>& x) { return std::hypot(level(a, x), level(b, x)); };
+  double best = res(w);
+  std::array<double, 3> x = w;
+  for (int it = 0; it < 200 && best > 0; ++it) {
+    const double h = 1e-7 * (1 + std::hypot(x[0], x[1], x[2]));
+    const double r0[2] = {level(a, x), level(b, x)};
+    double J[2][3];
+    for (size_t i = 0; i < 3; ++i) {
+      std::array<double, 3> y = x;
+      y[i] += h;
+      J[0][i] = (level(a, y) - r0[0]) / h;
+      J[1][i] = (level(b, y) - r0[1]) / h;
+    }
+    // step = -J^T (J J^T)^-1 r
+    const double m00 = J[0][0] * J[0][0] + J[0][1] * J[0][1] + J[0][2] * J[0][2],
+                 m01 = J[0][0] * J[1][0] + J[0][1] * J[1][1] + J[0][2] * J[1][2],
+                 m11 = J[1][0] * J[1][0] + J[1][1] * J[1][1] + J[1][2] * J[1][2];
+    // Levenberg-Marquardt damping: the two normals may be parallel at the sampled point.
+    bool improved = false;
+    for (double lam = 1e-12 * (m00 + m11); lam < 1e6 * (m00 + m11 + 1); lam *= 10) {
+      const double a00 = m00 + lam, a11 = m11 + lam, det = a00 * a11 - m01 * m01;
+      if (!(std::fabs(det) > 0)) continue;
+      const double y0 = (a11 * r0[0] - m01 * r0[1]) / det, y1 = (a00 * r0[1] - m01 * r0[0]) / det;
+      std::array<double, 3> z = x;
+      for (size_t i = 0; i < 3; ++i)
+        z[i] -= J[0][i] * y0 + J[1][i] * y1;
+      const double r = res(z);
+      if (r < best) {
+        best = r;
+        x = z;
+        w = z;
+        improved = true;
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  return best;
+}
+
+} // namespace
+
 bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b,
-                                  std::array<double, 3>& witness) {
-  return one_side(a, b, witness) || one_side(b, a, witness);
+                                  std::array<double, 3>& witness, double* residual) {
+  if (!one_side(a, b, witness) && !one_side(b, a, witness)) return false;
+  const double r = polish_witness(a, b, witness);
+  if (residual) *residual = r;
+  return true;
 }
 
 } // namespace surfcert::certify

@@ -533,18 +533,22 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   // Left undecided (tubes that may meet, a canal that may cross a torus, ...): a sign change
   // of one surface's equation along the other, connected one proves contact.
   std::array<double, 3> w{};
+  double residual = 0;
   if (r.status == Status::Undecided && !two_quadrics && !parametric &&
-      surfaces_meet_by_sign_change(a, b, w)) {
+      surfaces_meet_by_sign_change(a, b, w, &residual)) {
     const std::string why = r.note;
     r = DistanceResult();
     r.status = Status::Certified;
     r.mode = mode;
     r.lower = r.upper = "0";
     r.minimizers = "infinite";
-    r.pairs.push_back({w, w});
+    const bool located = residual <= 1e-9 * (1 + std::hypot(w[0], w[1], w[2]));
+    if (located) r.pairs.push_back({w, w});
     r.method = "sign_change_contact";
-    r.note = "the surfaces meet: certified points of a connected surface on both sides of the "
-             "other (the pair is an approximate common point)" +
+    r.note = std::string("the surfaces meet: certified points of a connected surface on both "
+                         "sides of the other") +
+             (located ? " (the pair is an approximate common point)"
+                      : " (no approximate common point located: no pair listed)") +
              (why.empty() ? std::string() : "; the other routes said: " + why);
   }
   // Two quadrics went through the overload above, which already tried.

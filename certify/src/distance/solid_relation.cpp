@@ -100,60 +100,8 @@ bool boundary_point(const core::Surface& s, Ball (&p)[3]) {
     }
     return true;
   }
-  if (const auto* c = std::get_if<core::CanalSurface>(&s)) {
-    // The support point in direction x: C(t*) + r(t*) e1, t* maximising C_x + r (branch and
-    // bound: the survivors' hull holds every maximiser).
-    std::vector<Rational> phi(std::max(c->spine[0].size(), c->radius.size()));
-    for (size_t k = 0; k < phi.size(); ++k)
-      phi[k] = (k < c->spine[0].size() ? c->spine[0][k] : Rational(0)) +
-               (k < c->radius.size() ? c->radius[k] : Rational(0));
-    std::vector<std::pair<Rational, Rational>> live{{c->t0, c->t1}};
-    for (int round = 0; round < 60 && live.size() < 64; ++round) {
-      arf_t best;
-      arf_init(best);
-      arf_neg_inf(best);
-      std::vector<Ball> up(live.size());
-      for (size_t i = 0; i < live.size(); ++i) {
-        Ball T, m, v;
-        interval(T.v, live[i].first, live[i].second);
-        horner(up[i].v, phi, T.v);
-        const Rational mid = (live[i].first + live[i].second) * Rational(1, 2);
-        arb_set_fmpq(m.v, mid.raw(), kPrec);
-        horner(v.v, phi, m.v);
-        arf_t lb;
-        arf_init(lb);
-        arb_get_lbound_arf(lb, v.v, kPrec);
-        if (arf_cmp(lb, best) > 0) arf_set(best, lb);
-        arf_clear(lb);
-      }
-      std::vector<std::pair<Rational, Rational>> next;
-      for (size_t i = 0; i < live.size(); ++i) {
-        arf_t ub;
-        arf_init(ub);
-        arb_get_ubound_arf(ub, up[i].v, kPrec);
-        if (arf_cmp(ub, best) >= 0) {
-          const Rational mid = (live[i].first + live[i].second) * Rational(1, 2);
-          next.emplace_back(live[i].first, mid);
-          next.emplace_back(mid, live[i].second);
-        }
-        arf_clear(ub);
-      }
-      arf_clear(best);
-      live = std::move(next);
-    }
-    Rational lo = live.front().first, hi = live.front().second;
-    for (const auto& iv : live) {
-      lo = std::min(lo, iv.first);
-      hi = std::max(hi, iv.second);
-    }
-    Ball T, r;
-    interval(T.v, lo, hi);
-    for (size_t i = 0; i < 3; ++i)
-      horner(p[i].v, c->spine[i], T.v);
-    horner(r.v, c->radius, T.v);
-    arb_add(p[0].v, p[0].v, r.v, kPrec);
-    return true;
-  }
+  if (const auto* c = std::get_if<core::CanalSurface>(&s))
+    return canal_support_point(*c, {Rational(1), Rational(0), Rational(0)}, p);
   return false;
 }
 
@@ -238,6 +186,72 @@ int inside(const core::Surface& s, const Ball (&p)[3]) {
 }
 
 } // namespace
+
+bool canal_support_point(const core::CanalSurface& c, const std::array<Rational, 3>& e,
+                         Ball (&p)[3]) {
+  // C(t*) + r(t*) e, t* maximising C(t).e + r(t) (branch and bound: the survivors' hull holds
+  // every maximiser, so the ball holds the support point).
+  size_t n = c.radius.size();
+  for (const auto& q : c.spine)
+    n = std::max(n, q.size());
+  std::vector<Rational> phi(n, Rational(0));
+  for (size_t k = 0; k < n; ++k) {
+    for (size_t i = 0; i < 3; ++i)
+      if (k < c.spine[i].size()) phi[k] += c.spine[i][k] * e[i];
+    if (k < c.radius.size()) phi[k] += c.radius[k];
+  }
+  std::vector<std::pair<Rational, Rational>> live{{c.t0, c.t1}};
+  for (int round = 0; round < 60 && live.size() < 64; ++round) {
+    arf_t best;
+    arf_init(best);
+    arf_neg_inf(best);
+    std::vector<Ball> up(live.size());
+    for (size_t i = 0; i < live.size(); ++i) {
+      Ball T, m, v;
+      interval(T.v, live[i].first, live[i].second);
+      horner(up[i].v, phi, T.v);
+      const Rational mid = (live[i].first + live[i].second) * Rational(1, 2);
+      arb_set_fmpq(m.v, mid.raw(), kPrec);
+      horner(v.v, phi, m.v);
+      arf_t lb;
+      arf_init(lb);
+      arb_get_lbound_arf(lb, v.v, kPrec);
+      if (arf_cmp(lb, best) > 0) arf_set(best, lb);
+      arf_clear(lb);
+    }
+    std::vector<std::pair<Rational, Rational>> next;
+    for (size_t i = 0; i < live.size(); ++i) {
+      arf_t ub;
+      arf_init(ub);
+      arb_get_ubound_arf(ub, up[i].v, kPrec);
+      if (arf_cmp(ub, best) >= 0) {
+        const Rational mid = (live[i].first + live[i].second) * Rational(1, 2);
+        next.emplace_back(live[i].first, mid);
+        next.emplace_back(mid, live[i].second);
+      }
+      arf_clear(ub);
+    }
+    arf_clear(best);
+    live = std::move(next);
+  }
+  if (live.empty()) return false;
+  Rational lo = live.front().first, hi = live.front().second;
+  for (const auto& iv : live) {
+    lo = std::min(lo, iv.first);
+    hi = std::max(hi, iv.second);
+  }
+  Ball T, r;
+  interval(T.v, lo, hi);
+  for (size_t i = 0; i < 3; ++i)
+    horner(p[i].v, c.spine[i], T.v);
+  horner(r.v, c.radius, T.v);
+  for (size_t i = 0; i < 3; ++i) {
+    Ball ei;
+    arb_set_fmpq(ei.v, e[i].raw(), kPrec);
+    arb_addmul(p[i].v, r.v, ei.v, kPrec);
+  }
+  return true;
+}
 
 int side_of(const core::Surface& s, const Ball (&p)[3]) {
   if (is_closed_surface(s)) return -inside(s, p);

@@ -27,11 +27,15 @@ bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix
                          std::array<double, 3>& witness);
 
 /// Any two surfaces: the sampled (connected) surface is a quadric (gradient-line projections of
-/// a rational grid) or a ring torus (a grid of angles, rational multiples of pi); the other
+/// a rational grid), a ring torus (a grid of angles, rational multiples of pi) or a canal
+/// surface (support points in a grid of rational unit directions: they lie on the boundary of
+/// the unbounded complement of the solid, which is connected); the other
 /// surface's side is certified by solid_relation.hpp's side_of (quadric, torus, canal,
-/// implicit). Witness approximate (bisection along a path on the sampled surface).
+/// implicit). Witness approximate: bisection along a path on the sampled surface, then a
+/// float Gauss-Newton polish of both surfaces' distance-like functions; `residual` (when given)
+/// receives the remaining float residual of the witness (how far it is from both surfaces).
 bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b,
-                                  std::array<double, 3>& witness);
+                                  std::array<double, 3>& witness, double* residual = nullptr);
 
 /// Exact: false for the disconnected real quadrics (two-sheeted hyperboloid, hyperbolic
 /// cylinder, two parallel planes), true otherwise.

@@ -26,6 +26,12 @@ bool is_closed_surface(const core::Surface& s);
 /// are disjoint; 0: not decided (or a surface is not closed).
 int solids_nested(const core::Surface& a, const core::Surface& b);
 
+/// A ball holding the support point of the canal solid in the unit direction e (a genuine
+/// point of the canal surface, on the boundary of the unbounded complement); false when not
+/// enclosed.
+bool canal_support_point(const core::CanalSurface& c, const std::array<core::Rational, 3>& e,
+                         Ball (&p)[3]);
+
 /// The certified side of the ball point p (which must not meet the surface for an answer):
 /// -1 inside a closed surface's solid (or where a quadric's or implicit polynomial is
 /// negative), +1 outside (positive), 0 not certified. The surface is the zero set of a
