@@ -8,6 +8,7 @@
 #include "surfcert/certify/distance/contact_sampling.hpp"
 #include "surfcert/certify/distance/convex_distance.hpp"
 #include "surfcert/certify/distance/cylinder_pair.hpp"
+#include "surfcert/certify/distance/implicit_bnb.hpp"
 #include "surfcert/certify/distance/nested_convex.hpp"
 #include "surfcert/certify/distance/parametric_distance.hpp"
 #include "surfcert/certify/distance/plane_quadric.hpp"
@@ -487,9 +488,21 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
     }
     const auto* ia = std::get_if<core::ImplicitSurface>(&a);
     const auto* ib = std::get_if<core::ImplicitSurface>(&b);
+    if (ia && ib) { // two implicit surfaces: the generic branch and bound (bounded, smooth)
+      out = implicit_pair_distance(ia->f, ib->f, digits);
+      if (out.upper.empty()) out.lower.clear(); // no enclosure yet: report none
+      out.solid = solid;
+      out.mode = mode;
+      return out;
+    }
     if ((ia && tb) || (ta && ib)) {
-      out = ia ? implicit_torus_distance(ia->f, *tb, digits, true)
-               : implicit_torus_distance(ib->f, *ta, digits, false);
+      // The generic branch and bound first (fast when the implicit surface is bounded), then
+      // the offset system with the implicit source (slow beyond cubics, but any degree).
+      out = ia ? implicit_pair_distance(ia->f, torus_polynomial(*tb), digits)
+               : implicit_pair_distance(torus_polynomial(*ta), ib->f, digits);
+      if (out.status != Status::Certified)
+        out = ia ? implicit_torus_distance(ia->f, *tb, digits, true)
+                 : implicit_torus_distance(ib->f, *ta, digits, false);
       out.solid = solid;
       out.mode = mode;
       if (out.method.empty() && !out.univariate_degrees.empty()) out.method = "offset_system";
