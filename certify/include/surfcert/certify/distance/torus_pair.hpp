@@ -14,12 +14,12 @@
 // <= 10^-digits. The tubes are proven disjoint when min f > r1 + r2 is certain.
 // Coaxial tori (one axis line): the distance of the two meridian circles in the half-plane, a
 // closed form (apart, one tube inside the other, or meeting along circles), minimizers
-// "infinite" (circles of pairs). Nested tubes (one torus inside the other's tube): d = min_t (r_out - r_in - dist(K_in(t),
-// K_out)) when positive, by the same branch and bound (a maximisation of the circle distance);
-// positivity proves the nesting. Returns nullopt (the caller tries a contact proof, else
-// reports undecided) when the tubes may meet, or when the minimizers may form a continuum
-// (coaxial tori: the surviving intervals cover the circle or exceed the budget). Ties: proven
-// by symmetry where possible (symmetry.hpp), else reported as not proven.
+// "infinite" (circles of pairs). Nested tubes (one torus inside the other's tube): d = min_t (r_out
+// - r_in - dist(K_in(t), K_out)) when positive, by the same branch and bound (a maximisation of the
+// circle distance); positivity proves the nesting. Returns nullopt (the caller tries a contact
+// proof, else reports undecided) when the tubes may meet, or when the minimizers may form a
+// continuum (coaxial tori: the surviving intervals cover the circle or exceed the budget). Ties:
+// proven by symmetry where possible (symmetry.hpp), else reported as not proven.
 #pragma once
 
 #include "surfcert/certify/distance/distance.hpp"
