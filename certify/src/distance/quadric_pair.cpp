@@ -3,6 +3,7 @@
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/at_infinity.hpp"
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/critical_signs.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/revolution.hpp"
@@ -34,6 +35,9 @@ struct Offset {
   std::array<std::array<Rational, 3>, 3> hess_f;
   std::array<MPoly, 3> system; // f, C, G
 };
+
+// Two generic integer combinations of three equations (fixed, so runs are reproducible).
+constexpr std::array<std::array<long, 3>, 2> kGenericMix{{{3, -5, 7}, {2, 7, -11}}};
 
 Offset build_offset_poly(MPoly f, const core::QuadricMatrix& tgt, const std::array<long, 3>& l) {
   Offset o;
@@ -371,7 +375,7 @@ DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
   }
   std::stable_sort(orders.begin(), orders.end(),
                    [](const auto& u, const auto& v) { return u.second < v.second; });
-  const std::array<std::array<long, 3>, 2> ls{{{3, -5, 7}, {2, 7, -11}}};
+  const auto& ls = kGenericMix;
   std::optional<Offset> off;
   algebra::SolutionCover cover;
   std::string why;
@@ -605,49 +609,17 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
   }
   const MPoly f = poly3_to_mpoly(fp);
   const MPoly g = algebra::quadric_poly(q.matrix());
-  const V3 gf{f.derivative(0), f.derivative(1), f.derivative(2)};
-  const V3 gg{g.derivative(0), g.derivative(1), g.derivative(2)};
-  const V3 v = cross(gf, gg);
-  const std::array<std::array<long, 3>, 2> ls{{{3, -5, 7}, {2, 7, -11}}};
-  MPoly e1, e2;
-  for (size_t i = 0; i < 3; ++i) {
-    e1 = e1 + MPoly(ls[0][i]) * v[i];
-    e2 = e2 + MPoly(ls[1][i]) * v[i];
-  }
-  algebra::SolutionCover cc = algebra::cover_real_solutions({f, e1, e2}, Rational(1, 16));
-  if (!cc.ok) {
+  const auto& ls = kGenericMix;
+  SourceQuadric src(f);
+  const CriticalSigns cs = critical_signs(src, g);
+  if (!cs.finite) {
     out.status = Status::Undecided;
     out.note = "contact not decided: the critical points of the quadric's equation on the "
                "implicit surface form a curve";
     return out;
   }
-  SourceQuadric src(f);
-  bool decided = false, meet = false;
-  for (long bits = 16; bits <= 512 && !decided; bits *= 2) {
-    Rational width(1);
-    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
-    algebra::refine_cover(cc, width);
-    const long prec = algebra::precision_for_width(width) + 64;
-    bool all_signed = true, any_pos = false, any_neg = false, cert_pos = false, cert_neg = false;
-    for (const auto& b : cc.boxes) {
-      Ball box[3], val;
-      algebra::box_balls(cc, b, box[0].v, box[1].v, box[2].v, prec);
-      algebra::evaluate(val.v, g, ball_point(box), prec);
-      const bool pos = arb_is_positive(val.v), neg = arb_is_negative(val.v);
-      any_pos = any_pos || pos;
-      any_neg = any_neg || neg;
-      all_signed = all_signed && (pos || neg);
-      if ((pos && !cert_pos) || (neg && !cert_neg)) {
-        const int sg = certified_sign_near(src, g, cc, b, prec);
-        cert_pos = cert_pos || sg > 0;
-        cert_neg = cert_neg || sg < 0;
-      }
-    }
-    if (cert_pos && cert_neg)
-      decided = meet = true;
-    else if (all_signed && !(any_pos && any_neg) && !cc.boxes.empty())
-      decided = true;
-  }
+  const bool meet = cs.pos_point && cs.neg_point;
+  const bool decided = meet || (cs.all_signed && !(cs.any_pos && cs.any_neg) && cs.boxes > 0);
   if (!decided) {
     out.status = Status::Undecided;
     out.note = "contact not decided: a critical value of the quadric's equation on the implicit "
@@ -671,7 +643,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
       fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
     for (size_t i = 0; i < 3; ++i)
       nv[i] = MPoly((n[i] * Rational(den)).num());
-    const V3 w = cross(gf, nv);
+    const V3 w = cross(src.N, nv);
     MPoly s1, s2;
     for (size_t i = 0; i < 3; ++i) {
       s1 = s1 + MPoly(ls[0][i]) * w[i];
@@ -711,48 +683,17 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
   const MPoly f = poly3_to_mpoly(fp);
   // Contact: the sign of f at the critical points of f on the ellipsoid (connected, bounded:
   // f takes its extreme values there). Both signs at certified points: they cross.
+  const auto& ls = kGenericMix;
   SourceQuadric ell(q);
-  const V3 gf{f.derivative(0), f.derivative(1), f.derivative(2)};
-  const V3 v = cross(ell.N, gf);
-  MPoly e1, e2;
-  const std::array<std::array<long, 3>, 2> ls{{{3, -5, 7}, {2, 7, -11}}};
-  for (size_t i = 0; i < 3; ++i) {
-    e1 = e1 + MPoly(ls[0][i]) * v[i];
-    e2 = e2 + MPoly(ls[1][i]) * v[i];
-  }
-  algebra::SolutionCover cc = algebra::cover_real_solutions({ell.f, e1, e2}, Rational(1, 16));
-  if (!cc.ok) {
+  const CriticalSigns cs = critical_signs(ell, f);
+  if (!cs.finite) {
     out.status = Status::Undecided;
     out.note = "contact not decided: the critical points of f on the ellipsoid form a curve";
     return out;
   }
-  bool decided = false, meet = false;
-  for (long bits = 16; bits <= 512 && !decided; bits *= 2) {
-    Rational width(1);
-    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
-    algebra::refine_cover(cc, width);
-    const long prec = algebra::precision_for_width(width) + 64;
-    bool all_signed = true, any_pos = false, any_neg = false, cert_pos = false, cert_neg = false;
-    for (const auto& b : cc.boxes) {
-      Ball box[3], val;
-      algebra::box_balls(cc, b, box[0].v, box[1].v, box[2].v, prec);
-      algebra::evaluate(val.v, f, ball_point(box), prec);
-      const bool pos = arb_is_positive(val.v), neg = arb_is_negative(val.v);
-      any_pos = any_pos || pos;
-      any_neg = any_neg || neg;
-      all_signed = all_signed && (pos || neg);
-      if ((pos && !cert_pos) || (neg && !cert_neg)) {
-        const int sg = certified_sign_near(ell, f, cc, b, prec);
-        cert_pos = cert_pos || sg > 0;
-        cert_neg = cert_neg || sg < 0;
-      }
-    }
-    if (cert_pos && cert_neg) {
-      decided = meet = true;
-    } else if (all_signed && !(any_pos && any_neg)) {
-      decided = true; // one sign at every critical point: f never vanishes on the ellipsoid
-    }
-  }
+  // One sign at every critical point: f never vanishes on the ellipsoid.
+  const bool meet = cs.pos_point && cs.neg_point;
+  const bool decided = meet || (cs.all_signed && !(cs.any_pos && cs.any_neg) && cs.boxes > 0);
   if (!decided) {
     out.status = Status::Undecided;
     out.note = "contact not decided: a critical value of f on the ellipsoid is not separated "

@@ -3,6 +3,7 @@
 #include "surfcert/certify/distance/quadric_pair.hpp"
 
 #include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/certify/distance/critical_signs.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/revolution.hpp"
@@ -469,65 +470,39 @@ enum class Contact { Disjoint, Meet, Unknown };
 // Sign of the torus quartic over S1 at the critical points of T restricted to S1 (see header).
 Contact quadric_torus_contact(const SourceQuadric& src, const TorusPolys& tp, bool ellipsoid,
                               std::array<double, 3>& witness, std::string& why) {
-  V3 gT{tp.T.derivative(0), tp.T.derivative(1), tp.T.derivative(2)};
-  const V3 v = cross(src.N, gT);
-  const std::array<std::array<long, 3>, 2> l{{{3, -5, 7}, {2, 7, -11}}};
-  MPoly e1, e2;
-  for (size_t i = 0; i < 3; ++i) {
-    e1 = e1 + MPoly(l[0][i]) * v[i];
-    e2 = e2 + MPoly(l[1][i]) * v[i];
-  }
-  algebra::SolutionCover cover = algebra::cover_real_solutions({src.f, e1, e2}, Rational(1, 16));
-  if (!cover.ok) {
+  // Certified points of S1 inside (T < 0) and outside (T > 0) the solid torus; points inside
+  // and outside (or, for a non-ellipsoid quadric, a component reaching infinity) mean the
+  // surface crosses the torus.
+  const auto crosses = [ellipsoid](const CriticalSigns& s) {
+    return s.neg_point && (s.pos_point || !ellipsoid);
+  };
+  const auto disjoint = [ellipsoid](const CriticalSigns& s) {
+    return s.all_signed && (!s.any_neg || (ellipsoid && !s.any_pos));
+  };
+  const CriticalSigns cs =
+      critical_signs(src, tp.T, [&](const CriticalSigns& s) { return crosses(s) || disjoint(s); });
+  if (!cs.finite) {
     why = "the critical points of the torus equation on the quadric form a curve";
     return Contact::Unknown;
   }
-  bool any_in = false, any_out = false;
-  std::optional<std::array<double, 3>> p_in, p_out;
-  for (long bits = 16; bits <= 512; bits *= 2) {
-    Rational width(1);
-    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
-    algebra::refine_cover(cover, width);
-    const long prec = algebra::precision_for_width(width) + 64;
-    bool all_signed = true;
-    any_in = any_out = false;
-    for (const auto& b : cover.boxes) {
-      Ball box[3], val;
-      algebra::box_balls(cover, b, box[0].v, box[1].v, box[2].v, prec);
-      algebra::evaluate(val.v, tp.T, ball_point(box), prec);
-      const bool pos = arb_is_positive(val.v), neg = arb_is_negative(val.v);
-      any_out = any_out || pos;
-      any_in = any_in || neg;
-      all_signed = all_signed && (pos || neg);
-      // Certified points of S1 inside (T < 0) and outside (T > 0) the solid torus.
-      std::array<double, 3> at{};
-      if ((neg && !p_in) || (pos && !p_out)) {
-        const int s = certified_sign_near(src, tp.T, cover, b, prec, &at);
-        if (s < 0 && !p_in) p_in = at;
-        if (s > 0 && !p_out) p_out = at;
+  if (crosses(cs)) {
+    witness = *cs.neg_point;
+    if (cs.pos_point) { // bisection on S1 between the two points (float; the witness is
+                        // approximate)
+      std::array<double, 3> a = *cs.neg_point, b = *cs.pos_point;
+      for (int it = 0; it < 80; ++it) {
+        std::array<double, 3> m{};
+        for (size_t i = 0; i < 3; ++i)
+          m[i] = 0.5 * (a[i] + b[i]);
+        m = float_project(*src.quadric, m);
+        (float_tube(tp.torus[0], m) < 0 ? a : b) = m;
       }
+      witness = a;
     }
-    // Points inside certified (and outside: certified, or a non-ellipsoid quadric's component
-    // reaching infinity): the surface crosses the torus.
-    if (p_in && (p_out || !ellipsoid)) {
-      witness = *p_in;
-      if (p_out) { // bisection on S1 between the two points (float; the witness is approximate)
-        std::array<double, 3> a = *p_in, b = *p_out;
-        for (int it = 0; it < 80; ++it) {
-          std::array<double, 3> m{};
-          for (size_t i = 0; i < 3; ++i)
-            m[i] = 0.5 * (a[i] + b[i]);
-          m = float_project(*src.quadric, m);
-          (float_tube(tp.torus[0], m) < 0 ? a : b) = m;
-        }
-        witness = a;
-      }
-      return Contact::Meet;
-    }
-    if (!all_signed) continue;
-    if (!any_in) return Contact::Disjoint;               // T > 0 at every critical point
-    if (ellipsoid && !any_out) return Contact::Disjoint; // inside the tube
+    return Contact::Meet;
   }
+  // T > 0 at every critical point, or (ellipsoid) T < 0 at every one: inside the tube.
+  if (disjoint(cs)) return Contact::Disjoint;
   why = "a critical value of the torus equation on the quadric is not separated from 0 "
         "(touching?)";
   return Contact::Unknown;
@@ -612,30 +587,9 @@ DistanceResult implicit_torus_distance(const core::Poly3& f, const core::Torus& 
   // infinity), so T > 0 at every critical point of T on f = 0 (singular points of f included:
   // the cross product vanishes there) proves the surface outside the solid torus. Anything else
   // is left to the caller's contact proofs.
-  V3 gT{tp.T.derivative(0), tp.T.derivative(1), tp.T.derivative(2)};
-  const V3 v = cross(src.N, gT);
-  const std::array<std::array<long, 3>, 2> l{{{3, -5, 7}, {2, 7, -11}}};
-  MPoly e1, e2;
-  for (size_t i = 0; i < 3; ++i) {
-    e1 = e1 + MPoly(l[0][i]) * v[i];
-    e2 = e2 + MPoly(l[1][i]) * v[i];
-  }
-  algebra::SolutionCover cc = algebra::cover_real_solutions({src.f, e1, e2}, Rational(1, 16));
-  bool outside = false;
-  for (long bits = 16; cc.ok && bits <= 512 && !outside; bits *= 2) {
-    Rational width(1);
-    fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
-    algebra::refine_cover(cc, width);
-    const long prec = algebra::precision_for_width(width) + 64;
-    bool all_pos = true;
-    for (const auto& b : cc.boxes) {
-      Ball box[3], val;
-      algebra::box_balls(cc, b, box[0].v, box[1].v, box[2].v, prec);
-      algebra::evaluate(val.v, tp.T, ball_point(box), prec);
-      all_pos = all_pos && arb_is_positive(val.v);
-    }
-    outside = all_pos;
-  }
+  const CriticalSigns cs =
+      critical_signs(src, tp.T, [](const CriticalSigns& s) { return s.all_signed && !s.any_neg; });
+  const bool outside = cs.finite && cs.all_signed && !cs.any_neg && cs.boxes > 0;
   if (!outside) {
     out.status = Status::Undecided;
     out.note = "contact not decided: the implicit surface may meet or enter the solid torus";
