@@ -15,6 +15,19 @@ Torus make_torus(const std::array<Rational, 3>& centre, const std::array<Rationa
   return Torus{centre, axis, R, r};
 }
 
+std::array<std::array<Rational, 3>, 2> plane_frame(const std::array<Rational, 3>& a) {
+  size_t k = 0;
+  for (size_t i = 1; i < 3; ++i)
+    if (abs(a[i]) < abs(a[k])) k = i;
+  // a x e_k has components (a x e_k)_{k+1} = a_{k+2}, (a x e_k)_{k+2} = -a_{k+1}.
+  std::array<Rational, 3> u{Rational(0), Rational(0), Rational(0)};
+  u[(k + 1) % 3] = a[(k + 2) % 3];
+  u[(k + 2) % 3] = -a[(k + 1) % 3];
+  const std::array<Rational, 3> v{a[1] * u[2] - a[2] * u[1], a[2] * u[0] - a[0] * u[2],
+                                  a[0] * u[1] - a[1] * u[0]};
+  return {u, v};
+}
+
 Rational eval_poly(const std::vector<Rational>& c, const Rational& t) {
   Rational v;
   for (size_t i = c.size(); i-- > 0;)

@@ -1,8 +1,27 @@
 #include "surfcert/certify/distance/ball.hpp"
 
+#include "surfcert/core/torus.hpp"
+
 #include <mpfr.h>
 
 namespace surfcert::certify {
+
+void unit_plane_frame(Ball (&u)[3], Ball (&v)[3], const std::array<core::Rational, 3>& a,
+                      long prec) {
+  const auto fr = core::plane_frame(a);
+  Ball(*out[2])[3] = {&u, &v};
+  for (size_t j = 0; j < 2; ++j) {
+    const auto& w = fr[j];
+    Ball inv;
+    const core::Rational ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    arb_set_fmpq(inv.v, ww.raw(), prec);
+    arb_rsqrt(inv.v, inv.v, prec);
+    for (size_t i = 0; i < 3; ++i) {
+      arb_set_fmpq((*out[j])[i].v, w[i].raw(), prec);
+      arb_mul((*out[j])[i].v, (*out[j])[i].v, inv.v, prec);
+    }
+  }
+}
 
 std::string decimal_bound(const arf_t x, bool upper, long digits) {
   mpfr_t m;

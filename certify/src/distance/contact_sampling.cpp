@@ -96,28 +96,14 @@ bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& othe
 // A ring torus point at angles (theta, phi) = pi (s, t), as balls.
 void torus_point(Ball (&p)[3], const core::Torus& t, const Rational& s, const Rational& u,
                  long prec) {
-  size_t k = 0;
-  for (size_t i = 1; i < 3; ++i)
-    if (core::abs(t.axis[i]) < core::abs(t.axis[k])) k = i;
-  std::array<Rational, 3> e{Rational(0), Rational(0), Rational(0)};
-  e[k] = Rational(1);
   const auto& a = t.axis;
-  const std::array<Rational, 3> U{a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2],
-                                  a[0] * e[1] - a[1] * e[0]};
-  const std::array<Rational, 3> V{a[1] * U[2] - a[2] * U[1], a[2] * U[0] - a[0] * U[2],
-                                  a[0] * U[1] - a[1] * U[0]};
-  Ball nu, nv, na, ss, cs, sp, cp, rad, R, r, tmp;
+  Ball U[3], V[3], na, ss, cs, sp, cp, rad, R, r, tmp;
+  unit_plane_frame(U, V, a, prec);
   for (size_t i = 0; i < 3; ++i) {
     Ball x;
-    arb_set_fmpq(x.v, U[i].raw(), prec);
-    arb_addmul(nu.v, x.v, x.v, prec);
-    arb_set_fmpq(x.v, V[i].raw(), prec);
-    arb_addmul(nv.v, x.v, x.v, prec);
     arb_set_fmpq(x.v, a[i].raw(), prec);
     arb_addmul(na.v, x.v, x.v, prec);
   }
-  arb_rsqrt(nu.v, nu.v, prec);
-  arb_rsqrt(nv.v, nv.v, prec);
   arb_rsqrt(na.v, na.v, prec);
   arb_sin_cos_pi_fmpq(ss.v, cs.v, s.raw(), prec);
   arb_sin_cos_pi_fmpq(sp.v, cp.v, u.raw(), prec);
@@ -126,15 +112,11 @@ void torus_point(Ball (&p)[3], const core::Torus& t, const Rational& s, const Ra
   arb_mul(rad.v, r.v, cp.v, prec);
   arb_add(rad.v, rad.v, R.v, prec); // R + r cos phi
   for (size_t i = 0; i < 3; ++i) {
-    Ball ui, vi, ai;
-    arb_set_fmpq(ui.v, U[i].raw(), prec);
-    arb_mul(ui.v, ui.v, nu.v, prec);
-    arb_set_fmpq(vi.v, V[i].raw(), prec);
-    arb_mul(vi.v, vi.v, nv.v, prec);
+    Ball ai;
     arb_set_fmpq(ai.v, a[i].raw(), prec);
     arb_mul(ai.v, ai.v, na.v, prec);
-    arb_mul(tmp.v, cs.v, ui.v, prec);
-    arb_addmul(tmp.v, ss.v, vi.v, prec);
+    arb_mul(tmp.v, cs.v, U[i].v, prec);
+    arb_addmul(tmp.v, ss.v, V[i].v, prec);
     arb_mul(tmp.v, tmp.v, rad.v, prec);
     arb_set_fmpq(p[i].v, t.centre[i].raw(), prec);
     arb_add(p[i].v, p[i].v, tmp.v, prec);

@@ -395,17 +395,8 @@ Directions admissible_directions(const ConvexQuadric& a, const ConvexQuadric& b)
   Directions dirs;
   if (a.is_cylinder() || b.is_cylinder()) {
     const auto& ax = a.is_cylinder() ? *a.axis : *b.axis;
-    size_t k = 0;
-    for (size_t i = 1; i < 3; ++i)
-      if (core::abs(ax[i]) < core::abs(ax[k])) k = i;
-    V3<Rational> e{Rational(0), Rational(0), Rational(0)};
-    e[k] = Rational(1);
-    auto cross = [](const V3<Rational>& x, const V3<Rational>& y) {
-      return V3<Rational>{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2],
-                          x[0] * y[1] - x[1] * y[0]};
-    };
-    const V3<Rational> u = cross(ax, e);
-    dirs.exact = {u, cross(ax, u)};
+    const auto fr = core::plane_frame(ax);
+    dirs.exact = {fr[0], fr[1]};
   } else {
     dirs.exact = {V3<Rational>{Rational(1), Rational(0), Rational(0)},
                   V3<Rational>{Rational(0), Rational(1), Rational(0)},

@@ -78,13 +78,7 @@ bool boundary_point(const core::Surface& s, Ball (&p)[3]) {
     return true;
   }
   if (const auto* t = std::get_if<core::Torus>(&s)) { // c + (R + r) u / |u|, u orthogonal
-    size_t k = 0;
-    for (size_t i = 1; i < 3; ++i)
-      if (core::abs(t->axis[i]) < core::abs(t->axis[k])) k = i;
-    std::array<Rational, 3> e{Rational(0), Rational(0), Rational(0)}, u;
-    e[k] = Rational(1);
-    const auto& a = t->axis;
-    u = {a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2], a[0] * e[1] - a[1] * e[0]};
+    const std::array<Rational, 3> u = core::plane_frame(t->axis)[0];
     const Rational uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
     Ball n, rr;
     arb_set_fmpq(n.v, uu.raw(), kPrec);

@@ -73,32 +73,9 @@ struct Family {
     periodic = true;
     t0 = Rational(0);
     t1 = Rational(2);
-    // Orthonormal frame around the exact vectors U = a x e_k, V = a x U (k: the axis's
-    // smallest component, so U != 0), normalised in Arb.
-    size_t k = 0;
-    for (size_t i = 1; i < 3; ++i)
-      if (core::abs(t.axis[i]) < core::abs(t.axis[k])) k = i;
-    std::array<Rational, 3> e{Rational(0), Rational(0), Rational(0)};
-    e[k] = Rational(1);
-    const auto& a = t.axis;
-    const std::array<Rational, 3> U{a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2],
-                                    a[0] * e[1] - a[1] * e[0]};
-    const std::array<Rational, 3> V{a[1] * U[2] - a[2] * U[1], a[2] * U[0] - a[0] * U[2],
-                                    a[0] * U[1] - a[1] * U[0]};
-    const Rational uu = U[0] * U[0] + U[1] * U[1] + U[2] * U[2],
-                   vv = V[0] * V[0] + V[1] * V[1] + V[2] * V[2];
-    Ball nu, nv;
-    arb_set_fmpq(nu.v, uu.raw(), prec);
-    arb_rsqrt(nu.v, nu.v, prec);
-    arb_set_fmpq(nv.v, vv.raw(), prec);
-    arb_rsqrt(nv.v, nv.v, prec);
-    for (size_t i = 0; i < 3; ++i) {
+    unit_plane_frame(u, v, t.axis, prec); // the core circle: o + R (cos u + sin v)
+    for (size_t i = 0; i < 3; ++i)
       arb_set_fmpq(o[i].v, t.centre[i].raw(), prec);
-      arb_set_fmpq(u[i].v, U[i].raw(), prec);
-      arb_mul(u[i].v, u[i].v, nu.v, prec);
-      arb_set_fmpq(v[i].v, V[i].raw(), prec);
-      arb_mul(v[i].v, v[i].v, nv.v, prec);
-    }
     arb_set_fmpq(R.v, t.R.raw(), prec);
     arb_set_fmpq(rt.v, t.r.raw(), prec);
   }

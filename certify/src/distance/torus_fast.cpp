@@ -32,26 +32,15 @@ constexpr long kClusterBits = 40;
 
 // ---- exact data ---------------------------------------------------------------------------
 
-// A rational orthogonal (not unit) frame of the torus plane: u0 = a x e_k (k the smallest
+// core::plane_frame of the axis: u0 = a x e_k (k the smallest
 // |a_k|, so u0 != 0), v0 = a x u0. Its unit version is irrational: Arb balls / MPFR / double.
 struct PlaneFrame {
   V3<Rational> u0, v0;
 };
 
-V3<Rational> cross(const V3<Rational>& x, const V3<Rational>& y) {
-  return {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-}
-
-PlaneFrame plane_frame(const V3<Rational>& a) {
-  size_t k = 0;
-  for (size_t i = 1; i < 3; ++i)
-    if (core::abs(a[i]) < core::abs(a[k])) k = i;
-  V3<Rational> e{Rational(0), Rational(0), Rational(0)};
-  e[k] = Rational(1);
-  PlaneFrame f;
-  f.u0 = cross(a, e);
-  f.v0 = cross(a, f.u0);
-  return f;
+PlaneFrame exact_frame(const V3<Rational>& a) {
+  const auto fr = core::plane_frame(a);
+  return PlaneFrame{fr[0], fr[1]};
 }
 
 // ---- double model (guidance only: chooses where to certify, never decides) ---------------
@@ -603,7 +592,7 @@ struct Star {
 class Search {
 public:
   Search(const ConvexQuadric& e, const core::Torus& t, long digits)
-      : e_(e), t_(t), frame_(plane_frame(t.axis)), fm_(float_model(e, t, frame_)), digits_(digits) {
+      : e_(e), t_(t), frame_(exact_frame(t.axis)), fm_(float_model(e, t, frame_)), digits_(digits) {
     arf_init(best_);
     arf_pos_inf(best_);
   }

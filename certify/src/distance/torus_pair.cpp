@@ -27,10 +27,7 @@ void set_q(arb_t x, const Rational& q, long prec) {
 struct Circle {
   Ball o[3], n[3], u[3], v[3], R;
   Circle(const core::Torus& t, long prec) {
-    size_t k = 0; // the smallest axis component: e_k is far from the axis, u != 0
-    for (size_t i = 1; i < 3; ++i)
-      if (core::abs(t.axis[i]) < core::abs(t.axis[k])) k = i;
-    Ball len, tmp;
+    Ball len;
     for (size_t i = 0; i < 3; ++i) {
       set_q(o[i].v, t.centre[i], prec);
       set_q(n[i].v, t.axis[i], prec);
@@ -39,23 +36,7 @@ struct Circle {
     arb_sqrt(len.v, len.v, prec);
     for (auto& x : n)
       arb_div(x.v, x.v, len.v, prec);
-    // u = n x e_k normalised, v = n x u
-    const size_t k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-    arb_zero(u[k].v);
-    arb_set(u[k1].v, n[k2].v); // (n x e_k)_{k1} = n_{k2}
-    arb_neg(u[k2].v, n[k1].v); // (n x e_k)_{k2} = -n_{k1}
-    arb_zero(len.v);
-    for (auto& x : u)
-      arb_addmul(len.v, x.v, x.v, prec);
-    arb_sqrt(len.v, len.v, prec);
-    for (auto& x : u)
-      arb_div(x.v, x.v, len.v, prec);
-    for (size_t i = 0; i < 3; ++i) {
-      const size_t i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-      arb_mul(v[i].v, n[i1].v, u[i2].v, prec);
-      arb_mul(tmp.v, n[i2].v, u[i1].v, prec);
-      arb_sub(v[i].v, v[i].v, tmp.v, prec);
-    }
+    unit_plane_frame(u, v, t.axis, prec);
     set_q(R.v, t.R, prec);
   }
 };

@@ -24,4 +24,10 @@ struct Torus {
 Torus make_torus(const std::array<Rational, 3>& centre, const std::array<Rational, 3>& axis,
                  const Rational& R, const Rational& r);
 
+/// An exact orthogonal (not unit) frame {u, v} of the plane orthogonal to a != 0:
+/// u = a x e_k with k the index of a's smallest |component| (so u != 0, never nearly
+/// parallel to a), v = a x u. Every torus route builds its circle parametrisation on this
+/// one frame, so their points agree.
+std::array<std::array<Rational, 3>, 2> plane_frame(const std::array<Rational, 3>& a);
+
 } // namespace surfcert::core

@@ -2,6 +2,8 @@
 // pieces every certified enclosure in the distance code needs.
 #pragma once
 
+#include "surfcert/core/rational.hpp"
+
 #include <arb.h>
 
 #include <array>
@@ -36,6 +38,11 @@ bool relative_enclosure(arb_t d, const arb_t lo, const arb_t hi, long digits, lo
 
 /// [lo, hi] in doubles rounded outward, containing the ball x (infinite when x is).
 std::array<double, 2> outward_interval(const arb_t x);
+
+/// The unit frame (u, v) of the plane orthogonal to a: core::plane_frame(a) normalised in Arb
+/// (the unit vectors are irrational in general; the balls contain them).
+void unit_plane_frame(Ball (&u)[3], Ball (&v)[3], const std::array<core::Rational, 3>& a,
+                      long prec);
 
 /// Working precision (bits) for an answer of `digits` decimal digits, with a 64-bit margin.
 inline long bits_for(long digits) {
