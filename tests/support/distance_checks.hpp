@@ -9,6 +9,7 @@
 
 #include <mpfr.h>
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -37,6 +38,34 @@ inline bool overlap(const certify::DistanceResult& a, const certify::DistanceRes
   bool ok = mpfr_cmp(la, ub) <= 0 && mpfr_cmp(lb, ua) <= 0;
   mpfr_clears(la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
   return ok;
+}
+
+/// x lies in [lower, upper] (the decimal strings read with outward rounding, at least 4000
+/// bits or x's precision + 64).
+inline bool contains(const certify::DistanceResult& r, const mpfr_t x) {
+  const mpfr_prec_t bits = std::max<mpfr_prec_t>(4000, mpfr_get_prec(x) + 64);
+  mpfr_t l, u;
+  mpfr_inits2(bits, l, u, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  const bool ok = mpfr_cmp(l, x) <= 0 && mpfr_cmp(x, u) <= 0;
+  mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
+  return ok;
+}
+
+/// log10 of the relative width (upper - lower) / lower, computed in MPFR (at 1000 digits the
+/// width itself underflows a double).
+inline double log10_rel_width(const certify::DistanceResult& r) {
+  mpfr_t l, u;
+  mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_sub(u, u, l, MPFR_RNDU);
+  mpfr_div(u, u, l, MPFR_RNDU);
+  mpfr_log10(u, u, MPFR_RNDU);
+  const double w = mpfr_get_d(u, MPFR_RNDU);
+  mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
+  return w;
 }
 
 /// Rigid motion x -> R x + t with R from the integer quaternion (w, x, y, z), as the 4x4

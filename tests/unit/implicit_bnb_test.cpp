@@ -28,8 +28,10 @@
 #include <random>
 
 using namespace surfcert;
+using surfcert::testing::contains;
 using surfcert::testing::hi;
 using surfcert::testing::lo;
+using surfcert::testing::log10_rel_width;
 using surfcert::testing::motion;
 using surfcert::testing::overlap;
 
@@ -64,30 +66,6 @@ core::Poly3 sphere(const R3& c, const core::Rational& r) {
     s = s + u * u;
   }
   return s;
-}
-
-// [lower, upper] contains x.
-bool contains(const certify::DistanceResult& r, const mpfr_t x) {
-  mpfr_t l, u;
-  mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
-  const bool ok = mpfr_cmp(l, x) <= 0 && mpfr_cmp(x, u) <= 0;
-  mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
-  return ok;
-}
-
-double log10_rel_width(const certify::DistanceResult& r) {
-  mpfr_t l, u;
-  mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
-  mpfr_sub(u, u, l, MPFR_RNDU);
-  mpfr_div(u, u, l, MPFR_RNDU);
-  mpfr_log10(u, u, MPFR_RNDU);
-  const double w = mpfr_get_d(u, MPFR_RNDU);
-  mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
-  return w;
 }
 
 certify::DistanceResult run(const core::Poly3& f, const core::Poly3& g, long digits) {

@@ -26,6 +26,7 @@
 #include <random>
 
 using namespace surfcert;
+using surfcert::testing::contains;
 using surfcert::testing::hi;
 using surfcert::testing::lo;
 using surfcert::testing::motion;
@@ -58,11 +59,6 @@ struct Enclosure {
 bool inside(const certify::DistanceResult& b, const certify::DistanceResult& a) {
   const Enclosure x(a), y(b);
   return mpfr_cmp(x.l, y.l) <= 0 && mpfr_cmp(y.u, x.u) <= 0;
-}
-
-bool contains(const certify::DistanceResult& r, const mpfr_t v) {
-  const Enclosure x(r);
-  return mpfr_cmp(x.l, v) <= 0 && mpfr_cmp(v, x.u) <= 0;
 }
 
 // (upper - lower) <= 10^-digits lower, exactly.

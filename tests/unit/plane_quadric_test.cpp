@@ -23,6 +23,7 @@
 
 using namespace surfcert;
 using core::Rational;
+using surfcert::testing::contains;
 using surfcert::testing::hi;
 using surfcert::testing::lo;
 using surfcert::testing::motion;
@@ -55,17 +56,6 @@ void expect_pair_ok(const certify::DistanceResult& r, const core::QuadricMatrix&
     const double dd = std::hypot(pr[0][0] - pr[1][0], pr[0][1] - pr[1][1], pr[0][2] - pr[1][2]);
     EXPECT_NEAR(dd, r.approx, 1e-9 * scale);
   }
-}
-
-// d lies in [lo, hi] (MPFR, the decimal strings read outward).
-bool contains(const certify::DistanceResult& r, const mpfr_t d) {
-  mpfr_t l, u;
-  mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
-  const bool ok = mpfr_cmp(l, d) <= 0 && mpfr_cmp(d, u) <= 0;
-  mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
-  return ok;
 }
 
 std::string num(long v) {

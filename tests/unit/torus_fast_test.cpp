@@ -27,8 +27,10 @@
 #include <random>
 
 using namespace surfcert;
+using surfcert::testing::contains;
 using surfcert::testing::hi;
 using surfcert::testing::lo;
+using surfcert::testing::log10_rel_width;
 using surfcert::testing::motion;
 using surfcert::testing::overlap;
 
@@ -51,32 +53,6 @@ std::optional<certify::DistanceResult> fast(const core::QuadricMatrix& e, const 
   auto ce = certify::convex_quadric(e);
   if (!ce || !ce->is_ellipsoid()) return std::nullopt;
   return certify::ellipsoid_torus_fast(*ce, t, digits, first);
-}
-
-// [l, u] of the decimal enclosure contains the MPFR value x.
-bool contains(const certify::DistanceResult& r, const mpfr_t x) {
-  mpfr_t l, u;
-  mpfr_inits2(mpfr_get_prec(x) + 64, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
-  const bool ok = mpfr_cmp(l, x) <= 0 && mpfr_cmp(x, u) <= 0;
-  mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
-  return ok;
-}
-
-// log10 of the relative width (upper - lower) / lower, in MPFR (the strings carry digits + 2
-// digits; the width itself underflows a double at 1000 digits).
-double log10_rel_width(const certify::DistanceResult& r) {
-  mpfr_t l, u;
-  mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
-  mpfr_sub(u, u, l, MPFR_RNDU);
-  mpfr_div(u, u, l, MPFR_RNDU);
-  mpfr_log10(u, u, MPFR_RNDU);
-  const double w = mpfr_get_d(u, MPFR_RNDU);
-  mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
-  return w;
 }
 
 // Sphere of centre c and radius rho (rational) against kZ: the closed form
