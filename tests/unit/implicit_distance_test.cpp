@@ -3,8 +3,11 @@
 // distance is min over (x, y) of |(x, y, h) - c| - rho, found by a dense float search plus a
 // local descent; crossing surfaces give 0; a degree-7 equation is an input error.
 #include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+
+#include "support/distance_checks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -137,4 +140,40 @@ TEST(ImplicitDistance, CubicAgainstATorus) {
   EXPECT_GE(best, std::stod(r.lower) - 1e-12);
   EXPECT_LT(best - r.approx, 0.05); // the graph is steep where z = 0: coarse sampling there
   EXPECT_NEAR(r.approx, std::cbrt(100.0) - 4, 1e-14);
+}
+
+TEST(ImplicitDistance, BoundedQuarticAgainstEllipsoids) {
+  // Dispatch: a bounded implicit surface against an ellipsoid goes to the branch and bound
+  // first. Closed form: x^4 + y^4 + z^4 = 1 lies in x <= 1, touching it only at (1, 0, 0), so
+  // the sphere of radius 1/2 about (7/2, 0, 0) is at distance 2 exactly, from (1, 0, 0).
+  const auto quartic = surf("x^4 + y^4 + z^4 = 1");
+  auto r = certify::surface_distance(quartic, surf("(x - 7/2)^2 + y^2 + z^2 = 1/4"), 25, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.method, "implicit_bnb");
+  mpfr_t two;
+  mpfr_init2(two, 200);
+  mpfr_set_ui(two, 2, MPFR_RNDN);
+  EXPECT_TRUE(surfcert::testing::contains(r, two)) << r.lower << " " << r.upper;
+  mpfr_clear(two);
+  EXPECT_EQ(r.minimizers, "1");
+  ASSERT_FALSE(r.pairs.empty());
+  EXPECT_NEAR(r.pairs[0][0][0], 1, 1e-9);
+  EXPECT_NEAR(r.pairs[0][1][0], 3, 1e-9);
+  // An independent route: the offset system (normal lines of the quartic through the sphere's
+  // centre, exact elimination) on a less symmetric quartic; the enclosures must overlap.
+  const auto bumpy = surf("x^4 + y^4 + z^4 + x y = 2");
+  const auto sph = surf("(x-3)^2 + (y-1)^2 + (z-1/2)^2 = 1");
+  auto b = certify::surface_distance(bumpy, sph, 20, false);
+  ASSERT_EQ(b.status, certify::Status::Certified) << b.note;
+  EXPECT_EQ(b.method, "implicit_bnb");
+  auto o = certify::implicit_quadric_distance(std::get<core::ImplicitSurface>(bumpy).f,
+                                              std::get<core::QuadricMatrix>(sph), 20, true);
+  ASSERT_EQ(o.status, certify::Status::Certified) << o.note;
+  EXPECT_TRUE(surfcert::testing::overlap(b, o)) << b.lower << " " << o.lower;
+  // Swapping the surfaces keeps the enclosure and swaps the points.
+  auto s = certify::surface_distance(sph, bumpy, 20, false);
+  ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
+  EXPECT_EQ(s.lower, b.lower);
+  ASSERT_FALSE(s.pairs.empty());
+  EXPECT_NEAR(s.pairs[0][1][0], b.pairs[0][0][0], 1e-9);
 }

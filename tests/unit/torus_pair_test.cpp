@@ -185,12 +185,17 @@ TEST(TorusPair, ContinuaAndCrossingTubesStayUndecided) {
   EXPECT_EQ(c.minimizers, "infinite");
   EXPECT_NEAR(c.approx, std::sqrt(26.0) - 1, 1e-15);
   // crossing tubes (radial ranges [2.5, 3.5] and, along the x-axis, [3, 4]): not the circle
-  // route's case; the contact is proven by a sign change along one torus
+  // route's case; the branch and bound on the two quartics proves a common point (2-D
+  // Krawczyk), which must lie on both tubes (closed-form distance to each core circle)
   auto x = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 0.5}),
                                      torus({{5.5, 0, 0}, {0, 0, 1}, 2, 0.5}), 15, false);
   EXPECT_EQ(x.status, certify::Status::Certified) << x.note;
   EXPECT_EQ(x.upper, "0");
-  EXPECT_EQ(x.method, "sign_change_contact");
+  EXPECT_EQ(x.method, "implicit_bnb");
+  ASSERT_FALSE(x.pairs.empty());
+  const auto& w = x.pairs[0][0];
+  EXPECT_NEAR(std::hypot(std::hypot(w[0], w[1]) - 3, w[2]), 0.5, 1e-9);
+  EXPECT_NEAR(std::hypot(std::hypot(w[0] - 5.5, w[1]) - 2, w[2]), 0.5, 1e-9);
   // linked circles each through the other's centre: (3, 0, 0) on K1 is at distance 3 from
   // every point of K2, a continuum of minimizers
   auto l = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 0.5}),

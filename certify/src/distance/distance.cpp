@@ -481,9 +481,17 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
         r->mode = mode;
         return *r;
       }
-      out.status = Status::Undecided;
-      out.note = "two tori whose tubes may meet, nest, or have a continuum of minimizers "
-                 "(coaxial): not supported yet";
+      // The generic branch and bound on the two quartics (decides pairs the circle bound
+      // leaves open when their closest pair is isolated).
+      out = implicit_pair_distance(torus_polynomial(*ta), torus_polynomial(*tb), digits);
+      if (out.status != Status::Certified) {
+        out = DistanceResult();
+        out.status = Status::Undecided;
+        out.note = "two tori whose tubes may meet, nest, or have a continuum of minimizers: "
+                   "not supported yet";
+      }
+      out.solid = solid;
+      out.mode = mode;
       return out;
     }
     const auto* ia = std::get_if<core::ImplicitSurface>(&a);
@@ -524,8 +532,21 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
   if (const auto* t = std::get_if<core::Torus>(&other))
     out = mode == Mode::Exact ? quadric_torus_distance_exact(q, *t, digits, qa != nullptr)
                               : quadric_torus_distance(q, *t, digits, qa != nullptr);
-  else if (const auto* im = std::get_if<core::ImplicitSurface>(&other))
-    out = implicit_quadric_distance(im->f, q, digits, qa == nullptr);
+  else if (const auto* im = std::get_if<core::ImplicitSurface>(&other)) {
+    // An ellipsoid against a bounded implicit surface: the generic branch and bound first
+    // (milliseconds to seconds; the offset system of a quartic against an ellipsoid runs for
+    // minutes), the offset route when it cannot decide (unbounded or singular surfaces,
+    // tangential contact, flat minima).
+    if (q.kind() == core::QuadricKind::Ellipsoid) {
+      const core::Poly3 qp = q.to_poly();
+      out = qa ? implicit_pair_distance(qp, im->f, digits)
+               : implicit_pair_distance(im->f, qp, digits);
+    }
+    if (out.status != Status::Certified) {
+      out = DistanceResult();
+      out = implicit_quadric_distance(im->f, q, digits, qa == nullptr);
+    }
+  }
   else
     out = quadric_canal_distance(q, std::get<core::CanalSurface>(other), digits, qa != nullptr);
   out.solid = solid;
