@@ -5,7 +5,11 @@
 // - elliptic cylinders (crossed and parallel): a float sampling of both surfaces never goes
 //   below the certified lower bound and comes close to it; the pair lies on both surfaces;
 // - rigid motions, scaling by 10^6, swapping, digits 15/100; overlapping crossed cylinders
-//   are left to the exact topology (distance 0).
+//   are left to the exact topology (distance 0);
+// - cylinders of other kinds with parallel rulings (hyperbolic, parabolic): the hyperbola-circle
+//   closed form under a rigid motion, parabolas opening apart (d = 1 at the vertices), crossing
+//   sections (a witness on both), and the pairs whose infimum may lie at infinity (never
+//   certified).
 #include "surfcert/certify/distance/cylinder_pair.hpp"
 
 #include "support/distance_checks.hpp"
@@ -170,4 +174,65 @@ TEST(CylinderPair, MotionsScalingSwapsAndOverlap) {
   // Crossing cylinders meet: the exact topology answers 0.
   const auto x = dist(q("x^2 + y^2 = 1"), q("(x - 1)^2 + z^2 = 1"));
   EXPECT_EQ(x.upper, "0");
+}
+
+TEST(CylinderPair, ParallelNonEllipticSections) {
+  // Cylinders of any kind with a common ruling direction (degenerate pencil: the exact
+  // topology is silent, the section plane decides contact and distance).
+  // Hyperbola x^2 - y^2 = 1 against the circle of radius rho about (c, 0): the nearest point
+  // of the hyperbola to (c, 0) has x = c / 2 (c >= 2), so d = sqrt(c^2 / 2 - 1) - rho, at two
+  // mirror pairs (lines of pairs along z); moved by a rational rigid motion, the same.
+  const auto m = motion(1, 2, -2, 3, {Rational(3), Rational(-1, 2), Rational(7)});
+  for (long c : {3, 4, 7})
+    for (long rho_den : {1, 2}) {
+      const auto H = q("x^2 - y^2 = 1");
+      const auto C =
+          q("(x - " + std::to_string(c) + ")^2 + y^2 = 1/" + std::to_string(rho_den * rho_den));
+      mpfr_t d;
+      mpfr_init2(d, 300);
+      mpfr_set_si(d, c * c, MPFR_RNDN);
+      mpfr_div_ui(d, d, 2, MPFR_RNDN);
+      mpfr_sub_ui(d, d, 1, MPFR_RNDN);
+      mpfr_sqrt(d, d, MPFR_RNDN);
+      mpfr_t r;
+      mpfr_init2(r, 300);
+      mpfr_set_ui(r, 1, MPFR_RNDN);
+      mpfr_div_ui(r, r, static_cast<unsigned long>(rho_den), MPFR_RNDN);
+      mpfr_sub(d, d, r, MPFR_RNDN);
+      mpfr_clear(r);
+      for (bool moved : {false, true}) {
+        const auto res = moved ? dist(H.congruent(m), C.congruent(m), 30) : dist(H, C, 30);
+        ASSERT_EQ(res.status, certify::Status::Certified) << c << " " << rho_den << res.note;
+        EXPECT_TRUE(surfcert::testing::contains(res, d))
+            << "c " << c << " rho 1/" << rho_den << ": " << res.lower << " " << res.upper;
+        EXPECT_EQ(res.minimizers, "infinite");
+        EXPECT_EQ(res.pairs.size(), 2u);
+        if (!moved && !res.pairs.empty()) {
+          EXPECT_NEAR(res.pairs[0][0][0], c / 2.0, 1e-9);
+        }
+      }
+      mpfr_clear(d);
+    }
+  // Parabolas opening away from each other: d = 1 at the vertices (y-gap >= 1 + x^2 + x'^2);
+  // the same opening (y = x^2, y = x^2 + 1): the gap tends to 0 at infinity, never certified.
+  const auto P = q("y = x^2");
+  const auto away = dist(P, q("y = -x^2 - 1"), 20);
+  ASSERT_EQ(away.status, certify::Status::Certified) << away.note;
+  EXPECT_LE(lo(away), 1.0);
+  EXPECT_GE(hi(away), 1.0);
+  EXPECT_NE(dist(P, q("y = x^2 + 1")).status, certify::Status::Certified);
+  // Two hyperbolas with parallel asymptotes: the infimum could lie at infinity; not certified.
+  EXPECT_NE(dist(q("x^2 - y^2 = 1"), q("(x - 6)^2 - y^2 = 1")).status, certify::Status::Certified);
+  // Crossing sections (y = x^2 and y = 1 - x^2 meet at x = +-1/sqrt 2): distance 0 with an
+  // approximate common point on both; swapped, the same.
+  for (bool swap : {false, true}) {
+    const auto A = P, B = q("y = 1 - x^2");
+    const auto x = swap ? dist(B, A) : dist(A, B);
+    ASSERT_EQ(x.status, certify::Status::Certified) << x.note;
+    EXPECT_EQ(x.upper, "0");
+    ASSERT_FALSE(x.pairs.empty());
+    const auto& w = x.pairs[0][0];
+    EXPECT_NEAR(w[1], w[0] * w[0], 1e-6);
+    EXPECT_NEAR(w[1], 1 - w[0] * w[0], 1e-6);
+  }
 }

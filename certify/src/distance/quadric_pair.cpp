@@ -3,12 +3,17 @@
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/at_infinity.hpp"
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/contact_sampling.hpp"
 #include "surfcert/certify/distance/critical_signs.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/revolution.hpp"
 
+#include "surfcert/core/torus.hpp"
+
 #include <arb.h>
+#include <flint/fmpq_mat.h>
+#include <flint/fmpz_mat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -361,6 +366,163 @@ DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::Q
 
 namespace {
 
+// The common ruling direction of two cylinders (any kind: elliptic, hyperbolic, parabolic,
+// plane pairs): an integer d != 0 with (d, 0) in the kernel of both 4x4 matrices, i.e. both
+// surfaces invariant under translation along d. Exact (FLINT nullspace of the 8 x 3 matrix of
+// their first three columns); nullopt unless that kernel is exactly one line.
+std::optional<std::array<Rational, 3>> common_ruling(const core::QuadricMatrix& a,
+                                                     const core::QuadricMatrix& b) {
+  fmpq_mat_t m;
+  fmpq_mat_init(m, 8, 3);
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 3; ++c)
+      fmpq_set(fmpq_mat_entry(m, r, c), (r < 4 ? a(r, c) : b(r - 4, c)).raw());
+  fmpz_mat_t z, ker;
+  fmpz_mat_init(z, 8, 3);
+  fmpz_mat_init(ker, 3, 3);
+  fmpq_mat_get_fmpz_mat_rowwise(z, nullptr, m);
+  const slong nullity = fmpz_mat_nullspace(ker, z);
+  std::optional<std::array<Rational, 3>> d;
+  if (nullity == 1) {
+    d.emplace();
+    for (int i = 0; i < 3; ++i)
+      fmpq_set_fmpz_frac((*d)[static_cast<size_t>(i)].raw_mut(), fmpz_mat_entry(ker, i, 0),
+                         core::Integer(1).raw());
+  }
+  fmpz_mat_clear(ker);
+  fmpz_mat_clear(z);
+  fmpq_mat_clear(m);
+  return d;
+}
+
+// u^T A v for the quadratic block A of q.
+Rational block_form(const core::QuadricMatrix& q, const std::array<Rational, 3>& u,
+                    const std::array<Rational, 3>& v) {
+  Rational s;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      s += u[static_cast<size_t>(i)] * q(i, j) * v[static_cast<size_t>(j)];
+  return s;
+}
+
+// Two cylinders with a common ruling direction d: translating a pair along d gives a pair at
+// the same distance, so the offset system has lines of solutions and the generic route fails.
+// The problem is planar: the closest pairs of the cross-sections in the plane d.x = 0 (two
+// conics), then every translate along d. The source is cut by that plane (third equation) and
+// the offset condition G (its P and Q are multiples of l.d, so l.d != 0 is required; the
+// coplanarity equation C vanishes identically). The minimum is attained when a section is
+// bounded (definite form in the plane) or when the two sections have no common point at
+// infinity (a minimizing sequence escaping to infinity would approach one common asymptotic
+// direction): exact resultant of the two binary forms. Otherwise the infimum may lie at
+// infinity (y = x^2 and y = x^2 + 1) and the answer stays undecided.
+std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
+                                                 const core::QuadricMatrix& b, long digits) {
+  if (a.is_plane() || b.is_plane()) return std::nullopt;
+  const auto d = common_ruling(a, b);
+  if (!d) return std::nullopt;
+  const auto fr = core::plane_frame(*d);
+  const Rational a11 = block_form(a, fr[0], fr[0]), a12 = block_form(a, fr[0], fr[1]),
+                 a22 = block_form(a, fr[1], fr[1]);
+  const Rational b11 = block_form(b, fr[0], fr[0]), b12 = block_form(b, fr[0], fr[1]),
+                 b22 = block_form(b, fr[1], fr[1]);
+  const bool bounded_section =
+      (a11 * a22 - a12 * a12).sign() > 0 || (b11 * b22 - b12 * b12).sign() > 0;
+  // Res(a11 s^2 + 2 a12 s t + a22 t^2, b11 s^2 + 2 b12 s t + b22 t^2).
+  const Rational p = a11 * b22 - a22 * b11;
+  const Rational res = p * p - (a11 * b12 * 2 - a12 * b11 * 2) * (a12 * b22 * 2 - a22 * b12 * 2);
+  // Two parabolic sections with one axis direction e (rank-1 forms, common double root): each
+  // goes to infinity along one half-direction only, -sign(trace) sign(b.e) e (on the parabola
+  // far out, 2 t b.e balances the positive transversal term), so opposite openings cannot
+  // approach each other (y = x^2 and y = -x^2 - 1: attained at the vertices).
+  const auto opening = [&fr](const core::QuadricMatrix& q, const Rational& q11, const Rational& q12,
+                             const Rational& q22) {
+    if (!(q11 * q22 - q12 * q12).is_zero()) return 0;
+    std::array<Rational, 2> e{q12, -q11};
+    if (e[0].is_zero() && e[1].is_zero()) e = {q22, -q12};
+    Rational be;
+    for (int i = 0; i < 3; ++i)
+      be += q(i, 3) * (e[0] * fr[0][static_cast<size_t>(i)] + e[1] * fr[1][static_cast<size_t>(i)]);
+    return -(q11 + q22).sign() * be.sign(); // +1 / -1 along e; 0: no single opening
+  };
+  bool opposite = false;
+  if (!bounded_section && res.is_zero()) {
+    // The kernels are parallel iff the forms are proportional (both rank 1, common root).
+    const int oa = opening(a, a11, a12, a22), ob = opening(b, b11, b12, b22);
+    if (oa != 0 && ob != 0) {
+      // Orient b's kernel like a's: e_b = (b12, -b11) or (b22, -b12), parallel to e_a.
+      std::array<Rational, 2> ea{a12, -a11}, eb{b12, -b11};
+      if (ea[0].is_zero() && ea[1].is_zero()) ea = {a22, -a12};
+      if (eb[0].is_zero() && eb[1].is_zero()) eb = {b22, -b12};
+      // ea = k eb (parallel coefficient vectors): the sign of k is that of their plain dot
+      // product, whatever the (orthogonal, not unit) frame's metric.
+      const int same = (ea[0] * eb[0] + ea[1] * eb[1]).sign();
+      opposite = oa * ob * same < 0;
+    }
+  }
+  const bool attained = bounded_section || !res.is_zero() || opposite;
+  core::Integer den(1);
+  for (const auto& x : *d)
+    fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
+  MPoly plane;
+  for (size_t i = 0; i < 3; ++i)
+    plane = plane + MPoly(((*d)[i] * Rational(den)).num()) * MPoly::var(static_cast<int>(i));
+  // Contact: the pencil of two parallel cylinders is degenerate (their rulings meet in a
+  // common singular point at infinity), so the projective classification says nothing and it
+  // is decided here. No real common point of the two sections (an exact solution cover with no
+  // box): disjoint. Otherwise a sign change proves the crossing, or the answer stays open.
+  {
+    const algebra::SolutionCover meet = algebra::cover_real_solutions(
+        {algebra::quadric_poly(a.matrix()), algebra::quadric_poly(b.matrix()), plane},
+        Rational(1, 16));
+    if (!meet.ok) return std::nullopt; // a common component of the sections
+    if (!meet.boxes.empty()) {
+      DistanceResult out;
+      out.method = "parallel_sections";
+      std::array<double, 3> w{};
+      if (meet_by_sign_change(a, b, w)) {
+        out.status = Status::Certified;
+        out.lower = out.upper = "0";
+        out.minimizers = "infinite";
+        out.pairs.push_back({w, w});
+        out.note = "two cylinders with a common ruling direction meet (a connected one has "
+                   "certified points on both sides of the other; the pair is an approximate "
+                   "common point)";
+      } else {
+        out.status = Status::Undecided;
+        out.note = "two cylinders with a common ruling direction whose sections may meet or "
+                   "touch: not decided";
+      }
+      return out;
+    }
+  }
+  const std::array<std::array<long, 3>, 3> ls{{{3, -5, 7}, {2, 7, -11}, {1, 1, 1}}};
+  for (bool src_a : {true, false})
+    for (const auto& l : ls) {
+      Rational ld;
+      for (size_t i = 0; i < 3; ++i)
+        ld += Rational(l[i]) * (*d)[i];
+      if (ld.is_zero()) continue;
+      Offset o = build_offset(src_a ? a : b, src_a ? b : a, l);
+      o.source_is_a = src_a;
+      algebra::SolutionCover cover =
+          algebra::cover_real_solutions({o.f, o.system[2], plane}, Rational(1, 16));
+      if (!cover.ok) continue;
+      DistanceResult out;
+      out.critical_candidates = static_cast<int>(cover.boxes.size());
+      SourceQuadric src(*o.source);
+      QuadricTarget tgt(src, o, digits);
+      minimize_over_cover(cover, src, tgt, digits, o.source_is_a, attained, out);
+      const std::string line = "two cylinders with a common ruling direction: the cross-sections "
+                               "in a plane orthogonal to it, solved exactly; every minimizing "
+                               "pair extends to a line of pairs parallel to the rulings";
+      out.note = out.note.empty() ? line : line + "; " + out.note;
+      if (out.status == Status::Certified) out.minimizers = "infinite"; // lines of pairs
+      out.method = "parallel_sections";
+      return out;
+    }
+  return std::nullopt;
+}
+
 DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
                                               const core::QuadricMatrix& b, long digits) {
   DistanceResult out;
@@ -394,6 +556,7 @@ DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
     if (off) break;
   }
   if (!off) {
+    if (auto pc = parallel_cylinders(a, b, digits)) return *pc;
     out.status = Status::Undecided;
     out.note = "not supported yet: the offset system has a curve of solutions in every tried "
                "position (" +
