@@ -1,6 +1,9 @@
 #include "surfcert/certify/distance/at_infinity.hpp"
 
 #include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/core/torus.hpp"
 
 namespace surfcert::certify {
 
@@ -70,11 +73,59 @@ bool disjoint_from(const M3& m, const M3& other) {
   return false;
 }
 
+// The form x^T m x as an integer polynomial (denominators cleared: the zero set is all that
+// counts).
+algebra::MPoly form_poly(const M3& m) {
+  core::Integer den(1);
+  for (const auto& row : m)
+    for (const auto& x : row)
+      fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
+  algebra::MPoly f;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      f = f + algebra::MPoly((m[i][j] * Rational(den)).num()) *
+                  algebra::MPoly::var(static_cast<int>(i)) *
+                  algebra::MPoly::var(static_cast<int>(j));
+  return f;
+}
+
+// Any two conics at infinity (proper conics, line pairs): no common real point, proven. A chart
+// l.X = 1 of the projective plane whose line l.X = 0 meets neither common point (the binary
+// forms of both conics on that line have a nonzero resultant: no common point there, real or
+// complex), then an exact real solution cover of {x^T A x, x^T B x, l.x - 1} with no box.
+bool conics_disjoint(const M3& ma, const M3& mb) {
+  const std::array<V3, 4> ls{{{Rational(3), Rational(-5), Rational(7)},
+                              {Rational(2), Rational(7), Rational(-11)},
+                              {Rational(1), Rational(1), Rational(1)},
+                              {Rational(0), Rational(0), Rational(1)}}};
+  for (const auto& l : ls) {
+    const auto fr = core::plane_frame(l);
+    const Rational a11 = form(ma, fr[0], fr[0]), a12 = form(ma, fr[0], fr[1]),
+                   a22 = form(ma, fr[1], fr[1]);
+    const Rational b11 = form(mb, fr[0], fr[0]), b12 = form(mb, fr[0], fr[1]),
+                   b22 = form(mb, fr[1], fr[1]);
+    const Rational p = a11 * b22 - a22 * b11;
+    const Rational res = p * p - (a11 * b12 * 2 - a12 * b11 * 2) * (a12 * b22 * 2 - a22 * b12 * 2);
+    if (res.is_zero()) continue;
+    core::Integer den(1);
+    for (const auto& x : l)
+      fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
+    algebra::MPoly chart = algebra::MPoly(0) - algebra::MPoly(den);
+    for (size_t i = 0; i < 3; ++i)
+      chart = chart + algebra::MPoly((l[i] * Rational(den)).num()) *
+                          algebra::MPoly::var(static_cast<int>(i));
+    const algebra::SolutionCover c =
+        algebra::cover_real_solutions({form_poly(ma), form_poly(mb), chart}, Rational(1, 16));
+    return c.ok && c.boxes.empty();
+  }
+  return false;
+}
+
 } // namespace
 
 bool minimum_attained(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
   const M3 ma = block(a), mb = block(b);
-  return disjoint_from(ma, mb) || disjoint_from(mb, ma);
+  return disjoint_from(ma, mb) || disjoint_from(mb, ma) || conics_disjoint(ma, mb);
 }
 
 } // namespace surfcert::certify

@@ -9,8 +9,11 @@
 // conics at infinity is a single point (semidefinite block of rank 2: paraboloids, elliptic
 // cylinders; the kernel direction k, common iff k^T M k = 0) or a double line (rank 1:
 // parabolic cylinders, parallel planes; common iff the other form restricted to that line is
-// not definite). Other combinations (two real conics, line pairs) return false: not decided,
-// the caller keeps its answer undecided.
+// not definite). Other combinations (two proper conics, line pairs): a chart l.X = 1 of the
+// projective plane whose line l.X = 0 holds no common point (nonzero resultant of the two
+// binary forms there), then an exact real solution cover of the two conics in that chart:
+// no box proves no common real point. A common point, or a cover that cannot decide, returns
+// false: the caller keeps its answer undecided.
 #pragma once
 
 #include "surfcert/core/quadric.hpp"
