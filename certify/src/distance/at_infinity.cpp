@@ -128,4 +128,9 @@ bool minimum_attained(const core::QuadricMatrix& a, const core::QuadricMatrix& b
   return disjoint_from(ma, mb) || disjoint_from(mb, ma) || conics_disjoint(ma, mb);
 }
 
+bool real_conics_disjoint(const std::array<std::array<core::Rational, 3>, 3>& a,
+                          const std::array<std::array<core::Rational, 3>, 3>& b) {
+  return conics_disjoint(a, b);
+}
+
 } // namespace surfcert::certify

@@ -4,6 +4,7 @@
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
 #include "surfcert/certify/distance/capsule_pair.hpp"
+#include "surfcert/certify/distance/common_apex.hpp"
 #include "surfcert/certify/distance/cone_distance.hpp"
 #include "surfcert/certify/distance/contact_sampling.hpp"
 #include "surfcert/certify/distance/convex_distance.hpp"
@@ -249,6 +250,12 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
     out.note = "topology not certified";
     return out;
   }
+  if (t.pencil == algebra::PencilKind::Degenerate)
+    if (auto r = common_apex_contact(a, b)) {
+      r->solid = solid;
+      r->mode = mode;
+      return *r;
+    }
   if (t.pencil == algebra::PencilKind::Coincident) {
     out.status = Status::Certified;
     out.lower = out.upper = "0";
@@ -546,8 +553,7 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
       out = DistanceResult();
       out = implicit_quadric_distance(im->f, q, digits, qa == nullptr);
     }
-  }
-  else
+  } else
     out = quadric_canal_distance(q, std::get<core::CanalSurface>(other), digits, qa != nullptr);
   out.solid = solid;
   out.mode = mode;

@@ -18,10 +18,18 @@
 
 #include "surfcert/core/quadric.hpp"
 
+#include <array>
+
 namespace surfcert::certify {
 
 /// True when proven: the real points at infinity of a and b are disjoint (then the minimum
 /// distance is attained). False when they meet or when this test cannot decide.
 bool minimum_attained(const core::QuadricMatrix& a, const core::QuadricMatrix& b);
+
+/// Ternary quadratic forms x^T A x, x^T B x (symmetric, rational): true when proven to have no
+/// common real zero in the projective plane (a chart and an exact solution cover, see above);
+/// false when they have one or when this cannot be decided.
+bool real_conics_disjoint(const std::array<std::array<core::Rational, 3>, 3>& a,
+                          const std::array<std::array<core::Rational, 3>, 3>& b);
 
 } // namespace surfcert::certify
