@@ -540,14 +540,19 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
     out = mode == Mode::Exact ? quadric_torus_distance_exact(q, *t, digits, qa != nullptr)
                               : quadric_torus_distance(q, *t, digits, qa != nullptr);
   else if (const auto* im = std::get_if<core::ImplicitSurface>(&other)) {
-    // An ellipsoid against a bounded implicit surface: the generic branch and bound first
+    // A quadric against a bounded implicit surface: the generic branch and bound first
     // (milliseconds to seconds; the offset system of a quartic against an ellipsoid runs for
     // minutes), the offset route when it cannot decide (unbounded or singular surfaces,
     // tangential contact, flat minima).
+    const core::Poly3 qp = q.to_poly();
     if (q.kind() == core::QuadricKind::Ellipsoid) {
-      const core::Poly3 qp = q.to_poly();
       out = qa ? implicit_pair_distance(qp, im->f, digits)
                : implicit_pair_distance(im->f, qp, digits);
+    } else if (!q.is_plane()) { // unbounded quadric: clipped near the bounded implicit surface
+      out = bounded_unbounded_distance(im->f, qp, digits);
+      if (qa)
+        for (auto& pr : out.pairs)
+          std::swap(pr[0], pr[1]);
     }
     if (out.status != Status::Certified) {
       out = DistanceResult();

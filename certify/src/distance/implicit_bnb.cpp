@@ -839,13 +839,22 @@ core::Poly3 torus_polynomial(const core::Torus& t) {
   return first * first - (s2 - (dot * dot).scaled(Rational(1) / a2)).scaled(Rational(4) * R2);
 }
 
-DistanceResult implicit_pair_distance(const core::Poly3& f, const core::Poly3& g, long digits) {
+namespace {
+
+// clip > 0: g need not be bounded; its zero set is taken inside the cube |x|_inf <= Ta + clip
+// (Ta: f's bounding radius). Every point of g outside that cube is farther than clip from
+// f = 0, so a certified minimum whose upper bound is below clip is the global one (checked at
+// the end; otherwise *clip_short receives that upper bound and the answer is undecided).
+DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long digits, double clip,
+                             double* clip_short) {
   DistanceResult out;
   out.method = "implicit_bnb";
   out.mode = Mode::Filtered;
   CGAL::Protect_FPU_rounding<true> guard;
   Surf sa = make_surf(f), sb = make_surf(g);
-  const auto ta = bounding_radius(sa.f), tb = bounding_radius(sb.f);
+  const auto ta = bounding_radius(sa.f);
+  const auto tb =
+      clip > 0 ? (ta ? std::optional<double>(*ta + clip) : std::nullopt) : bounding_radius(sb.f);
   if (!ta || !tb)
     return undecided(out, "could not prove bounded (leading form not proven definite)");
   sa.T = *ta;
@@ -855,7 +864,11 @@ DistanceResult implicit_pair_distance(const core::Poly3& f, const core::Poly3& g
   B.s = &sb;
   const int ra = A.make({DI(-sa.T, sa.T), DI(-sa.T, sa.T), DI(-sa.T, sa.T)});
   const int rb = B.make({DI(-sb.T, sb.T), DI(-sb.T, sb.T), DI(-sb.T, sb.T)});
-  if (ra < 0 || rb < 0) return undecided(out, "a surface has no real point (proven)");
+  if (ra >= 0 && rb < 0 && clip > 0 && clip_short) *clip_short = 4 * clip; // widen the cube
+  if (ra < 0 || rb < 0)
+    return undecided(out, clip > 0 && ra >= 0 ? "no point of the unbounded surface near the "
+                                                "bounded one (clipping cube too small)"
+                                              : "a surface has no real point (proven)");
   // The size of the surfaces (hull of the boxes alive after 9 levels of splitting) sets the
   // resolution of the rounds; it decides nothing.
   auto tight = [](Tree& t, int root) {
@@ -1124,11 +1137,44 @@ DistanceResult implicit_pair_distance(const core::Poly3& f, const core::Poly3& g
   }
   if (!relative_enclosure(d.v, lo.v, hi.v, digits, prec))
     return undecided(out, "the candidate minima are not separated to the requested digits");
+  if (clip > 0) {
+    // The global minimum is inside the cube only when it is below clip (outward: the upper
+    // end of the enclosure against clip, both as Arb numbers).
+    Ball c;
+    arb_set_d(c.v, clip);
+    if (!arb_lt(d.v, c.v)) { // every point of the ball d below clip
+      if (clip_short) *clip_short = arf_get_d(arb_midref(d.v), ARF_RND_UP);
+      return undecided(out, "the minimum over the clipping cube is not below its margin");
+    }
+  }
   out.status = Status::Certified;
   set_distance_enclosure(out, d.v, digits);
   out.minimizers = std::to_string(idx.size());
   note_unproven_ties(out, idx.size());
   return out;
+}
+
+} // namespace
+
+DistanceResult implicit_pair_distance(const core::Poly3& f, const core::Poly3& g, long digits) {
+  return pair_distance(f, g, digits, 0, nullptr);
+}
+
+DistanceResult bounded_unbounded_distance(const core::Poly3& f, const core::Poly3& g, long digits) {
+  double clip = 4, need = 0;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    need = 0;
+    DistanceResult r = pair_distance(f, g, digits, clip, &need);
+    if (r.status == Status::Certified || need <= 0) {
+      if (r.status == Status::Certified && r.upper != "0")
+        r.note += std::string(r.note.empty() ? "" : "; ") +
+                  "the unbounded surface taken within a cube around the bounded one, wide "
+                  "enough that every point outside is farther than the minimum";
+      return r;
+    }
+    clip = 2 * need + 1;
+  }
+  return undecided(DistanceResult{}, "the minimum over the clipping cube is not below its margin");
 }
 
 } // namespace surfcert::certify

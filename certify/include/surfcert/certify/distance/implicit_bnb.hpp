@@ -46,6 +46,13 @@ namespace surfcert::certify {
 /// boundedness, smoothness, or separation of the minimum cannot be proven within the budget.
 DistanceResult implicit_pair_distance(const core::Poly3& f, const core::Poly3& g, long digits);
 
+/// f = 0 bounded (as above), g = 0 any smooth or singular surface, possibly unbounded (a
+/// cylinder, cone, paraboloid, hyperboloid): g's zero set is taken inside the cube
+/// |x|_inf <= Ta + c (Ta: f's bounding radius), and a certified answer is kept only when the
+/// minimum is below c, since every point of g outside the cube is farther than c from f = 0
+/// (c = 4, then twice the minimum found + 1, three attempts). f is surface a.
+DistanceResult bounded_unbounded_distance(const core::Poly3& f, const core::Poly3& g, long digits);
+
 /// The quartic of a ring torus (exact):
 /// (|x-c|^2 + R^2 - r^2)^2 - 4 R^2 (|x-c|^2 - ((x-c).a)^2 / |a|^2).
 core::Poly3 torus_polynomial(const core::Torus& t);
