@@ -3,6 +3,7 @@
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/algebra/mpoly.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/certify/distance/quadratic_forms.hpp"
 #include "surfcert/core/torus.hpp"
 
 namespace surfcert::certify {
@@ -11,27 +12,11 @@ using core::Rational;
 
 namespace {
 
-using V3 = std::array<Rational, 3>;
-using M3 = std::array<V3, 3>;
-
-M3 block(const core::QuadricMatrix& q) {
-  M3 m;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      m[i][j] = q(static_cast<int>(i), static_cast<int>(j));
-  return m;
-}
+using V3 = RVec3;
+using M3 = RMat3;
 
 V3 cross(const V3& x, const V3& y) {
   return {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-}
-
-Rational form(const M3& m, const V3& x, const V3& y) {
-  Rational s;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      s += x[i] * m[i][j] * y[j];
-  return s;
 }
 
 bool zero(const V3& v) {
@@ -55,7 +40,7 @@ bool disjoint_from(const M3& m, const M3& other) {
     for (size_t i = 0; i < 3 && zero(k); ++i)
       for (size_t j = i + 1; j < 3 && zero(k); ++j)
         k = cross(m[i], m[j]);
-    return !zero(k) && !form(other, k, k).is_zero();
+    return !zero(k) && !bilinear(other, k, k).is_zero();
   }
   if (in.rank() == 1) { // the double line r.u = 0: the other form must be definite on it
     V3 r = m[0];
@@ -67,7 +52,8 @@ bool disjoint_from(const M3& m, const M3& other) {
     V3 e{Rational(0), Rational(0), Rational(0)};
     e[kk] = Rational(1);
     const V3 e1 = cross(r, e), e2 = cross(r, e1);
-    const Rational a = form(other, e1, e1), b = form(other, e1, e2), c = form(other, e2, e2);
+    const Rational a = bilinear(other, e1, e1), b = bilinear(other, e1, e2),
+                   c = bilinear(other, e2, e2);
     return (a * c - b * b).sign() > 0;
   }
   return false;
@@ -100,12 +86,7 @@ bool conics_disjoint(const M3& ma, const M3& mb) {
                               {Rational(0), Rational(0), Rational(1)}}};
   for (const auto& l : ls) {
     const auto fr = core::plane_frame(l);
-    const Rational a11 = form(ma, fr[0], fr[0]), a12 = form(ma, fr[0], fr[1]),
-                   a22 = form(ma, fr[1], fr[1]);
-    const Rational b11 = form(mb, fr[0], fr[0]), b12 = form(mb, fr[0], fr[1]),
-                   b22 = form(mb, fr[1], fr[1]);
-    const Rational p = a11 * b22 - a22 * b11;
-    const Rational res = p * p - (a11 * b12 * 2 - a12 * b11 * 2) * (a12 * b22 * 2 - a22 * b12 * 2);
+    const Rational res = restricted_resultant(ma, mb, fr[0], fr[1]);
     if (res.is_zero()) continue;
     core::Integer den(1);
     for (const auto& x : l)
@@ -124,7 +105,7 @@ bool conics_disjoint(const M3& ma, const M3& mb) {
 } // namespace
 
 bool minimum_attained(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
-  const M3 ma = block(a), mb = block(b);
+  const M3 ma = quadratic_block(a), mb = quadratic_block(b);
   return disjoint_from(ma, mb) || disjoint_from(mb, ma) || conics_disjoint(ma, mb);
 }
 

@@ -3,6 +3,7 @@
 #include "surfcert/algebra/upoly.hpp"
 #include "surfcert/certify/distance/at_infinity.hpp"
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/quadratic_forms.hpp"
 #include "surfcert/core/torus.hpp"
 
 #include <flint/fmpq_mat.h>
@@ -16,51 +17,15 @@ using core::Rational;
 
 namespace {
 
-using V3 = std::array<Rational, 3>;
-using M3 = std::array<V3, 3>;
+using V3 = RVec3;
+using M3 = RMat3;
 
-M3 block(const core::QuadricMatrix& q) {
-  M3 m;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      m[i][j] = q(static_cast<int>(i), static_cast<int>(j));
-  return m;
-}
-
-Rational form(const M3& m, const V3& x, const V3& y) {
-  Rational s;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      s += x[i] * m[i][j] * y[j];
-  return s;
-}
-
-// A common real affine singular point: a vector (p, 1) in the kernel of both 4x4 matrices
-// (FLINT nullspace of the stacked 8 x 4 matrix; some basis vector with a nonzero last entry).
+// A common real affine singular point: a kernel vector (p, w), w != 0, of both 4x4 matrices.
 std::optional<V3> common_singular_point(const core::QuadricMatrix& a,
                                         const core::QuadricMatrix& b) {
-  fmpq_mat_t m;
-  fmpq_mat_init(m, 8, 4);
-  for (int r = 0; r < 8; ++r)
-    for (int c = 0; c < 4; ++c)
-      fmpq_set(fmpq_mat_entry(m, r, c), (r < 4 ? a(r, c) : b(r - 4, c)).raw());
-  fmpz_mat_t z, ker;
-  fmpz_mat_init(z, 8, 4);
-  fmpz_mat_init(ker, 4, 4);
-  fmpq_mat_get_fmpz_mat_rowwise(z, nullptr, m);
-  const slong nullity = fmpz_mat_nullspace(ker, z);
-  std::optional<V3> p;
-  for (slong j = 0; j < nullity && !p; ++j) {
-    const fmpz* w = fmpz_mat_entry(ker, 3, j);
-    if (fmpz_is_zero(w)) continue;
-    p.emplace();
-    for (int i = 0; i < 3; ++i)
-      fmpq_set_fmpz_frac((*p)[static_cast<size_t>(i)].raw_mut(), fmpz_mat_entry(ker, i, j), w);
-  }
-  fmpz_mat_clear(ker);
-  fmpz_mat_clear(z);
-  fmpq_mat_clear(m);
-  return p;
+  for (const auto& k : common_kernel(a, b, 4))
+    if (!k[3].is_zero()) return V3{k[0] / k[3], k[1] / k[3], k[2] / k[3]};
+  return std::nullopt;
 }
 
 // x^T g x at the certified real points of the conic x^T f x = 0 on the lines w + t e (w, e
@@ -73,13 +38,13 @@ bool sign_change_on_conic(const M3& f, const M3& g) {
                               {Rational(0), Rational(1), Rational(0)},
                               {Rational(0), Rational(0), Rational(1)}}};
   for (const auto& e : es) {
-    const Rational qa = form(f, e, e);
+    const Rational qa = bilinear(f, e, e);
     if (qa.is_zero()) continue;
     for (long i = -3; i <= 3; ++i)
       for (long j = -3; j <= 3; ++j)
         for (long k = -3; k <= 3; ++k) {
           const V3 w{Rational(i), Rational(j), Rational(k)};
-          const Rational qb = form(f, w, e) * Rational(2), qc = form(f, w, w);
+          const Rational qb = bilinear(f, w, e) * Rational(2), qc = bilinear(f, w, w);
           const Rational disc = qb * qb - Rational(4) * qa * qc;
           if (disc.sign() <= 0) continue;
           Ball sq, t, v[3], val, tmp;
@@ -141,8 +106,8 @@ bool double_line_meets(const M3& d, const M3& f) {
   for (const auto& row : d)
     if (!(row[0].is_zero() && row[1].is_zero() && row[2].is_zero())) l = row;
   const auto fr = core::plane_frame(l);
-  const Rational f11 = form(f, fr[0], fr[0]), f12 = form(f, fr[0], fr[1]),
-                 f22 = form(f, fr[1], fr[1]);
+  const Rational f11 = bilinear(f, fr[0], fr[0]), f12 = bilinear(f, fr[0], fr[1]),
+                 f22 = bilinear(f, fr[1], fr[1]);
   return (f11 * f22 - f12 * f12).sign() <= 0; // real root of the binary form (or all zero)
 }
 
@@ -196,7 +161,7 @@ std::optional<DistanceResult> common_apex_contact(const core::QuadricMatrix& a,
   const std::array<double, 3> w{(*p)[0].to_double_approx(), (*p)[1].to_double_approx(),
                                 (*p)[2].to_double_approx()};
   out.pairs.push_back({w, w});
-  const M3 A = block(a), B = block(b);
+  const M3 A = quadratic_block(a), B = quadratic_block(b);
   const std::string apex = "the surfaces share the singular point (" + (*p)[0].to_string() + ", " +
                            (*p)[1].to_string() + ", " + (*p)[2].to_string() + ")";
   if (real_conics_disjoint(A, B)) {

@@ -7,13 +7,12 @@
 #include "surfcert/certify/distance/critical_signs.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/distance/quadratic_forms.hpp"
 #include "surfcert/certify/distance/revolution.hpp"
 
 #include "surfcert/core/torus.hpp"
 
 #include <arb.h>
-#include <flint/fmpq_mat.h>
-#include <flint/fmpz_mat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -367,42 +366,13 @@ DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::Q
 namespace {
 
 // The common ruling direction of two cylinders (any kind: elliptic, hyperbolic, parabolic,
-// plane pairs): an integer d != 0 with (d, 0) in the kernel of both 4x4 matrices, i.e. both
-// surfaces invariant under translation along d. Exact (FLINT nullspace of the 8 x 3 matrix of
-// their first three columns); nullopt unless that kernel is exactly one line.
+// plane pairs): d != 0 with (d, 0) in the kernel of both 4x4 matrices, i.e. both surfaces
+// invariant under translation along d; nullopt unless that kernel is exactly one line.
 std::optional<std::array<Rational, 3>> common_ruling(const core::QuadricMatrix& a,
                                                      const core::QuadricMatrix& b) {
-  fmpq_mat_t m;
-  fmpq_mat_init(m, 8, 3);
-  for (int r = 0; r < 8; ++r)
-    for (int c = 0; c < 3; ++c)
-      fmpq_set(fmpq_mat_entry(m, r, c), (r < 4 ? a(r, c) : b(r - 4, c)).raw());
-  fmpz_mat_t z, ker;
-  fmpz_mat_init(z, 8, 3);
-  fmpz_mat_init(ker, 3, 3);
-  fmpq_mat_get_fmpz_mat_rowwise(z, nullptr, m);
-  const slong nullity = fmpz_mat_nullspace(ker, z);
-  std::optional<std::array<Rational, 3>> d;
-  if (nullity == 1) {
-    d.emplace();
-    for (int i = 0; i < 3; ++i)
-      fmpq_set_fmpz_frac((*d)[static_cast<size_t>(i)].raw_mut(), fmpz_mat_entry(ker, i, 0),
-                         core::Integer(1).raw());
-  }
-  fmpz_mat_clear(ker);
-  fmpz_mat_clear(z);
-  fmpq_mat_clear(m);
-  return d;
-}
-
-// u^T A v for the quadratic block A of q.
-Rational block_form(const core::QuadricMatrix& q, const std::array<Rational, 3>& u,
-                    const std::array<Rational, 3>& v) {
-  Rational s;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      s += u[static_cast<size_t>(i)] * q(i, j) * v[static_cast<size_t>(j)];
-  return s;
+  const auto k = common_kernel(a, b, 3);
+  if (k.size() != 1) return std::nullopt;
+  return std::array<Rational, 3>{k[0][0], k[0][1], k[0][2]};
 }
 
 // Two cylinders with a common ruling direction d: translating a pair along d gives a pair at
@@ -421,15 +391,14 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
   const auto d = common_ruling(a, b);
   if (!d) return std::nullopt;
   const auto fr = core::plane_frame(*d);
-  const Rational a11 = block_form(a, fr[0], fr[0]), a12 = block_form(a, fr[0], fr[1]),
-                 a22 = block_form(a, fr[1], fr[1]);
-  const Rational b11 = block_form(b, fr[0], fr[0]), b12 = block_form(b, fr[0], fr[1]),
-                 b22 = block_form(b, fr[1], fr[1]);
+  const RMat3 A = quadratic_block(a), B = quadratic_block(b);
+  const Rational a11 = bilinear(A, fr[0], fr[0]), a12 = bilinear(A, fr[0], fr[1]),
+                 a22 = bilinear(A, fr[1], fr[1]);
+  const Rational b11 = bilinear(B, fr[0], fr[0]), b12 = bilinear(B, fr[0], fr[1]),
+                 b22 = bilinear(B, fr[1], fr[1]);
   const bool bounded_section =
       (a11 * a22 - a12 * a12).sign() > 0 || (b11 * b22 - b12 * b12).sign() > 0;
-  // Res(a11 s^2 + 2 a12 s t + a22 t^2, b11 s^2 + 2 b12 s t + b22 t^2).
-  const Rational p = a11 * b22 - a22 * b11;
-  const Rational res = p * p - (a11 * b12 * 2 - a12 * b11 * 2) * (a12 * b22 * 2 - a22 * b12 * 2);
+  const Rational res = restricted_resultant(A, B, fr[0], fr[1]);
   // Two parabolic sections with one axis direction e (rank-1 forms, common double root): each
   // goes to infinity along one half-direction only, -sign(trace) sign(b.e) e (on the parabola
   // far out, 2 t b.e balances the positive transversal term), so opposite openings cannot
