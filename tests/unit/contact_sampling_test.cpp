@@ -6,7 +6,9 @@
 // - pairs whose real intersection the projective classification leaves "maybe at infinity"
 //   (a cylinder and a paraboloid with parallel axes, two translated cones): proven to meet,
 //   the witness lies on both surfaces (double check); surface_distance answers 0;
-// - disjoint pairs are never reported as meeting (a connected surface on one side of the other).
+// - disjoint pairs are never reported as meeting (a connected surface, or each sheet of a
+//   disconnected one, on one side of the other); one sheet crossing is proven, also after a
+//   rigid motion.
 #include "surfcert/certify/distance/contact_sampling.hpp"
 
 #include "support/distance_checks.hpp"
@@ -77,7 +79,13 @@ TEST(ContactSampling, DisjointPairsNeverMeet) {
       {"x^2 + y^2 = 1", "(x - 5)^2 + y^2 = 1"},
       {"x^2 + y^2 - z = 0", "x^2 + y^2 - z + 3 = 0"},
       {"x^2 + 2y^2 + 3z^2 = 1", "x^2 + y^2 - z - 5 = 0"},
-      {"x^2 + y^2 - z^2 = -1", "x^2 + y^2 + z^2 = 1/4"}};
+      {"x^2 + y^2 - z^2 = -1", "x^2 + y^2 + z^2 = 1/4"},
+      // disconnected quadrics with their sheets on opposite sides of the other surface: each
+      // sheet sees one sign only (the sheets are told apart exactly), so nothing is claimed
+      {"x^2 - y^2 - z^2 = 1", "x = 0"},
+      {"x^2 - y^2 = 1", "x + y/5 = 0"},
+      {"x^2 = 1", "x^2 + y^2 + z^2 = 1/4"},
+      {"x^2 - y^2 - z^2 = 1", "x^2 + (y - 1)^2 + z^2 = 1/4"}};
   for (const auto& [a, b] : pairs) {
     std::array<double, 3> w{};
     EXPECT_FALSE(certify::meet_by_sign_change(q(a), q(b), w)) << a << " | " << b;
@@ -152,4 +160,25 @@ TEST(ContactSampling, CanalSurfacesThatMeet) {
   EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.upper, "0");
   EXPECT_FALSE(certify::surfaces_meet_by_sign_change(K, capsule(20), w));
+}
+
+TEST(ContactSampling, OneSheetOfADisconnectedQuadricCrosses) {
+  // Two hyperbolic cylinders along z (x^2 - y^2 = 1 and (x - 2)^2 - 4 y^2 = 1 meet near
+  // x = -2.33), a two-sheeted hyperboloid whose right sheet crosses a sphere, and a pair of
+  // parallel planes cutting a sphere: both signs on one sheet prove a crossing; the witness lies
+  // on both surfaces (float check of the polished point).
+  const std::pair<const char*, const char*> pairs[] = {
+      {"x^2 - y^2 = 1", "(x - 2)^2 - 4y^2 = 1"},
+      {"x^2 - y^2 - z^2 = 1", "(x - 3)^2 + y^2 + z^2 = 4"},
+      {"x^2 = 1", "(x - 1)^2 + (y - 2)^2 + z^2 = 1"}};
+  const auto m = motion(1, 2, 0, -1, {Rational(1, 2), Rational(3), Rational(-2)});
+  for (const auto& [a, b] : pairs)
+    for (bool moved : {false, true}) {
+      const auto A = moved ? q(a).congruent(m) : q(a), B = moved ? q(b).congruent(m) : q(b);
+      std::array<double, 3> w{};
+      ASSERT_TRUE(certify::meet_by_sign_change(A, B, w)) << a << " | " << b;
+      const double scale = 1 + std::hypot(w[0], w[1], w[2]);
+      EXPECT_NEAR(eval(A, w), 0, 1e-6 * scale * scale) << a << " | " << b;
+      EXPECT_NEAR(eval(B, w), 0, 1e-6 * scale * scale) << a << " | " << b;
+    }
 }

@@ -221,8 +221,16 @@ TEST(CylinderPair, ParallelNonEllipticSections) {
   EXPECT_LE(lo(away), 1.0);
   EXPECT_GE(hi(away), 1.0);
   EXPECT_NE(dist(P, q("y = x^2 + 1")).status, certify::Status::Certified);
-  // Two hyperbolas with parallel asymptotes: the infimum could lie at infinity; not certified.
-  EXPECT_NE(dist(q("x^2 - y^2 = 1"), q("(x - 6)^2 - y^2 = 1")).status, certify::Status::Certified);
+  // Nested hyperbolas with the same asymptotes (x^2 - y^2 = 1 and = 4): the gap tends to 0
+  // at infinity, the infimum 0 is not attained; never certified as a positive distance.
+  const auto nested = dist(q("x^2 - y^2 = 1"), q("x^2 - y^2 = 4"));
+  EXPECT_NE(nested.status, certify::Status::Certified);
+  EXPECT_EQ(nested.lower.empty() ? "0" : nested.lower, "0");
+  // Shifted hyperbolas x^2 - y^2 = 1 and (x - 6)^2 - y^2 = 1 cross at (3, +-2 sqrt 2): a sign
+  // change on one sheet proves it (distance 0).
+  const auto crossing = dist(q("x^2 - y^2 = 1"), q("(x - 6)^2 - y^2 = 1"));
+  ASSERT_EQ(crossing.status, certify::Status::Certified) << crossing.note;
+  EXPECT_EQ(crossing.upper, "0");
   // Crossing sections (y = x^2 and y = 1 - x^2 meet at x = +-1/sqrt 2): distance 0 with an
   // approximate common point on both; swapped, the same.
   for (bool swap : {false, true}) {

@@ -63,14 +63,55 @@ void point_ball(Ball (&p)[3], const std::array<double, 3>& x) {
     arb_set_d(p[l].v, x[l]);
 }
 
-// Samples of a connected quadric: certified points on the gradient lines of a rational grid at
-// several scales; stops once both sides of `other` are seen.
+// A disconnected real quadric (two-sheeted hyperboloid, hyperbolic cylinder, parallel plane
+// pair) is x^T A x + 2 b.x + c0 = 0, i.e. y^T A y = k in y = x - c (A c = -b where a centre
+// exists). Its sheets are told apart by the sign of h(x) = w^T (A x + b) = (A w).(x - c) for a
+// rational w with w^T A w of the sign of k: on the plane h = 0 (the A-orthogonal complement of
+// w) the form A has the other sign or vanishes, so it holds no point of y^T A y = k. The sign of
+// k is read off the inertias (Q is congruent to A + (-k)). Returns false when no such w is
+// found among small integer vectors (never for these three kinds).
+bool sheet_separator(const core::QuadricMatrix& q, std::array<Rational, 3>& l, Rational& h0) {
+  core::Mat4 m3 = q.matrix();
+  for (size_t i = 0; i < 4; ++i) {
+    m3[i][3] = Rational(0);
+    m3[3][i] = Rational(0);
+  }
+  const algebra::Inertia im = algebra::inertia_ldlt(m3), iq = algebra::inertia_ldlt(q.matrix());
+  const int k_sign = iq.p > im.p ? -1 : 1;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j)
+      for (int k = -2; k <= 2; ++k) {
+        const std::array<Rational, 3> w{Rational(i), Rational(j), Rational(k)};
+        Rational waw;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            waw += w[static_cast<size_t>(r)] * q(r, c) * w[static_cast<size_t>(c)];
+        if (waw.sign() != k_sign) continue;
+        h0 = Rational(0);
+        for (int r = 0; r < 3; ++r) {
+          l[static_cast<size_t>(r)] = Rational(0);
+          for (int c = 0; c < 3; ++c)
+            l[static_cast<size_t>(r)] += q(r, c) * w[static_cast<size_t>(c)];
+          h0 += w[static_cast<size_t>(r)] * q(r, 3);
+        }
+        return true;
+      }
+  return false;
+}
+
+// Samples of a quadric: certified points on the gradient lines of a rational grid at several
+// scales; stops once both sides of `other` are seen on one connected piece (the whole quadric,
+// or one sheet of a disconnected one, told apart exactly by sheet_separator).
 bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& other,
                          std::array<double, 3> (&at)[2]) {
-  if (!quadric_connected(a)) return false;
+  const bool connected = quadric_connected(a);
+  std::array<Rational, 3> l;
+  Rational h0;
+  if (!connected && !sheet_separator(a, l, h0)) return false;
   const SourceQuadric src(a);
   const long prec = 128;
-  bool have[2] = {false, false};
+  bool have[2][2] = {{false, false}, {false, false}}; // [sheet][side]
+  std::array<double, 3> pts[2][2];
   for (long scale : {1L, 4L, 16L, 64L, 256L, 1024L}) {
     for (int i = -2; i <= 2; ++i)
       for (int j = -2; j <= 2; ++j)
@@ -80,15 +121,31 @@ bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& othe
                                  Rational(scale * (2 * k) + 1, 3)};
           Ball p[3];
           if (!src.project(c, p, prec)) continue;
+          size_t sheet = 0;
+          if (!connected) {
+            Ball h, t;
+            arb_set_fmpq(h.v, h0.raw(), prec);
+            for (size_t r = 0; r < 3; ++r) {
+              arb_set_fmpq(t.v, l[r].raw(), prec);
+              arb_addmul(h.v, t.v, p[r].v, prec);
+            }
+            if (!arb_is_positive(h.v) && !arb_is_negative(h.v)) continue;
+            sheet = arb_is_positive(h.v) ? 1 : 0;
+          }
           const int sd = side_of(other, p);
           if (sd == 0) continue;
           const size_t w = sd > 0 ? 1 : 0;
-          if (have[w]) continue;
-          have[w] = true;
-          for (size_t l = 0; l < 3; ++l)
-            at[w][l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
+          if (have[sheet][w]) continue;
+          have[sheet][w] = true;
+          for (size_t r = 0; r < 3; ++r)
+            pts[sheet][w][r] = arf_get_d(arb_midref(p[r].v), ARF_RND_NEAR);
         }
-    if (have[0] && have[1]) return true;
+    for (size_t sh = 0; sh < 2; ++sh)
+      if (have[sh][0] && have[sh][1]) {
+        at[0] = pts[sh][0];
+        at[1] = pts[sh][1];
+        return true;
+      }
   }
   return false;
 }

@@ -453,9 +453,9 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
         out.lower = out.upper = "0";
         out.minimizers = "infinite";
         out.pairs.push_back({w, w});
-        out.note = "two cylinders with a common ruling direction meet (a connected one has "
-                   "certified points on both sides of the other; the pair is an approximate "
-                   "common point)";
+        out.note = "two cylinders with a common ruling direction meet (a connected piece of one "
+                   "has certified points on both sides of the other; the pair is an "
+                   "approximate common point)";
       } else {
         out.status = Status::Undecided;
         out.note = "two cylinders with a common ruling direction whose sections may meet or "

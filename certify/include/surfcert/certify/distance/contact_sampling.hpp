@@ -3,13 +3,15 @@
 // whose conics at infinity share a component may lie at infinity only: cylinder against a
 // paraboloid of the same axis direction, two cones with one conic at infinity).
 //
-// If a quadric A is connected and the other quadric's polynomial g takes both signs on A, then
-// g vanishes somewhere on A (intermediate values along a path in A): the surfaces meet at an
+// If a quadric A (or one sheet of it) is connected and the other quadric's polynomial g takes
+// both signs on it, then g vanishes somewhere on it (intermediate values along a path in A): the surfaces meet at an
 // affine point. Points of A are certified balls (the root of f on the gradient line through a
 // rational grid point, Arb) and the sign of g on each ball is certified; connectedness is
 // decided exactly from the inertia of the quadratic block and of the 4x4 matrix (two-sheeted
 // hyperboloids, hyperbolic cylinders and pairs of parallel planes are the disconnected real
-// quadrics). The sampling grid (several scales around the origin) only chooses where to look:
+// quadrics; for them both signs must be seen on one sheet, the sheet of a point told apart
+// exactly by the sign of a linear function w^T (A x + b) that vanishes on no point of the
+// quadric). The sampling grid (several scales around the origin) only chooses where to look:
 // failure to find both signs proves nothing and returns false. The witness is approximate (a
 // float bisection between the two certified points, projected on A).
 #pragma once
