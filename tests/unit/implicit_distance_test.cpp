@@ -60,6 +60,14 @@ TEST(ImplicitDistance, CubicGraphAgainstSpheres) {
   EXPECT_EQ(r.minimizers, "1");
   ASSERT_FALSE(r.pairs.empty());
   EXPECT_NEAR(r.pairs[0][0][2], h(r.pairs[0][0][0], r.pairs[0][0][1]), 1e-9); // on the cubic
+  // The answer comes from the branch and bound with the cubic clipped near the sphere; the
+  // offset system (normal lines of the cubic through the centre, exact elimination) agrees.
+  EXPECT_EQ(r.method, "implicit_bnb");
+  const auto o = certify::implicit_quadric_distance(
+      std::get<core::ImplicitSurface>(cubic).f,
+      std::get<core::QuadricMatrix>(surf("x^2 + y^2 + (z-4)^2 = 1")), 20, true);
+  ASSERT_EQ(o.status, certify::Status::Certified) << o.note;
+  EXPECT_TRUE(surfcert::testing::overlap(r, o)) << r.lower << " vs " << o.lower;
   // Swapped: same enclosure, points swapped.
   auto s = certify::surface_distance(surf("x^2 + y^2 + (z-4)^2 = 1"), cubic, 20, false);
   ASSERT_EQ(s.status, certify::Status::Certified) << s.note;

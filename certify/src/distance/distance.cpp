@@ -515,6 +515,13 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
       // the offset system with the implicit source (slow beyond cubics, but any degree).
       out = ia ? implicit_pair_distance(ia->f, torus_polynomial(*tb), digits)
                : implicit_pair_distance(torus_polynomial(*ta), ib->f, digits);
+      if (out.status != Status::Certified) { // an unbounded implicit surface, clipped
+        out =
+            bounded_unbounded_distance(torus_polynomial(ia ? *tb : *ta), (ia ? ia : ib)->f, digits);
+        if (ia)
+          for (auto& pr : out.pairs)
+            std::swap(pr[0], pr[1]);
+      }
       if (out.status != Status::Certified)
         out = ia ? implicit_torus_distance(ia->f, *tb, digits, true)
                  : implicit_torus_distance(ib->f, *ta, digits, false);
@@ -548,6 +555,12 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
     if (q.kind() == core::QuadricKind::Ellipsoid) {
       out = qa ? implicit_pair_distance(qp, im->f, digits)
                : implicit_pair_distance(im->f, qp, digits);
+      if (out.status != Status::Certified) { // an unbounded implicit surface, clipped
+        out = bounded_unbounded_distance(qp, im->f, digits);
+        if (!qa)
+          for (auto& pr : out.pairs)
+            std::swap(pr[0], pr[1]);
+      }
     } else if (!q.is_plane()) { // unbounded quadric: clipped near the bounded implicit surface
       out = bounded_unbounded_distance(im->f, qp, digits);
       if (qa)

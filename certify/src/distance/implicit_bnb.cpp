@@ -1151,6 +1151,27 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   set_distance_enclosure(out, d.v, digits);
   out.minimizers = std::to_string(idx.size());
   note_unproven_ties(out, idx.size());
+  // Tie regions (symmetry.hpp): the f-point part of each minimizer's Krawczyk box. Every
+  // global minimizer is a critical pair in one of these boxes; when the f-parts are pairwise
+  // disjoint, no region holds the f-point of two minimizers (the other's box would meet it).
+  if (idx.size() > 1) {
+    std::vector<std::vector<std::array<double, 2>>> regs;
+    for (size_t i : idx) {
+      std::vector<std::array<double, 2>> r;
+      for (size_t k = 0; k < 3; ++k)
+        r.push_back({found[i].X[k].inf(), found[i].X[k].sup()});
+      regs.push_back(std::move(r));
+    }
+    bool disjoint = true;
+    for (size_t i = 0; i < regs.size(); ++i)
+      for (size_t j = i + 1; j < regs.size(); ++j) {
+        bool meet = true;
+        for (size_t k = 0; k < 3; ++k)
+          meet = meet && regs[i][k][0] <= regs[j][k][1] && regs[j][k][0] <= regs[i][k][1];
+        disjoint = disjoint && !meet;
+      }
+    if (disjoint) out.tie_regions = std::move(regs);
+  }
   return out;
 }
 
