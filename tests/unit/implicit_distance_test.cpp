@@ -239,3 +239,67 @@ TEST(ImplicitDistance, BoundedQuarticAgainstATiltedCylinder) {
   ASSERT_FALSE(s.pairs.empty());
   EXPECT_NEAR(s.pairs[0][1][0], r.pairs[0][0][0], 1e-9);
 }
+
+namespace {
+
+// [lower, upper] of r times s (a power of ten), outward, as MPFR numbers; true when it overlaps
+// the enclosure e.
+bool scaled_overlap(const certify::DistanceResult& r, const std::string& s,
+                    const certify::DistanceResult& e) {
+  mpfr_t l, u, k, el, eu;
+  mpfr_inits2(2000, l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(k, s.c_str(), 10, MPFR_RNDN); // 10^j and 10^-j: exact enough at 2000 bits
+  mpfr_mul(l, l, k, MPFR_RNDD);
+  mpfr_mul(u, u, k, MPFR_RNDU);
+  mpfr_set_str(el, e.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(eu, e.upper.c_str(), 10, MPFR_RNDU);
+  // a relative slack of 1e-300 covers the rounding of 10^-8 at 2000 bits (about 1e-600)
+  mpfr_mul_d(l, l, 1 - 1e-300, MPFR_RNDD);
+  mpfr_mul_d(u, u, 1 + 1e-300, MPFR_RNDU);
+  const bool ok = mpfr_cmp(l, eu) <= 0 && mpfr_cmp(el, u) <= 0;
+  mpfr_clears(l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
+  return ok;
+}
+
+} // namespace
+
+TEST(ImplicitDistance, ExtremeScalesAndTranslations) {
+  // The branch and bound routes (bounded pair; bounded vs clipped unbounded) on the bumpy quartic
+  // against an ellipsoid and against the tilted cylinder, with x -> x / s (s = 10^8, 10^-8) and
+  // x -> x - 10^6: scaled enclosures overlap s times the unit ones, translated ones overlap the
+  // unit ones, always through the branch and bound (no fallback to the slow offset system).
+  const std::string Q = "(X)^4 + (Y)^4 + (Z)^4 + (X)(Y) = 2";
+  const std::string E = "(X-3)^2 + (Y-1)^2/4 + (Z-1/2)^2 = 1";
+  const std::string C = "(X-3)^2 + (Y)^2 + (Z)^2 - ((X-3) + (Y) + 2(Z))^2/6 = 1";
+  const auto subst = [](std::string t, const std::string& x, const std::string& y,
+                        const std::string& z) {
+    std::string out;
+    for (char ch : t)
+      out += ch == 'X' ? x : ch == 'Y' ? y : ch == 'Z' ? z : std::string(1, ch);
+    return out;
+  };
+  for (const auto& other : {E, C}) {
+    const auto base = certify::surface_distance(surf(subst(Q, "x", "y", "z")),
+                                                surf(subst(other, "x", "y", "z")), 15, false);
+    ASSERT_EQ(base.status, certify::Status::Certified) << base.note;
+    for (const std::string& s : {std::string("100000000"), std::string("0.00000001")}) {
+      const std::string x = "x/" + s, y = "y/" + s, z = "z/" + s;
+      const auto r = certify::surface_distance(surf(subst(Q, x, y, z)), surf(subst(other, x, y, z)),
+                                               15, false);
+      ASSERT_EQ(r.status, certify::Status::Certified) << s << ": " << r.note;
+      EXPECT_EQ(r.method, "implicit_bnb") << s;
+      EXPECT_TRUE(scaled_overlap(base, s, r)) << s << ": " << r.lower << " vs " << base.lower;
+    }
+    const auto t =
+        certify::surface_distance(surf(subst(Q, "(x-1000000)", "y", "z")),
+                                  surf(subst(other, "(x-1000000)", "y", "z")), 15, false);
+    ASSERT_EQ(t.status, certify::Status::Certified) << t.note;
+    EXPECT_EQ(t.method, "implicit_bnb");
+    EXPECT_TRUE(surfcert::testing::overlap(base, t)) << t.lower << " vs " << base.lower;
+    ASSERT_FALSE(t.pairs.empty());
+    ASSERT_FALSE(base.pairs.empty());
+    EXPECT_NEAR(t.pairs[0][0][0] - 1000000, base.pairs[0][0][0], 1e-8);
+  }
+}

@@ -1,13 +1,10 @@
-// Branch and bound over pairs of boxes plus Krawczyk on the Lagrange system for two bounded
-// implicit surfaces (implicit_bnb.hpp). Double intervals (CGAL, outward rounding under
-// Protect_FPU_rounding) drive the branch and bound; Arb balls decide the Krawczyk tests and the
-// final enclosure. Float Newton iterations only propose points; they never decide.
 #include "surfcert/certify/distance/implicit_bnb.hpp"
 
 #include "surfcert/certify/distance/ball.hpp"
 
 #include <CGAL/Interval_nt.h>
 #include <arb_mat.h>
+#include <mpfr.h>
 
 #include <algorithm>
 #include <array>
@@ -219,14 +216,15 @@ std::optional<double> bounding_radius(const Poly& f) {
   const int d = f.deg;
   if (d < 2 || d % 2 != 0) return std::nullopt;
   Poly lead;
-  DI rest(0);
+  std::vector<DI> A(static_cast<size_t>(d), DI(0)); // sum of |coefficients| of degree k < d
   for (size_t t = 0; t < f.e.size(); ++t) {
-    if (f.e[t][0] + f.e[t][1] + f.e[t][2] == d) {
+    const int k = f.e[t][0] + f.e[t][1] + f.e[t][2];
+    if (k == d) {
       lead.e.push_back(f.e[t]);
       lead.c.push_back(f.c[t]);
       lead.deg = d;
     } else {
-      rest += CGAL::abs(f.c[t]);
+      A[static_cast<size_t>(k)] += CGAL::abs(f.c[t]);
     }
   }
   int sign = 0;
@@ -267,8 +265,22 @@ std::optional<double> bounding_radius(const Poly& f) {
     stack.push_back(c2);
   }
   if (sign == 0 || !(cmin > 0)) return std::nullopt;
-  const DI t = rest / DI(cmin);
-  return (DI(std::max(1.0, t.sup())) * DI(1.0009765625) + DI(1.0 / 1024)).sup();
+  // On |x|_inf = rho: |lead| >= cmin rho^d (homogeneous), |degree-k part| <= A_k rho^k. With n
+  // nonzero A_k, rho > (n A_k / cmin)^(1/(d-k)) for every k makes each A_k rho^k < cmin rho^d /
+  // n, so f != 0 there and for every larger rho: the zero set lies in the cube. Scale-correct
+  // (the bound scales with the surface), unlike sum A_k / cmin.
+  int n = 0;
+  for (const DI& a : A)
+    n += a.sup() > 0 ? 1 : 0;
+  double rho = 1.0 / 1024;
+  for (size_t k = 0; k < A.size(); ++k) {
+    if (!(A[k].sup() > 0)) continue;
+    const double q = (DI(n) * A[k] / DI(cmin)).sup();
+    // std::pow is not correctly rounded: a relative margin far above its error.
+    const double r = std::pow(q, 1.0 / static_cast<double>(d - static_cast<int>(k)));
+    rho = std::max(rho, (DI(r) * DI(1.0009765625)).sup());
+  }
+  return rho;
 }
 
 // ---- 2. octree nodes (lazy, shared between pairs) ----
@@ -841,6 +853,26 @@ core::Poly3 torus_polynomial(const core::Torus& t) {
 
 namespace {
 
+// The hull of the boxes alive after splitting the root until 3000 boxes (or 90 levels): it
+// holds the zero set (boxes where 0 is not in f are dropped).
+Box tight_hull(Tree& t, int root) {
+  std::vector<int> level{root};
+  for (int d = 0; d < 90 && level.size() < 3000; ++d) {
+    std::vector<int> next;
+    for (int i : level) {
+      t.split(i);
+      for (int c : t.nodes[static_cast<size_t>(i)].child)
+        if (c >= 0) next.push_back(c);
+    }
+    if (next.empty()) break;
+    level = std::move(next);
+  }
+  Box hb = t.nodes[static_cast<size_t>(level[0])].b;
+  for (int i : level)
+    hb = hull(hb, t.nodes[static_cast<size_t>(i)].b);
+  return hb;
+}
+
 // clip > 0: g need not be bounded; its zero set is taken inside the cube |x|_inf <= Ta + clip
 // (Ta: f's bounding radius). Every point of g outside that cube is farther than clip from
 // f = 0, so a certified minimum whose upper bound is below clip is the global one (checked at
@@ -853,8 +885,7 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   CGAL::Protect_FPU_rounding<true> guard;
   Surf sa = make_surf(f), sb = make_surf(g);
   const auto ta = bounding_radius(sa.f);
-  const auto tb =
-      clip > 0 ? (ta ? std::optional<double>(*ta + clip) : std::nullopt) : bounding_radius(sb.f);
+  const auto tb = clip > 0 ? ta : bounding_radius(sb.f); // clipped: set below
   if (!ta || !tb)
     return undecided(out, "could not prove bounded (leading form not proven definite)");
   sa.T = *ta;
@@ -863,32 +894,29 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   A.s = &sa;
   B.s = &sb;
   const int ra = A.make({DI(-sa.T, sa.T), DI(-sa.T, sa.T), DI(-sa.T, sa.T)});
-  const int rb = B.make({DI(-sb.T, sb.T), DI(-sb.T, sb.T), DI(-sb.T, sb.T)});
-  if (ra >= 0 && rb < 0 && clip > 0 && clip_short) *clip_short = 4 * clip; // widen the cube
-  if (ra < 0 || rb < 0)
-    return undecided(out, clip > 0 && ra >= 0 ? "no point of the unbounded surface near the "
-                                                "bounded one (clipping cube too small)"
-                                              : "a surface has no real point (proven)");
-  // The size of the surfaces (hull of the boxes alive after 9 levels of splitting) sets the
-  // resolution of the rounds; it decides nothing.
-  auto tight = [](Tree& t, int root) {
-    std::vector<int> level{root};
-    for (int d = 0; d < 90 && level.size() < 3000; ++d) {
-      std::vector<int> next;
-      for (int i : level) {
-        t.split(i);
-        for (int c : t.nodes[static_cast<size_t>(i)].child)
-          if (c >= 0) next.push_back(c);
-      }
-      if (next.empty()) break;
-      level = std::move(next);
-    }
-    Box hb = t.nodes[static_cast<size_t>(level[0])].b;
-    for (int i : level)
-      hb = hull(hb, t.nodes[static_cast<size_t>(i)].b);
+  if (ra < 0) return undecided(out, "a surface has no real point (proven)");
+  // The size of the surfaces (hull of the boxes alive after splitting) sets the resolution of
+  // the rounds; it decides nothing.
+  const auto tight = [](Tree& t, int root) {
+    const Box hb = tight_hull(t, root);
     return std::make_pair(width(hb), centre(hb));
   };
   const auto [wa0, ca0] = tight(A, ra);
+  // Clipped: g within the cube of half-width hw = (size of f)/2 + clip around f's hull, which
+  // holds f's zero set; every point of g outside is farther than clip from f = 0 (outward
+  // interval arithmetic for the cube's faces).
+  const double hw = clip > 0 ? (DI(wa0) / 2 + DI(clip)).sup() : 0;
+  Box bbox{DI(-sb.T, sb.T), DI(-sb.T, sb.T), DI(-sb.T, sb.T)};
+  if (clip > 0)
+    for (size_t i = 0; i < 3; ++i)
+      bbox[i] = DI((DI(ca0[i]) - DI(hw)).inf(), (DI(ca0[i]) + DI(hw)).sup());
+  const int rb = B.make(bbox);
+  if (rb < 0) {
+    if (clip > 0 && clip_short) *clip_short = 4 * clip; // widen the cube
+    return undecided(out, clip > 0 ? "no point of the unbounded surface near the bounded one "
+                                     "(clipping cube too small)"
+                                   : "a surface has no real point (proven)");
+  }
   const auto [wb0, cb0] = tight(B, rb);
   const double extent = std::max(wa0, wb0);
   // Each polynomial re-expanded about the centre of its surface: far from the origin the
@@ -902,6 +930,13 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   Surf sa2 = make_surf(f, round_centre(ca0)), sb2 = make_surf(g, round_centre(cb0));
   sa2.T = sa.T;
   sb2.T = sb.T;
+  if (clip > 0) { // the whole clipping cube, seen from g's new centre
+    const D3 cr = round_centre(cb0);
+    double off = 0;
+    for (size_t i = 0; i < 3; ++i)
+      off = std::max(off, CGAL::abs(DI(ca0[i]) - DI(cr[i])).sup());
+    sb2.T = (DI(hw) + DI(off)).sup();
+  }
   sa = std::move(sa2);
   sb = std::move(sb2);
   A = Tree{};
@@ -964,6 +999,9 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
       if (pr.lb > ub) continue;
       if (++popped > kPairBudget) {
         out.lower = "0";
+        // Clipped and a genuine pair no closer than the margin: the cube's faces may hold the
+        // minimum over the cube (no critical pair there); widen past that pair's distance.
+        if (clip > 0 && clip_short && ub < HUGE_VAL && ub >= clip) *clip_short = ub;
         return undecided(out, "box budget exhausted");
       }
       const Box& ba = A.nodes[static_cast<size_t>(pr.a)].b;
@@ -1072,6 +1110,7 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   out.critical_candidates = static_cast<int>(found.size());
   if (!queue.empty()) {
     out.lower = "0";
+    if (clip > 0 && clip_short && ub < HUGE_VAL && ub >= clip) *clip_short = ub;
     if (ub < HUGE_VAL) {
       arf_t u;
       arf_init(u);
@@ -1177,25 +1216,152 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
 
 } // namespace
 
+namespace {
+
+// The working frame x = c + 2^k y: c a dyadic point near the surfaces, 2^k their size, so the
+// branch and bound (whose float guidance and padding are tuned for unit-size surfaces, and
+// whose Lagrange multipliers scale with the size and the coefficients) sees unit-size
+// surfaces near the origin whatever the input's scale or position. Exact: c and 2^k are dyadic,
+// the polynomials are substituted and divided by their largest |coefficient| over Q, distances
+// scale by 2^k, points map back by x = c + 2^k y.
+struct Frame {
+  std::array<double, 3> c{};
+  long k = 0;
+};
+
+std::optional<Box> zero_hull(const core::Poly3& p) {
+  Surf s = make_surf(p);
+  const auto t = bounding_radius(s.f);
+  if (!t) return std::nullopt;
+  s.T = *t;
+  Box h{DI(-s.T, s.T), DI(-s.T, s.T), DI(-s.T, s.T)};
+  // Each hull holds the zero set, so it can root the next, finer pass (a far-off surface's
+  // first hull is coarse: the cube around the origin is much larger than the surface).
+  for (int pass = 0; pass < 6; ++pass) {
+    // Re-expanded about the current hull's centre (far from the origin the monomial form
+    // cancels badly and no box is ever excluded).
+    Surf sc = pass == 0 ? std::move(s) : make_surf(p, centre(h));
+    sc.T = 0.5 * width(h);
+    s = std::move(sc);
+    Tree tr;
+    tr.s = &s;
+    const int root = tr.make(h);
+    if (root < 0) return std::nullopt;
+    const Box next = tight_hull(tr, root);
+    const bool shrunk = width(next) < 0.5 * width(h);
+    h = next;
+    if (!shrunk) break;
+  }
+  return h;
+}
+
+core::Poly3 in_frame(const core::Poly3& p, const Frame& fr) {
+  std::array<core::Poly3, 3> l;
+  const Rational sc = Rational::exact_from_double(std::ldexp(1.0, static_cast<int>(fr.k)));
+  for (size_t i = 0; i < 3; ++i)
+    l[i] = core::Poly3::variable(static_cast<int>(i)).scaled(sc) +
+           core::Poly3(Rational::exact_from_double(fr.c[i]));
+  core::Poly3 out;
+  for (const auto& [e, c] : p.terms())
+    out = out + (l[0].pow(static_cast<unsigned>(e[0])) * l[1].pow(static_cast<unsigned>(e[1])) *
+                 l[2].pow(static_cast<unsigned>(e[2])))
+                    .scaled(c);
+  Rational big;
+  for (const auto& [e, c] : out.terms())
+    if (core::abs(c) > big) big = core::abs(c);
+  return big.is_zero() ? out : out.scaled(Rational(1) / big);
+}
+
+// A decimal bound times 2^k, rounded outward again (digits significant digits).
+std::string scaled_bound(const std::string& x, long k, bool upper, long digits) {
+  if (x.empty() || x == "0") return x;
+  mpfr_t m;
+  mpfr_init2(m, static_cast<mpfr_prec_t>(64 + 4 * x.size()));
+  mpfr_set_str(m, x.c_str(), 10, upper ? MPFR_RNDU : MPFR_RNDD);
+  mpfr_mul_2si(m, m, k, MPFR_RNDN); // exact
+  const std::string fmt = "%." + std::to_string(digits) + "R" + (upper ? "U" : "D") + "g";
+  const int n = mpfr_snprintf(nullptr, 0, fmt.c_str(), m);
+  std::string out(static_cast<size_t>(n) + 1, '\0');
+  mpfr_snprintf(out.data(), out.size(), fmt.c_str(), m);
+  out.resize(static_cast<size_t>(n));
+  mpfr_clear(m);
+  return out;
+}
+
+DistanceResult from_frame(DistanceResult r, const Frame& fr, long digits) {
+  const double s = std::ldexp(1.0, static_cast<int>(fr.k));
+  r.lower = scaled_bound(r.lower, fr.k, false, digits + 2);
+  r.upper = scaled_bound(r.upper, fr.k, true, digits + 2);
+  r.approx *= s;
+  for (auto& pr : r.pairs)
+    for (auto& pt : pr)
+      for (size_t i = 0; i < 3; ++i)
+        pt[i] = fr.c[i] + s * pt[i];
+  for (auto& reg : r.tie_regions)
+    for (size_t i = 0; i < reg.size() && i < 3; ++i) {
+      reg[i][0] = std::nextafter(fr.c[i] + s * reg[i][0], -HUGE_VAL);
+      reg[i][1] = std::nextafter(fr.c[i] + s * reg[i][1], HUGE_VAL);
+    }
+  return r;
+}
+
+// The frame of the hull h: centre rounded to 2^(k-20), 2^k >= the hull's largest width.
+Frame frame_of(const Box& h) {
+  Frame fr;
+  const double w = std::max(width(h), 1e-300);
+  fr.k = static_cast<long>(std::ceil(std::log2(w)));
+  const D3 c = centre(h);
+  for (size_t i = 0; i < 3; ++i)
+    fr.c[i] = std::ldexp(std::nearbyint(std::ldexp(c[i], static_cast<int>(20 - fr.k))),
+                         static_cast<int>(fr.k - 20));
+  return fr;
+}
+
+} // namespace
+
 DistanceResult implicit_pair_distance(const core::Poly3& f, const core::Poly3& g, long digits) {
-  return pair_distance(f, g, digits, 0, nullptr);
+  std::optional<Box> hf, hg;
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    hf = zero_hull(f);
+    hg = zero_hull(g);
+  }
+  if (!hf || !hg) return pair_distance(f, g, digits, 0, nullptr); // it says why
+  const Frame fr = frame_of(hull(*hf, *hg));
+  return from_frame(pair_distance(in_frame(f, fr), in_frame(g, fr), digits + 1, 0, nullptr), fr,
+                    digits);
 }
 
 DistanceResult bounded_unbounded_distance(const core::Poly3& f, const core::Poly3& g, long digits) {
-  double clip = 4, need = 0;
-  for (int attempt = 0; attempt < 3; ++attempt) {
+  std::optional<Box> hf;
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    hf = zero_hull(f);
+  }
+  if (!hf) return pair_distance(f, g, digits, 1, nullptr); // it says why
+  const Frame fr = frame_of(*hf);
+  const core::Poly3 F = in_frame(f, fr), G = in_frame(g, fr);
+  // The first margin: the bounded surface's size (1 in the frame); then past the genuine pair
+  // found, or a wider cube when the unbounded surface was not reached.
+  double clip = 1, need = 0;
+  for (int attempt = 0; attempt < 4; ++attempt) {
     need = 0;
-    DistanceResult r = pair_distance(f, g, digits, clip, &need);
+    DistanceResult r = pair_distance(F, G, digits + 1, clip, &need);
     if (r.status == Status::Certified || need <= 0) {
       if (r.status == Status::Certified && r.upper != "0")
         r.note += std::string(r.note.empty() ? "" : "; ") +
                   "the unbounded surface taken within a cube around the bounded one, wide "
                   "enough that every point outside is farther than the minimum";
-      return r;
+      return from_frame(std::move(r), fr, digits);
     }
     clip = 2 * need + 1;
   }
   return undecided(DistanceResult{}, "the minimum over the clipping cube is not below its margin");
 }
+
+// Branch and bound over pairs of boxes plus Krawczyk on the Lagrange system for two bounded
+// implicit surfaces (implicit_bnb.hpp). Double intervals (CGAL, outward rounding under
+// Protect_FPU_rounding) drive the branch and bound; Arb balls decide the Krawczyk tests and the
+// final enclosure. Float Newton iterations only propose points; they never decide.
 
 } // namespace surfcert::certify
