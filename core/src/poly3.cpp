@@ -134,4 +134,13 @@ std::string Poly3::to_string() const {
   return s;
 }
 
+Poly3 Poly3::substitute(const std::array<Poly3, 3>& xyz) const {
+  Poly3 out;
+  for (const auto& [e, c] : terms_)
+    out = out + (xyz[0].pow(static_cast<unsigned>(e[0])) * xyz[1].pow(static_cast<unsigned>(e[1])) *
+                 xyz[2].pow(static_cast<unsigned>(e[2])))
+                    .scaled(c);
+  return out;
+}
+
 } // namespace surfcert::core

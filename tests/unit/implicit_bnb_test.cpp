@@ -51,12 +51,7 @@ core::Poly3 moved(const core::Poly3& f, const core::Mat4& p) {
     for (size_t j = 0; j < 3; ++j)
       l[i] = l[i] + core::Poly3::variable(static_cast<int>(j)).scaled(p[i][j]);
   }
-  core::Poly3 out;
-  for (const auto& [e, c] : f.terms())
-    out = out + (l[0].pow(static_cast<unsigned>(e[0])) * l[1].pow(static_cast<unsigned>(e[1])) *
-                 l[2].pow(static_cast<unsigned>(e[2])))
-                    .scaled(c);
-  return out;
+  return f.substitute(l);
 }
 
 core::Poly3 sphere(const R3& c, const core::Rational& r) {

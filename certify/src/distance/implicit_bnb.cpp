@@ -148,12 +148,7 @@ core::Poly3 shifted(const core::Poly3& p, const D3& shift) {
   for (size_t i = 0; i < 3; ++i)
     l[i] = core::Poly3::variable(static_cast<int>(i)) +
            core::Poly3(Rational::exact_from_double(shift[i]));
-  core::Poly3 out;
-  for (const auto& [e, c] : p.terms())
-    out = out + (l[0].pow(static_cast<unsigned>(e[0])) * l[1].pow(static_cast<unsigned>(e[1])) *
-                 l[2].pow(static_cast<unsigned>(e[2])))
-                    .scaled(c);
-  return out;
+  return p.substitute(l);
 }
 
 Surf make_surf(const core::Poly3& p0, const D3& shift = {}) {
@@ -1261,11 +1256,7 @@ core::Poly3 in_frame(const core::Poly3& p, const Frame& fr) {
   for (size_t i = 0; i < 3; ++i)
     l[i] = core::Poly3::variable(static_cast<int>(i)).scaled(sc) +
            core::Poly3(Rational::exact_from_double(fr.c[i]));
-  core::Poly3 out;
-  for (const auto& [e, c] : p.terms())
-    out = out + (l[0].pow(static_cast<unsigned>(e[0])) * l[1].pow(static_cast<unsigned>(e[1])) *
-                 l[2].pow(static_cast<unsigned>(e[2])))
-                    .scaled(c);
+  const core::Poly3 out = p.substitute(l);
   Rational big;
   for (const auto& [e, c] : out.terms())
     if (core::abs(c) > big) big = core::abs(c);

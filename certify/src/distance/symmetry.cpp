@@ -170,12 +170,7 @@ core::Poly3 compose(const core::Poly3& f, const Isometry& g) {
     for (size_t j = 0; j < 3; ++j)
       L[i] = L[i] + core::Poly3::variable(static_cast<int>(j)).scaled(g.P[i][j]);
   }
-  core::Poly3 out;
-  for (const auto& [e, c] : f.terms())
-    out = out + (L[0].pow(static_cast<unsigned>(e[0])) * L[1].pow(static_cast<unsigned>(e[1])) *
-                 L[2].pow(static_cast<unsigned>(e[2])))
-                    .scaled(c);
-  return out;
+  return f.substitute(L);
 }
 
 algebra::UPolyQ upoly(const std::vector<Rational>& c) {

@@ -42,6 +42,9 @@ public:
   friend bool operator==(const Poly3& a, const Poly3& b) { return a.terms_ == b.terms_; }
 
   Rational evaluate(const Rational& x, const Rational& y, const Rational& z) const;
+  /// p(X(x), Y(x), Z(x)): the polynomial with x, y, z replaced by the three given ones (a
+  /// change of coordinates when they are affine), exact.
+  Poly3 substitute(const std::array<Poly3, 3>& xyz) const;
   /// Readable text such as "x^2 + 1/4*y^2 - 1" (exact coefficients).
   std::string to_string() const;
 
