@@ -68,6 +68,27 @@ inline double log10_rel_width(const certify::DistanceResult& r) {
   return w;
 }
 
+/// [lower, upper] of r times the decimal factor s (e.g. "1e8", "0.00000001"), rounded
+/// outward at 2000 bits with a relative slack of 1e-300 (the factor's own rounding is about
+/// 2^-2000), overlaps the enclosure e: the scaling law d(s A, s B) = s d(A, B).
+inline bool overlap_scaled(const certify::DistanceResult& r, const std::string& s,
+                           const certify::DistanceResult& e) {
+  mpfr_t l, u, k, el, eu;
+  mpfr_inits2(2000, l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(k, s.c_str(), 10, MPFR_RNDN);
+  mpfr_mul(l, l, k, MPFR_RNDD);
+  mpfr_mul(u, u, k, MPFR_RNDU);
+  mpfr_mul_d(l, l, 1 - 1e-300, MPFR_RNDD);
+  mpfr_mul_d(u, u, 1 + 1e-300, MPFR_RNDU);
+  mpfr_set_str(el, e.lower.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(eu, e.upper.c_str(), 10, MPFR_RNDU);
+  const bool ok = mpfr_cmp(l, eu) <= 0 && mpfr_cmp(el, u) <= 0;
+  mpfr_clears(l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
+  return ok;
+}
+
 /// Rigid motion x -> R x + t with R from the integer quaternion (w, x, y, z), as the 4x4
 /// congruence P with Q' = P^T Q P describing the moved surface.
 inline core::Mat4 motion(long w, long x, long y, long z, const std::array<core::Rational, 3>& t) {

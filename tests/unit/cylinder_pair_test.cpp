@@ -244,3 +244,27 @@ TEST(CylinderPair, ParallelNonEllipticSections) {
     EXPECT_NEAR(w[1], 1 - w[0] * w[0], 1e-6);
   }
 }
+
+TEST(CylinderPair, ParallelSectionsAtExtremes) {
+  // The cross-section route and the common apex at scalings 10^+-8 (exact congruences: the
+  // distance scales by s) and 10^6 from the origin (unchanged).
+  const std::pair<const char*, const char*> pairs[] = {{"x^2 - y^2 = 1", "(x - 3)^2 + y^2 = 1"},
+                                                       {"y = x^2", "y = -x^2 - 1"}};
+  for (const auto& [a, b] : pairs) {
+    const auto base = dist(q(a), q(b), 20);
+    ASSERT_EQ(base.status, certify::Status::Certified) << base.note;
+    const std::pair<const char*, Rational> scales[] = {{"100000000", Rational(100000000)},
+                                                       {"0.00000001", Rational(1, 100000000)}};
+    for (const auto& [s, factor] : scales) {
+      const auto sc = surfcert::testing::scaling(factor);
+      const auto r = dist(q(a).congruent(sc), q(b).congruent(sc), 20);
+      ASSERT_EQ(r.status, certify::Status::Certified) << a << " " << s << ": " << r.note;
+      EXPECT_TRUE(surfcert::testing::overlap_scaled(base, s, r)) << a << " " << s;
+      EXPECT_EQ(r.minimizers, "infinite");
+    }
+    const auto far = motion(1, 0, 0, 0, {Rational(1000000), Rational(-1000000), Rational(1000000)});
+    const auto t = dist(q(a).congruent(far), q(b).congruent(far), 20);
+    ASSERT_EQ(t.status, certify::Status::Certified) << a << ": " << t.note;
+    EXPECT_TRUE(overlap(base, t)) << a << ": " << t.lower << " vs " << base.lower;
+  }
+}

@@ -240,31 +240,6 @@ TEST(ImplicitDistance, BoundedQuarticAgainstATiltedCylinder) {
   EXPECT_NEAR(s.pairs[0][1][0], r.pairs[0][0][0], 1e-9);
 }
 
-namespace {
-
-// [lower, upper] of r times s (a power of ten), outward, as MPFR numbers; true when it overlaps
-// the enclosure e.
-bool scaled_overlap(const certify::DistanceResult& r, const std::string& s,
-                    const certify::DistanceResult& e) {
-  mpfr_t l, u, k, el, eu;
-  mpfr_inits2(2000, l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
-  mpfr_set_str(k, s.c_str(), 10, MPFR_RNDN); // 10^j and 10^-j: exact enough at 2000 bits
-  mpfr_mul(l, l, k, MPFR_RNDD);
-  mpfr_mul(u, u, k, MPFR_RNDU);
-  mpfr_set_str(el, e.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(eu, e.upper.c_str(), 10, MPFR_RNDU);
-  // a relative slack of 1e-300 covers the rounding of 10^-8 at 2000 bits (about 1e-600)
-  mpfr_mul_d(l, l, 1 - 1e-300, MPFR_RNDD);
-  mpfr_mul_d(u, u, 1 + 1e-300, MPFR_RNDU);
-  const bool ok = mpfr_cmp(l, eu) <= 0 && mpfr_cmp(el, u) <= 0;
-  mpfr_clears(l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
-  return ok;
-}
-
-} // namespace
-
 TEST(ImplicitDistance, ExtremeScalesAndTranslations) {
   // The branch and bound routes (bounded pair; bounded vs clipped unbounded) on the bumpy quartic
   // against an ellipsoid and against the tilted cylinder, with x -> x / s (s = 10^8, 10^-8) and
@@ -290,7 +265,8 @@ TEST(ImplicitDistance, ExtremeScalesAndTranslations) {
                                                15, false);
       ASSERT_EQ(r.status, certify::Status::Certified) << s << ": " << r.note;
       EXPECT_EQ(r.method, "implicit_bnb") << s;
-      EXPECT_TRUE(scaled_overlap(base, s, r)) << s << ": " << r.lower << " vs " << base.lower;
+      EXPECT_TRUE(surfcert::testing::overlap_scaled(base, s, r))
+          << s << ": " << r.lower << " vs " << base.lower;
     }
     const auto t =
         certify::surface_distance(surf(subst(Q, "(x-1000000)", "y", "z")),
