@@ -224,9 +224,11 @@ int cmd_distance(const std::vector<std::string>& args) {
     if (!text.empty() && text[0] == '{')
       return core::io::read_surface(core::io::parse_json(text, src), src, "$");
     core::Poly3 p = core::io::parse_polynomial(text, Location{src, 1, 1, ""});
-    if (p.total_degree() >= 3) { // an implicit surface of degree 3..6
-      if (p.total_degree() > 6)
-        throw InputError(Location{src, 1, 1, ""}, "a surface of total degree at most 6",
+    if (p.total_degree() >= 3) { // an implicit surface of degree 3..kMaxImplicitDegree
+      if (p.total_degree() > core::kMaxImplicitDegree)
+        throw InputError(Location{src, 1, 1, ""},
+                         "a surface of total degree at most " +
+                             std::to_string(core::kMaxImplicitDegree),
                          "total degree " + std::to_string(p.total_degree()));
       return core::ImplicitSurface{std::move(p)};
     }

@@ -81,7 +81,8 @@ TEST(ImplicitDistance, CubicGraphAgainstSpheres) {
 }
 
 TEST(ImplicitDistance, InputLimits) {
-  EXPECT_THROW(surf("x^7 + y^2 + z^2 = 1"), core::InputError);
+  EXPECT_THROW(surf("x^13 + y^2 + z^2 = 1"), core::InputError); // degree > 12
+  EXPECT_NO_THROW(surf("x^7 + y^2 + z^2 = 1"));
   // Against an unbounded quadric that it crosses (x^3 = x^2 + 5 near x = 2.1): contact proven
   // by a sign change along the paraboloid; the witness lies on both.
   auto r = certify::surface_distance(surf("z = x^3"), surf("z = x^2 + y^2 + 5"), 15, false);
@@ -278,4 +279,27 @@ TEST(ImplicitDistance, ExtremeScalesAndTranslations) {
     ASSERT_FALSE(base.pairs.empty());
     EXPECT_NEAR(t.pairs[0][0][0] - 1000000, base.pairs[0][0][0], 1e-8);
   }
+}
+
+TEST(ImplicitDistance, DegreeEightAgainstAPlane) {
+  // x^8 + y^8 + z^8 = 1 against x + y + z = 5 (beyond the offset systems' degrees: the clipped
+  // branch and bound only): the nearest point is (a, a, a) with 3 a^8 = 1, so
+  // d = (5 - 3^(7/8)) / sqrt(3), in MPFR.
+  const auto octic = surf("x^8 + y^8 + z^8 = 1");
+  ASSERT_TRUE(std::holds_alternative<core::ImplicitSurface>(octic));
+  const auto r = certify::surface_distance(octic, surf("x + y + z = 5"), 25, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.method, "implicit_bnb");
+  mpfr_t d, t;
+  mpfr_inits2(300, d, t, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_ui(t, 3, MPFR_RNDN);
+  mpfr_set_d(d, 0.875, MPFR_RNDN);
+  mpfr_pow(d, t, d, MPFR_RNDN); // 3^(7/8)
+  mpfr_ui_sub(d, 5, d, MPFR_RNDN);
+  mpfr_sqrt(t, t, MPFR_RNDN);
+  mpfr_div(d, d, t, MPFR_RNDN);
+  EXPECT_TRUE(surfcert::testing::contains(r, d)) << r.lower << " " << r.upper;
+  mpfr_clears(d, t, static_cast<mpfr_ptr>(nullptr));
+  ASSERT_FALSE(r.pairs.empty());
+  EXPECT_NEAR(r.pairs[0][0][0], std::pow(3.0, -0.125), 1e-9);
 }

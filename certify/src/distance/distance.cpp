@@ -561,7 +561,9 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
           for (auto& pr : out.pairs)
             std::swap(pr[0], pr[1]);
       }
-    } else if (!q.is_plane()) { // unbounded quadric: clipped near the bounded implicit surface
+    } else if (!q.is_plane() || im->f.total_degree() > core::kMaxOffsetDegree) {
+      // an unbounded quadric (a plane only beyond the plane route's degrees): clipped near
+      // the bounded implicit surface
       out = bounded_unbounded_distance(im->f, qp, digits);
       if (qa)
         for (auto& pr : out.pairs)

@@ -355,7 +355,7 @@ Surface read_canal(const Json& v, const std::string& source, const std::string& 
 } // namespace
 
 Surface read_surface(const Json& v, const std::string& source, const std::string& path) {
-  // An equation of degree 3 to 6 (string or {"equation": ...}) is an implicit surface.
+  // An equation of degree 3 to 12 (string or {"equation": ...}) is an implicit surface.
   const Json* eqj = v.is_string() ? &v : (v.is_object() ? v.find("equation") : nullptr);
   if (eqj && eqj->is_string()) {
     const std::string epath = v.is_string() ? path : json_path_child(path, "equation");
@@ -364,8 +364,10 @@ Surface read_surface(const Json& v, const std::string& source, const std::string
     const int d = p.total_degree();
     if (d >= 3) {
       if (v.is_object()) check_fields(v, {"equation"}, source, path);
-      if (d > 6)
-        throw InputError(where, "an implicit surface of total degree at most 6",
+      if (d > kMaxImplicitDegree)
+        throw InputError(where,
+                         "an implicit surface of total degree at most " +
+                             std::to_string(kMaxImplicitDegree),
                          "total degree " + std::to_string(d));
       return ImplicitSurface{std::move(p)};
     }

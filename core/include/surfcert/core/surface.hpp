@@ -33,8 +33,15 @@ CanalSurface make_canal(std::array<std::vector<Rational>, 3> spine, std::vector<
 /// Value of a coefficient list (constant first) at t.
 Rational eval_poly(const std::vector<Rational>& c, const Rational& t);
 
-/// An implicit algebraic surface f(x, y, z) = 0 of total degree 3 to 6 (quadrics are
-/// QuadricMatrix). Invariant: 3 <= total degree <= 6, rational coefficients.
+/// Highest total degree accepted for an implicit surface. The branch and bound serves any
+/// degree; the exact offset systems are only attempted up to kMaxOffsetDegree (their
+/// resultants grow like a power of the degree).
+constexpr int kMaxImplicitDegree = 12;
+constexpr int kMaxOffsetDegree = 6;
+
+/// An implicit algebraic surface f(x, y, z) = 0 of total degree 3 to kMaxImplicitDegree
+/// (quadrics are QuadricMatrix). Invariant: 3 <= total degree <= kMaxImplicitDegree, rational
+/// coefficients.
 struct ImplicitSurface {
   Poly3 f;
 };
