@@ -4,7 +4,9 @@
 share nothing with it: the pair points lie on both surfaces and realise the distance; points
 sampled on both surfaces (random lines, float) are never closer than the certified lower
 bound; the two modes overlap. Usage: bench/fuzz_distance.py build/certify/surfcert N SEED [-v]
-(-v lists the undecided pairs). Prints the status counts and the number of violations."""
+[--degenerate] (-v lists the undecided pairs; --degenerate draws degenerate pencils only:
+cylinders of any kind with one ruling direction, and cones with one apex). Prints the status
+counts and the number of violations."""
 import json, random, subprocess, sys, math
 from fractions import Fraction as F
 
@@ -24,6 +26,9 @@ KINDS = {
     'hcyl': lambda a, b, c: [[1/a, 0, 0, 0], [0, -1/b, 0, 0], [0, 0, 0, 0], [0, 0, 0, -1]],
     'pcyl': lambda a, b, c: [[1/a, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, F(-1, 2)], [0, 0, F(-1, 2), 0]],
 }
+# Parabolic cylinder ruled along z like cyl and hcyl (x^2 / a = y), for the degenerate draws.
+PCYLZ = lambda a, b, c: [[1/a, 0, 0, 0], [0, 0, 0, F(-1, 2)], [0, 0, 0, 0], [0, F(-1, 2), 0, 0]]
+DEGENERATE = '--degenerate' in sys.argv
 
 
 def rot(w, x, y, z):
@@ -34,14 +39,22 @@ def rot(w, x, y, z):
     return [[F(R[i][j], n) for j in range(3)] for i in range(3)]
 
 
-def random_quadric(kind):
-    a, b, c = (F(random.randint(1, 9), random.randint(1, 4)) for _ in range(3))
-    M = [[F(v) for v in row] for row in KINDS[kind](a, b, c)]
+def random_rotation():
     qq = [random.randint(-3, 3) for _ in range(4)]
     if not any(qq) or random.random() >= 0.7:
         qq = [1, 0, 0, 0]
-    R = rot(*qq)
-    t = [F(random.randint(-12, 12), random.randint(1, 3)) for _ in range(3)]
+    return qq
+
+
+def random_translation():
+    return [F(random.randint(-12, 12), random.randint(1, 3)) for _ in range(3)]
+
+
+def random_quadric(kind, qq=None, t=None):
+    a, b, c = (F(random.randint(1, 9), random.randint(1, 4)) for _ in range(3))
+    M = [[F(v) for v in row] for row in (PCYLZ if kind == 'pcylz' else KINDS[kind])(a, b, c)]
+    R = rot(*(qq or random_rotation()))
+    t = t or random_translation()
     # x' = R^T (x - t): T maps x to local coordinates; Q' = T^T M T, T = [[R^T, -R^T t], [0, 1]]
     T = [[R[j][i] for j in range(3)] + [-sum(R[j][i]*t[j] for j in range(3))] for i in range(3)]
     T.append([F(0), F(0), F(0), F(1)])
@@ -107,8 +120,17 @@ def run(a, b, mode):
 bad = 0
 stats = {}
 for k in range(N):
-    ka, kb = random.choice(list(KINDS)), random.choice(list(KINDS))
-    Qa, Qb = random_quadric(ka), random_quadric(kb)
+    if DEGENERATE and k % 2 == 0:  # one ruling direction: the same rotation
+        ka, kb = (random.choice(['cyl', 'hcyl', 'pcylz']) for _ in range(2))
+        qq = random_rotation()
+        Qa, Qb = random_quadric(ka, qq=qq), random_quadric(kb, qq=qq)
+    elif DEGENERATE:  # one apex: the same translation
+        ka, kb = 'cone', 'cone'
+        t = random_translation()
+        Qa, Qb = random_quadric(ka, t=t), random_quadric(kb, t=t)
+    else:
+        ka, kb = random.choice(list(KINDS)), random.choice(list(KINDS))
+        Qa, Qb = random_quadric(ka), random_quadric(kb)
     ea, eb = equation(Qa), equation(Qb)
     res = {}
     for mode in ('filtered', 'exact'):
