@@ -369,4 +369,13 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
   }
 }
 
+bool refuse_beyond_offset_degree(const core::Poly3& f, DistanceResult& out) {
+  if (f.total_degree() <= core::kMaxOffsetDegree) return false;
+  out.status = Status::Undecided;
+  out.note = "the exact offset system is not attempted beyond degree " +
+             std::to_string(core::kMaxOffsetDegree) +
+             " (its resultants grow too large); the branch and bound did not decide";
+  return true;
+}
+
 } // namespace surfcert::certify

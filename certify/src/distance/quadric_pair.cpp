@@ -810,13 +810,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
 DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::QuadricMatrix& q,
                                          long digits, bool implicit_first) {
   DistanceResult out;
-  if (fp.total_degree() > core::kMaxOffsetDegree) {
-    out.status = Status::Undecided;
-    out.note = "the exact offset system is not attempted beyond degree " +
-               std::to_string(core::kMaxOffsetDegree) +
-               " (its resultants grow too large); the branch and bound did not decide";
-    return out;
-  }
+  if (refuse_beyond_offset_degree(fp, out)) return out;
   if (q.kind() != core::QuadricKind::Ellipsoid)
     return bounded_implicit_quadric(fp, q, digits, implicit_first);
   const MPoly f = poly3_to_mpoly(fp);

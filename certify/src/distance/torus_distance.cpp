@@ -581,13 +581,7 @@ DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const 
 DistanceResult implicit_torus_distance(const core::Poly3& f, const core::Torus& t, long digits,
                                        bool implicit_first) {
   DistanceResult out;
-  if (f.total_degree() > core::kMaxOffsetDegree) {
-    out.status = Status::Undecided;
-    out.note = "the exact offset system is not attempted beyond degree " +
-               std::to_string(core::kMaxOffsetDegree) +
-               " (its resultants grow too large); the branch and bound did not decide";
-    return out;
-  }
+  if (refuse_beyond_offset_degree(f, out)) return out;
   const TorusPolys tp = torus_polys(t);
   SourceQuadric src(poly3_to_mpoly(f));
   // Contact: T's least value on each component of f = 0 is a critical value (T grows at

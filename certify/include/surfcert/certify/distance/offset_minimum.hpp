@@ -19,6 +19,7 @@
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/poly3.hpp"
 
 #include <array>
 #include <optional>
@@ -78,6 +79,10 @@ public:
 /// Refines `cover` to the minimum (see above). source_is_a: S1 is the first surface of the
 /// query (pairs are reported in query order). compact: the minimum is attained (one surface
 /// bounded); otherwise the status is undecided with lower = 0.
+/// True (and out set to undecided, saying why) when the implicit source f is beyond the degree
+/// the exact offset systems are attempted for (core::kMaxOffsetDegree).
+bool refuse_beyond_offset_degree(const core::Poly3& f, DistanceResult& out);
+
 void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src,
                          const MinimumTarget& tgt, long digits, bool source_is_a, bool compact,
                          DistanceResult& out);
