@@ -141,7 +141,7 @@ for k in range(N):
     key = f"{ka}-{kb}"
     st = tuple(res[m]['status'] for m in ('filtered', 'exact'))
     if '-v' in sys.argv and res['filtered'].get('status') != 'certified':
-        print('UNDECIDED', key, res['filtered'].get('note', '')[:150])
+        print('UNDECIDED', key, res['filtered'].get('note', '')[:150], '::', ea, '|', eb)
     stats.setdefault(st, 0)
     stats[st] += 1
     pa = samples(Qa, 500, 30)

@@ -103,7 +103,8 @@ bool sheet_separator(const core::QuadricMatrix& q, std::array<Rational, 3>& l, R
 // scales; stops once both sides of `other` are seen on one connected piece (the whole quadric,
 // or one sheet of a disconnected one, told apart exactly by sheet_separator).
 bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& other,
-                         std::array<double, 3> (&at)[2]) {
+                         std::array<double, 3> (&at)[2],
+                         const std::vector<std::array<Rational, 3>>* probes = nullptr) {
   const bool connected = quadric_connected(a);
   std::array<Rational, 3> l;
   Rational h0;
@@ -112,34 +113,46 @@ bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& othe
   const long prec = 128;
   bool have[2][2] = {{false, false}, {false, false}}; // [sheet][side]
   std::array<double, 3> pts[2][2];
-  for (long scale : {1L, 4L, 16L, 64L, 256L, 1024L}) {
-    for (int i = -2; i <= 2; ++i)
-      for (int j = -2; j <= 2; ++j)
-        for (int k = -2; k <= 2; ++k) {
-          // Odd offsets keep the grid off symmetry planes.
-          const Rational c[3] = {Rational(scale * (2 * i) + 1, 7), Rational(scale * (2 * j) - 1, 5),
-                                 Rational(scale * (2 * k) + 1, 3)};
-          Ball p[3];
-          if (!src.project(c, p, prec)) continue;
-          size_t sheet = 0;
-          if (!connected) {
-            Ball h, t;
-            arb_set_fmpq(h.v, h0.raw(), prec);
-            for (size_t r = 0; r < 3; ++r) {
-              arb_set_fmpq(t.v, l[r].raw(), prec);
-              arb_addmul(h.v, t.v, p[r].v, prec);
-            }
-            if (!arb_is_positive(h.v) && !arb_is_negative(h.v)) continue;
-            sheet = arb_is_positive(h.v) ? 1 : 0;
-          }
-          const int sd = side_of(other, p);
-          if (sd == 0) continue;
-          const size_t w = sd > 0 ? 1 : 0;
-          if (have[sheet][w]) continue;
-          have[sheet][w] = true;
-          for (size_t r = 0; r < 3; ++r)
-            pts[sheet][w][r] = arf_get_d(arb_midref(p[r].v), ARF_RND_NEAR);
+  // The grid points (or the given probes, a single pass) whose gradient-line projections are
+  // tried.
+  std::vector<std::vector<std::array<Rational, 3>>> passes;
+  if (probes) {
+    passes.push_back(*probes);
+  } else {
+    for (long scale : {1L, 4L, 16L, 64L, 256L, 1024L}) {
+      std::vector<std::array<Rational, 3>> pass;
+      for (int i = -2; i <= 2; ++i)
+        for (int j = -2; j <= 2; ++j)
+          for (int k = -2; k <= 2; ++k) // odd offsets keep the grid off symmetry planes
+            pass.push_back({Rational(scale * (2 * i) + 1, 7), Rational(scale * (2 * j) - 1, 5),
+                            Rational(scale * (2 * k) + 1, 3)});
+      passes.push_back(std::move(pass));
+    }
+  }
+  for (const auto& pass : passes) {
+    for (const auto& cp : pass) {
+      const Rational c[3] = {cp[0], cp[1], cp[2]};
+      Ball p[3];
+      if (!src.project(c, p, prec)) continue;
+      size_t sheet = 0;
+      if (!connected) {
+        Ball h, t;
+        arb_set_fmpq(h.v, h0.raw(), prec);
+        for (size_t r = 0; r < 3; ++r) {
+          arb_set_fmpq(t.v, l[r].raw(), prec);
+          arb_addmul(h.v, t.v, p[r].v, prec);
         }
+        if (!arb_is_positive(h.v) && !arb_is_negative(h.v)) continue;
+        sheet = arb_is_positive(h.v) ? 1 : 0;
+      }
+      const int sd = side_of(other, p);
+      if (sd == 0) continue;
+      const size_t w = sd > 0 ? 1 : 0;
+      if (have[sheet][w]) continue;
+      have[sheet][w] = true;
+      for (size_t r = 0; r < 3; ++r)
+        pts[sheet][w][r] = arf_get_d(arb_midref(p[r].v), ARF_RND_NEAR);
+    }
     for (size_t sh = 0; sh < 2; ++sh)
       if (have[sh][0] && have[sh][1]) {
         at[0] = pts[sh][0];
@@ -275,13 +288,14 @@ bool canal_side_points(const core::CanalSurface& c, const core::Surface& other,
   return true;
 }
 
-bool one_side(const core::Surface& a, const core::Surface& b, std::array<double, 3>& witness) {
+bool one_side(const core::Surface& a, const core::Surface& b, std::array<double, 3>& witness,
+              const std::vector<std::array<Rational, 3>>* probes = nullptr) {
   if (const auto* t = std::get_if<core::Torus>(&a)) return torus_side_points(*t, b, witness);
   if (const auto* c = std::get_if<core::CanalSurface>(&a)) return canal_side_points(*c, b, witness);
   const auto* qa = std::get_if<core::QuadricMatrix>(&a);
   if (!qa) return false;
   std::array<double, 3> at[2]{};
-  if (!quadric_side_points(*qa, b, at)) return false;
+  if (!quadric_side_points(*qa, b, at, probes)) return false;
   // Approximate common point: bisection between the two points, projected on a.
   std::array<double, 3> lo = at[0], hi = at[1];
   for (int it = 0; it < 60; ++it) {
@@ -303,11 +317,6 @@ bool one_side(const core::Surface& a, const core::Surface& b, std::array<double,
 }
 
 } // namespace
-
-bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                         std::array<double, 3>& witness) {
-  return surfaces_meet_by_sign_change(core::Surface(a), core::Surface(b), witness);
-}
 
 namespace {
 
@@ -430,6 +439,33 @@ bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b
   if (!one_side(a, b, witness) && !one_side(b, a, witness)) return false;
   const double r = polish_witness(a, b, witness);
   if (residual) *residual = r;
+  return true;
+}
+
+bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                         std::array<double, 3>& witness,
+                         const std::vector<std::array<double, 3>>& near) {
+  if (surfaces_meet_by_sign_change(core::Surface(a), core::Surface(b), witness)) return true;
+  if (near.empty()) return false;
+  // Probes around the suspected common points, at several distances and in 14 directions: a
+  // transversal crossing there has points of either surface on both sides of the other.
+  std::vector<std::array<Rational, 3>> probes;
+  const int dirs[14][3] = {{1, 0, 0},  {-1, 0, 0},  {0, 1, 0},   {0, -1, 0},  {0, 0, 1},
+                           {0, 0, -1}, {1, 1, 1},   {1, 1, -1},  {1, -1, 1},  {1, -1, -1},
+                           {-1, 1, 1}, {-1, 1, -1}, {-1, -1, 1}, {-1, -1, -1}};
+  for (const auto& p0 : near) {
+    const double size = 1 + std::fabs(p0[0]) + std::fabs(p0[1]) + std::fabs(p0[2]);
+    for (int e = 2; e <= 20; e += 3)
+      for (const auto& d : dirs) {
+        std::array<Rational, 3> c;
+        for (size_t i = 0; i < 3; ++i)
+          c[i] = Rational::exact_from_double(p0[i] + std::ldexp(size, -e) * d[i]);
+        probes.push_back(c);
+      }
+  }
+  const core::Surface sa(a), sb(b);
+  if (!one_side(sa, sb, witness, &probes) && !one_side(sb, sa, witness, &probes)) return false;
+  polish_witness(sa, sb, witness);
   return true;
 }
 

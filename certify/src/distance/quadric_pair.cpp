@@ -448,7 +448,15 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
       DistanceResult out;
       out.method = "parallel_sections";
       std::array<double, 3> w{};
-      if (meet_by_sign_change(a, b, w)) {
+      std::vector<std::array<double, 3>> near; // the candidate common points of the sections
+      for (const auto& bx : meet.boxes) {
+        Ball x[3];
+        algebra::box_balls(meet, bx, x[0].v, x[1].v, x[2].v, 128);
+        near.push_back({arf_get_d(arb_midref(x[0].v), ARF_RND_NEAR),
+                        arf_get_d(arb_midref(x[1].v), ARF_RND_NEAR),
+                        arf_get_d(arb_midref(x[2].v), ARF_RND_NEAR)});
+      }
+      if (meet_by_sign_change(a, b, w, near)) {
         out.status = Status::Certified;
         out.lower = out.upper = "0";
         out.minimizers = "infinite";

@@ -4,12 +4,12 @@
 // paraboloid of the same axis direction, two cones with one conic at infinity).
 //
 // If a quadric A (or one sheet of it) is connected and the other quadric's polynomial g takes
-// both signs on it, then g vanishes somewhere on it (intermediate values along a path in A): the surfaces meet at an
-// affine point. Points of A are certified balls (the root of f on the gradient line through a
-// rational grid point, Arb) and the sign of g on each ball is certified; connectedness is
-// decided exactly from the inertia of the quadratic block and of the 4x4 matrix (two-sheeted
-// hyperboloids, hyperbolic cylinders and pairs of parallel planes are the disconnected real
-// quadrics; for them both signs must be seen on one sheet, the sheet of a point told apart
+// both signs on it, then g vanishes somewhere on it (intermediate values along a path in A): the
+// surfaces meet at an affine point. Points of A are certified balls (the root of f on the gradient
+// line through a rational grid point, Arb) and the sign of g on each ball is certified;
+// connectedness is decided exactly from the inertia of the quadratic block and of the 4x4 matrix
+// (two-sheeted hyperboloids, hyperbolic cylinders and pairs of parallel planes are the disconnected
+// real quadrics; for them both signs must be seen on one sheet, the sheet of a point told apart
 // exactly by the sign of a linear function w^T (A x + b) that vanishes on no point of the
 // quadric). The sampling grid (several scales around the origin) only chooses where to look:
 // failure to find both signs proves nothing and returns false. The witness is approximate (a
@@ -20,13 +20,17 @@
 #include "surfcert/core/surface.hpp"
 
 #include <array>
+#include <vector>
 
 namespace surfcert::certify {
 
 /// True when a connected quadric among a, b is proven to have points on both sides of the
 /// other; `witness` then holds an approximate common point.
+/// `near`: suspected common points (approximate; e.g. boxes of an exact solution cover): probes
+/// around them are tried too (they only choose where to look).
 bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                         std::array<double, 3>& witness);
+                         std::array<double, 3>& witness,
+                         const std::vector<std::array<double, 3>>& near = {});
 
 /// Any two surfaces: the sampled (connected) surface is a quadric (gradient-line projections of
 /// a rational grid), a ring torus (a grid of angles, rational multiples of pi) or a canal
