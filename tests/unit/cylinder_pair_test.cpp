@@ -221,6 +221,19 @@ TEST(CylinderPair, ParallelNonEllipticSections) {
   EXPECT_LE(lo(away), 1.0);
   EXPECT_GE(hi(away), 1.0);
   EXPECT_NE(dist(P, q("y = x^2 + 1")).status, certify::Status::Certified);
+  // The same opening but different widths (y = x^2 and 4y = x^2 - 1): far out the half-widths
+  // grow like sqrt(y) with different factors, the minimum is attained: 1/4 at the vertices
+  // (a float sampling of both parabolas never goes below it and reaches it).
+  const auto wide = dist(P, q("4y = x^2 - 1"), 20);
+  ASSERT_EQ(wide.status, certify::Status::Certified) << wide.note;
+  double best = 1e300;
+  for (int i = -2000; i <= 2000; ++i)
+    for (int j = -2000; j <= 2000; j += 4) {
+      const double t = i / 400.0, u = j / 200.0;
+      best = std::min(best, std::hypot(t - u, t * t - (u * u - 1) / 4));
+    }
+  EXPECT_GE(best, lo(wide) - 1e-12);
+  EXPECT_LT(best - hi(wide), 1e-9);
   // Nested hyperbolas with the same asymptotes (x^2 - y^2 = 1 and = 4): the gap tends to 0
   // at infinity, the infimum 0 is not attained; never certified as a positive distance.
   const auto nested = dist(q("x^2 - y^2 = 1"), q("x^2 - y^2 = 4"));

@@ -413,7 +413,7 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
       be += q(i, 3) * (e[0] * fr[0][static_cast<size_t>(i)] + e[1] * fr[1][static_cast<size_t>(i)]);
     return -(q11 + q22).sign() * be.sign(); // +1 / -1 along e; 0: no single opening
   };
-  bool opposite = false;
+  bool opposite = false, widths_differ = false;
   if (!bounded_section && res.is_zero()) {
     // The kernels are parallel iff the forms are proportional (both rank 1, common root).
     const int oa = opening(a, a11, a12, a22), ob = opening(b, b11, b12, b22);
@@ -426,9 +426,22 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
       // product, whatever the (orthogonal, not unit) frame's metric.
       const int same = (ea[0] * eb[0] + ea[1] * eb[1]).sign();
       opposite = oa * ob * same < 0;
+      // The same opening: with the forms proportional (B = kappa A on the section plane) the
+      // parabolas t = -mu s^2 / (2 beta) have one width iff beta_b = kappa beta_a (beta = b.e,
+      // e the common axis direction). Different widths separate far out (at height t the
+      // half-widths grow like sqrt(t) with different factors), so the minimum is attained.
+      const Rational kappa = !a11.is_zero() ? b11 / a11 : !a12.is_zero() ? b12 / a12 : b22 / a22;
+      Rational beta_a, beta_b;
+      for (int i = 0; i < 3; ++i) {
+        const Rational e3 =
+            ea[0] * fr[0][static_cast<size_t>(i)] + ea[1] * fr[1][static_cast<size_t>(i)];
+        beta_a += a(i, 3) * e3;
+        beta_b += b(i, 3) * e3;
+      }
+      widths_differ = !opposite && !(beta_b == kappa * beta_a);
     }
   }
-  const bool attained = bounded_section || !res.is_zero() || opposite;
+  const bool attained = bounded_section || !res.is_zero() || opposite || widths_differ;
   core::Integer den(1);
   for (const auto& x : *d)
     fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
