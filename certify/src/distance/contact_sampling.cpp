@@ -195,6 +195,34 @@ void torus_point(Ball (&p)[3], const core::Torus& t, const Rational& s, const Ra
   }
 }
 
+// The approximate witness of a two-parameter surface: bisection on the parameter segment
+// between par[0] (a point on the negative side of `other`) and par[1] (positive side), `point`
+// giving the surface point at given parameters (false: stop there). Float guidance only: the
+// contact itself is proven by the two certified sides.
+template <class Point>
+std::array<double, 3> bisect_params(const Rational (&par)[2][2], const core::Surface& other,
+                                    const Point& point, int steps) {
+  Rational lo[2] = {par[0][0], par[0][1]}, hi[2] = {par[1][0], par[1][1]};
+  Ball p[3];
+  for (int it = 0; it < steps; ++it) {
+    const Rational m[2] = {(lo[0] + hi[0]) * Rational(1, 2), (lo[1] + hi[1]) * Rational(1, 2)};
+    if (!point(m[0], m[1], p)) break;
+    const int sd = side_of(other, p);
+    if (sd == 0) {
+      lo[0] = m[0];
+      lo[1] = m[1];
+      break;
+    }
+    (sd > 0 ? hi : lo)[0] = m[0];
+    (sd > 0 ? hi : lo)[1] = m[1];
+  }
+  std::array<double, 3> w{};
+  if (point(lo[0], lo[1], p))
+    for (size_t l = 0; l < 3; ++l)
+      w[l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
+  return w;
+}
+
 // Samples of a torus on a grid of angles; the witness by bisection along the parameter segment
 // (a path on the torus) between the two sides.
 bool torus_side_points(const core::Torus& t, const core::Surface& other,
@@ -220,24 +248,13 @@ bool torus_side_points(const core::Torus& t, const core::Surface& other,
     if (have[0] && have[1]) break;
   }
   if (!have[0] || !have[1]) return false;
-  Rational lo[2] = {par[0][0], par[0][1]}, hi[2] = {par[1][0], par[1][1]};
-  for (int it = 0; it < 50; ++it) {
-    const Rational m[2] = {(lo[0] + hi[0]) * Rational(1, 2), (lo[1] + hi[1]) * Rational(1, 2)};
-    Ball p[3];
-    torus_point(p, t, m[0], m[1], prec);
-    const int sd = side_of(other, p);
-    if (sd == 0) {
-      lo[0] = m[0];
-      lo[1] = m[1];
-      break;
-    }
-    (sd > 0 ? hi : lo)[0] = m[0];
-    (sd > 0 ? hi : lo)[1] = m[1];
-  }
-  Ball p[3];
-  torus_point(p, t, lo[0], lo[1], prec);
-  for (size_t l = 0; l < 3; ++l)
-    witness[l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
+  witness = bisect_params(
+      par, other,
+      [&](const Rational& a, const Rational& b, Ball(&p)[3]) {
+        torus_point(p, t, a, b, prec);
+        return true;
+      },
+      50);
   return true;
 }
 
@@ -268,23 +285,12 @@ bool canal_side_points(const core::CanalSurface& c, const core::Surface& other,
       par[w][1] = v;
     }
   if (!have[0] || !have[1]) return false;
-  Rational lo[2] = {par[0][0], par[0][1]}, hi[2] = {par[1][0], par[1][1]};
-  Ball p[3];
-  for (int it = 0; it < 40; ++it) {
-    const Rational m[2] = {(lo[0] + hi[0]) * Rational(1, 2), (lo[1] + hi[1]) * Rational(1, 2)};
-    if (!canal_support_point(c, stereo(m[0], m[1]), p)) break;
-    const int sd = side_of(other, p);
-    if (sd == 0) {
-      lo[0] = m[0];
-      lo[1] = m[1];
-      break;
-    }
-    (sd > 0 ? hi : lo)[0] = m[0];
-    (sd > 0 ? hi : lo)[1] = m[1];
-  }
-  canal_support_point(c, stereo(lo[0], lo[1]), p);
-  for (size_t l = 0; l < 3; ++l)
-    witness[l] = arf_get_d(arb_midref(p[l].v), ARF_RND_NEAR);
+  witness = bisect_params(
+      par, other,
+      [&](const Rational& a, const Rational& b, Ball(&p)[3]) {
+        return canal_support_point(c, stereo(a, b), p);
+      },
+      40);
   return true;
 }
 
