@@ -242,13 +242,95 @@ private:
   long digits_;
 };
 
+// The restriction of a meridian conic m(X, Z) (x = X, y = Z) to the axis X = 0 has no double
+// root: every point of the meridian on the axis is a smooth point, where the normal is the
+// axis itself (m is even in X), so a critical pair from it runs along the axis. A double root
+// is a singular point (a cone's apex), whose closest points may form a circle.
+bool axis_points_smooth(const core::QuadricMatrix& m) {
+  const Rational &a = m(1, 1), &b = m(1, 3), &c = m(3, 3);
+  if (!a.is_zero()) return !(b * b - a * c).is_zero();
+  return !b.is_zero() || !c.is_zero(); // linear: a simple root; nonzero constant: no point
+}
+
+// The real points of a meridian conic m on the axis X = 0: the roots of
+// m11 Z^2 + 2 m13 Z + m33 (balls). False when the whole axis lies on m.
+bool axis_points(const core::QuadricMatrix& m, std::vector<Ball>& z, long prec) {
+  const Rational &a = m(1, 1), &b = m(1, 3), &c = m(3, 3);
+  z.clear();
+  if (a.is_zero()) {
+    if (b.is_zero()) return !c.is_zero();
+    z.emplace_back();
+    arb_set_fmpq(z.back().v, (-c / (Rational(2) * b)).raw(), prec);
+    return true;
+  }
+  const Rational disc = b * b - a * c;
+  if (disc.sign() < 0) return true;
+  Ball sq, bb, aa;
+  arb_set_fmpq(sq.v, disc.raw(), prec);
+  arb_sqrt(sq.v, sq.v, prec);
+  arb_set_fmpq(bb.v, b.raw(), prec);
+  arb_set_fmpq(aa.v, a.raw(), prec);
+  for (int sgn : {1, -1}) {
+    z.emplace_back();
+    arb_mul_si(z.back().v, sq.v, sgn, prec);
+    arb_sub(z.back().v, z.back().v, bb.v, prec);
+    arb_div(z.back().v, z.back().v, aa.v, prec);
+  }
+  return true;
+}
+
+// No axial pair can be a closest pair: every pair of axis points of the two meridians is
+// proven farther apart than `upper` (an upper bound of the minimum), or one meridian has no
+// point on the axis. Applies when the source's axis points are smooth (axis_points_smooth):
+// then a critical pair from an axis point of the source runs along the axis.
+bool axial_pairs_exceed(const core::QuadricMatrix& src, const core::QuadricMatrix& tgt,
+                        const std::string& upper) {
+  const long prec = 256 + 4 * static_cast<long>(upper.size());
+  std::vector<Ball> za, zb;
+  if (!axis_points(src, za, prec) || !axis_points(tgt, zb, prec)) return false;
+  Ball u, d;
+  arb_set_str(u.v, upper.c_str(), prec);
+  for (const auto& p : za)
+    for (const auto& q : zb) {
+      arb_sub(d.v, p.v, q.v, prec);
+      arb_abs(d.v, d.v);
+      if (!arb_gt(d.v, u.v)) return false;
+    }
+  return true;
+}
+
+// Where the minimizing source points of a meridian cover lie, decided exactly: a box is on
+// the axis when its X interval isolates the root 0 of its factor of the X eliminant (then
+// every solution in the box has X = 0 exactly), and off it when the interval excludes 0 or
+// its factor does not vanish at 0. Boxes on the axis are set aside when no axial pair can be
+// a closest pair (axial_pairs_exceed: their lower bound from the target may be uninformative,
+// e.g. an axis parallel to a cylinder's meridian lines).
+enum class AxisPlacement { On, Off, Mixed };
+
+AxisPlacement axis_placement(const algebra::SolutionCover& cover, bool axial_excluded) {
+  bool on = false, off = false;
+  for (const auto& box : cover.boxes) {
+    const auto& r = cover.roots[0][box[0]];
+    const bool holds_zero =
+        r.lo.sign() <= 0 && r.hi.sign() >= 0 && cover.factors[0][r.factor].coeff(0).is_zero();
+    if (holds_zero && axial_excluded) continue;
+    (holds_zero ? on : off) = true;
+  }
+  if (on && off) return AxisPlacement::Mixed;
+  return on ? AxisPlacement::On : AxisPlacement::Off;
+}
+
 // Two quadrics of revolution about one axis: the distance between the surfaces is the 2D
 // distance between their meridian conics (rotate a pair into one half-plane: the distance
 // does not grow; the conics are symmetric in X, so the 2D minimum over the whole conics is
 // attained by a same-side pair too). The meridians, as cylinders over the (x, y) plane, give
 // the same offset system with z absent: f = 0, G = 0 in two unknowns (C vanishes), covered
-// in the plane and refined by the same loop. A continuum of minimizers (circles) unless the
-// closest points lie on the axis. nullopt: not a coaxial pair (the 3D system applies).
+// in the plane and refined by the same loop. Minimizers: circles unless every minimizing
+// source point lies exactly on the axis (axis_placement, exact); when the cover still holds
+// both kinds of boxes (a circle of minimizers a hair off the axis, closer than an axial
+// pair by less than the enclosure's width), the digits are raised (x4, up to 1000) until the
+// boxes separate; if they never do, the minimizers are reported as undecided.
+// nullopt: not a coaxial pair (the 3D system applies).
 std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a,
                                                     const core::QuadricMatrix& b, long digits) {
   std::optional<Axis> ax = revolution_axis(a);
@@ -256,8 +338,9 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
   if (!ax) return std::nullopt;
   auto ma = meridian_conic(a, *ax, 1), mb = meridian_conic(b, *ax, 1);
   if (!ma || !mb) return std::nullopt;
-  DistanceResult out;
   const std::array<long, 3> l{3, -5, 7};
+  const bool compact = a.kind() == core::QuadricKind::Ellipsoid ||
+                       b.kind() == core::QuadricKind::Ellipsoid || minimum_attained(a, b);
   for (bool src_a : {true, false}) {
     const core::QuadricMatrix& src = src_a ? *ma : *mb;
     const core::QuadricMatrix& tgt = src_a ? *mb : *ma;
@@ -265,15 +348,25 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
     Offset o = build_offset(src, tgt, l);
     o.source_is_a = src_a;
     if (o.system[2].is_zero()) continue;
-    algebra::SolutionCover cover =
+    const algebra::SolutionCover cover0 =
         algebra::cover_real_solutions_2d(o.system[0], o.system[2], Rational(1, 16));
-    if (!cover.ok) continue;
-    const bool compact = a.kind() == core::QuadricKind::Ellipsoid ||
-                         b.kind() == core::QuadricKind::Ellipsoid || minimum_attained(a, b);
+    if (!cover0.ok) continue;
     SourceQuadric s(src);
-    QuadricTarget t(s, o, digits);
-    minimize_over_cover(cover, s, t, digits, src_a, compact, out);
-    // Back to 3D: (X, Z) in the meridian half-plane of a unit vector u orthogonal to the axis.
+    DistanceResult out;
+    AxisPlacement place = AxisPlacement::Mixed;
+    for (long dg = digits;; dg = std::min(4 * dg, 1000L)) {
+      out = DistanceResult();
+      algebra::SolutionCover cover = cover0;
+      QuadricTarget t(s, o, dg);
+      minimize_over_cover(cover, s, t, dg, src_a, compact, out);
+      const bool axial_excluded = out.status == Status::Certified && axis_points_smooth(src) &&
+                                  axial_pairs_exceed(src, tgt, out.upper);
+      place = axis_placement(cover, axial_excluded);
+      if (out.status != Status::Certified || place != AxisPlacement::Mixed || dg >= 1000) break;
+    }
+    if (place == AxisPlacement::On && !axis_points_smooth(src)) place = AxisPlacement::Mixed;
+    // Back to 3D: (X, Z) in the meridian half-plane of a unit vector u orthogonal to the axis
+    // (approximate points, for display).
     std::array<double, 3> ad{ax->direction[0].to_double_approx(),
                              ax->direction[1].to_double_approx(),
                              ax->direction[2].to_double_approx()};
@@ -286,38 +379,47 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
     for (size_t i = 0; i < 3; ++i)
       u[i] -= ua * ad[i];
     const double un = std::hypot(u[0], u[1], u[2]);
-    bool on_axis = true;
-    std::vector<std::array<std::array<double, 3>, 2>> uniq; // X and -X: the same circle
+    // X and -X give the same circle: list one pair per circle (a display choice; the
+    // minimizer kind above is decided exactly).
+    std::vector<std::array<std::array<double, 3>, 2>> uniq;
     for (auto pr : out.pairs) {
       for (auto& pt : pr)
         pt[0] = std::fabs(pt[0]);
       bool dup = false;
       for (const auto& u2 : uniq)
-        dup = dup || (std::hypot(u2[0][0] - pr[0][0], u2[0][1] - pr[0][1]) <=
-                          1e-9 * (1 + std::hypot(pr[0][0], pr[0][1])) &&
-                      std::hypot(u2[1][0] - pr[1][0], u2[1][1] - pr[1][1]) <=
-                          1e-9 * (1 + std::hypot(pr[1][0], pr[1][1])));
+        dup = dup || (u2[0][0] == pr[0][0] && u2[0][1] == pr[0][1] && u2[1][0] == pr[1][0] &&
+                      u2[1][1] == pr[1][1]);
       if (!dup) uniq.push_back(pr);
     }
     out.pairs = uniq;
     for (auto& pr : out.pairs)
       for (auto& pt : pr) {
-        const double X = std::fabs(pt[0]), Z = pt[1];
-        on_axis = on_axis && X <= 1e-12 * (1 + std::fabs(Z));
+        const double X = pt[0], Z = pt[1];
         for (size_t i = 0; i < 3; ++i)
           pt[i] = ax->point[i].to_double_approx() + X * u[i] / un + Z * ad[i];
       }
     if (out.status == Status::Certified) {
-      if (!on_axis) {
+      if (place == AxisPlacement::Off) {
         out.minimizers = "infinite";
-        out.note = "coaxial surfaces of revolution: circles of closest pairs (one pair per "
-                   "circle shown)";
+        out.ties.clear();
+        out.tie_regions.clear();
+        out.note = "coaxial surfaces of revolution: circles of closest pairs (proven off the "
+                   "axis; one pair per circle shown)";
+      } else if (place == AxisPlacement::On) {
+        out.note = "coaxial surfaces of revolution: the closest points lie on the axis (proven "
+                   "exactly)" +
+                   (out.note.empty() ? std::string() : "; " + out.note);
       } else {
-        out.note = "coaxial surfaces of revolution: the closest points lie on the axis";
+        out.minimizers = "undecided";
+        out.ties.clear();
+        out.tie_regions.clear();
+        out.note = "coaxial surfaces of revolution: the distance is certified, but whether the "
+                   "closest points lie on the axis or form circles was not decided";
       }
     }
     return out;
   }
+  DistanceResult out;
   out.status = Status::Undecided;
   out.note = "not supported yet: coaxial surfaces of revolution whose meridian system "
              "degenerates";
