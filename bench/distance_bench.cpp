@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
       t.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
       cert += d.status == certify::Status::Certified;
       und += d.status == certify::Status::Undecided;
-      zero += d.upper == "0";
+      zero += d.upper() == "0";
     }
     double mean = 0;
     for (double x : t)

@@ -192,8 +192,8 @@ int main(int argc, char** argv) {
       cases[i].certified = r.status == certify::Status::Certified;
       cert += cases[i].certified;
       undec += r.status == certify::Status::Undecided;
-      zero += r.upper == "0";
-      if (cases[i].certified) cases[i].truth = r.approx;
+      zero += r.upper() == "0";
+      if (cases[i].certified) cases[i].truth = r.approx();
       t0 = std::chrono::steady_clock::now();
       auto r100 = certify::surface_distance(cases[i].a, cases[i].b, 100, false);
       t1 = std::chrono::steady_clock::now();

@@ -586,7 +586,7 @@ std::string equation(const core::QuadricMatrix& q) {
 }
 
 bool is_zero_result(const certify::DistanceResult& r) {
-  return r.status == certify::Status::Certified && r.upper == "0";
+  return r.status == certify::Status::Certified && r.upper() == "0";
 }
 
 } // namespace
@@ -683,7 +683,7 @@ int main(int argc, char** argv) {
         if (rf.status == certify::Status::Uncertified) {
           ++f_answered;
           if (!ref.threw && ref.r.status == certify::Status::Certified)
-            f_err = std::max(f_err, std::fabs(rf.approx - ref.r.approx) / (1 + ref.r.approx));
+            f_err = std::max(f_err, std::fabs(rf.approx() - ref.r.approx()) / (1 + ref.r.approx()));
         }
         t0 = std::chrono::steady_clock::now();
         auto rx = certify::surface_distance(c.a, c.b, 15, false, certify::Mode::Exact);
@@ -691,10 +691,10 @@ int main(int argc, char** argv) {
         tx.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
         if (rx.status == certify::Status::Certified) {
           ++x_cert;
-          auto lx = core::Rational::from_string(rx.lower),
-               ux = core::Rational::from_string(rx.upper);
-          auto lr = core::Rational::from_string(ref.r.lower),
-               ur = core::Rational::from_string(ref.r.upper);
+          auto lx = core::Rational::from_string(rx.lower()),
+               ux = core::Rational::from_string(rx.upper());
+          auto lr = core::Rational::from_string(ref.r.lower()),
+               ur = core::Rational::from_string(ref.r.upper());
           if (lx && ux && lr && ur && (*lx > *ur || *lr > *ux)) ++x_disagree;
         }
       }
@@ -726,25 +726,25 @@ int main(int argc, char** argv) {
       const Run& r15 = runs[0][static_cast<size_t>(i)];
       const Run& r100 = runs[1][static_cast<size_t>(i)];
       // The two enclosures must overlap (exact comparison).
-      if (!r15.threw && !r100.threw && !r15.r.lower.empty() && !r100.r.lower.empty() &&
-          !r15.r.upper.empty() && !r100.r.upper.empty()) {
-        auto l15 = core::Rational::from_string(r15.r.lower),
-             u15 = core::Rational::from_string(r15.r.upper),
-             l100 = core::Rational::from_string(r100.r.lower),
-             u100 = core::Rational::from_string(r100.r.upper);
+      if (!r15.threw && !r100.threw && !r15.r.lower().empty() && !r100.r.lower().empty() &&
+          !r15.r.upper().empty() && !r100.r.upper().empty()) {
+        auto l15 = core::Rational::from_string(r15.r.lower()),
+             u15 = core::Rational::from_string(r15.r.upper()),
+             l100 = core::Rational::from_string(r100.r.lower()),
+             u100 = core::Rational::from_string(r100.r.upper());
         if (l15 && u15 && l100 && u100 && (*l15 > *u100 || *l100 > *u15)) {
           ++inconsistent;
           std::printf("\n**INCONSISTENT 15/100-digit enclosures, case %ld**: [%s, %s] vs [%s, "
                       "%s]\n",
-                      i, r15.r.lower.c_str(), r15.r.upper.c_str(), r100.r.lower.c_str(),
-                      r100.r.upper.c_str());
+                      i, r15.r.lower().c_str(), r15.r.upper().c_str(), r100.r.lower().c_str(),
+                      r100.r.upper().c_str());
         }
       }
       for (size_t k = 0; k < 2; ++k) {
         const Run& run = runs[k][static_cast<size_t>(i)];
         if (run.threw || run.r.status != certify::Status::Certified) continue;
-        double lower = std::strtod(run.r.lower.c_str(), nullptr);
-        double upper = std::strtod(run.r.upper.c_str(), nullptr);
+        double lower = std::strtod(run.r.lower().c_str(), nullptr);
+        double upper = std::strtod(run.r.upper().c_str(), nullptr);
         if (k == 0) {
           ++checked;
           worst_gap = std::max(worst_gap, lower - f.f);
@@ -757,7 +757,7 @@ int main(int argc, char** argv) {
                       "%d case %ld, %ld digits\n",
                       set, i, digits_list[k]);
           std::printf("- enclosure [%s, %s], float f = %.17g (sampling %.17g)\n",
-                      run.r.lower.c_str(), run.r.upper.c_str(), f.f, f.sampled);
+                      run.r.lower().c_str(), run.r.upper().c_str(), f.f, f.sampled);
           std::printf("- float pair p = (%.17g, %.17g, %.17g), q = (%.17g, %.17g, %.17g)\n", f.p[0],
                       f.p[1], f.p[2], f.q[0], f.q[1], f.q[2]);
           std::printf("- A: %s\n- B: %s\n", c.fa.exact_params.c_str(), c.fb.exact_params.c_str());
@@ -800,8 +800,8 @@ int main(int argc, char** argv) {
         const Case& c = cases[static_cast<size_t>(i)];
         const Run& run = runs[0][static_cast<size_t>(i)];
         std::printf("- case %ld (15 digits: %s, [%s, %s], float f = %.6g): `%s` | `%s`\n", i,
-                    run.threw ? "exception" : certify::to_string(run.r.status), run.r.lower.c_str(),
-                    run.r.upper.c_str(), fl[static_cast<size_t>(i)].f, equation(c.a).c_str(),
+                    run.threw ? "exception" : certify::to_string(run.r.status), run.r.lower().c_str(),
+                    run.r.upper().c_str(), fl[static_cast<size_t>(i)].f, equation(c.a).c_str(),
                     equation(c.b).c_str());
       }
     }

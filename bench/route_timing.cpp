@@ -57,7 +57,7 @@ int main() {
       }
       std::sort(ts.begin(), ts.end());
       std::printf("| %s | %ld | %.0f us | %s | %s |\n", c[0], dg, ts[3], r.method.c_str(),
-                  r.lower.substr(0, 20).c_str());
+                  r.lower().substr(0, 20).c_str());
     }
   }
 }

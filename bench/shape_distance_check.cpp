@@ -520,11 +520,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "[%d %ld/%ld] exception %s\n", fam, i + 1, cases, what.c_str());
         continue;
       }
-      double lo = std::strtod(res.lower.c_str(), nullptr),
-             up = std::strtod(res.upper.c_str(), nullptr);
+      double lo = std::strtod(res.lower().c_str(), nullptr),
+             up = std::strtod(res.upper().c_str(), nullptr);
       std::fprintf(stderr, "[%d %ld/%ld] %s %.1f ms [%s, %s] f=%.15g (target gap %.3f)%s\n", fam,
-                   i + 1, cases, certify::to_string(res.status), ms, res.lower.c_str(),
-                   res.upper.c_str(), k.f, k.target, k.crossing ? " (float: crossing)" : "");
+                   i + 1, cases, certify::to_string(res.status), ms, res.lower().c_str(),
+                   res.upper().c_str(), k.f, k.target, k.crossing ? " (float: crossing)" : "");
       char buf[512];
       if (res.status == certify::Status::Certified) {
         ++S.cert;
@@ -534,7 +534,7 @@ int main(int argc, char** argv) {
           std::snprintf(buf, sizeof buf,
                         "BUG %s: lower %s > f %.15g (+1e-9); enclosure [%s, %s], target gap "
                         "%.4f%s",
-                        head, res.lower.c_str(), k.f, res.lower.c_str(), res.upper.c_str(),
+                        head, res.lower().c_str(), k.f, res.lower().c_str(), res.upper().c_str(),
                         k.target, k.crossing ? ", float sees crossing" : "");
           std::string r = buf;
           r += "\n  A = " + k.ja + "\n  B = " + k.jb + "\n  " + repro;
@@ -550,7 +550,7 @@ int main(int argc, char** argv) {
         if (k.f - up > 1e-6) {
           ++S.stuck;
           std::snprintf(buf, sizeof buf, "stuck (float above upper) %s: f %.12g, upper %s", head,
-                        k.f, res.upper.c_str());
+                        k.f, res.upper().c_str());
           std::string r = buf;
           for (const auto& pr : res.pairs) {
             std::snprintf(buf, sizeof buf, "; g_B(library point on A) = %.9g", k.gB(pr[0]));

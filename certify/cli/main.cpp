@@ -240,10 +240,10 @@ int cmd_distance(const std::vector<std::string>& args) {
     std::cout << core::io::dump(certify::distance_envelope_json(d, digits), 2) << "\n";
   } else {
     std::cout << "distance: " << certify::to_string(d.status);
-    if (!d.lower.empty() && d.status == certify::Status::Uncertified)
-      std::cout << " ~ " << d.upper << " (not an enclosure), minimizers " << d.minimizers;
-    else if (!d.lower.empty())
-      std::cout << " in [" << d.lower << ", " << d.upper << "], minimizers " << d.minimizers;
+    if (!d.lower().empty() && d.status == certify::Status::Uncertified)
+      std::cout << " ~ " << d.upper() << " (not an enclosure), minimizers " << d.minimizers;
+    else if (!d.lower().empty())
+      std::cout << " in [" << d.lower() << ", " << d.upper() << "], minimizers " << d.minimizers;
     std::cout << "\n";
     for (const auto& p : d.pairs)
       std::cout << "  pair (" << p[0][0] << ", " << p[0][1] << ", " << p[0][2] << ") - (" << p[1][0]

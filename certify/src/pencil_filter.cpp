@@ -10,6 +10,8 @@
 #include <CGAL/Interval_nt.h>
 
 #include <algorithm>
+#include <arf.h>
+
 #include <cmath>
 
 namespace surfcert::certify {
@@ -25,12 +27,16 @@ namespace {
 
 using I = CGAL::Interval_nt<false>; // requires rounding towards +infinity (Protect_FPU_rounding)
 
-// Interval enclosing an integer: exact when it has at most 53 bits, else widened by 2 ulps.
+// Interval enclosing an integer: exact when it has at most 53 bits, else its two directed
+// roundings (Arb rounds correctly, also past the double range: then a bound is infinite and
+// the filter simply fails, handing the decision to the exact path).
 I enclose(const fmpz* z) {
-  double x = fmpz_get_d(z);
-  if (fmpz_bits(z) <= 53) return I(x);
-  double lo = std::nextafter(std::nextafter(x, -INFINITY), -INFINITY);
-  double hi = std::nextafter(std::nextafter(x, INFINITY), INFINITY);
+  if (fmpz_bits(z) <= 53) return I(fmpz_get_d(z));
+  arf_t a;
+  arf_init(a);
+  arf_set_fmpz(a, z);
+  const double lo = arf_get_d(a, ARF_RND_FLOOR), hi = arf_get_d(a, ARF_RND_CEIL);
+  arf_clear(a);
   return I(lo, hi);
 }
 

@@ -21,23 +21,46 @@ inline core::QuadricMatrix q(const std::string& s) {
 }
 
 inline double lo(const certify::DistanceResult& r) {
-  return std::stod(r.lower);
+  return std::stod(r.lower());
 }
 inline double hi(const certify::DistanceResult& r) {
-  return std::stod(r.upper);
+  return std::stod(r.upper());
 }
 
 /// [lower, upper] of two results overlap (decimal strings read exactly at 3000 bits).
 inline bool overlap(const certify::DistanceResult& a, const certify::DistanceResult& b) {
   mpfr_t la, ua, lb, ub;
   mpfr_inits2(3000, la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(la, a.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(ua, a.upper.c_str(), 10, MPFR_RNDU);
-  mpfr_set_str(lb, b.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(ub, b.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(la, a.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ua, a.upper().c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(lb, b.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ub, b.upper().c_str(), 10, MPFR_RNDU);
   bool ok = mpfr_cmp(la, ub) <= 0 && mpfr_cmp(lb, ua) <= 0;
   mpfr_clears(la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
   return ok;
+}
+
+/// r's enclosure meets the decimal interval [lo, hi] (read exactly at 3000 bits).
+inline bool overlap_bounds(const certify::DistanceResult& r, const std::string& lo,
+                           const std::string& hi) {
+  mpfr_t la, ua, lb, ub;
+  mpfr_inits2(3000, la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(la, r.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ua, r.upper().c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(lb, lo.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ub, hi.c_str(), 10, MPFR_RNDU);
+  bool ok = mpfr_cmp(la, ub) <= 0 && mpfr_cmp(lb, ua) <= 0;
+  mpfr_clears(la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
+  return ok;
+}
+
+/// A reference interval from an independent route (decimal bounds, read with outward rounding).
+struct Bounds {
+  std::string lower, upper;
+};
+
+inline bool overlap(const certify::DistanceResult& r, const Bounds& b) {
+  return overlap_bounds(r, b.lower, b.upper);
 }
 
 /// x lies in [lower, upper] (the decimal strings read with outward rounding, at least 4000
@@ -46,8 +69,8 @@ inline bool contains(const certify::DistanceResult& r, const mpfr_t x) {
   const mpfr_prec_t bits = std::max<mpfr_prec_t>(4000, mpfr_get_prec(x) + 64);
   mpfr_t l, u;
   mpfr_inits2(bits, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(l, r.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper().c_str(), 10, MPFR_RNDU);
   const bool ok = mpfr_cmp(l, x) <= 0 && mpfr_cmp(x, u) <= 0;
   mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
   return ok;
@@ -58,8 +81,8 @@ inline bool contains(const certify::DistanceResult& r, const mpfr_t x) {
 inline double log10_rel_width(const certify::DistanceResult& r) {
   mpfr_t l, u;
   mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(l, r.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper().c_str(), 10, MPFR_RNDU);
   mpfr_sub(u, u, l, MPFR_RNDU);
   mpfr_div(u, u, l, MPFR_RNDU);
   mpfr_log10(u, u, MPFR_RNDU);
@@ -75,15 +98,15 @@ inline bool overlap_scaled(const certify::DistanceResult& r, const std::string& 
                            const certify::DistanceResult& e) {
   mpfr_t l, u, k, el, eu;
   mpfr_inits2(2000, l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(l, r.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper().c_str(), 10, MPFR_RNDU);
   mpfr_set_str(k, s.c_str(), 10, MPFR_RNDN);
   mpfr_mul(l, l, k, MPFR_RNDD);
   mpfr_mul(u, u, k, MPFR_RNDU);
   mpfr_mul_d(l, l, 1 - 1e-300, MPFR_RNDD);
   mpfr_mul_d(u, u, 1 + 1e-300, MPFR_RNDU);
-  mpfr_set_str(el, e.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(eu, e.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(el, e.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(eu, e.upper().c_str(), 10, MPFR_RNDU);
   const bool ok = mpfr_cmp(l, eu) <= 0 && mpfr_cmp(el, u) <= 0;
   mpfr_clears(l, u, k, el, eu, static_cast<mpfr_ptr>(nullptr));
   return ok;

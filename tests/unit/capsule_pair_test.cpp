@@ -36,8 +36,8 @@ std::string capsule(const std::array<int, 3>& a, const std::array<int, 3>& b, in
   return buf;
 }
 
-certify::DistanceResult exact_value(const char* v) {
-  certify::DistanceResult r;
+surfcert::testing::Bounds exact_value(const char* v) {
+  surfcert::testing::Bounds r;
   r.lower = r.upper = v;
   return r;
 }
@@ -49,7 +49,7 @@ TEST(CapsulePair, HandComputedConfigurations) {
   auto perp =
       certify::surface_distance(surf(c1), surf(capsule({1, 3, 0}, {1, 5, 1}, 1, 2)), 30, false);
   ASSERT_EQ(perp.status, certify::Status::Certified) << perp.note;
-  EXPECT_TRUE(overlap(perp, exact_value("1.5"))) << perp.lower; // 3 - 1 - 1/2
+  EXPECT_TRUE(overlap(perp, exact_value("1.5"))) << perp.lower(); // 3 - 1 - 1/2
   EXPECT_EQ(perp.minimizers, "1");
   EXPECT_EQ(perp.method, "capsule_closed_form");
   auto par =

@@ -45,7 +45,7 @@ TEST(CommonApex, TextbookPairs) {
             swap ? certify::common_apex_contact(B, A) : certify::common_apex_contact(A, B);
         ASSERT_TRUE(r) << sa << " | " << sb;
         ASSERT_EQ(r->status, certify::Status::Certified) << sa << " | " << sb << ": " << r->note;
-        EXPECT_EQ(r->upper, "0");
+        EXPECT_EQ(r->upper(), "0");
         EXPECT_EQ(r->minimizers, mins) << sa << " | " << sb << (moved ? " moved" : "");
         ASSERT_EQ(r->pairs.size(), 1u);
         // The witness is a singular point of both (moved or not): the gradient of each

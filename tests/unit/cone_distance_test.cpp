@@ -26,11 +26,11 @@ using surfcert::testing::q;
 namespace {
 
 // [lower - rho, upper - rho] of the smallest critical distance from c, outward rounded.
-certify::DistanceResult sextic_minus(const std::array<core::Rational, 3>& c,
+surfcert::testing::Bounds sextic_minus(const std::array<core::Rational, 3>& c,
                                      const core::QuadricMatrix& cone, long rho_num, long rho_den) {
   auto pq = certify::point_quadric_critical(c, cone, 30);
   EXPECT_TRUE(pq.ok);
-  certify::DistanceResult r;
+  surfcert::testing::Bounds r;
   mpfr_t l, u, t;
   mpfr_inits2(4000, l, u, t, static_cast<mpfr_ptr>(nullptr));
   mpfr_set_str(l, pq.criticals.front().lower.c_str(), 10, MPFR_RNDD);
@@ -60,14 +60,14 @@ TEST(ConeDistance, SphereAgainstThePointQuadricSextic) {
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.method, "cone_generator_bound");
   EXPECT_EQ(r.minimizers, "2"); // the generators x = z and x = -z
-  EXPECT_TRUE(overlap(r, sextic_minus({4, 0, 0}, round, 1, 1))) << r.lower;
+  EXPECT_TRUE(overlap(r, sextic_minus({4, 0, 0}, round, 1, 1))) << r.lower();
   // a tilted elliptic cone with its vertex at (1/2, -1, 0)
   const auto tilted = q("x^2 + 2y^2 - z^2/3 + x*y/7 + y*z/5 = 0")
                           .congruent(motion(1, 0, 0, 0, {core::Rational(1, 2), -1, 0}));
   auto t = certify::surface_distance(q("(x-5)^2 + (y-1)^2 + (z-1)^2 = 1/4"), tilted, 20, false);
   ASSERT_EQ(t.status, certify::Status::Certified) << t.note;
   EXPECT_EQ(t.method, "cone_generator_bound");
-  EXPECT_TRUE(overlap(t, sextic_minus({5, 1, 1}, tilted, 1, 2))) << t.lower;
+  EXPECT_TRUE(overlap(t, sextic_minus({5, 1, 1}, tilted, 1, 2))) << t.lower();
 }
 
 TEST(ConeDistance, RandomEllipsoidsAgainstTheOffsetMethod) {
@@ -91,7 +91,7 @@ TEST(ConeDistance, RandomEllipsoidsAgainstTheOffsetMethod) {
     if (r.method != "cone_generator_bound") continue; // crossing draws: the exact route
     auto ex = certify::surface_distance(e, cone, 15, false, certify::Mode::Exact);
     ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
-    EXPECT_TRUE(overlap(r, ex)) << "case " << i << ": " << r.lower << " vs " << ex.lower;
+    EXPECT_TRUE(overlap(r, ex)) << "case " << i << ": " << r.lower() << " vs " << ex.lower();
     EXPECT_EQ(r.minimizers, ex.minimizers) << "case " << i;
     ++checked;
   }
@@ -103,7 +103,7 @@ TEST(ConeDistance, AnswersOnlyWhatItProves) {
   auto cross = certify::surface_distance(q("(x-1)^2 + y^2 + (z-1)^2 = 1/4"), round, 15, false);
   EXPECT_NE(cross.method, "cone_generator_bound");
   EXPECT_EQ(cross.status, certify::Status::Certified); // the exact route: they meet
-  EXPECT_EQ(cross.upper, "0");
+  EXPECT_EQ(cross.upper(), "0");
   auto axis = certify::surface_distance(q("x^2 + y^2 + (z-5)^2 = 1"), round, 15, false);
   EXPECT_NE(axis.method, "cone_generator_bound"); // a circle of minimizers
   auto many = certify::surface_distance(q("(x-4)^2 + y^2 + z^2 = 1"), round, 40, false);

@@ -70,7 +70,7 @@ TEST(ContactSampling, MeetingPairsLeftOpenByTheClassification) {
     EXPECT_NEAR(eval(q(b), w), 0, 1e-8 * scale * scale) << b;
     const auto r = certify::surface_distance(q(a), q(b), 15, false);
     EXPECT_EQ(r.status, certify::Status::Certified) << a << " | " << b << ": " << r.note;
-    EXPECT_EQ(r.upper, "0") << a << " | " << b;
+    EXPECT_EQ(r.upper(), "0") << a << " | " << b;
   }
 }
 
@@ -118,7 +118,7 @@ TEST(ContactSampling, ToriAndCanalSurfacesThatMeet) {
   EXPECT_NEAR(torus_eq(B, w), 0, 1e-8);
   auto r = certify::surface_distance(core::Surface(A), core::Surface(B), 15, false);
   EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.upper, "0");
+  EXPECT_EQ(r.upper(), "0");
   // Through the API the two quartics' branch and bound proves a common point first (2-D
   // Krawczyk); whichever route answers, its witness lies on both tori.
   ASSERT_FALSE(r.pairs.empty()) << r.method;
@@ -129,7 +129,7 @@ TEST(ContactSampling, ToriAndCanalSurfacesThatMeet) {
   const auto K = core::Surface(
       core::make_canal({std::vector<Rational>{0, 1}, {0}, {4, 0, -1}}, {Rational(1, 2)}, -2, 2));
   r = certify::surface_distance(core::Surface(A), K, 15, false);
-  EXPECT_EQ(r.upper, "0") << r.note;
+  EXPECT_EQ(r.upper(), "0") << r.note;
   core::Poly3 f;
   f.add_term({4, 0, 0}, 1);
   f.add_term({0, 4, 0}, 1);
@@ -162,7 +162,7 @@ TEST(ContactSampling, CanalSurfacesThatMeet) {
   EXPECT_TRUE(certify::surfaces_meet_by_sign_change(K, capsule(5), w));
   const auto r = certify::surface_distance(K, capsule(5), 15, false);
   EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.upper, "0");
+  EXPECT_EQ(r.upper(), "0");
   EXPECT_FALSE(certify::surfaces_meet_by_sign_change(K, capsule(20), w));
 }
 

@@ -40,8 +40,8 @@ std::optional<certify::DistanceResult> fast(const core::QuadricMatrix& a,
 }
 
 // A reference enclosure [lo, hi] written as a result (for overlap()), rounded outward.
-certify::DistanceResult ref_interval(const mpfr_t l, const mpfr_t u) {
-  certify::DistanceResult r;
+surfcert::testing::Bounds ref_interval(const mpfr_t l, const mpfr_t u) {
+  surfcert::testing::Bounds r;
   char* s = nullptr;
   mpfr_asprintf(&s, "%.60RDe", l);
   r.lower = s;
@@ -88,7 +88,7 @@ TEST(ConvexDistance, SphereSphereClosedForm) {
     mpfr_set_ui(v, 26, MPFR_RNDN);
     mpfr_sqrt(v, v, MPFR_RNDN);
     mpfr_sub_ui(v, v, 2, MPFR_RNDN);
-    EXPECT_TRUE(overlap(*r, ref_interval(v, v))) << r->lower;
+    EXPECT_TRUE(overlap(*r, ref_interval(v, v))) << r->lower();
     mpfr_clear(v);
     EXPECT_LE(rel_width(*r), std::pow(10.0, -std::min(digits, 15L)));
     EXPECT_EQ(r->minimizers, "1");
@@ -142,7 +142,7 @@ TEST(ConvexDistance, SphereEllipsoidAgainstThePointEllipsoidSextic) {
     mpfr_div_si(rr, rr, c.rho_den, MPFR_RNDD);
     mpfr_sub(u, u, rr, MPFR_RNDU);
     EXPECT_TRUE(overlap(*r, ref_interval(l, u)))
-        << r->lower << " vs " << pq.criticals.front().lower;
+        << r->lower() << " vs " << pq.criticals.front().lower;
     mpfr_clears(l, u, rr, static_cast<mpfr_ptr>(nullptr));
   }
 }
@@ -169,7 +169,7 @@ TEST(ConvexDistance, SphereCylinderClosedForm) {
       mpfr_set_ui(t, 4, MPFR_RNDN);
       mpfr_div_ui(t, t, 3, MPFR_RNDN);
       mpfr_sub(v, v, t, MPFR_RNDN);
-      EXPECT_TRUE(overlap(*r, ref_interval(v, v))) << r->lower;
+      EXPECT_TRUE(overlap(*r, ref_interval(v, v))) << r->lower();
       mpfr_clears(v, t, static_cast<mpfr_ptr>(nullptr));
       if (digits == 25) { // the cylinder's point sits at the sphere centre's abscissa
         EXPECT_NEAR(r->pairs[0][0][0], static_cast<double>(c.cx), 1e-9);
@@ -194,8 +194,8 @@ TEST(ConvexDistance, RandomSeparatedPairsAgainstTheOffsetMethod) {
     if (!r) continue; // overlapping or nested draws: not this path's business
     auto x = certify::quadric_pair_distance(a, b, 15);
     ASSERT_EQ(x.status, certify::Status::Certified) << "seed " << seed << " pair " << i;
-    EXPECT_TRUE(overlap(*r, x)) << "seed " << seed << " pair " << i << ": " << r->lower << " vs "
-                                << x.lower;
+    EXPECT_TRUE(overlap(*r, x)) << "seed " << seed << " pair " << i << ": " << r->lower() << " vs "
+                                << x.lower();
     EXPECT_EQ(x.minimizers, "1") << "seed " << seed << " pair " << i;
     ASSERT_FALSE(x.pairs.empty());
     for (size_t k = 0; k < 3; ++k) { // the same closest points
@@ -221,7 +221,7 @@ TEST(ConvexDistance, EllipsoidCylinderAgainstTheOffsetMethod) {
     if (!r) continue;
     auto x = certify::quadric_pair_distance(e, cyl, 15);
     ASSERT_EQ(x.status, certify::Status::Certified) << x.note;
-    EXPECT_TRUE(overlap(*r, x)) << r->lower << " vs " << x.lower;
+    EXPECT_TRUE(overlap(*r, x)) << r->lower() << " vs " << x.lower();
     ++checked;
   }
   EXPECT_GE(checked, 2);
@@ -256,7 +256,7 @@ TEST(ConvexDistance, SphereParaboloidAgainstThePointQuadricSextic) {
       mpfr_sub_d(l, l, 0.5, MPFR_RNDD);
       mpfr_sub_d(u, u, 0.5, MPFR_RNDU);
       EXPECT_TRUE(overlap(*r, ref_interval(l, u)))
-          << c.par << " " << turned << ": " << r->lower << " vs " << pq.criticals.front().lower;
+          << c.par << " " << turned << ": " << r->lower() << " vs " << pq.criticals.front().lower;
       mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
     }
   // A sphere inside the convex side is not separated: no answer here.
@@ -276,7 +276,7 @@ TEST(ConvexDistance, EllipsoidParaboloidAgainstTheOffsetMethod) {
     if (!r) continue;
     auto x = certify::quadric_pair_distance(e, par, 15);
     ASSERT_EQ(x.status, certify::Status::Certified) << x.note;
-    EXPECT_TRUE(overlap(*r, x)) << r->lower << " vs " << x.lower;
+    EXPECT_TRUE(overlap(*r, x)) << r->lower() << " vs " << x.lower();
     ++checked;
   }
   EXPECT_GE(checked, 2);
@@ -297,7 +297,7 @@ TEST(ConvexDistance, InvarianceSwapScalingTranslation) {
                  motion(2, 7, -1, 1, {core::Rational(1, 3), 0, 0})}) {
     auto t = fast(a.congruent(m), b.congruent(m), 30);
     ASSERT_TRUE(t);
-    EXPECT_TRUE(overlap(*r, *t)) << t->lower;
+    EXPECT_TRUE(overlap(*r, *t)) << t->lower();
   }
   // scaling by 10^8 and 10^-8 scales d
   for (int e : {8, -8}) {
@@ -318,7 +318,7 @@ TEST(ConvexDistance, DigitsNestAndEccentricityOneMillion) {
   EXPECT_TRUE(overlap(*r15, *r100));
   EXPECT_TRUE(overlap(*r100, *r1000));
   EXPECT_LE(rel_width(*r15), 1e-15);
-  EXPECT_GE(r1000->lower.size(), 1000u);
+  EXPECT_GE(r1000->lower().size(), 1000u);
   // A float search over both surfaces never beats the certified lower bound.
   double best = 1e300;
   for (int i = 0; i <= 200; i += 10)
@@ -345,7 +345,7 @@ TEST(ConvexDistance, FloatModeSaysItIsUncertifiedAndAgrees) {
   ASSERT_TRUE(f && r);
   EXPECT_EQ(f->status, certify::Status::Uncertified);
   EXPECT_NE(f->note.find("NOT certified"), std::string::npos);
-  EXPECT_NEAR(f->approx, r->approx, 1e-12 * r->approx);
+  EXPECT_NEAR(f->approx(), r->approx(), 1e-12 * r->approx());
   EXPECT_FALSE(certify::separated_convex_distance_float(
       *certify::convex_quadric(q(sphere(0, 0, 0, "1"))),
       *certify::convex_quadric(q(sphere(1, 0, 0, "1"))))); // overlapping: no separation
@@ -364,10 +364,10 @@ TEST(ConvexDistance, ModesThroughThePublicApi) {
   EXPECT_EQ(fil.method, "convex_duality");
   EXPECT_EQ(ex.method, "offset_system");
   EXPECT_FALSE(ex.univariate_degrees.empty());
-  EXPECT_TRUE(overlap(fil, ex)) << fil.lower << " vs " << ex.lower;
+  EXPECT_TRUE(overlap(fil, ex)) << fil.lower() << " vs " << ex.lower();
   EXPECT_EQ(fl.status, certify::Status::Uncertified);
   EXPECT_EQ(fl.mode, certify::Mode::Float);
-  EXPECT_NEAR(fl.approx, fil.approx, 1e-12 * fil.approx);
+  EXPECT_NEAR(fl.approx(), fil.approx(), 1e-12 * fil.approx());
   auto j = certify::distance_envelope_json(ex, 20);
   EXPECT_EQ(j.find("result")->find("mode")->text(), "exact");
   EXPECT_EQ(j.find("result")->find("method")->text(), "offset_system");
@@ -417,7 +417,7 @@ TEST(ConvexDistance, UnboundedStrictlyConvexPairs) {
         }
     }
   EXPECT_GE(best, lo(*r) - 1e-12);
-  EXPECT_LT(best - r->approx, 0.1);
+  EXPECT_LT(best - r->approx(), 0.1);
   // Same-direction paraboloids only approach each other: never certified here.
   EXPECT_FALSE(fast(q("x^2 + y^2 - z = 0"), q("x^2 + y^2 - z + 3 = 0"), 15));
 }

@@ -88,17 +88,17 @@ TEST(CylinderPair, CrossedCircularClosedForm) {
       mpfr_sqrt(d, d, MPFR_RNDN);
       mpfr_si_div(d, num, d, MPFR_RNDN);
       mpfr_sub_si(d, d, r1 + r2, MPFR_RNDN);
-      mpfr_set_str(l, res.lower.c_str(), 10, MPFR_RNDD);
-      mpfr_set_str(u, res.upper.c_str(), 10, MPFR_RNDU);
+      mpfr_set_str(l, res.lower().c_str(), 10, MPFR_RNDD);
+      mpfr_set_str(u, res.upper().c_str(), 10, MPFR_RNDU);
       EXPECT_TRUE(mpfr_cmp(l, d) <= 0 && mpfr_cmp(d, u) <= 0)
-          << "seed 4242 case " << k << " digits " << digits << ": " << res.lower;
+          << "seed 4242 case " << k << " digits " << digits << ": " << res.lower();
       mpfr_clears(d, l, u, static_cast<mpfr_ptr>(nullptr));
     }
     const auto res = dist(A, B);
     for (const auto& p : res.pairs) {
       EXPECT_NEAR(eval(A, p[0]), 0, 1e-9 * (1 + std::fabs(eval(A, {0, 0, 0}))));
       EXPECT_NEAR(eval(B, p[1]), 0, 1e-9 * (1 + std::fabs(eval(B, {0, 0, 0}))));
-      EXPECT_NEAR(std::hypot(p[0][0] - p[1][0], p[0][1] - p[1][1], p[0][2] - p[1][2]), res.approx,
+      EXPECT_NEAR(std::hypot(p[0][0] - p[1][0], p[0][1] - p[1][1], p[0][2] - p[1][2]), res.approx(),
                   1e-9);
     }
     ++checked;
@@ -155,7 +155,7 @@ TEST(CylinderPair, EllipticAgainstSampling) {
         if (d < best) best = d;
       }
     EXPECT_GE(best, lo(res) - 1e-12) << cs.b;
-    EXPECT_LT(best - res.approx, 0.2) << cs.b;
+    EXPECT_LT(best - res.approx(), 0.2) << cs.b;
   }
 }
 
@@ -170,10 +170,10 @@ TEST(CylinderPair, MotionsScalingSwapsAndOverlap) {
   EXPECT_NEAR(sw.pairs[0][0][1], base.pairs[0][1][1], 1e-9);
   const auto sc = surfcert::testing::scaling(Rational(1000000));
   const auto big = dist(A.congruent(sc), B.congruent(sc), 15);
-  EXPECT_NEAR(big.approx / 1e6, base.approx, 1e-14 * base.approx);
+  EXPECT_NEAR(big.approx() / 1e6, base.approx(), 1e-14 * base.approx());
   // Crossing cylinders meet: the exact topology answers 0.
   const auto x = dist(q("x^2 + y^2 = 1"), q("(x - 1)^2 + z^2 = 1"));
-  EXPECT_EQ(x.upper, "0");
+  EXPECT_EQ(x.upper(), "0");
 }
 
 TEST(CylinderPair, ParallelNonEllipticSections) {
@@ -204,7 +204,7 @@ TEST(CylinderPair, ParallelNonEllipticSections) {
         const auto res = moved ? dist(H.congruent(m), C.congruent(m), 30) : dist(H, C, 30);
         ASSERT_EQ(res.status, certify::Status::Certified) << c << " " << rho_den << res.note;
         EXPECT_TRUE(surfcert::testing::contains(res, d))
-            << "c " << c << " rho 1/" << rho_den << ": " << res.lower << " " << res.upper;
+            << "c " << c << " rho 1/" << rho_den << ": " << res.lower() << " " << res.upper();
         EXPECT_EQ(res.minimizers, "infinite");
         EXPECT_EQ(res.pairs.size(), 2u);
         if (!moved && !res.pairs.empty()) {
@@ -238,19 +238,19 @@ TEST(CylinderPair, ParallelNonEllipticSections) {
   // at infinity, the infimum 0 is not attained; never certified as a positive distance.
   const auto nested = dist(q("x^2 - y^2 = 1"), q("x^2 - y^2 = 4"));
   EXPECT_NE(nested.status, certify::Status::Certified);
-  EXPECT_EQ(nested.lower.empty() ? "0" : nested.lower, "0");
+  EXPECT_EQ(nested.lower().empty() ? "0" : nested.lower(), "0");
   // Shifted hyperbolas x^2 - y^2 = 1 and (x - 6)^2 - y^2 = 1 cross at (3, +-2 sqrt 2): a sign
   // change on one sheet proves it (distance 0).
   const auto crossing = dist(q("x^2 - y^2 = 1"), q("(x - 6)^2 - y^2 = 1"));
   ASSERT_EQ(crossing.status, certify::Status::Certified) << crossing.note;
-  EXPECT_EQ(crossing.upper, "0");
+  EXPECT_EQ(crossing.upper(), "0");
   // Crossing sections (y = x^2 and y = 1 - x^2 meet at x = +-1/sqrt 2): distance 0 with an
   // approximate common point on both; swapped, the same.
   for (bool swap : {false, true}) {
     const auto A = P, B = q("y = 1 - x^2");
     const auto x = swap ? dist(B, A) : dist(A, B);
     ASSERT_EQ(x.status, certify::Status::Certified) << x.note;
-    EXPECT_EQ(x.upper, "0");
+    EXPECT_EQ(x.upper(), "0");
     ASSERT_FALSE(x.pairs.empty());
     const auto& w = x.pairs[0][0];
     EXPECT_NEAR(w[1], w[0] * w[0], 1e-6);
@@ -278,6 +278,6 @@ TEST(CylinderPair, ParallelSectionsAtExtremes) {
     const auto far = motion(1, 0, 0, 0, {Rational(1000000), Rational(-1000000), Rational(1000000)});
     const auto t = dist(q(a).congruent(far), q(b).congruent(far), 20);
     ASSERT_EQ(t.status, certify::Status::Certified) << a << ": " << t.note;
-    EXPECT_TRUE(overlap(base, t)) << a << ": " << t.lower << " vs " << base.lower;
+    EXPECT_TRUE(overlap(base, t)) << a << ": " << t.lower() << " vs " << base.lower();
   }
 }

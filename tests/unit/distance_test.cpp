@@ -24,10 +24,10 @@ void expect_contains(const certify::DistanceResult& r, const mpfr_t expect,
   ASSERT_EQ(r.status, certify::Status::Certified) << ctx << " " << r.note;
   mpfr_t lo, hi;
   mpfr_inits2(400, lo, hi, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(lo, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(hi, r.upper.c_str(), 10, MPFR_RNDU);
-  EXPECT_LE(mpfr_cmp(lo, expect), 0) << ctx << " lower " << r.lower;
-  EXPECT_GE(mpfr_cmp(hi, expect), 0) << ctx << " upper " << r.upper;
+  mpfr_set_str(lo, r.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(hi, r.upper().c_str(), 10, MPFR_RNDU);
+  EXPECT_LE(mpfr_cmp(lo, expect), 0) << ctx << " lower " << r.lower();
+  EXPECT_GE(mpfr_cmp(hi, expect), 0) << ctx << " upper " << r.upper();
   mpfr_clears(lo, hi, static_cast<mpfr_ptr>(nullptr));
 }
 
@@ -83,7 +83,7 @@ TEST(Distance, SphereSphereClosedForms) {
   for (const char* b : {"(x-2)^2+y^2+z^2=1", "(x-1)^2+y^2+z^2=1"}) {
     auto r = certify::surface_distance(q("x^2+y^2+z^2=1"), q(b), 15, false);
     EXPECT_EQ(r.status, certify::Status::Certified) << b;
-    EXPECT_EQ(r.upper, "0") << b;
+    EXPECT_EQ(r.upper(), "0") << b;
     ASSERT_FALSE(r.pairs.empty()) << b;
     auto w = r.pairs[0][0]; // witness on both spheres
     EXPECT_NEAR(w[0] * w[0] + w[1] * w[1] + w[2] * w[2], 1.0, 1e-9) << b;
@@ -116,10 +116,10 @@ TEST(Distance, EllipsoidPlaneClosedForm) {
   mpfr_clears(e, t, static_cast<mpfr_ptr>(nullptr));
   // The plane x = 1 cuts the ellipsoid, z = 3 touches it at a pole: distance 0.
   auto cut = certify::surface_distance(q("x^2/4+y^2+z^2/9=1"), q("x=1"), 15, false);
-  EXPECT_EQ(cut.upper, "0");
+  EXPECT_EQ(cut.upper(), "0");
   EXPECT_EQ(cut.minimizers, "infinite");
   auto touch = certify::surface_distance(q("x^2/4+y^2+z^2/9=1"), q("z=3"), 15, false);
-  EXPECT_EQ(touch.upper, "0");
+  EXPECT_EQ(touch.upper(), "0");
   EXPECT_EQ(touch.minimizers, "1");
 }
 
@@ -151,13 +151,13 @@ TEST(Distance, RigidMotionAndPrecision) {
   ASSERT_EQ(r2.status, certify::Status::Certified) << r2.note;
   mpfr_t l0, u0, l1, u1, l2, u2;
   mpfr_inits2(600, l0, u0, l1, u1, l2, u2, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l0, r0.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u0, r0.upper.c_str(), 10, MPFR_RNDU);
-  mpfr_set_str(l1, r1.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u1, r1.upper.c_str(), 10, MPFR_RNDU);
-  mpfr_set_str(l2, r2.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u2, r2.upper.c_str(), 10, MPFR_RNDU);
-  EXPECT_TRUE(mpfr_cmp(l0, u1) <= 0 && mpfr_cmp(l1, u0) <= 0) << r0.lower << " " << r1.lower;
+  mpfr_set_str(l0, r0.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u0, r0.upper().c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(l1, r1.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u1, r1.upper().c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(l2, r2.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u2, r2.upper().c_str(), 10, MPFR_RNDU);
+  EXPECT_TRUE(mpfr_cmp(l0, u1) <= 0 && mpfr_cmp(l1, u0) <= 0) << r0.lower() << " " << r1.lower();
   EXPECT_TRUE(mpfr_cmp(l0, u2) <= 0 && mpfr_cmp(l2, u0) <= 0) << "30 vs 60 digits";
   // 60 digits: relative width <= 1e-60.
   mpfr_sub(u2, u2, l2, MPFR_RNDU);
@@ -183,5 +183,5 @@ TEST(Distance, UnsupportedPairsAreNotGuessed) {
   // Two coaxial paraboloids of revolution: every tried offset system has a curve of solutions
   // (revolution symmetry); the answer must be undecided, not a guess.
   auto r = certify::surface_distance(q("z = x^2 + y^2"), q("z = x^2 + y^2 + 1"), 15, false);
-  EXPECT_NE(r.status, certify::Status::Certified) << r.lower;
+  EXPECT_NE(r.status, certify::Status::Certified) << r.lower();
 }

@@ -69,7 +69,7 @@ certify::DistanceResult run(const core::Poly3& f, const core::Poly3& g, long dig
   const auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0);
   std::printf("  [implicit_bnb] deg %d/%d digits %ld: %.1f ms, status %d, [%.17s, %.17s] %s\n",
               f.total_degree(), g.total_degree(), digits, ms.count(), static_cast<int>(r.status),
-              r.lower.c_str(), r.upper.c_str(), r.note.c_str());
+              r.lower().c_str(), r.upper().c_str(), r.note.c_str());
   return r;
 }
 
@@ -125,7 +125,7 @@ TEST(ImplicitBnb, SpheresAgainstClosedForms) {
       set_q(t, nested ? r2 - r1 : r1 + r2);
       mpfr_sub(x, x, t, MPFR_RNDN);          // apart: D - r1 - r2
       if (nested) mpfr_neg(x, x, MPFR_RNDN); // nested: r2 - r1 - D
-      EXPECT_TRUE(contains(r, x)) << r.lower << " " << r.upper;
+      EXPECT_TRUE(contains(r, x)) << r.lower() << " " << r.upper();
       mpfr_clears(x, t, static_cast<mpfr_ptr>(nullptr));
       EXPECT_EQ(r.minimizers, "1");
     }
@@ -147,11 +147,11 @@ TEST(ImplicitBnb, EllipsoidsAgainstTheOffsetRoute) {
                                              core::QuadricMatrix::from_poly(P(b)), 15, false,
                                              certify::Mode::Exact);
     ASSERT_EQ(e.status, certify::Status::Certified) << e.note;
-    EXPECT_TRUE(overlap(r, e)) << r.lower << " " << r.upper << " vs " << e.lower << " " << e.upper;
+    EXPECT_TRUE(overlap(r, e)) << r.lower() << " " << r.upper() << " vs " << e.lower() << " " << e.upper();
     // the reported points lie on their surfaces and realise the distance
     const auto& pq = r.pairs[0];
     const double d = std::hypot(pq[0][0] - pq[1][0], pq[0][1] - pq[1][1], pq[0][2] - pq[1][2]);
-    EXPECT_NEAR(d, r.approx, 1e-9);
+    EXPECT_NEAR(d, r.approx(), 1e-9);
   }
 }
 
@@ -168,7 +168,7 @@ TEST(ImplicitBnb, TorusAgainstSpheres) {
     const auto r = run(tq, sp, 15);
     if (a == 0) { // on the axis: a circle of minimizers, never a single guessed pair
       EXPECT_FALSE(r.status == certify::Status::Certified && r.minimizers != "infinite")
-          << r.lower << " " << r.upper;
+          << r.lower() << " " << r.upper();
       continue;
     }
     expect_certified(r, 15);
@@ -177,7 +177,7 @@ TEST(ImplicitBnb, TorusAgainstSpheres) {
     mpfr_set_si(x, (a - 3) * (a - 3) + hh * hh, MPFR_RNDN);
     mpfr_sqrt(x, x, MPFR_RNDN);
     mpfr_sub_si(x, x, 1 + s, MPFR_RNDN);
-    EXPECT_TRUE(contains(r, x)) << r.lower << " " << r.upper;
+    EXPECT_TRUE(contains(r, x)) << r.lower() << " " << r.upper();
     mpfr_clear(x);
     const auto e = certify::surface_distance(
         core::Surface(t), core::Surface(core::QuadricMatrix::from_poly(sp)), 15, false);
@@ -194,12 +194,12 @@ TEST(ImplicitBnb, TwoToriAgainstTorusPair) {
   const auto e = certify::torus_pair_distance(t1, t2, 15);
   ASSERT_TRUE(e.has_value());
   ASSERT_EQ(e->status, certify::Status::Certified) << e->note;
-  EXPECT_TRUE(overlap(r, *e)) << r.lower << " vs " << e->lower;
+  EXPECT_TRUE(overlap(r, *e)) << r.lower() << " vs " << e->lower();
   // linked tori: the second ring passes through the first one's hole and crosses its tube
   const core::Torus t3 = core::make_torus({3, 0, 0}, {0, 1, 0}, 3, 1);
   const auto m = run(certify::torus_polynomial(t1), certify::torus_polynomial(t3), 15);
   if (m.status == certify::Status::Certified) {
-    EXPECT_EQ(m.upper, "0");
+    EXPECT_EQ(m.upper(), "0");
     ASSERT_FALSE(m.pairs.empty());
     const auto& w = m.pairs[0][0];
     const double f1 =
@@ -272,7 +272,7 @@ TEST(ImplicitBnb, QuarticAndSexticAgainstSpheres) {
     EXPECT_LT(fl - hi(r), 1e-8);  // and the search gets close to it
     const auto& pq = r.pairs[0];
     const double d = std::hypot(pq[0][0] - pq[1][0], pq[0][1] - pq[1][1], pq[0][2] - pq[1][2]);
-    EXPECT_NEAR(d, r.approx, 1e-9);
+    EXPECT_NEAR(d, r.approx(), 1e-9);
   }
 }
 
@@ -310,7 +310,7 @@ TEST(ImplicitBnb, MotionsSwapScalingDigits) {
     const auto rm =
         mv.quartic ? run(moved(f, m), moved(g, m), 15) : run(moved(e1, m), moved(e2, m), 15);
     expect_certified(rm, 15);
-    EXPECT_TRUE(overlap(ref, rm)) << ref.lower << " vs " << rm.lower;
+    EXPECT_TRUE(overlap(ref, rm)) << ref.lower() << " vs " << rm.lower();
   }
   // scaling by 3: distance times 3
   const core::Mat4 sc = surfcert::testing::scaling(3);
@@ -329,7 +329,7 @@ TEST(ImplicitBnb, RefusesWhatItCannotProve) {
   // crossing spheres: distance 0 with a witness on both
   const auto m = run(P("x^2 + y^2 + z^2 - 1"), P("(x - 3/2)^2 + y^2 + z^2 - 1"), 15);
   ASSERT_EQ(m.status, certify::Status::Certified) << m.note;
-  EXPECT_EQ(m.upper, "0");
+  EXPECT_EQ(m.upper(), "0");
   ASSERT_FALSE(m.pairs.empty());
   const auto& w = m.pairs[0][0];
   EXPECT_NEAR(w[0], 0.75, 1e-9);

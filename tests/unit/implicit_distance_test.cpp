@@ -55,8 +55,8 @@ TEST(ImplicitDistance, CubicGraphAgainstSpheres) {
   auto r = certify::surface_distance(cubic, surf("x^2 + y^2 + (z-4)^2 = 1"), 20, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   const double f = float_graph_sphere(4, 1);
-  EXPECT_LE(std::stod(r.lower), f + 1e-12);
-  EXPECT_LT(f - std::stod(r.upper), 1e-9);
+  EXPECT_LE(std::stod(r.lower()), f + 1e-12);
+  EXPECT_LT(f - std::stod(r.upper()), 1e-9);
   EXPECT_EQ(r.minimizers, "1");
   ASSERT_FALSE(r.pairs.empty());
   EXPECT_NEAR(r.pairs[0][0][2], h(r.pairs[0][0][0], r.pairs[0][0][1]), 1e-9); // on the cubic
@@ -67,17 +67,17 @@ TEST(ImplicitDistance, CubicGraphAgainstSpheres) {
       std::get<core::ImplicitSurface>(cubic).f,
       std::get<core::QuadricMatrix>(surf("x^2 + y^2 + (z-4)^2 = 1")), 20, true);
   ASSERT_EQ(o.status, certify::Status::Certified) << o.note;
-  EXPECT_TRUE(surfcert::testing::overlap(r, o)) << r.lower << " vs " << o.lower;
+  EXPECT_TRUE(surfcert::testing::overlap(r, o)) << r.lower() << " vs " << o.lower();
   // Swapped: same enclosure, points swapped.
   auto s = certify::surface_distance(surf("x^2 + y^2 + (z-4)^2 = 1"), cubic, 20, false);
   ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
-  EXPECT_EQ(s.lower, r.lower);
+  EXPECT_EQ(s.lower(), r.lower());
   ASSERT_FALSE(s.pairs.empty());
   EXPECT_NEAR(s.pairs[0][1][0], r.pairs[0][0][0], 1e-9);
   // Crossing: the sphere around (2, 0, h(2, 0)) meets the graph.
   auto m = certify::surface_distance(cubic, surf("(x-2)^2 + y^2 + (z - 8/3)^2 = 1/4"), 15, false);
   ASSERT_EQ(m.status, certify::Status::Certified) << m.note;
-  EXPECT_EQ(m.upper, "0");
+  EXPECT_EQ(m.upper(), "0");
 }
 
 TEST(ImplicitDistance, InputLimits) {
@@ -87,7 +87,7 @@ TEST(ImplicitDistance, InputLimits) {
   // by a sign change along the paraboloid; the witness lies on both.
   auto r = certify::surface_distance(surf("z = x^3"), surf("z = x^2 + y^2 + 5"), 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.upper, "0");
+  EXPECT_EQ(r.upper(), "0");
   ASSERT_FALSE(r.pairs.empty());
   const auto& w = r.pairs[0][0];
   EXPECT_NEAR(w[2], w[0] * w[0] * w[0], 1e-8 * (1 + std::fabs(w[2])));
@@ -114,20 +114,20 @@ TEST(ImplicitDistance, BoundedQuarticAgainstPlanes) {
   mpfr_ui_sub(d, 5, d, MPFR_RNDN);
   mpfr_sqrt(t, t, MPFR_RNDN);
   mpfr_div(d, d, t, MPFR_RNDN);
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
-  EXPECT_TRUE(mpfr_cmp(l, d) <= 0 && mpfr_cmp(d, u) <= 0) << r.lower << " " << r.upper;
+  mpfr_set_str(l, r.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper().c_str(), 10, MPFR_RNDU);
+  EXPECT_TRUE(mpfr_cmp(l, d) <= 0 && mpfr_cmp(d, u) <= 0) << r.lower() << " " << r.upper();
   mpfr_clears(d, l, u, t, static_cast<mpfr_ptr>(nullptr));
   ASSERT_FALSE(r.pairs.empty());
   EXPECT_NEAR(r.pairs[0][0][0], std::pow(3.0, -0.25), 1e-9);
   r = certify::surface_distance(surf("z = 5"), quartic, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_LE(std::stod(r.lower), 4);
-  EXPECT_GE(std::stod(r.upper), 4);
+  EXPECT_LE(std::stod(r.lower()), 4);
+  EXPECT_GE(std::stod(r.upper()), 4);
   r = certify::surface_distance(quartic, surf("z = 1/2"), 15, false);
-  EXPECT_EQ(r.upper, "0") << r.note;
+  EXPECT_EQ(r.upper(), "0") << r.note;
   r = certify::surface_distance(surf("x^3 + y^3 + z^3 = 1"), surf("z = 5"), 15, false);
-  EXPECT_EQ(r.upper, "0") << r.note;
+  EXPECT_EQ(r.upper(), "0") << r.note;
   EXPECT_EQ(r.method, "sign_change_contact");
 }
 
@@ -148,9 +148,9 @@ TEST(ImplicitDistance, CubicAgainstATorus) {
       const double x = i * 0.01, y = j * 0.01, z = std::cbrt(100 - x * x * x - y * y * y);
       best = std::min(best, std::fabs(std::hypot(std::hypot(x, y) - 3, z) - 1));
     }
-  EXPECT_GE(best, std::stod(r.lower) - 1e-12);
-  EXPECT_LT(best - r.approx, 0.05); // the graph is steep where z = 0: coarse sampling there
-  EXPECT_NEAR(r.approx, std::cbrt(100.0) - 4, 1e-14);
+  EXPECT_GE(best, std::stod(r.lower()) - 1e-12);
+  EXPECT_LT(best - r.approx(), 0.05); // the graph is steep where z = 0: coarse sampling there
+  EXPECT_NEAR(r.approx(), std::cbrt(100.0) - 4, 1e-14);
 }
 
 TEST(ImplicitDistance, BoundedQuarticAgainstEllipsoids) {
@@ -164,7 +164,7 @@ TEST(ImplicitDistance, BoundedQuarticAgainstEllipsoids) {
   mpfr_t two;
   mpfr_init2(two, 200);
   mpfr_set_ui(two, 2, MPFR_RNDN);
-  EXPECT_TRUE(surfcert::testing::contains(r, two)) << r.lower << " " << r.upper;
+  EXPECT_TRUE(surfcert::testing::contains(r, two)) << r.lower() << " " << r.upper();
   mpfr_clear(two);
   EXPECT_EQ(r.minimizers, "1");
   ASSERT_FALSE(r.pairs.empty());
@@ -180,11 +180,11 @@ TEST(ImplicitDistance, BoundedQuarticAgainstEllipsoids) {
   auto o = certify::implicit_quadric_distance(std::get<core::ImplicitSurface>(bumpy).f,
                                               std::get<core::QuadricMatrix>(sph), 20, true);
   ASSERT_EQ(o.status, certify::Status::Certified) << o.note;
-  EXPECT_TRUE(surfcert::testing::overlap(b, o)) << b.lower << " " << o.lower;
+  EXPECT_TRUE(surfcert::testing::overlap(b, o)) << b.lower() << " " << o.lower();
   // Swapping the surfaces keeps the enclosure and swaps the points.
   auto s = certify::surface_distance(sph, bumpy, 20, false);
   ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
-  EXPECT_EQ(s.lower, b.lower);
+  EXPECT_EQ(s.lower(), b.lower());
   ASSERT_FALSE(s.pairs.empty());
   EXPECT_NEAR(s.pairs[0][1][0], b.pairs[0][0][0], 1e-9);
 }
@@ -232,11 +232,11 @@ TEST(ImplicitDistance, BoundedQuarticAgainstATiltedCylinder) {
   EXPECT_GE(best, lo(r) - 1e-12);
   EXPECT_LT(best - hi(r), 1e-6);
   ASSERT_FALSE(r.pairs.empty());
-  EXPECT_NEAR(to_cyl(r.pairs[0][0]), r.approx, 1e-9);
+  EXPECT_NEAR(to_cyl(r.pairs[0][0]), r.approx(), 1e-9);
   // Swapped: the same enclosure, the points swapped.
   const auto s = certify::surface_distance(cyl, quartic, 20, false);
   ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
-  EXPECT_EQ(s.lower, r.lower);
+  EXPECT_EQ(s.lower(), r.lower());
   ASSERT_FALSE(s.pairs.empty());
   EXPECT_NEAR(s.pairs[0][1][0], r.pairs[0][0][0], 1e-9);
 }
@@ -267,14 +267,14 @@ TEST(ImplicitDistance, ExtremeScalesAndTranslations) {
       ASSERT_EQ(r.status, certify::Status::Certified) << s << ": " << r.note;
       EXPECT_EQ(r.method, "implicit_bnb") << s;
       EXPECT_TRUE(surfcert::testing::overlap_scaled(base, s, r))
-          << s << ": " << r.lower << " vs " << base.lower;
+          << s << ": " << r.lower() << " vs " << base.lower();
     }
     const auto t =
         certify::surface_distance(surf(subst(Q, "(x-1000000)", "y", "z")),
                                   surf(subst(other, "(x-1000000)", "y", "z")), 15, false);
     ASSERT_EQ(t.status, certify::Status::Certified) << t.note;
     EXPECT_EQ(t.method, "implicit_bnb");
-    EXPECT_TRUE(surfcert::testing::overlap(base, t)) << t.lower << " vs " << base.lower;
+    EXPECT_TRUE(surfcert::testing::overlap(base, t)) << t.lower() << " vs " << base.lower();
     ASSERT_FALSE(t.pairs.empty());
     ASSERT_FALSE(base.pairs.empty());
     EXPECT_NEAR(t.pairs[0][0][0] - 1000000, base.pairs[0][0][0], 1e-8);
@@ -298,7 +298,7 @@ TEST(ImplicitDistance, DegreeEightAgainstAPlane) {
   mpfr_ui_sub(d, 5, d, MPFR_RNDN);
   mpfr_sqrt(t, t, MPFR_RNDN);
   mpfr_div(d, d, t, MPFR_RNDN);
-  EXPECT_TRUE(surfcert::testing::contains(r, d)) << r.lower << " " << r.upper;
+  EXPECT_TRUE(surfcert::testing::contains(r, d)) << r.lower() << " " << r.upper();
   mpfr_clears(d, t, static_cast<mpfr_ptr>(nullptr));
   ASSERT_FALSE(r.pairs.empty());
   EXPECT_NEAR(r.pairs[0][0][0], std::pow(3.0, -0.125), 1e-9);

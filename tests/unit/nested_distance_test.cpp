@@ -47,8 +47,8 @@ struct Enclosure {
   mpfr_t l, u;
   explicit Enclosure(const certify::DistanceResult& r) {
     mpfr_inits2(4000, l, u, static_cast<mpfr_ptr>(nullptr));
-    mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-    mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+    mpfr_set_str(l, r.lower().c_str(), 10, MPFR_RNDD);
+    mpfr_set_str(u, r.upper().c_str(), 10, MPFR_RNDU);
   }
   Enclosure(const Enclosure&) = delete;
   Enclosure& operator=(const Enclosure&) = delete;
@@ -140,7 +140,7 @@ TEST(NestedDistance, SeedPairIsNotTheDecoy) {
   mpfr_t v;
   mpfr_init2(v, 200);
   mpfr_set_str(v, "0.530229360237975662718338500531216991", 10, MPFR_RNDN);
-  EXPECT_TRUE(contains(*r, v)) << r->lower << " " << r->upper;
+  EXPECT_TRUE(contains(*r, v)) << r->lower() << " " << r->upper();
   EXPECT_TRUE(width_ok(*r, 15));
   EXPECT_EQ(r->minimizers, "2");
   EXPECT_EQ(r->eliminated_degree, 0);
@@ -191,8 +191,8 @@ TEST(NestedDistance, RandomPairsAgainstTheExactOffsetMethod) {
     EXPECT_TRUE(width_ok(*r, 15)) << ctx;
     auto e = certify::quadric_pair_distance(inner, outer, 15);
     ASSERT_EQ(e.status, certify::Status::Certified) << ctx << " " << e.note;
-    EXPECT_TRUE(overlap(*r, e)) << ctx << ": [" << r->lower << ", " << r->upper << "] vs ["
-                                << e.lower << ", " << e.upper << "]";
+    EXPECT_TRUE(overlap(*r, e)) << ctx << ": [" << r->lower() << ", " << r->upper() << "] vs ["
+                                << e.lower() << ", " << e.upper() << "]";
     EXPECT_EQ(r->minimizers, e.minimizers) << ctx;
     ASSERT_FALSE(r->pairs.empty()) << ctx;
     // The pair is genuine: the inner point on the inner surface, the distance d.
@@ -233,7 +233,7 @@ TEST(NestedDistance, ClosedForms) {
       mpfr_div_si(t, t, c.r_den, MPFR_RNDN);
       mpfr_add(e, e, t, MPFR_RNDN);
       mpfr_si_sub(e, c.R, e, MPFR_RNDN);
-      EXPECT_TRUE(contains(*r, e)) << sc << " digits " << digits << ": " << r->lower;
+      EXPECT_TRUE(contains(*r, e)) << sc << " digits " << digits << ": " << r->lower();
       EXPECT_TRUE(width_ok(*r, digits)) << sc;
       EXPECT_EQ(r->minimizers, "1") << sc;
       mpfr_clears(e, t, static_cast<mpfr_ptr>(nullptr));
@@ -257,8 +257,8 @@ TEST(NestedDistance, ClosedForms) {
   mpfr_sub(l, l, h, MPFR_RNDD);
   mpfr_sub(u, u, h, MPFR_RNDU);
   const Enclosure got(*r);
-  EXPECT_LE(mpfr_cmp(got.l, u), 0) << r->lower << " vs " << pq.criticals.front().upper;
-  EXPECT_LE(mpfr_cmp(l, got.u), 0) << r->upper << " vs " << pq.criticals.front().lower;
+  EXPECT_LE(mpfr_cmp(got.l, u), 0) << r->lower() << " vs " << pq.criticals.front().upper;
+  EXPECT_LE(mpfr_cmp(l, got.u), 0) << r->upper() << " vs " << pq.criticals.front().lower;
   mpfr_clears(l, u, h, static_cast<mpfr_ptr>(nullptr));
   // An ellipsoid inside a circular cylinder around its x axis: the tips (0, 0, +-3) are
   // closest, d = 5 - 3 at two pairs.
@@ -285,7 +285,7 @@ TEST(NestedDistance, RigidMotionsAndSwapping) {
     auto p = motion(quats[k][0], quats[k][1], quats[k][2], quats[k][3], moves[k]);
     auto m = nested(a.congruent(p), b.congruent(p), 20);
     ASSERT_TRUE(m.has_value()) << k;
-    EXPECT_TRUE(overlap(*r, *m)) << k << ": " << m->lower << " vs " << r->lower;
+    EXPECT_TRUE(overlap(*r, *m)) << k << ": " << m->lower() << " vs " << r->lower();
     EXPECT_EQ(m->minimizers, r->minimizers) << k;
     auto s = nested(b.congruent(p), a.congruent(p), 20); // swapped: the points swap
     ASSERT_TRUE(s.has_value()) << k;
@@ -319,7 +319,7 @@ TEST(NestedDistance, AnswersOnlyWhatItProves) {
   auto solid = certify::surface_distance(q("x^2 + y^2/4 + (z+3)^2/9 = 1"),
                                          q("x^2/4 + y^2/9 + z^2/49 = 1"), 15, true);
   ASSERT_EQ(solid.status, certify::Status::Certified) << solid.note;
-  EXPECT_EQ(solid.upper, "0");
+  EXPECT_EQ(solid.upper(), "0");
   EXPECT_EQ(solid.minimizers, "infinite");
   EXPECT_EQ(solid.note, "solid distance: one solid contains the other");
 }

@@ -34,18 +34,18 @@ TEST(ParametricDistance, SeedEllipsoidAndItsMissedPoint) {
   auto i = certify::surface_distance(eq("x^2 + y^2/4 + (z+3)^2/9 = 1"),
                                      eq("x^2/4 + y^2/9 + z^2/49 = 1"), 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.lower, i.lower);
-  EXPECT_EQ(r.upper, i.upper);
+  EXPECT_EQ(r.lower(), i.lower());
+  EXPECT_EQ(r.upper(), i.upper());
   EXPECT_EQ(r.minimizers, "2");
   EXPECT_NE(r.note.find("misses (0, 0, -6) (not a minimizer)"), std::string::npos) << r.note;
   // A sphere of radius 1 centred at (0, 0, -8): the closest point is the missed one, d = 1.
   auto s = certify::surface_distance(p, eq("x^2 + y^2 + (z+8)^2 = 1"), 15, false);
   ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
-  EXPECT_NEAR(std::stod(s.lower), 1.0, 1e-15);
+  EXPECT_NEAR(std::stod(s.lower()), 1.0, 1e-15);
   EXPECT_NE(s.note.find("a minimizer is that missed point"), std::string::npos) << s.note;
   // Swapped order: same value.
   auto w = certify::surface_distance(eq("x^2 + y^2 + (z+8)^2 = 1"), p, 15, false);
-  EXPECT_EQ(w.lower, s.lower);
+  EXPECT_EQ(w.lower(), s.lower());
 }
 
 TEST(ParametricDistance, ImplicitFormOnRandomParameters) {
@@ -76,8 +76,8 @@ TEST(ParametricDistance, ImplicitFormOnRandomParameters) {
       const double u = i * 1e-4, v = j * 0.01;
       best = std::min(best, std::sqrt(u * u + v * v + (u * u * u - 5) * (u * u * u - 5)) - 1);
     }
-  EXPECT_GE(best, std::stod(c.lower) - 1e-12);
-  EXPECT_NEAR(best, c.approx, 1e-6);
+  EXPECT_GE(best, std::stod(c.lower()) - 1e-12);
+  EXPECT_NEAR(best, c.approx(), 1e-6);
   // (u^2, v, 0) covers only the half-plane x >= 0 of z = 0: a sphere meeting the plane at
   // x = -3 must not be reported at distance 0 (the image is 2 away); one above x = 3 is 4 away.
   auto half = js(R"({"type":"parametric","x":"u^2","y":"v","z":"0"})");
@@ -85,7 +85,7 @@ TEST(ParametricDistance, ImplicitFormOnRandomParameters) {
   EXPECT_NE(h0.status, certify::Status::Certified) << h0.note;
   auto h4 = certify::surface_distance(half, eq("(x-3)^2+y^2+(z-5)^2=1"), 15, false);
   ASSERT_EQ(h4.status, certify::Status::Certified) << h4.note;
-  EXPECT_NEAR(std::stod(h4.lower), 4.0, 1e-15);
+  EXPECT_NEAR(std::stod(h4.lower()), 4.0, 1e-15);
   EXPECT_THROW(js(R"({"type":"parametric","x":"x","y":"v","z":"u"})"), core::InputError);
   EXPECT_THROW(js(R"({"type":"parametric","x":"u","y":"v"})"), core::InputError);
 }
@@ -118,6 +118,6 @@ TEST(ParametricDistance, RationalTorusImplicitisedToItsQuartic) {
   const auto viaT = certify::surface_distance(torus, sphere, 15, false);
   ASSERT_EQ(viaP.status, certify::Status::Certified) << viaP.note;
   ASSERT_EQ(viaT.status, certify::Status::Certified) << viaT.note;
-  EXPECT_LE(std::stod(viaP.lower), std::stod(viaT.upper));
-  EXPECT_LE(std::stod(viaT.lower), std::stod(viaP.upper));
+  EXPECT_LE(std::stod(viaP.lower()), std::stod(viaT.upper()));
+  EXPECT_LE(std::stod(viaT.lower()), std::stod(viaP.upper()));
 }

@@ -54,7 +54,7 @@ void expect_pair_ok(const certify::DistanceResult& r, const core::QuadricMatrix&
     EXPECT_NEAR(eval(plane, pr[0]), 0, 1e-9 * scale);
     EXPECT_NEAR(eval(quad, pr[1]), 0, 1e-9 * scale * scale);
     const double dd = std::hypot(pr[0][0] - pr[1][0], pr[0][1] - pr[1][1], pr[0][2] - pr[1][2]);
-    EXPECT_NEAR(dd, r.approx, 1e-9 * scale);
+    EXPECT_NEAR(dd, r.approx(), 1e-9 * scale);
   }
 }
 
@@ -82,8 +82,8 @@ TEST(PlaneQuadric, RandomEllipsoidsAgainstTheSupportFormula) {
     ASSERT_EQ(mine.status, certify::Status::Certified) << e << " | " << p;
     ASSERT_EQ(ref.status, certify::Status::Certified) << e << " | " << p;
     EXPECT_TRUE(overlap(mine, ref)) << "seed 777 case " << k << ": " << e << " | " << p << ": "
-                                    << mine.lower << " vs " << ref.lower;
-    if (mine.approx > 0) {
+                                    << mine.lower() << " vs " << ref.lower();
+    if (mine.approx() > 0) {
       EXPECT_EQ(mine.minimizers, "1");
       expect_pair_ok(mine, P, E);
     } else {
@@ -100,7 +100,7 @@ TEST(PlaneQuadric, SpherePlaneClosedForm) {
   mpfr_t d;
   mpfr_init2(d, 4000);
   mpfr_set_ui(d, 2, MPFR_RNDN);
-  EXPECT_TRUE(contains(r, d)) << r.lower;
+  EXPECT_TRUE(contains(r, d)) << r.lower();
   mpfr_clear(d);
   expect_pair_ok(r, q("3x + 4y + 12z = 39"), q("x^2 + y^2 + z^2 = 1"));
 }
@@ -115,13 +115,13 @@ TEST(PlaneQuadric, ParaboloidTiltedPlane) {
     mpfr_set_ui(d, 5, MPFR_RNDN);
     mpfr_sqrt(d, d, MPFR_RNDN);
     mpfr_ui_div(d, 4, d, MPFR_RNDN);
-    EXPECT_TRUE(contains(r, d)) << digits << ": " << r.lower;
+    EXPECT_TRUE(contains(r, d)) << digits << ": " << r.lower();
     mpfr_clear(d);
     EXPECT_EQ(r.minimizers, "1");
     EXPECT_NEAR(r.pairs[0][1][0], 1, 1e-12);
     EXPECT_NEAR(r.pairs[0][1][2], 1, 1e-12);
     // Relative width <= 10^-digits.
-    EXPECT_LT(std::fabs(std::stod(r.upper) - std::stod(r.lower)), 1e-14);
+    EXPECT_LT(std::fabs(std::stod(r.upper()) - std::stod(r.lower())), 1e-14);
   }
 }
 
@@ -150,7 +150,7 @@ TEST(PlaneQuadric, TiesLinesPlanesAndNonAttainment) {
   for (const char* asym : {"x*z - 1 = 0", "x^2 + z*y + 1 = 0"}) { // approach z = 0 at infinity
     r = pq("z = 0", asym);
     EXPECT_EQ(r.status, certify::Status::Certified) << asym;
-    EXPECT_EQ(r.upper, "0") << asym;
+    EXPECT_EQ(r.upper(), "0") << asym;
     EXPECT_EQ(r.minimizers, "0") << asym << ": " << r.note;
   }
   EXPECT_EQ(pq("z = 0", "x^2 + y^2 + z^2 + 1 = 0").status, certify::Status::Undecided);
@@ -177,7 +177,7 @@ TEST(PlaneQuadric, ContactWitnessesLieOnBoth) {
   for (const auto& [p, s] : cases) {
     const auto r = pq(p, s);
     ASSERT_EQ(r.status, certify::Status::Certified) << p << " | " << s;
-    EXPECT_EQ(r.upper, "0") << p << " | " << s << ": " << r.note;
+    EXPECT_EQ(r.upper(), "0") << p << " | " << s << ": " << r.note;
     ASSERT_EQ(r.pairs.size(), 1u) << p << " | " << s;
     const auto& w = r.pairs[0][0];
     const double scale = 1 + std::hypot(w[0], w[1], w[2]);
@@ -200,7 +200,7 @@ TEST(PlaneQuadric, FloatPointsNeverBelowTheLowerBound) {
       EXPECT_GE(d, lo(r) - 1e-15) << x << " " << y;
       best = std::min(best, d);
     }
-  EXPECT_NEAR(best, r.approx, 1e-3);
+  EXPECT_NEAR(best, r.approx(), 1e-3);
   expect_pair_ok(r, P, Q);
 }
 
@@ -210,7 +210,7 @@ TEST(PlaneQuadric, MotionsScalingsSwaps) {
   const auto m = motion(3, 1, -2, 5, {Rational(7, 3), Rational(-2), Rational(1, 9)});
   const auto moved = certify::surface_distance(P.congruent(m), Q.congruent(m), 30, false);
   EXPECT_EQ(moved.method, "plane_closed_form");
-  EXPECT_TRUE(overlap(base, moved)) << base.lower << " " << moved.lower;
+  EXPECT_TRUE(overlap(base, moved)) << base.lower() << " " << moved.lower();
   // Swapped: the same distance, the quadric's point first.
   const auto sw = certify::surface_distance(Q, P, 30, false);
   EXPECT_TRUE(overlap(base, sw));
@@ -220,6 +220,6 @@ TEST(PlaneQuadric, MotionsScalingsSwaps) {
   for (const Rational& s : {Rational(100000000), Rational(1, 100000000)}) {
     const auto sc = surfcert::testing::scaling(s);
     const auto r = certify::plane_quadric_distance(P.congruent(sc), Q.congruent(sc), 15, true);
-    EXPECT_NEAR(r.approx / s.to_double_approx(), base.approx, 1e-14 * base.approx);
+    EXPECT_NEAR(r.approx() / s.to_double_approx(), base.approx(), 1e-14 * base.approx());
   }
 }

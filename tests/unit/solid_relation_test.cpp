@@ -88,7 +88,7 @@ TEST(SolidRelation, SolidDistanceThroughTheApi) {
   const auto T = torus(O, Z, 3, 1);
   auto r = certify::surface_distance(T, sphere({3, 0, 0}, Rational(1, 4)), 15, true);
   EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.upper, "0");
+  EXPECT_EQ(r.upper(), "0");
   EXPECT_TRUE(r.solid);
   r = certify::surface_distance(T, sphere({3, 0, 0}, Rational(1, 4)), 15, false);
   EXPECT_NEAR(surfcert::testing::lo(r), 0.75, 1e-15); // surface distance 1 - 1/4
@@ -99,7 +99,7 @@ TEST(SolidRelation, SolidDistanceThroughTheApi) {
   const auto Tm = torus(moved(O), rot(Z), 3, 1);
   const auto Sm = sphere(moved({3, 0, 0}), Rational(1, 4));
   r = certify::surface_distance(Sm, Tm, 15, true);
-  EXPECT_EQ(r.upper, "0") << r.note;
+  EXPECT_EQ(r.upper(), "0") << r.note;
   const auto Fm = sphere(moved({10, 0, 0}), 1);
   r = certify::surface_distance(Fm, Tm, 15, true);
   EXPECT_NEAR(surfcert::testing::lo(r), 5, 1e-13) << r.note;

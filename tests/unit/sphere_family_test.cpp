@@ -91,8 +91,8 @@ core::Torus moved(const core::Torus& t, const Rotation& rot, const Rational& s, 
 bool encloses(const certify::DistanceResult& r, const mpfr_t ref) {
   mpfr_t l, u;
   mpfr_inits2(3000, l, u, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(l, r.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(l, r.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(u, r.upper().c_str(), 10, MPFR_RNDU);
   const bool ok = mpfr_cmp(l, ref) <= 0 && mpfr_cmp(ref, u) <= 0;
   mpfr_clears(l, u, static_cast<mpfr_ptr>(nullptr));
   return ok;
@@ -103,14 +103,14 @@ bool overlap_scaled(const certify::DistanceResult& a, unsigned long num, unsigne
                     const certify::DistanceResult& b) {
   mpfr_t la, ua, lb, ub;
   mpfr_inits2(3000, la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_str(la, a.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(ua, a.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(la, a.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ua, a.upper().c_str(), 10, MPFR_RNDU);
   mpfr_mul_ui(la, la, num, MPFR_RNDD);
   mpfr_div_ui(la, la, den, MPFR_RNDD);
   mpfr_mul_ui(ua, ua, num, MPFR_RNDU);
   mpfr_div_ui(ua, ua, den, MPFR_RNDU);
-  mpfr_set_str(lb, b.lower.c_str(), 10, MPFR_RNDD);
-  mpfr_set_str(ub, b.upper.c_str(), 10, MPFR_RNDU);
+  mpfr_set_str(lb, b.lower().c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(ub, b.upper().c_str(), 10, MPFR_RNDU);
   const bool ok = mpfr_cmp(la, ub) <= 0 && mpfr_cmp(lb, ua) <= 0;
   mpfr_clears(la, ua, lb, ub, static_cast<mpfr_ptr>(nullptr));
   return ok;
@@ -121,7 +121,7 @@ double pair_length(const std::array<std::array<double, 3>, 2>& p) {
 }
 
 bool certified_positive(const Result& r) {
-  return r && r->status == certify::Status::Certified && std::stod(r->lower) > 0;
+  return r && r->status == certify::Status::Certified && std::stod(r->lower()) > 0;
 }
 
 } // namespace
@@ -163,11 +163,11 @@ void expect_closed_form(const core::Surface& a, const core::Surface& b, long q, 
     ASSERT_TRUE(r.has_value()) << what << " digits " << digits;
     EXPECT_EQ(r->status, certify::Status::Certified) << what;
     EXPECT_TRUE(encloses(*r, ref))
-        << what << " digits " << digits << ": [" << r->lower << ", " << r->upper << "]";
+        << what << " digits " << digits << ": [" << r->lower() << ", " << r->upper() << "]";
     EXPECT_EQ(r->minimizers, "1") << what << ": " << r->note;
     EXPECT_EQ(r->method, "sphere_family_bnb");
     ASSERT_EQ(r->pairs.size(), 1u) << what;
-    EXPECT_NEAR(pair_length(r->pairs[0]), r->approx, 1e-9) << what;
+    EXPECT_NEAR(pair_length(r->pairs[0]), r->approx(), 1e-9) << what;
     if (prev) {
       EXPECT_TRUE(overlap(*prev, *r)) << what;
     }
@@ -206,7 +206,7 @@ TEST(SphereFamily, RandomCapsulesAgainstTheClosedForm) {
     if (ref->minimizers == "infinite") continue; // parallel: a continuum
     ASSERT_TRUE(mine.has_value()) << "seed " << seed << " case " << k;
     EXPECT_TRUE(overlap(*mine, *ref))
-        << "seed " << seed << " case " << k << ": " << mine->lower << " vs " << ref->lower;
+        << "seed " << seed << " case " << k << ": " << mine->lower() << " vs " << ref->lower();
     EXPECT_EQ(mine->minimizers, "1") << "seed " << seed << " case " << k;
     ASSERT_FALSE(mine->pairs.empty());
     for (size_t i = 0; i < 3; ++i)
@@ -287,19 +287,19 @@ TEST(SphereFamily, RigidMotionScalingSwapAndDigits) {
     };
     const Result r = certify::sphere_family_distance(core::Surface(K), other, 15);
     ASSERT_TRUE(r.has_value()) << which;
-    EXPECT_GT(std::stod(r->lower), 0);
+    EXPECT_GT(std::stod(r->lower()), 0);
     const Result r100 = certify::sphere_family_distance(core::Surface(K), other, 100);
     ASSERT_TRUE(r100.has_value()) << which;
     EXPECT_TRUE(overlap(*r, *r100)) << which;
     const Result m = certify::sphere_family_distance(move(K, 1), move(other, 1), 15);
     ASSERT_TRUE(m.has_value()) << which;
-    EXPECT_TRUE(overlap(*r, *m)) << which << ": " << r->lower << " vs " << m->lower;
+    EXPECT_TRUE(overlap(*r, *m)) << which << ": " << r->lower() << " vs " << m->lower();
     for (const auto& [num, den] : {std::pair<unsigned long, unsigned long>{1000, 1}, {1, 1000}}) {
       const Rational f(static_cast<long>(num), static_cast<long>(den));
       const Result sc = certify::sphere_family_distance(move(K, f), move(other, f), 15);
       ASSERT_TRUE(sc.has_value()) << which << " scale " << num << "/" << den;
       EXPECT_TRUE(overlap_scaled(*r, num, den, *sc))
-          << which << " scale " << num << "/" << den << ": " << sc->lower;
+          << which << " scale " << num << "/" << den << ": " << sc->lower();
     }
     const Result s = certify::sphere_family_distance(other, core::Surface(K), 15);
     ASSERT_TRUE(s.has_value()) << which;
@@ -329,7 +329,7 @@ TEST(SphereFamily, TouchingAndOverlappingSolidsAreNotCertified) {
   for (size_t k = 0; k < cases.size(); ++k)
     for (long digits : {15L, 40L}) {
       const Result r = certify::sphere_family_distance(cases[k].first, cases[k].second, digits);
-      EXPECT_FALSE(certified_positive(r)) << "case " << k << ": " << (r ? r->lower : "");
+      EXPECT_FALSE(certified_positive(r)) << "case " << k << ": " << (r ? r->lower() : "");
     }
 }
 
@@ -345,7 +345,7 @@ TEST(SphereFamily, TwoEndBallMinimaAreReportedAsTies) {
   for (long digits : {15L, 100L}) {
     const Result r = certify::sphere_family_distance(torus_z(), K, digits);
     ASSERT_TRUE(r.has_value()) << digits;
-    EXPECT_TRUE(encloses(*r, ref)) << digits << ": " << r->lower;
+    EXPECT_TRUE(encloses(*r, ref)) << digits << ": " << r->lower();
     EXPECT_EQ(r->minimizers, "2") << r->note;
     EXPECT_EQ(r->ties, "unproven");
     ASSERT_EQ(r->pairs.size(), 2u);
@@ -401,7 +401,7 @@ TEST(SphereFamily, GrowingRadiusAgainstSampledBalls) {
       }
   }
   EXPECT_GE(best, surfcert::testing::lo(*r) - 1e-12);
-  EXPECT_LT(best - r->approx, 0.05);
+  EXPECT_LT(best - r->approx(), 0.05);
   for (const auto& pr : r->pairs)
     EXPECT_NEAR(std::hypot(std::hypot(pr[1][0], pr[1][1]) - 3, pr[1][2]), 1, 1e-9);
 }

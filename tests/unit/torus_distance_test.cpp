@@ -29,10 +29,10 @@ const char* kTorus = R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_r
                      R"("minor_radius":1})";
 
 double lo(const certify::DistanceResult& r) {
-  return std::stod(r.lower);
+  return std::stod(r.lower());
 }
 double hi(const certify::DistanceResult& r) {
-  return std::stod(r.upper);
+  return std::stod(r.upper());
 }
 
 void expect_value(const certify::DistanceResult& r, double v, const std::string& ctx) {
@@ -75,14 +75,14 @@ TEST(TorusDistance, SphereClosedForms) {
   // Crossing: 0.
   auto m = certify::surface_distance(eq("(x-3)^2+y^2+(z-1)^2=1"), t, 15, false);
   ASSERT_EQ(m.status, certify::Status::Certified);
-  EXPECT_EQ(m.upper, "0");
+  EXPECT_EQ(m.upper(), "0");
   // 100 digits: the closed form sqrt(34) - 2 to 100 digits (computed by bc: sqrt(34)).
   auto p = certify::surface_distance(eq("x^2+y^2+(z-5)^2=1"), t, 100, false);
   ASSERT_EQ(p.status, certify::Status::Certified);
   // sqrt(34) - 2 from bc ("scale=95; sqrt(34)" gives 5.83095189484530047087415287754558...).
   const std::string s34 = "3.830951894845300470874152877545583076521398334885971954450006744867"
                           "81006199671262766524032645303";
-  EXPECT_EQ(p.lower.substr(0, 90), s34.substr(0, 90));
+  EXPECT_EQ(p.lower().substr(0, 90), s34.substr(0, 90));
 }
 
 TEST(TorusDistance, PlaneClosedFormsAndTouching) {
@@ -95,7 +95,7 @@ TEST(TorusDistance, PlaneClosedFormsAndTouching) {
   for (const char* touching : {"z = 1", "x = 4", "z = -1"}) {
     auto r = certify::surface_distance(eq(touching), t, 15, false);
     ASSERT_EQ(r.status, certify::Status::Certified) << touching;
-    EXPECT_EQ(r.upper, "0") << touching;
+    EXPECT_EQ(r.upper(), "0") << touching;
     EXPECT_NE(r.note.find("touches"), std::string::npos) << touching;
   }
   auto cut = certify::surface_distance(eq("x = 7/2"), t, 15, false);
@@ -167,7 +167,7 @@ TEST(TorusDistance, EllipsoidAgainstFloatSearchAndRigidMotions) {
     // Swapping the surfaces keeps the value and swaps the points.
     auto sw = certify::surface_distance(tm, core::Surface(em), 15, false);
     ASSERT_EQ(sw.status, certify::Status::Certified) << sw.note;
-    EXPECT_EQ(sw.lower, m.lower);
+    EXPECT_EQ(sw.lower(), m.lower());
     ASSERT_FALSE(sw.pairs.empty());
     ASSERT_FALSE(m.pairs.empty());
     for (size_t i = 0; i < 3; ++i)
@@ -198,7 +198,7 @@ TEST(TorusDistance, CoaxialSurfacesOfRevolution) {
   // Entering the tube: 0. Touching along a circle (x^2/4 + y^2/4 + z^2 = 1 reaches the inner
   // equator rho = 2): never a guess.
   auto m = certify::surface_distance(eq("z = x^2 + y^2 - 9"), t, 15, false);
-  EXPECT_EQ(m.upper, "0");
+  EXPECT_EQ(m.upper(), "0");
   auto tt = certify::surface_distance(eq("x^2/4 + y^2/4 + z^2 = 1"), t, 15, false);
   EXPECT_NE(tt.status, certify::Status::Certified);
 }
@@ -209,7 +209,7 @@ TEST(TorusDistance, ContactAndInput) {
   // it crosses the torus; the witness lies on both surfaces (approximately).
   auto r = certify::surface_distance(eq("x^2/9 + y^2/16 + z^2 = 1"), t, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.upper, "0");
+  EXPECT_EQ(r.upper(), "0");
   ASSERT_EQ(r.pairs.size(), 1u);
   const auto& w = r.pairs[0][0];
   EXPECT_NEAR(w[0] * w[0] / 9 + w[1] * w[1] / 16 + w[2] * w[2], 1.0, 1e-9);
@@ -218,7 +218,7 @@ TEST(TorusDistance, ContactAndInput) {
   // passes through the core circle.
   auto p = certify::surface_distance(eq("z = x^2 + y^2 - 9"), t, 15, false);
   ASSERT_EQ(p.status, certify::Status::Certified) << p.note;
-  EXPECT_EQ(p.upper, "0");
+  EXPECT_EQ(p.upper(), "0");
   // Input errors: a spindle torus and a zero axis, with their JSON path.
   try {
     torus(R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":1,"minor_radius":2})");

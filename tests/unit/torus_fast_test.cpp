@@ -231,7 +231,7 @@ TEST(TorusFast, SphereClosedForms) {
       mpfr_init2(ref, 64);
       sphere_reference(ref, c.c, c.num, c.den, 4 * digits + 200);
       EXPECT_TRUE(contains(*r, ref)) << c.c[0] << " " << c.c[1] << " " << c.c[2] << ": ["
-                                     << r->lower << ", " << r->upper << "]";
+                                     << r->lower() << ", " << r->upper() << "]";
       EXPECT_LE(log10_rel_width(*r), -static_cast<double>(digits));
       EXPECT_EQ(r->minimizers, "1");
       mpfr_clear(ref);
@@ -329,8 +329,8 @@ TEST(TorusFast, RandomPairsAgainstTheExactRoute) {
     ASSERT_TRUE(f) << "seed " << seed << " pair " << i;
     auto x = certify::quadric_torus_distance_exact(eq, t, 15, true);
     ASSERT_EQ(x.status, certify::Status::Certified) << "seed " << seed << " pair " << i;
-    EXPECT_TRUE(overlap(*f, x)) << "seed " << seed << " pair " << i << ": [" << f->lower << ", "
-                                << f->upper << "] vs [" << x.lower << ", " << x.upper << "]";
+    EXPECT_TRUE(overlap(*f, x)) << "seed " << seed << " pair " << i << ": [" << f->lower() << ", "
+                                << f->upper() << "] vs [" << x.lower() << ", " << x.upper() << "]";
     EXPECT_EQ(f->minimizers, x.minimizers) << "seed " << seed << " pair " << i;
     ASSERT_FALSE(x.pairs.empty());
     for (size_t k = 0; k < 3; ++k) {
@@ -351,8 +351,8 @@ TEST(TorusFast, RigidMotionsSwapAndPrecisionNesting) {
     // Swapped query order: same enclosure, pair reversed.
     auto s = fast(eq, t, 15, false);
     ASSERT_TRUE(s);
-    EXPECT_EQ(s->lower, f->lower);
-    EXPECT_EQ(s->upper, f->upper);
+    EXPECT_EQ(s->lower(), f->lower());
+    EXPECT_EQ(s->upper(), f->upper());
     for (size_t k = 0; k < 3; ++k)
       EXPECT_EQ(s->pairs[0][0][k], f->pairs[0][1][k]);
     // 100 digits inside 15 digits.
@@ -361,12 +361,12 @@ TEST(TorusFast, RigidMotionsSwapAndPrecisionNesting) {
     EXPECT_TRUE(overlap(*h, *f));
     mpfr_t a, b;
     mpfr_inits2(4000, a, b, static_cast<mpfr_ptr>(nullptr));
-    mpfr_set_str(a, f->lower.c_str(), 10, MPFR_RNDD);
-    mpfr_set_str(b, h->lower.c_str(), 10, MPFR_RNDD);
-    EXPECT_LE(mpfr_cmp(a, b), 0) << f->lower << " vs " << h->lower;
-    mpfr_set_str(a, f->upper.c_str(), 10, MPFR_RNDU);
-    mpfr_set_str(b, h->upper.c_str(), 10, MPFR_RNDU);
-    EXPECT_GE(mpfr_cmp(a, b), 0) << f->upper << " vs " << h->upper;
+    mpfr_set_str(a, f->lower().c_str(), 10, MPFR_RNDD);
+    mpfr_set_str(b, h->lower().c_str(), 10, MPFR_RNDD);
+    EXPECT_LE(mpfr_cmp(a, b), 0) << f->lower() << " vs " << h->lower();
+    mpfr_set_str(a, f->upper().c_str(), 10, MPFR_RNDU);
+    mpfr_set_str(b, h->upper().c_str(), 10, MPFR_RNDU);
+    EXPECT_GE(mpfr_cmp(a, b), 0) << f->upper() << " vs " << h->upper();
     mpfr_clears(a, b, static_cast<mpfr_ptr>(nullptr));
     EXPECT_LE(log10_rel_width(*h), -100);
     // Rigid motions x -> R x + tr of both surfaces (exact rationals): the same distance.
@@ -389,7 +389,7 @@ TEST(TorusFast, RigidMotionsSwapAndPrecisionNesting) {
       }
       auto m = fast(em, torus(c2, a2, t.R, t.r), 15);
       ASSERT_TRUE(m) << "seed " << seed << " pair " << i;
-      EXPECT_TRUE(overlap(*m, *f)) << m->lower << " vs " << f->lower;
+      EXPECT_TRUE(overlap(*m, *f)) << m->lower() << " vs " << f->lower();
       EXPECT_NEAR(lo(*m), lo(*f), 1e-14 * lo(*f));
     }
   }

@@ -340,7 +340,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     }
     if (has_root_in(side, c.t0, c.t1)) {
       out.status = Status::Certified;
-      out.lower = out.upper = "0";
+      out.distance = Enclosure::zero();
       out.minimizers = "infinite";
       out.note = "the spine crosses the plane: they meet";
       return out;
@@ -499,16 +499,18 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     if (bits > 2 * target_bits + 256) break;
   }
   // One minimizer per critical point: candidates from several boxes over the same parameter
-  // (several alpha boxes, or an interior box at an end) with the same foot are merged.
+  // (several alpha boxes, or an interior box at an end) with the same foot are merged. The
+  // merge is a float judgement (feet within 1e-9): when it fires, the count is not proven.
   {
     std::vector<Candidate> uniq;
+    bool merged = false;
     for (auto& cd : best) {
       bool dup = false;
       for (auto& u : uniq) {
         double dp = std::hypot(cd.p[0] - u.p[0], cd.p[1] - u.p[1], cd.p[2] - u.p[2]),
                sc = 1 + std::hypot(u.p[0], u.p[1], u.p[2]);
         if (!dup && dp <= 1e-9 * sc) { // merged: its interval joins the kept one's region
-          dup = true;
+          dup = merged = true;
           u.ta = std::min(u.ta, cd.ta);
           u.tb = std::max(u.tb, cd.tb);
         }
@@ -516,6 +518,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
       if (!dup) uniq.push_back(std::move(cd));
     }
     best = std::move(uniq);
+    out.count_unproven = out.count_unproven || merged;
   }
   out.critical_candidates = static_cast<int>(best.size());
   arf_t l, u;
@@ -526,9 +529,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
   if (arf_sgn(l) > 0) { // S1 misses every ball: the distance is min phi
     out.status = done ? Status::Certified : Status::Undecided;
     if (!done) out.note = "the enclosure did not reach the requested width";
-    out.lower = decimal_bound(l, false, digits + 2);
-    out.upper = decimal_bound(u, true, digits + 2);
-    out.approx = 0.5 * (arf_get_d(l, ARF_RND_NEAR) + arf_get_d(u, ARF_RND_NEAR));
+    out.distance = Enclosure::from_bounds(l, u, digits);
     if (out.minimizers.empty()) out.minimizers = std::to_string(best.size());
     for (const auto& cd : best)
       pair_out(cd);
@@ -555,12 +556,12 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     }
   } else if (arf_sgn(u) < 0 && q.kind() != core::QuadricKind::Ellipsoid) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the quadric enters the canal solid and, being unbounded, leaves it: they meet";
   } else if (arf_sgn(u) < 0 && ellipsoid_point_outside(q, c)) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the ellipsoid has certified points inside and outside the canal solid: they meet";
   } else {

@@ -157,7 +157,7 @@ std::optional<DistanceResult> common_apex_contact(const core::QuadricMatrix& a,
   if (!p) return std::nullopt;
   DistanceResult out;
   out.method = "common_apex";
-  out.lower = out.upper = "0";
+  out.distance = Enclosure::zero();
   const std::array<double, 3> w{(*p)[0].to_double_approx(), (*p)[1].to_double_approx(),
                                 (*p)[2].to_double_approx()};
   out.pairs.push_back({w, w});

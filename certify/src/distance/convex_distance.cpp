@@ -477,13 +477,10 @@ std::optional<DistanceResult> separated_convex_distance_float(const ConvexQuadri
   const double dist =
       std::sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]) +
                 (pb[2] - pa[2]) * (pb[2] - pa[2]));
-  char buf[40]; // one float value, not an enclosure: lower = upper = approx
-  std::snprintf(buf, sizeof buf, "%.17g", dist);
-  out.lower = out.upper = buf;
-  out.approx = dist;
+  out.estimate = Estimate{dist}; // one float value, never an enclosure
   out.pairs.push_back({pa, pb});
   out.note = "float mode: double-precision separating-direction search, NOT certified (the "
-             "distance of the float pair, lower = upper = approx; no ball arithmetic)";
+             "distance of the float pair, in result.estimate; no ball arithmetic)";
   return out;
 }
 

@@ -27,6 +27,7 @@
 #include <flint/fmpq_mat.h>
 #include <mpfr.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -107,7 +108,7 @@ void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
   out.minimizers = "1";
   out.status = Status::Certified;
   if (gap * gap <= support2) { // exact: the plane meets the ellipsoid
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = gap * gap == support2 ? "1" : "infinite";
     out.note =
         gap * gap == support2 ? "the plane touches the ellipsoid" : "the plane cuts the ellipsoid";
@@ -154,17 +155,7 @@ void note_unproven_ties(DistanceResult& out, size_t count) {
 }
 
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
-  arf_t lo, hi;
-  arf_init(lo);
-  arf_init(hi);
-  arb_get_lbound_arf(lo, d, bits_for(digits));
-  arb_get_ubound_arf(hi, d, bits_for(digits));
-  if (arf_sgn(lo) < 0) arf_zero(lo); // a distance is never negative
-  out.lower = decimal_bound(lo, false, digits + 2);
-  out.upper = decimal_bound(hi, true, digits + 2);
-  out.approx = arf_get_d(arb_midref(d), ARF_RND_NEAR);
-  arf_clear(lo);
-  arf_clear(hi);
+  out.distance = Enclosure::from_ball(d, digits);
 }
 
 namespace {
@@ -204,7 +195,7 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
     if (auto r = nested_convex_distance(*ca, *cb, digits)) {
       if (solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
         out.status = Status::Certified;
-        out.lower = out.upper = "0";
+        out.distance = Enclosure::zero();
         out.minimizers = "infinite";
         out.note = "solid distance: one solid contains the other";
         out.method = "nested_convex_duality";
@@ -258,7 +249,7 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
     }
   if (t.pencil == algebra::PencilKind::Coincident) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the surfaces coincide";
     return out;
@@ -281,17 +272,19 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
         w = sp.approx;
         have = affine = true;
       }
-    if (curve && !have) {
+    if (curve && !have && affine) {
+      // Affine contact is proven already (exact): the tracer only supplies a displayed pair.
+      // A traced point never decides contact (the tracer is floating point).
       trace::TraceOptions opt;
       CurveResult cr = trace_curve(a, b, t, opt);
       if (!cr.branches.empty() && !cr.branches[0].points.empty()) {
         w = cr.branches[0].points[0];
-        have = affine = true;
+        have = true;
       }
     }
     if (affine) {
       out.status = Status::Certified;
-      out.lower = out.upper = "0";
+      out.distance = Enclosure::zero();
       out.minimizers = curve ? "infinite" : std::to_string(m.isolated_points);
       if (have) out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
@@ -299,7 +292,7 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
     }
     if (curve && meet_by_sign_change(a, b, w)) {
       out.status = Status::Certified;
-      out.lower = out.upper = "0";
+      out.distance = Enclosure::zero();
       out.minimizers = "infinite";
       out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) +
@@ -320,7 +313,7 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
     complete_report_data(t, a, b);
     if (t.ellipsoid_relation == "nested") {
       out.status = Status::Certified;
-      out.lower = out.upper = "0";
+      out.distance = Enclosure::zero();
       out.minimizers = "infinite";
       out.note = "solid distance: one solid contains the other";
       return out;
@@ -444,13 +437,65 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
 
 } // namespace
 
+namespace {
+
+bool is_count(const std::string& m) {
+  return !m.empty() && std::all_of(m.begin(), m.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// What every answer goes through last, whatever route produced it:
+// - a minimizer count that is not proven (several candidates whose equality is unproven, or
+//   a route that says its count is not proven) becomes "undecided", the candidate count kept
+//   apart in minimizer_candidates: a count is reported only when proven;
+// - the width contract: a certified enclosure satisfies upper - lower <= 10^-digits lower on
+//   the printed decimals, or the answer is not certified.
+void finalize(DistanceResult& r, long digits) {
+  if (r.status == Status::Certified && is_count(r.minimizers)) {
+    const long n = std::stol(r.minimizers);
+    if ((n > 1 && r.ties == "unproven") || r.count_unproven) {
+      r.minimizer_candidates = n;
+      r.minimizers = "undecided";
+      r.note += std::string(r.note.empty() ? "" : "; ") +
+                "the number of minimizers is not proven (" + std::to_string(n) + " candidate" +
+                (n == 1 ? "" : "s") + " not separated from the minimum)";
+    }
+  }
+  if (r.status == Status::Certified && r.distance && !r.distance->is_zero() &&
+      !r.distance->meets_width(digits)) {
+    r.status = Status::Undecided;
+    r.note += std::string(r.note.empty() ? "" : "; ") + "the enclosure is wider than --digits " +
+              std::to_string(digits) + " asks (kept as what was established)";
+  }
+}
+
+// Computes, and when a certified enclosure misses the width contract, computes once more
+// with more digits (a route's own refinement stopped short, e.g. cancellation in d - r).
+template <class F> DistanceResult with_width_contract(F&& compute, long digits) {
+  DistanceResult r = compute(digits);
+  if (r.status == Status::Certified && r.distance && !r.distance->is_zero() &&
+      !r.distance->meets_width(digits) && digits < 1000) {
+    DistanceResult finer = compute(std::min(2 * digits + 10, 1000L));
+    if (finer.status == Status::Certified && finer.distance &&
+        (finer.distance->is_zero() || finer.distance->meets_width(digits)))
+      r = std::move(finer);
+  }
+  finalize(r, digits);
+  return r;
+}
+
+} // namespace
+
 DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                 long digits, bool solid, Mode mode) {
-  DistanceResult r = quadric_distance(a, b, digits, solid, mode);
-  r.mode = mode;
-  if (r.method.empty() && !r.univariate_degrees.empty()) r.method = "offset_system";
-  if (r.ties == "unproven") prove_ties(r, core::Surface(a), core::Surface(b));
-  return r;
+  return with_width_contract(
+      [&](long dg) {
+        DistanceResult r = quadric_distance(a, b, dg, solid, mode);
+        r.mode = mode;
+        if (r.method.empty() && !r.univariate_degrees.empty()) r.method = "offset_system";
+        if (r.ties == "unproven") prove_ties(r, core::Surface(a), core::Surface(b));
+        return r;
+      },
+      digits);
 }
 
 namespace {
@@ -505,7 +550,6 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
     const auto* ib = std::get_if<core::ImplicitSurface>(&b);
     if (ia && ib) { // two implicit surfaces: the generic branch and bound (bounded, smooth)
       out = implicit_pair_distance(ia->f, ib->f, digits);
-      if (out.upper.empty()) out.lower.clear(); // no enclosure yet: report none
       out.solid = solid;
       out.mode = mode;
       return out;
@@ -583,8 +627,21 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
 
 } // namespace
 
+namespace {
+DistanceResult surface_distance_unchecked(const core::Surface& a, const core::Surface& b,
+                                          long digits, bool solid, Mode mode);
+} // namespace
+
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
                                 bool solid, Mode mode) {
+  return with_width_contract(
+      [&](long dg) { return surface_distance_unchecked(a, b, dg, solid, mode); }, digits);
+}
+
+namespace {
+
+DistanceResult surface_distance_unchecked(const core::Surface& a, const core::Surface& b,
+                                          long digits, bool solid, Mode mode) {
   DistanceResult r = any_surface_distance(a, b, digits, solid, mode);
   const bool two_quadrics = std::holds_alternative<core::QuadricMatrix>(a) &&
                             std::holds_alternative<core::QuadricMatrix>(b);
@@ -600,7 +657,7 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
     r = DistanceResult();
     r.status = Status::Certified;
     r.mode = mode;
-    r.lower = r.upper = "0";
+    r.distance = Enclosure::zero();
     r.minimizers = "infinite";
     const bool located = residual <= 1e-9 * (1 + std::hypot(w[0], w[1], w[2]));
     if (located) r.pairs.push_back({w, w});
@@ -617,21 +674,33 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
   return r;
 }
 
+} // namespace
+
 Json distance_envelope_json(const DistanceResult& r, long digits) {
   Json o = Json::object();
   o.set("status", Json::string(to_string(r.status)));
   if (!r.note.empty()) o.set("note", Json::string(r.note));
   Json res = Json::object();
-  if (!r.lower.empty()) {
+  if (r.distance) { // a proven enclosure (certified, or what an undecided answer established)
     Json d = Json::object();
-    d.set("lower", Json::string(r.lower));
-    d.set("upper", Json::string(r.upper));
+    d.set("lower", Json::string(r.distance->lower()));
+    d.set("upper", Json::string(r.distance->upper()));
     char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", r.approx);
+    std::snprintf(buf, sizeof buf, "%.17g", r.distance->approx());
     d.set("approx", Json::string(buf));
     res.set("distance", d);
   }
+  if (r.estimate) { // a float answer: never in "distance"
+    Json e = Json::object();
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", r.estimate->value);
+    e.set("value", Json::string(buf));
+    e.set("certified", Json::boolean(false));
+    res.set("estimate", e);
+  }
   if (!r.minimizers.empty()) res.set("minimizers", Json::string(r.minimizers));
+  if (r.minimizer_candidates > 0)
+    res.set("minimizer_candidates", Json::number(r.minimizer_candidates));
   Json pairs = Json::array();
   for (const auto& pr : r.pairs) {
     Json pj = Json::array();

@@ -993,7 +993,6 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
       queue.pop();
       if (pr.lb > ub) continue;
       if (++popped > kPairBudget) {
-        out.lower = "0";
         // Clipped and a genuine pair no closer than the margin: the cube's faces may hold the
         // minimum over the cube (no critical pair there); widen past that pair's distance.
         if (clip > 0 && clip_short && ub < HUGE_VAL && ub >= clip) *clip_short = ub;
@@ -1010,8 +1009,7 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
                         DI(std::max(ba[2].inf(), bb[2].inf()), std::min(ba[2].sup(), bb[2].sup()))};
         if (const auto w = contact_witness(sa, sb, centre(ov))) {
           out.status = Status::Certified;
-          out.lower = out.upper = "0";
-          out.approx = 0;
+          out.distance = Enclosure::zero();
           out.minimizers = "infinite";
           out.pairs.push_back({*w, *w});
           out.note = "the surfaces cross: a common point proven by 2-D Krawczyk with one "
@@ -1059,7 +1057,6 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
     }
     if (live.size() > kClusterPairs) {
       if (round + 1 == kRounds) {
-        out.lower = "0";
         return undecided(out, "too many candidate pairs (a continuum of minimizers?)");
       }
       for (const Pair& p : live)
@@ -1104,15 +1101,11 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   }
   out.critical_candidates = static_cast<int>(found.size());
   if (!queue.empty()) {
-    out.lower = "0";
     if (clip > 0 && clip_short && ub < HUGE_VAL && ub >= clip) *clip_short = ub;
-    if (ub < HUGE_VAL) {
-      arf_t u;
-      arf_init(u);
-      arf_set_d(u, ub);
-      out.upper = decimal_bound(u, true, 17);
-      arf_clear(u);
-      out.approx = ub;
+    if (ub < HUGE_VAL) { // ub: the interval distance of two boxes proven to hold surface points
+      Arf u;
+      arf_set_d(u.v, ub);
+      out.distance = Enclosure::up_to(u.v, digits);
       out.pairs.push_back(ub_pair);
     }
     return undecided(out, contact_possible
@@ -1263,27 +1256,9 @@ core::Poly3 in_frame(const core::Poly3& p, const Frame& fr) {
   return big.is_zero() ? out : out.scaled(Rational(1) / big);
 }
 
-// A decimal bound times 2^k, rounded outward again (digits significant digits).
-std::string scaled_bound(const std::string& x, long k, bool upper, long digits) {
-  if (x.empty() || x == "0") return x;
-  mpfr_t m;
-  mpfr_init2(m, static_cast<mpfr_prec_t>(64 + 4 * x.size()));
-  mpfr_set_str(m, x.c_str(), 10, upper ? MPFR_RNDU : MPFR_RNDD);
-  mpfr_mul_2si(m, m, k, MPFR_RNDN); // exact
-  const std::string fmt = "%." + std::to_string(digits) + "R" + (upper ? "U" : "D") + "g";
-  const int n = mpfr_snprintf(nullptr, 0, fmt.c_str(), m);
-  std::string out(static_cast<size_t>(n) + 1, '\0');
-  mpfr_snprintf(out.data(), out.size(), fmt.c_str(), m);
-  out.resize(static_cast<size_t>(n));
-  mpfr_clear(m);
-  return out;
-}
-
-DistanceResult from_frame(DistanceResult r, const Frame& fr, long digits) {
+DistanceResult from_frame(DistanceResult r, const Frame& fr) {
   const double s = std::ldexp(1.0, static_cast<int>(fr.k));
-  r.lower = scaled_bound(r.lower, fr.k, false, digits + 2);
-  r.upper = scaled_bound(r.upper, fr.k, true, digits + 2);
-  r.approx *= s;
+  if (r.distance) r.distance = r.distance->scaled_2exp(fr.k);
   for (auto& pr : r.pairs)
     for (auto& pt : pr)
       for (size_t i = 0; i < 3; ++i)
@@ -1319,8 +1294,7 @@ DistanceResult implicit_pair_distance(const core::Poly3& f, const core::Poly3& g
   }
   if (!hf || !hg) return pair_distance(f, g, digits, 0, nullptr); // it says why
   const Frame fr = frame_of(hull(*hf, *hg));
-  return from_frame(pair_distance(in_frame(f, fr), in_frame(g, fr), digits + 1, 0, nullptr), fr,
-                    digits);
+  return from_frame(pair_distance(in_frame(f, fr), in_frame(g, fr), digits + 1, 0, nullptr), fr);
 }
 
 DistanceResult bounded_unbounded_distance(const core::Poly3& f, const core::Poly3& g, long digits) {
@@ -1339,11 +1313,11 @@ DistanceResult bounded_unbounded_distance(const core::Poly3& f, const core::Poly
     need = 0;
     DistanceResult r = pair_distance(F, G, digits + 1, clip, &need);
     if (r.status == Status::Certified || need <= 0) {
-      if (r.status == Status::Certified && r.upper != "0")
+      if (r.status == Status::Certified && !r.distance->is_zero())
         r.note += std::string(r.note.empty() ? "" : "; ") +
                   "the unbounded surface taken within a cube around the bounded one, wide "
                   "enough that every point outside is farther than the minimum";
-      return from_frame(std::move(r), fr, digits);
+      return from_frame(std::move(r), fr);
     }
     clip = 2 * need + 1;
   }

@@ -221,19 +221,6 @@ bool upper_less(const Ball& a, const Ball& b, long prec) {
   return r;
 }
 
-// RAII for an arf_t scalar.
-struct Arf {
-  arf_t v;
-  Arf() { arf_init(v); }
-  Arf(const Arf&) = delete;
-  Arf& operator=(const Arf&) = delete;
-  Arf(Arf&& o) noexcept {
-    arf_init(v);
-    arf_swap(v, o.v);
-  }
-  ~Arf() { arf_clear(v); }
-};
-
 // Tie regions (symmetry.hpp) from the kept boxes: every closest source point solves the system,
 // so lies in a kept box; a box whose three intervals each meet no other root interval of
 // their eliminant holds at most one solution (each coordinate is then that interval's root).
@@ -344,9 +331,7 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
     out.note = "no certified pair of points found at the working precision";
     return;
   }
-  out.lower = decimal_bound(L.v, false, digits + 2);
-  out.upper = decimal_bound(U.v, true, digits + 2);
-  out.approx = 0.5 * (arf_get_d(L.v, ARF_RND_NEAR) + arf_get_d(U.v, ARF_RND_NEAR));
+  out.distance = Enclosure::from_bounds(L.v, U.v, digits);
   std::sort(best.begin(), best.end(), [&](const CandidatePair& a, const CandidatePair& b) {
     return upper_less(a.d, b.d, 128);
   });
@@ -358,7 +343,7 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
     out.status = Status::Undecided;
     out.note = "neither surface is bounded: the minimum over the critical pairs is enclosed, "
                "but the infimum may lie at infinity";
-    out.lower = "0";
+    out.distance = Enclosure::up_to(U.v, digits);
   } else if (!done) {
     out.status = Status::Undecided;
     out.note = "the enclosure did not reach the requested width";

@@ -146,8 +146,7 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
   };
   auto meet = [&](const std::string& how, const char* count, double u, double v) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
-    out.approx = 0;
+    out.distance = Enclosure::zero();
     out.minimizers = count;
     out.note = "the plane meets the quadric (" + how + "; decided exactly on the section)";
     add_pair(0, u, v);
@@ -155,8 +154,7 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
   };
   auto not_attained = [&](const std::string& why) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
-    out.approx = 0;
+    out.distance = Enclosure::zero();
     out.minimizers = "0";
     out.note = "the surfaces do not meet but approach each other at infinity (" + why +
                "): the distance is the infimum 0, not attained";
@@ -177,7 +175,7 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
     set_distance_enclosure(out, d.v, digits);
     out.eliminated_degree = !h.c[2].is_zero() ? 2 : 1;
     out.critical_candidates = nr.tie ? 2 : 1;
-    const double rho = out.approx * std::sqrt(nn.to_double_approx());
+    const double rho = out.approx() * std::sqrt(nn.to_double_approx());
     for (int sg : nr.tie ? std::vector<int>{-1, 1} : std::vector<int>{nr.sign}) {
       const auto uv = point(sg * rho);
       add_pair(sg * rho, uv[0], uv[1]);

@@ -360,7 +360,7 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
       QuadricTarget t(s, o, dg);
       minimize_over_cover(cover, s, t, dg, src_a, compact, out);
       const bool axial_excluded = out.status == Status::Certified && axis_points_smooth(src) &&
-                                  axial_pairs_exceed(src, tgt, out.upper);
+                                  axial_pairs_exceed(src, tgt, out.upper());
       place = axis_placement(cover, axial_excluded);
       if (out.status != Status::Certified || place != AxisPlacement::Mixed || dg >= 1000) break;
     }
@@ -573,7 +573,7 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
       }
       if (meet_by_sign_change(a, b, w, near)) {
         out.status = Status::Certified;
-        out.lower = out.upper = "0";
+        out.distance = Enclosure::zero();
         out.minimizers = "infinite";
         out.pairs.push_back({w, w});
         out.note = "two cylinders with a common ruling direction meet (a connected piece of one "
@@ -883,7 +883,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
   }
   if (meet) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the surfaces meet (the quadric's equation takes both signs at certified points "
                "of the bounded implicit surface)";
@@ -958,7 +958,7 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
   }
   if (meet) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the surfaces meet (f takes both signs at certified points of the ellipsoid)";
     return out;

@@ -301,12 +301,12 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
               "surface distance";
     return;
   }
-  if (r.status != Status::Certified || r.upper == "0") return; // meeting surfaces: 0 either way
+  if (r.status != Status::Certified || r.distance->is_zero())
+    return; // meeting surfaces: 0 either way
   const int n = solids_nested(a, b);
   if (n > 0) {
-    const std::string was = "[" + r.lower + ", " + r.upper + "]";
-    r.lower = r.upper = "0";
-    r.approx = 0;
+    const std::string was = "[" + r.lower() + ", " + r.upper() + "]";
+    r.distance = Enclosure::zero();
     r.minimizers = "infinite";
     r.pairs.clear();
     r.ties.clear();
@@ -316,7 +316,8 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
               "the solids are disjoint: the solid distance is the surface distance";
   } else {
     r.status = Status::Undecided;
-    r.lower = "0";
+    // 0 <= solid distance <= surface distance: what stays established.
+    r.distance = Enclosure::up_to(r.distance->upper_arf(), r.distance->digits());
     r.note += std::string(r.note.empty() ? "" : "; ") +
               "solid distance: whether one solid contains the other was not decided";
   }

@@ -194,7 +194,7 @@ DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, 
       which = "far";
     } else if (arb_lt(dmin.v, rs.v) && arb_gt(dmax.v, rs.v)) {
       out.status = Status::Certified;
-      out.lower = out.upper = "0";
+      out.distance = Enclosure::zero();
       out.minimizers = "infinite";
       out.note = "the sphere meets the torus (its radius lies strictly between the smallest and "
                  "largest distances from its centre to the torus)";
@@ -220,9 +220,7 @@ DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, 
     arb_get_lbound_arf(lo, d.v, prec);
     if (enough) {
       out.status = Status::Certified;
-      out.lower = decimal_bound(lo, false, digits + 2);
-      out.upper = decimal_bound(hi, true, digits + 2);
-      out.approx = arf_get_d(arb_midref(d.v), ARF_RND_NEAR);
+      out.distance = Enclosure::from_bounds(lo, hi, digits);
       out.minimizers = (on_axis || on_circle) ? "infinite" : "1";
       if (!on_axis && !on_circle) { // the pair, approximately
         std::array<double, 3> kk{};
@@ -283,14 +281,14 @@ DistanceResult plane_torus(const core::QuadricMatrix& pl, const core::Torus& t, 
   const bool circle = beta.is_zero(); // plane orthogonal to the axis
   if (alpha * alpha < beta || X.sign() < 0 || X * X < Rational(4) * beta * gamma) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the plane cuts the torus";
     return out;
   }
   if (X * X == Rational(4) * beta * gamma) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = circle ? "infinite" : "1";
     out.note = "the plane touches the torus";
     return out;
@@ -311,9 +309,7 @@ DistanceResult plane_torus(const core::QuadricMatrix& pl, const core::Torus& t, 
   arf_init(hi);
   arb_get_lbound_arf(lo, d.v, prec);
   arb_get_ubound_arf(hi, d.v, prec);
-  out.lower = decimal_bound(lo, false, digits + 2);
-  out.upper = decimal_bound(hi, true, digits + 2);
-  out.approx = arf_get_d(arb_midref(d.v), ARF_RND_NEAR);
+  out.distance = Enclosure::from_bounds(lo, hi, digits);
   arf_clear(lo);
   arf_clear(hi);
   out.status = Status::Certified;
@@ -331,7 +327,7 @@ DistanceResult plane_torus(const core::QuadricMatrix& pl, const core::Torus& t, 
     for (size_t i = 0; i < 3; ++i) {
       k[i] = t.centre[i].to_double_approx() - s * t.R.to_double_approx() * m[i] / mn;
       tq[i] = k[i] - s * t.r.to_double_approx() * n[i].to_double_approx() / nd;
-      pq[i] = tq[i] - s * out.approx * n[i].to_double_approx() / nd;
+      pq[i] = tq[i] - s * out.approx() * n[i].to_double_approx() / nd;
     }
     out.pairs.push_back(plane_first ? std::array<std::array<double, 3>, 2>{pq, tq}
                                     : std::array<std::array<double, 3>, 2>{tq, pq});
@@ -366,7 +362,7 @@ DistanceResult coaxial_torus(const core::QuadricMatrix& meridian, const core::To
   arb_set_fmpq(r.v, t.r.raw(), prec);
   if (arb_lt(m.v, r.v)) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the coaxial surface of revolution enters the tube: it meets the torus";
     return out;
@@ -382,9 +378,7 @@ DistanceResult coaxial_torus(const core::QuadricMatrix& meridian, const core::To
   arf_init(h);
   arb_get_lbound_arf(l, d.v, prec);
   arb_get_ubound_arf(h, d.v, prec);
-  out.lower = decimal_bound(l, false, digits + 2);
-  out.upper = decimal_bound(h, true, digits + 2);
-  out.approx = arf_get_d(arb_midref(d.v), ARF_RND_NEAR);
+  out.distance = Enclosure::from_bounds(l, h, digits);
   arf_clear(l);
   arf_clear(h);
   out.status = Status::Certified;
@@ -567,7 +561,7 @@ DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const 
   }
   if (c == Contact::Meet) {
     out.status = Status::Certified;
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.minimizers = "infinite";
     out.note = "the quadric meets the torus (certified points of the quadric inside and outside "
                "the solid torus); the pair is an approximate common point (float bisection)";

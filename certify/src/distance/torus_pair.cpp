@@ -254,11 +254,11 @@ std::optional<DistanceResult> coaxial_tori(const core::Torus& a, const core::Tor
                (D2.is_zero() ? "the whole surfaces are equidistant" : "circles of closest pairs") +
                " (one pair shown)";
   } else if (D2.is_zero() && del.is_zero()) {
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     out.note = "the tori coincide";
     return out;
   } else { // the meridian circles meet: the tori meet along circles
-    out.lower = out.upper = "0";
+    out.distance = Enclosure::zero();
     // a common meridian point: radical line of the two circles
     const double t = (D2.to_double_approx() + ra * ra - rb * rb) / (2 * Dd);
     const double hh = std::sqrt(std::max(0.0, ra * ra - t * t));

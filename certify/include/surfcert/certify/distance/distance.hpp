@@ -10,6 +10,7 @@
 // as undecided ("not supported yet"), never guessed.
 #pragma once
 
+#include "surfcert/certify/distance/enclosure.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/surface.hpp"
@@ -17,6 +18,7 @@
 #include <arb.h>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,9 +27,24 @@ namespace surfcert::certify {
 struct DistanceResult {
   Status status = Status::Error;
   std::string note;
-  std::string lower, upper; ///< decimal enclosure of the minimum distance
-  double approx = 0;
-  std::string minimizers; ///< a count ("1", "2", ...) or "infinite"
+  /// The proven enclosure of the minimum distance (built only from a proof: enclosure.hpp).
+  /// A certified answer has one meeting the width contract; an undecided answer may carry
+  /// what it established (e.g. [0, upper] or [lower, inf]).
+  std::optional<Enclosure> distance;
+  /// A float answer (float mode): never in `distance`, never certified.
+  std::optional<Estimate> estimate;
+  /// Decimal bounds of `distance` ("" when there is none), for reading.
+  const std::string lower() const { return distance ? distance->lower() : std::string(); }
+  const std::string upper() const { return distance ? distance->upper() : std::string(); }
+  double approx() const { return distance ? distance->approx() : estimate ? estimate->value : 0.0; }
+  /// A proven count ("1", "2", ...), "infinite" (a continuum), "0" (an infimum that is not
+  /// attained), or "undecided" (a certified distance whose minimizer count is not proven:
+  /// minimizer_candidates then holds the number of candidates not separated from it).
+  std::string minimizers;
+  long minimizer_candidates = 0;
+  /// Set by a route whose count rests on an unproven step (e.g. candidates merged by a
+  /// float test): the count is then reported as "undecided".
+  bool count_unproven = false;
   std::vector<std::array<std::array<double, 3>, 2>> pairs; ///< (point on a, point on b), approx
   int critical_candidates = 0;
   int eliminated_degree = 0; ///< degree of the eliminated univariate polynomial
@@ -76,8 +93,7 @@ void note_unproven_ties(DistanceResult& out, size_t count);
 /// The sentence note_unproven_ties appends (prove_ties replaces it when it proves the tie).
 extern const char* const kUnprovenTiesNote;
 
-/// Writes the decimal enclosure of the ball d into out (lower clamped at 0; digits + 2
-/// significant digits, rounded outward) and its midpoint as `approx`.
+/// out.distance = the enclosure of the ball d (lower clamped at 0).
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
 
 /// {"status", "note"?, "result": {"distance": {"lower", "upper", "approx"}, "minimizers",

@@ -1,0 +1,99 @@
+#include "surfcert/certify/distance/enclosure.hpp"
+#include "surfcert/certify/distance/ball.hpp"
+
+#include <mpfr.h>
+
+namespace surfcert::certify {
+
+Enclosure Enclosure::from_ball(const arb_t d, long digits) {
+  Enclosure e;
+  e.digits_ = digits;
+  arb_get_lbound_arf(e.lo_.v, d, bits_for(digits));
+  arb_get_ubound_arf(e.hi_.v, d, bits_for(digits));
+  if (arf_sgn(e.lo_.v) < 0) arf_zero(e.lo_.v);
+  return e;
+}
+
+Enclosure Enclosure::from_bounds(const arf_t lo, const arf_t hi, long digits) {
+  Enclosure e;
+  e.digits_ = digits;
+  arf_set(e.lo_.v, lo);
+  arf_set(e.hi_.v, hi);
+  if (arf_sgn(e.lo_.v) < 0 || arf_is_nan(e.lo_.v)) arf_zero(e.lo_.v);
+  if (arf_is_nan(e.hi_.v)) arf_pos_inf(e.hi_.v);
+  return e;
+}
+
+Enclosure Enclosure::exact(const core::Rational& v, long digits) {
+  Ball b;
+  arb_set_fmpq(b.v, v.raw(), bits_for(digits) + 64);
+  return from_ball(b.v, digits);
+}
+
+Enclosure Enclosure::zero() {
+  return Enclosure();
+}
+
+Enclosure Enclosure::up_to(const arf_t hi, long digits) {
+  Enclosure e;
+  e.digits_ = digits;
+  arf_set(e.hi_.v, hi);
+  return e;
+}
+
+Enclosure Enclosure::scaled_2exp(long k) const {
+  Enclosure e(*this);
+  arf_mul_2exp_si(e.lo_.v, e.lo_.v, k);
+  arf_mul_2exp_si(e.hi_.v, e.hi_.v, k);
+  return e;
+}
+
+Enclosure Enclosure::min_of(const Enclosure& a, const Enclosure& b) {
+  Enclosure e(a);
+  if (arf_cmp(b.lo_.v, e.lo_.v) < 0) arf_set(e.lo_.v, b.lo_.v);
+  if (arf_cmp(b.hi_.v, e.hi_.v) < 0) arf_set(e.hi_.v, b.hi_.v);
+  e.digits_ = std::max(a.digits_, b.digits_);
+  return e;
+}
+
+const std::string Enclosure::lower() const {
+  if (arf_is_zero(lo_.v)) return "0";
+  return decimal_bound(lo_.v, false, digits_ + 2);
+}
+
+const std::string Enclosure::upper() const {
+  if (arf_is_zero(hi_.v)) return "0";
+  if (!arf_is_finite(hi_.v)) return "inf";
+  return decimal_bound(hi_.v, true, digits_ + 2);
+}
+
+double Enclosure::approx() const {
+  if (!arf_is_finite(hi_.v)) return arf_get_d(lo_.v, ARF_RND_NEAR);
+  Arf m;
+  arf_add(m.v, lo_.v, hi_.v, ARF_PREC_EXACT, ARF_RND_NEAR);
+  arf_mul_2exp_si(m.v, m.v, -1);
+  return arf_get_d(m.v, ARF_RND_NEAR);
+}
+
+void Enclosure::to_ball(arb_t out, long prec) const {
+  arb_set_interval_arf(out, lo_.v, hi_.v, prec);
+}
+
+bool Enclosure::meets_width(long digits) const {
+  if (!arf_is_finite(hi_.v)) return false;
+  const std::string l = lower(), u = upper();
+  mpfr_t ml, mu, w, tol;
+  const mpfr_prec_t bits = static_cast<mpfr_prec_t>(64 + 4 * (l.size() + u.size()) + 4 * digits);
+  mpfr_inits2(bits, ml, mu, w, tol, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(ml, l.c_str(), 10, MPFR_RNDD);
+  mpfr_set_str(mu, u.c_str(), 10, MPFR_RNDU);
+  mpfr_sub(w, mu, ml, MPFR_RNDU);
+  mpfr_set_ui(tol, 10, MPFR_RNDN);
+  mpfr_pow_si(tol, tol, -digits, MPFR_RNDD);
+  mpfr_mul(tol, tol, ml, MPFR_RNDD);
+  const bool ok = mpfr_cmp(w, tol) <= 0;
+  mpfr_clears(ml, mu, w, tol, static_cast<mpfr_ptr>(nullptr));
+  return ok;
+}
+
+} // namespace surfcert::certify
