@@ -240,9 +240,11 @@ int cmd_distance(const std::vector<std::string>& args) {
     std::cout << core::io::dump(certify::distance_envelope_json(d, digits), 2) << "\n";
   } else {
     std::cout << "distance: " << certify::to_string(d.status);
-    if (!d.lower().empty() && d.status == certify::Status::Uncertified)
-      std::cout << " ~ " << d.upper() << " (not an enclosure), minimizers " << d.minimizers;
-    else if (!d.lower().empty())
+    if (d.estimate) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.17g", d.estimate->value);
+      std::cout << " ~ " << buf << " (an estimate, not an enclosure), minimizers " << d.minimizers;
+    } else if (d.distance)
       std::cout << " in [" << d.lower() << ", " << d.upper() << "], minimizers " << d.minimizers;
     std::cout << "\n";
     for (const auto& p : d.pairs)
