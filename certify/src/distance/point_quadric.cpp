@@ -222,6 +222,8 @@ void rational_singular_root(const Data& dt, const Rational& a0, long digits,
   if (u.size() >= 2) {
     CriticalDistance cd;
     cd.continuum = true;
+    cd.d2_exact = true; // every point of the circle is at the rational d2
+    cd.d2 = d2;
     for (int i = 0; i < 3; ++i)
       cd.foot[static_cast<size_t>(i)] =
           ps[static_cast<size_t>(i)] + len * ed[static_cast<size_t>(i)];
@@ -403,7 +405,14 @@ PointQuadricResult point_quadric_critical(const std::array<core::Rational, 3>& x
       if (wrel < width) width = wrel;
       if (width.is_zero()) width = core::pow2(-bits);
       algebra::refine_root(sqf, lo, hi, width);
+      // Near a pole of N/D (x close to an axis, D(alpha) tiny) the evaluation loses about as
+      // many bits as D is small: grow the refinement geometrically, not linearly, so that ten
+      // rounds reach far past the loss.
       prec += prec / 2;
+      if (it >= 2) {
+        bits *= 2;
+        prec = std::max(prec, 2 * bits + 64);
+      }
     }
     if (!done) {
       all_ok = false;
@@ -426,12 +435,16 @@ PointQuadricResult point_quadric_critical(const std::array<core::Rational, 3>& x
         CriticalDistance cd;
         cd.singular_point = true;
         cd.foot = to_doubles(vtx);
-        enclose_sqrt(cd, dot(r, r), digits);
+        cd.d2_exact = true; // a rational vertex: a rational squared distance
+        cd.d2 = dot(r, r);
+        enclose_sqrt(cd, cd.d2, digits);
         res.criticals.push_back(cd);
       }
     }
   }
 
+  // The order is a float proposal only: two candidates closer than a double's resolution may
+  // come out in either order (callers take extremes over every enclosure).
   std::stable_sort(
       res.criticals.begin(), res.criticals.end(),
       [](const CriticalDistance& a, const CriticalDistance& b) { return a.approx < b.approx; });
