@@ -353,3 +353,49 @@ TEST(Distance, SphereRouteExactTieIsProven) {
   }
   mpfr_clear(h);
 }
+
+TEST(Distance, SphereRouteNearTiesInsideAndUnseparated) {
+  // Inside the ball (r - d_max): the ellipsoid x^2 + 4y^2/9 + z^2/9 = 1 (longest semi-axis 3
+  // along z) in the ball of radius 4 about (0, 0, eps): the farthest points are the poles at
+  // 3 + |eps| and 3 - |eps|; truth 1 - |eps|, the wrong pole gives 1 + |eps|.
+  const std::string dens[] = {"10000000000", "100000000000000000000", kTwoPow100};
+  mpfr_t truth, far, e;
+  mpfr_inits2(2000, truth, far, e, static_cast<mpfr_ptr>(nullptr));
+  for (const auto& den : dens)
+    for (const char* sign : {"-", "+"})
+      for (bool exact : {true, false}) {
+        const std::string off = std::string(sign) + "1/" + den;
+        const std::string ctx = "inside, offset " + off + (exact ? " exact" : " filtered");
+        inverse(e, den);
+        mpfr_set_ui(truth, 1, MPFR_RNDN);
+        mpfr_add(far, truth, e, MPFR_RNDN);
+        mpfr_sub(truth, truth, e, MPFR_RNDN);
+        auto r = certify::surface_distance(q("x^2+y^2+(z" + off + ")^2=16"),
+                                           q("x^2+4y^2/9+z^2/9=1"), 15, false,
+                                           exact ? certify::Mode::Exact : certify::Mode::Filtered);
+        expect_certified_around(r, truth, 15, ctx);
+        if (den == "10000000000") {
+          EXPECT_TRUE(upper_below(r, far)) << ctx << " " << r.upper;
+        }
+        if (exact) {
+          EXPECT_EQ(r.minimizers, "1") << ctx;
+        }
+      }
+  // Beyond the separation budget (offset 1e-200 at 15 digits): both candidates are listed and
+  // the tie is reported unproven; the enclosure [min lower, min upper] - r still holds the
+  // truth 1/2 - 1e-200.
+  const std::string tiny = "1" + std::string(200, '0');
+  inverse(e, tiny);
+  mpfr_set_d(truth, 0.5, MPFR_RNDN);
+  mpfr_sub(truth, truth, e, MPFR_RNDN);
+  for (bool hyperboloid : {false, true}) {
+    auto r = certify::surface_distance(
+        q(hyperboloid ? "x^2+(y-1/" + tiny + ")^2+z^2=1" : "x^2+y^2+(z-1/" + tiny + ")^2=1"),
+        q(hyperboloid ? "x^2/4+4y^2/9-z^2=1" : "x^2/9+y^2/4+4z^2/9=1"), 15, false,
+        certify::Mode::Exact);
+    expect_certified_around(r, truth, 15, hyperboloid ? "hyperboloid 1e-200" : "ellipsoid 1e-200");
+    EXPECT_EQ(r.minimizers, "2");
+    EXPECT_EQ(r.ties, "unproven") << r.note;
+  }
+  mpfr_clears(truth, far, e, static_cast<mpfr_ptr>(nullptr));
+}

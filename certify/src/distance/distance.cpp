@@ -558,9 +558,18 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
       out.note += std::string(out.note.empty() ? "" : "; ") + "the " + std::to_string(S.size()) +
                   " minimizing pairs are at exactly the same distance (proven: the same exact "
                   "rational squared distance from the centre to the foot points)";
+    } else if (continuum && !all_exact) {
+      // A circle of feet overlapping point candidates not proven equal to it: "infinite"
+      // holds only if the circle attains the minimum, which is not proven (a note that
+      // prove_ties, which drops the generic tie note for continua, leaves in place).
+      out.note += std::string(out.note.empty() ? "" : "; ") +
+                  "a circle of foot points and other critical points agree to the requested "
+                  "precision: which of them attain the extreme (and so the minimizer count) is "
+                  "not proven";
+      out.ties = "unproven";
     } else if (!all_exact) {
-      // Candidates left overlapping the extreme after the separation budget: listed, their
-      // equality unproven (a continuum among them included: prove_ties drops the note then).
+      // Candidates left overlapping the extreme after the separation budget: all listed,
+      // their equality unproven.
       note_unproven_ties(out, S.size());
     }
     return out;
