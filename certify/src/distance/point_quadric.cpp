@@ -443,11 +443,31 @@ PointQuadricResult point_quadric_critical(const std::array<core::Rational, 3>& x
     }
   }
 
-  // The order is a float proposal only: two candidates closer than a double's resolution may
-  // come out in either order (callers take extremes over every enclosure).
-  std::stable_sort(
-      res.criticals.begin(), res.criticals.end(),
-      [](const CriticalDistance& a, const CriticalDistance& b) { return a.approx < b.approx; });
+  // Sorted by the certified lower bounds (decimal strings with digits + 5 significant digits,
+  // read rounding down at enough bits that distinct strings stay distinct): then front()'s
+  // lower bound is the least of all, and [front().lower, front().upper] encloses the minimum
+  // (lower <= the minimum <= front's own distance <= upper) even when two distances are too
+  // close to order; which candidate attains it is still not decided by this order.
+  {
+    const mpfr_prec_t bits = static_cast<mpfr_prec_t>(4 * (digits + 10)) + 64;
+    std::vector<__mpfr_struct> keys(res.criticals.size());
+    for (size_t i = 0; i < keys.size(); ++i) {
+      mpfr_init2(&keys[i], bits);
+      mpfr_set_str(&keys[i], res.criticals[i].lower.c_str(), 10, MPFR_RNDD);
+    }
+    std::vector<size_t> order(keys.size());
+    for (size_t i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return mpfr_cmp(&keys[a], &keys[b]) < 0; });
+    std::vector<CriticalDistance> sorted;
+    sorted.reserve(order.size());
+    for (size_t i : order)
+      sorted.push_back(res.criticals[i]);
+    res.criticals.swap(sorted);
+    for (auto& k : keys)
+      mpfr_clear(&k);
+  }
   res.ok = all_ok;
   res.note = notes;
   return res;

@@ -14,10 +14,12 @@
 // not get there). More digits give narrower enclosures of the same values (the roots are
 // isolated exactly), which is how callers separate near ties or beat cancellation in d - r.
 // Invariants: each enclosure contains the exact value; foot points are approximations
-// (doubles) of exact algebraic points. `criticals` is sorted by the double midpoint `approx`:
-// a proposal only. Two distances closer than a double's resolution may be out of order, so
-// the minimum (maximum) distance is [min lower, min upper] ([max lower, max upper]) over
-// every entry, never front() (back()) alone.
+// (doubles) of exact algebraic points. `criticals` is sorted by the certified lower bounds
+// (compared exactly), so [front().lower, front().upper] encloses the minimum distance; the
+// order is NOT a decision of which candidate attains it (two distances closer than their
+// enclosures may come in either order). The tightest enclosure of the minimum (maximum) is
+// [min lower, min upper] ([max lower, max upper]) over every entry; back() alone does not
+// enclose the maximum.
 #pragma once
 
 #include "surfcert/core/quadric.hpp"
@@ -44,7 +46,7 @@ struct CriticalDistance {
 struct PointQuadricResult {
   bool ok = false; ///< false: not decided (note says why)
   std::string note;
-  std::vector<CriticalDistance> criticals; ///< sorted by `approx` (a float proposal, see above)
+  std::vector<CriticalDistance> criticals; ///< sorted by lower bound (see above)
   int sextic_degree = 0;                   ///< degree of the eliminated polynomial in alpha
 };
 
