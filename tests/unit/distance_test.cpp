@@ -1,9 +1,14 @@
 // Certified distance (first capability: a sphere against any quadric) against closed forms:
 // sphere-sphere (separated, nested, concentric, touching, intersecting), sphere-plane,
 // sphere-ellipsoid along an axis, cylinder-sphere, cone-sphere; rigid-motion invariance; two
-// precisions overlap; unsupported pairs stay undecided (never guessed).
+// precisions overlap; unsupported pairs stay undecided (never guessed). The sphere route at
+// small gaps (the width contract against cancellation in d - r) and at near ties (two foot
+// points whose distances differ by 2 eps: the nearer one must be certified, on both sides,
+// in both modes), checked against closed forms computed in MPFR at 2000 bits.
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+
+#include "support/distance_checks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -184,4 +189,213 @@ TEST(Distance, UnsupportedPairsAreNotGuessed) {
   // (revolution symmetry); the answer must be undecided, not a guess.
   auto r = certify::surface_distance(q("z = x^2 + y^2"), q("z = x^2 + y^2 + 1"), 15, false);
   EXPECT_NE(r.status, certify::Status::Certified) << r.lower();
+}
+
+namespace {
+
+// Decimal digits of 2^-100 and of the offsets used below, as rational text.
+const char* const kTwoPow100 = "1267650600228229401496703205376";
+const char* const kTwoPow60 = "1152921504606846976";
+const char* const kTwoPow93 = "9903520314283042199192993792";
+
+// 1/den in MPFR at 2000 bits (den an integer in decimal).
+void inverse(mpfr_t out, const std::string& den) {
+  mpfr_set_str(out, den.c_str(), 10, MPFR_RNDN); // exact: an integer below 2^2000
+  mpfr_ui_div(out, 1, out, MPFR_RNDN);
+}
+
+// Certified, relative width <= 10^-digits, and the enclosure holds `truth` (lower AND upper).
+void expect_certified_around(const certify::DistanceResult& r, const mpfr_t truth, long digits,
+                             const std::string& ctx) {
+  ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+  EXPECT_TRUE(surfcert::testing::contains(r, truth))
+      << ctx << ": [" << r.lower << ", " << r.upper << "]";
+  EXPECT_LE(surfcert::testing::log10_rel_width(r), -static_cast<double>(digits))
+      << ctx << ": [" << r.lower << ", " << r.upper << "]";
+}
+
+// upper < x (read with outward rounding at 4000 bits): the enclosure excludes x from above.
+bool upper_below(const certify::DistanceResult& r, const mpfr_t x) {
+  mpfr_t u;
+  mpfr_init2(u, 4000);
+  mpfr_set_str(u, r.upper.c_str(), 10, MPFR_RNDU);
+  const bool ok = mpfr_cmp(u, x) < 0;
+  mpfr_clear(u);
+  return ok;
+}
+
+} // namespace
+
+TEST(Distance, SphereRouteSmallGapMeetsWidth) {
+  mpfr_t e;
+  mpfr_init2(e, 2000);
+  // Cone x^2 + y^2 = z^2 (half-angle 45 deg) and the sphere about (0,0,2) of radius
+  // (2 - t)/sqrt 2: the centre is 2 sin 45 = sqrt 2 from the cone, so d = t / sqrt 2.
+  for (long digits : {15L, 20L}) {
+    inverse(e, kTwoPow60);
+    mpfr_t s2;
+    mpfr_init2(s2, 2000);
+    mpfr_sqrt_ui(s2, 2, MPFR_RNDN);
+    mpfr_div(e, e, s2, MPFR_RNDN); // 2^-60 / sqrt 2
+    mpfr_clear(s2);
+    auto r = certify::surface_distance(
+        q("x^2+y^2=z^2"), q(std::string("x^2+y^2+(z-2)^2=(2-1/") + kTwoPow60 + ")^2/2"), digits,
+        false);
+    expect_certified_around(r, e, digits,
+                            "cone, gap 2^-60/sqrt2, digits " + std::to_string(digits));
+    EXPECT_EQ(r.minimizers, "infinite"); // a circle of feet around the axis
+  }
+  // The ellipsoid 4(x - 1/2 + delta)^2 + 25y^2/9 + 9z^2/4 = 1 inside the unit ball: on it
+  // |p|^2 <= x^2 + (4/9)(1 - 4(x - h)^2) (h = 1/2 - delta), increasing in x up to the vertex
+  // x = 1 - delta, so the farthest point is the vertex and d = 1 - (1 - delta) = delta.
+  for (long digits : {15L, 20L, 40L}) {
+    inverse(e, kTwoPow93);
+    auto r = certify::surface_distance(
+        q("x^2+y^2+z^2=1"), q(std::string("4(x-1/2+1/") + kTwoPow93 + ")^2+25y^2/9+9z^2/4=1"),
+        digits, false);
+    expect_certified_around(r, e, digits,
+                            "ellipsoid inside, gap 2^-93, digits " + std::to_string(digits));
+    EXPECT_EQ(r.minimizers, "1");
+  }
+  mpfr_clear(e);
+}
+
+TEST(Distance, SphereRouteWidthThresholdProbes) {
+  // Gaps 1e-10, 1e-20, 1e-30, 2^-100, on both sides: the quadric outside the ball (cone,
+  // d = t / sqrt 2), inside it (the ellipsoid above, d = delta), and a plane (d = t).
+  const std::string dens[] = {"10000000000", "100000000000000000000",
+                              "1000000000000000000000000000000", kTwoPow100};
+  mpfr_t e, s2;
+  mpfr_inits2(2000, e, s2, static_cast<mpfr_ptr>(nullptr));
+  mpfr_sqrt_ui(s2, 2, MPFR_RNDN);
+  for (const auto& den : dens)
+    for (bool exact : {false, true}) {
+      const auto mode = exact ? certify::Mode::Exact : certify::Mode::Filtered;
+      const std::string ctx = "gap 1/" + den + (exact ? " exact" : " filtered");
+      inverse(e, den);
+      mpfr_div(e, e, s2, MPFR_RNDN);
+      auto cone = certify::surface_distance(
+          q("x^2+y^2=z^2"), q("x^2+y^2+(z-2)^2=(2-1/" + den + ")^2/2"), 15, false, mode);
+      expect_certified_around(cone, e, 15, "cone, " + ctx);
+      inverse(e, den);
+      auto ell = certify::surface_distance(
+          q("x^2+y^2+z^2=1"), q("4(x-1/2+1/" + den + ")^2+25y^2/9+9z^2/4=1"), 15, false, mode);
+      expect_certified_around(ell, e, 15, "ellipsoid inside, " + ctx);
+      auto plane =
+          certify::surface_distance(q("x^2+y^2+z^2=1"), q("z=1+1/" + den), 15, false, mode);
+      expect_certified_around(plane, e, 15, "plane, " + ctx);
+    }
+  // A plane at 2^-200: the closed form d = (q - r^2) / (dc + r) does not cancel.
+  mpfr_set_ui(e, 1, MPFR_RNDN);
+  mpfr_div_2ui(e, e, 200, MPFR_RNDN);
+  auto plane = certify::surface_distance(
+      q("x^2+y^2+z^2=1"), q("z=1+1/1606938044258990275541962092341162602522202993782792835301376"),
+      15, false, certify::Mode::Exact);
+  expect_certified_around(plane, e, 15, "plane, gap 2^-200");
+  mpfr_clears(e, s2, static_cast<mpfr_ptr>(nullptr));
+}
+
+TEST(Distance, SphereRouteNearTies) {
+  // Two foot points at 3/2 - eps and 3/2 + eps from the centre of a unit sphere: the ellipsoid
+  // x^2/9 + y^2/4 + z^2/(9/4) = 1 (shortest semi-axis 3/2 along z, centre shifted along z)
+  // and the throat of the one-sheeted hyperboloid x^2/4 + y^2/(9/4) - z^2 = 1 (on it
+  // x^2 + y^2 + z^2 >= 9/4 (1 + z^2) + z^2, so the throat's short axis is nearest; centre
+  // shifted along y). Truth 1/2 - eps; the farther candidate gives 1/2 + eps.
+  const std::string dens[] = {"10000000000", "100000000000000000000",
+                              "1000000000000000000000000000000", kTwoPow100};
+  mpfr_t truth, far, e;
+  mpfr_inits2(2000, truth, far, e, static_cast<mpfr_ptr>(nullptr));
+  for (const auto& den : dens)
+    for (const char* sign : {"-", "+"})
+      for (bool exact : {true, false})
+        for (bool hyperboloid : {false, true}) {
+          const auto mode = exact ? certify::Mode::Exact : certify::Mode::Filtered;
+          const std::string off = std::string(sign) + "1/" + den;
+          const std::string ctx = std::string(hyperboloid ? "hyperboloid" : "ellipsoid") +
+                                  " offset " + off + (exact ? " exact" : " filtered");
+          inverse(e, den);
+          mpfr_set_ui(truth, 1, MPFR_RNDN);
+          mpfr_div_2ui(truth, truth, 1, MPFR_RNDN);
+          mpfr_add(far, truth, e, MPFR_RNDN); // exact at 2000 bits
+          mpfr_sub(truth, truth, e, MPFR_RNDN);
+          const std::string quad = hyperboloid ? "x^2/4+4y^2/9-z^2=1" : "x^2/9+y^2/4+4z^2/9=1";
+          const std::string sph =
+              hyperboloid ? "x^2+(y" + off + ")^2+z^2=1" : "x^2+y^2+(z" + off + ")^2=1";
+          auto r = certify::surface_distance(q(sph), q(quad), 15, false, mode);
+          expect_certified_around(r, truth, 15, ctx);
+          // 2 eps >= 1e-10 relative is far above 10^-15: the farther candidate is excluded.
+          if (den == "10000000000") {
+            EXPECT_TRUE(upper_below(r, far)) << ctx << " " << r.upper;
+          }
+          // The sphere route separates the two within its budget (2 digits + 40): one
+          // minimizer. (Filtered mode answers the ellipsoid by convex duality.)
+          if (exact || hyperboloid) {
+            EXPECT_EQ(r.minimizers, "1") << ctx;
+            EXPECT_TRUE(r.ties.empty()) << ctx << " " << r.ties;
+            EXPECT_EQ(r.pairs.size(), 1u) << ctx;
+          }
+        }
+  mpfr_clears(truth, far, e, static_cast<mpfr_ptr>(nullptr));
+}
+
+TEST(Distance, SphereRouteExactTieIsProven) {
+  // Centre exactly at the centre: two foot points at the same rational squared distance.
+  mpfr_t h;
+  mpfr_init2(h, 2000);
+  mpfr_set_d(h, 0.5, MPFR_RNDN);
+  for (const char* quad : {"x^2/9+y^2/4+4z^2/9=1", "x^2/4+4y^2/9-z^2=1"}) {
+    auto r =
+        certify::surface_distance(q("x^2+y^2+z^2=1"), q(quad), 15, false, certify::Mode::Exact);
+    expect_certified_around(r, h, 15, quad);
+    EXPECT_EQ(r.minimizers, "2") << quad;
+    EXPECT_EQ(r.ties, "proven") << quad << " " << r.note;
+    EXPECT_EQ(r.pairs.size(), 2u) << quad;
+  }
+  mpfr_clear(h);
+}
+
+TEST(Distance, SphereRouteNearTiesInsideAndUnseparated) {
+  // Inside the ball (r - d_max): the ellipsoid x^2 + 4y^2/9 + z^2/9 = 1 (longest semi-axis 3
+  // along z) in the ball of radius 4 about (0, 0, eps): the farthest points are the poles at
+  // 3 + |eps| and 3 - |eps|; truth 1 - |eps|, the wrong pole gives 1 + |eps|.
+  const std::string dens[] = {"10000000000", "100000000000000000000", kTwoPow100};
+  mpfr_t truth, far, e;
+  mpfr_inits2(2000, truth, far, e, static_cast<mpfr_ptr>(nullptr));
+  for (const auto& den : dens)
+    for (const char* sign : {"-", "+"})
+      for (bool exact : {true, false}) {
+        const std::string off = std::string(sign) + "1/" + den;
+        const std::string ctx = "inside, offset " + off + (exact ? " exact" : " filtered");
+        inverse(e, den);
+        mpfr_set_ui(truth, 1, MPFR_RNDN);
+        mpfr_add(far, truth, e, MPFR_RNDN);
+        mpfr_sub(truth, truth, e, MPFR_RNDN);
+        auto r = certify::surface_distance(q("x^2+y^2+(z" + off + ")^2=16"),
+                                           q("x^2+4y^2/9+z^2/9=1"), 15, false,
+                                           exact ? certify::Mode::Exact : certify::Mode::Filtered);
+        expect_certified_around(r, truth, 15, ctx);
+        if (den == "10000000000") {
+          EXPECT_TRUE(upper_below(r, far)) << ctx << " " << r.upper;
+        }
+        if (exact) {
+          EXPECT_EQ(r.minimizers, "1") << ctx;
+        }
+      }
+  // Beyond the separation budget (offset 1e-200 at 15 digits): both candidates are listed and
+  // the tie is reported unproven; the enclosure [min lower, min upper] - r still holds the
+  // truth 1/2 - 1e-200.
+  const std::string tiny = "1" + std::string(200, '0');
+  inverse(e, tiny);
+  mpfr_set_d(truth, 0.5, MPFR_RNDN);
+  mpfr_sub(truth, truth, e, MPFR_RNDN);
+  for (bool hyperboloid : {false, true}) {
+    auto r = certify::surface_distance(
+        q(hyperboloid ? "x^2+(y-1/" + tiny + ")^2+z^2=1" : "x^2+y^2+(z-1/" + tiny + ")^2=1"),
+        q(hyperboloid ? "x^2/4+4y^2/9-z^2=1" : "x^2/9+y^2/4+4z^2/9=1"), 15, false,
+        certify::Mode::Exact);
+    expect_certified_around(r, truth, 15, hyperboloid ? "hyperboloid 1e-200" : "ellipsoid 1e-200");
+    EXPECT_EQ(r.minimizers, "2");
+    EXPECT_EQ(r.ties, "unproven") << r.note;
+  }
+  mpfr_clears(truth, far, e, static_cast<mpfr_ptr>(nullptr));
 }

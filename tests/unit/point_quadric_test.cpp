@@ -1,7 +1,8 @@
 // Point-quadric critical distances against closed forms: sphere, axis-aligned ellipsoid (on an
 // axis and at the centre, with a brute-force check of the minimum), cylinder, cone (vertex
 // candidate and the generatrix minimum 5/sqrt(2) at 50 digits), two precisions overlap, and a
-// point on the axis of an ellipsoid of revolution (a continuum of foot points).
+// point on the axis of an ellipsoid of revolution (a continuum of foot points); at near ties
+// front() still encloses the minimum (sorted by certified lower bounds).
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
@@ -251,4 +252,28 @@ TEST(PointQuadric, PointOnSurface) {
   ASSERT_FALSE(r.criticals.empty());
   EXPECT_EQ(lower_d(r.criticals.front()), 0.0);
   EXPECT_GE(find_value(r, 4), 0);
+}
+
+TEST(PointQuadric, FrontEnclosesTheMinimumAtNearTies) {
+  // x = (0, 0, +-eps) and the ellipsoid with shortest semi-axis 3/2 along z: two foot points
+  // at 3/2 - eps and 3/2 + eps, too close to order at 15 digits for eps <= 1e-20; sorted by
+  // the certified lower bounds, front() still encloses the minimum 3/2 - eps.
+  for (const char* den :
+       {"10000000000", "100000000000000000000", "1267650600228229401496703205376"})
+    for (int sign : {-1, 1}) {
+      Rational eps = Rational(sign) / *Rational::from_string(den);
+      auto r = certify::point_quadric_critical({Rational(0), Rational(0), eps},
+                                               q("x^2/9 + y^2/4 + 4*z^2/9 - 1"), 15);
+      ASSERT_TRUE(r.ok) << r.note;
+      mpfr_t e, t;
+      mpfr_inits2(400, e, t, static_cast<mpfr_ptr>(nullptr));
+      mpfr_set_str(t, den, 10, MPFR_RNDN);
+      mpfr_ui_div(t, 1, t, MPFR_RNDN);
+      mpfr_set_d(e, 1.5, MPFR_RNDN);
+      mpfr_sub(e, e, t, MPFR_RNDN);
+      EXPECT_TRUE(contains(r.criticals.front(), e))
+          << den << " " << sign << ": " << r.criticals.front().lower << " "
+          << r.criticals.front().upper;
+      mpfr_clears(e, t, static_cast<mpfr_ptr>(nullptr));
+    }
 }

@@ -222,6 +222,8 @@ void rational_singular_root(const Data& dt, const Rational& a0, long digits,
   if (u.size() >= 2) {
     CriticalDistance cd;
     cd.continuum = true;
+    cd.d2_exact = true; // every point of the circle is at the rational d2
+    cd.d2 = d2;
     for (int i = 0; i < 3; ++i)
       cd.foot[static_cast<size_t>(i)] =
           ps[static_cast<size_t>(i)] + len * ed[static_cast<size_t>(i)];
@@ -403,7 +405,14 @@ PointQuadricResult point_quadric_critical(const std::array<core::Rational, 3>& x
       if (wrel < width) width = wrel;
       if (width.is_zero()) width = core::pow2(-bits);
       algebra::refine_root(sqf, lo, hi, width);
+      // Near a pole of N/D (x close to an axis, D(alpha) tiny) the evaluation loses about as
+      // many bits as D is small: grow the refinement geometrically, not linearly, so that ten
+      // rounds reach far past the loss.
       prec += prec / 2;
+      if (it >= 2) {
+        bits *= 2;
+        prec = std::max(prec, 2 * bits + 64);
+      }
     }
     if (!done) {
       all_ok = false;
@@ -426,15 +435,39 @@ PointQuadricResult point_quadric_critical(const std::array<core::Rational, 3>& x
         CriticalDistance cd;
         cd.singular_point = true;
         cd.foot = to_doubles(vtx);
-        enclose_sqrt(cd, dot(r, r), digits);
+        cd.d2_exact = true; // a rational vertex: a rational squared distance
+        cd.d2 = dot(r, r);
+        enclose_sqrt(cd, cd.d2, digits);
         res.criticals.push_back(cd);
       }
     }
   }
 
-  std::stable_sort(
-      res.criticals.begin(), res.criticals.end(),
-      [](const CriticalDistance& a, const CriticalDistance& b) { return a.approx < b.approx; });
+  // Sorted by the certified lower bounds (decimal strings with digits + 5 significant digits,
+  // read rounding down at enough bits that distinct strings stay distinct): then front()'s
+  // lower bound is the least of all, and [front().lower, front().upper] encloses the minimum
+  // (lower <= the minimum <= front's own distance <= upper) even when two distances are too
+  // close to order; which candidate attains it is still not decided by this order.
+  {
+    const mpfr_prec_t bits = static_cast<mpfr_prec_t>(4 * (digits + 10)) + 64;
+    std::vector<__mpfr_struct> keys(res.criticals.size());
+    for (size_t i = 0; i < keys.size(); ++i) {
+      mpfr_init2(&keys[i], bits);
+      mpfr_set_str(&keys[i], res.criticals[i].lower.c_str(), 10, MPFR_RNDD);
+    }
+    std::vector<size_t> order(keys.size());
+    for (size_t i = 0; i < order.size(); ++i)
+      order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return mpfr_cmp(&keys[a], &keys[b]) < 0; });
+    std::vector<CriticalDistance> sorted;
+    sorted.reserve(order.size());
+    for (size_t i : order)
+      sorted.push_back(res.criticals[i]);
+    res.criticals.swap(sorted);
+    for (auto& k : keys)
+      mpfr_clear(&k);
+  }
   res.ok = all_ok;
   res.note = notes;
   return res;

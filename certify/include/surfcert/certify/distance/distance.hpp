@@ -6,8 +6,14 @@
 // witness point); otherwise the distance is |d - r| for the critical distances d from the
 // sphere's centre to the quadric (point_quadric_critical: the exact point-quadric sextic,
 // Arb enclosures), the sphere of radius r lying outside (d_min - r) or around (r - d_max) the
-// quadric. Enclosures have relative width <= 10^-digits. Pairs without a sphere are reported
-// as undecided ("not supported yet"), never guessed.
+// quadric. d_min and d_max are [min lower, min upper] and [max lower, max upper] over every
+// critical candidate (never a float-sorted first or last), and the side is decided against
+// them; the candidates are re-enclosed at more digits until the gap |d - r| (which cancels
+// when small) meets the width, else undecided, and, within a smaller budget, until the
+// minimizers separate from the other candidates or are proven tied (equal exact rational
+// squared distances); candidates still overlapping are all listed, ties "unproven".
+// Enclosures have relative width <= 10^-digits. Pairs without a sphere are reported as
+// undecided ("not supported yet"), never guessed.
 #pragma once
 
 #include "surfcert/certify/distance/enclosure.hpp"
