@@ -46,22 +46,6 @@ void critical_ball(arb_t out, const CriticalDistance& c, long prec) {
   arb_union(out, lo.v, hi.v, prec);
 }
 
-// The written enclosure [lower, upper] of a distance meets the width contract
-// upper - lower <= 10^-digits lower (lower > 0), checked on the decimal strings themselves.
-bool meets_width_contract(const DistanceResult& r, long digits) {
-  const long prec = bits_for(digits) + 64;
-  Ball lo, hi, width, tol;
-  if (arb_set_str(lo.v, r.lower.c_str(), prec) != 0 ||
-      arb_set_str(hi.v, r.upper.c_str(), prec) != 0)
-    return false;
-  if (!arb_is_positive(lo.v)) return false;
-  arb_sub(width.v, hi.v, lo.v, prec);
-  arb_set_ui(tol.v, 10);
-  arb_pow_ui(tol.v, tol.v, static_cast<ulong>(digits), prec);
-  arb_div(tol.v, lo.v, tol.v, prec);
-  return arb_le(width.v, tol.v) != 0;
-}
-
 // True when the conics at infinity x^T A3 x = 0 and x^T B3 x = 0 have a common component
 // (gcd of the two ternary quadratic forms, FLINT): then a real curve of the QSIC may lie
 // entirely at infinity.
@@ -478,7 +462,7 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
       arb_sub(d.v, r.v, dmax.v, prec);
     DistanceResult trial;
     set_distance_enclosure(trial, d.v, digits);
-    if (!meets_width_contract(trial, digits)) {
+    if (!trial.distance->meets_width(digits)) {
       if (!last && work < width_cap) {
         // Proposal: the gap loses log10(extreme / gap) digits to cancellation.
         long need = 2 * work;
@@ -524,9 +508,7 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
       continue;
     }
     // Final: the enclosure, and one pair per remaining candidate.
-    out.lower = trial.lower;
-    out.upper = trial.upper;
-    out.approx = trial.approx;
+    out.distance = trial.distance;
     bool continuum = false;
     const double rr = std::sqrt(r2.to_double_approx());
     for (size_t i : S) {
