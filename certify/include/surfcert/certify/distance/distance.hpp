@@ -1,19 +1,28 @@
-// surfcert::certify::surface_distance: the certified minimum distance between two surfaces.
+// surfcert::certify::surface_distance: the minimum distance between two surfaces, as a typed
+// answer with three outcomes: certified, undecided (with what was established), uncertified
+// (a float estimate).
 //
-// Quadric pairs: a sphere against any quadric below; two quadrics without a sphere through the
-// offset system (quadric_pair.hpp); a quadric and a ring torus (torus_distance.hpp).
-// Whether the surfaces meet is decided by the certified QSIC topology (distance 0, with a
-// witness point); otherwise the distance is |d - r| for the critical distances d from the
-// sphere's centre to the quadric (point_quadric_critical: the exact point-quadric sextic,
-// Arb enclosures), the sphere of radius r lying outside (d_min - r) or around (r - d_max) the
-// quadric. d_min and d_max are [min lower, min upper] and [max lower, max upper] over every
-// critical candidate (never a float-sorted first or last), and the side is decided against
-// them; the candidates are re-enclosed at more digits until the gap |d - r| (which cancels
-// when small) meets the width, else undecided, and, within a smaller budget, until the
-// minimizers separate from the other candidates or are proven tied (equal exact rational
-// squared distances); candidates still overlapping are all listed, ties "unproven".
-// Enclosures have relative width <= 10^-digits. Pairs without a sphere are reported as
-// undecided ("not supported yet"), never guessed.
+// Contract of a DistanceResult:
+// - `distance` is an Enclosure (enclosure.hpp): built only from a proof, so no float can fill
+//   it; a certified answer's enclosure meets upper - lower <= 10^-digits lower on the printed
+//   decimals. surface_distance checks that once for every route; a route that stops short is
+//   run once more with 2 digits + 10, and the answer is undecided if it still misses.
+// - `estimate` holds a float-mode answer (status Uncertified); it never fills `distance`.
+// - `minimizers` is a proven count, "infinite", "0" (not attained), or "undecided" when the
+//   count is not proven: several candidates whose equality is unproven (ties "unproven"), or
+//   a route that set count_unproven; minimizer_candidates then says how many.
+// - `pairs` are approximate points (doubles), for display; `tie_regions` are outward boxes
+//   handed to the tie proof (symmetry.hpp).
+//
+// Routes (each falls through to the next when it cannot prove its answer): the convex
+// dualities, closed forms and branch and bounds of the README's table; pairs with a sphere
+// through the exact point-quadric sextic: d_min and d_max are [min lower, min upper] and
+// [max lower, max upper] over every critical candidate (never a float-sorted first), the side
+// decided against them, candidates re-enclosed until |d - r| meets the width and the
+// minimizers separate or are proven tied; two quadrics through the offset system
+// (quadric_pair.hpp); tori, canal, implicit and parametric surfaces through their own files.
+// Whether two quadrics meet is decided by the certified QSIC topology (an exact special point
+// or an exact argument proves an affine common point; a traced point is display only).
 #pragma once
 
 #include "surfcert/certify/distance/enclosure.hpp"
