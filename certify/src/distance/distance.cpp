@@ -623,8 +623,8 @@ DistanceResult any_surface_distance(const core::Surface& a, const core::Surface&
   const auto* pa = std::get_if<core::ParametricSurface>(&a);
   const auto* pb = std::get_if<core::ParametricSurface>(&b);
   if (pa || pb) {
-    out =
-        pa ? parametric_distance(*pa, b, digits, true) : parametric_distance(*pb, a, digits, false);
+    out = pa ? parametric_distance(*pa, b, digits, true, mode, solid)
+             : parametric_distance(*pb, a, digits, false, mode, solid);
     out.mode = mode;
     return out;
   }
@@ -785,7 +785,8 @@ DistanceResult surface_distance_unchecked(const core::Surface& a, const core::Su
   }
   // Two quadrics went through the overload above, which already tried.
   if (r.ties == "unproven" && !two_quadrics) prove_ties(r, a, b);
-  if (solid && !two_quadrics) apply_solid_option(r, a, b);
+  // The parametric route handled solid itself (passed to the implicit surface's routes).
+  if (solid && !two_quadrics && !parametric) apply_solid_option(r, a, b);
   return r;
 }
 
