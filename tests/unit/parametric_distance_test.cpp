@@ -265,6 +265,23 @@ TEST(ParametricDistance, ModeAndSolidArePassedThrough) {
     EXPECT_EQ(s.minimizers, "infinite");
     EXPECT_EQ(s.note.find("solid applies to closed surfaces only"), std::string::npos) << s.note;
   }
+  // Seed 000's parametrised ellipsoid inside x^2/4 + y^2/9 + z^2/49 = 1: the filtered mode
+  // answers by nested convex duality; the exact mode must use the offset system instead.
+  const auto seed = js(kSeed);
+  const auto big = eq("x^2/4 + y^2/9 + z^2/49 = 1");
+  const auto fe = certify::surface_distance(seed, big, 15, false, certify::Mode::Filtered);
+  const auto ex = certify::surface_distance(seed, big, 15, false, certify::Mode::Exact);
+  ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
+  EXPECT_EQ(fe.method, "nested_convex_duality");
+  EXPECT_EQ(ex.method, "offset_system");
+  EXPECT_EQ(ex.mode, certify::Mode::Exact);
+  EXPECT_TRUE(surfcert::testing::overlap(fe, ex));
+  const auto es = certify::surface_distance(seed, big, 15, true, certify::Mode::Exact);
+  ASSERT_EQ(es.status, certify::Status::Certified) << es.note;
+  EXPECT_EQ(es.upper(), "0");
+  EXPECT_EQ(es.minimizers, "infinite");
+  EXPECT_EQ(ex.minimizers, "undecided");
+  EXPECT_TRUE(es.solid);
   // Filtered mode certifies the surface distance.
   const auto f = certify::surface_distance(S, E, 15, false);
   ASSERT_EQ(f.status, certify::Status::Certified) << f.note;
