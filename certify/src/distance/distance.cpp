@@ -1,7 +1,6 @@
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 
-#include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/canal_distance.hpp"
 #include "surfcert/certify/distance/capsule_pair.hpp"
 #include "surfcert/certify/distance/common_apex.hpp"
@@ -273,14 +272,9 @@ DistanceResult quadric_distance(const core::QuadricMatrix& a, const core::Quadri
         have = affine = true;
       }
     if (curve && !have && affine) {
-      // Affine contact is proven already (exact): the tracer only supplies a displayed pair.
-      // A traced point never decides contact (the tracer is floating point).
-      trace::TraceOptions opt;
-      CurveResult cr = trace_curve(a, b, t, opt);
-      if (!cr.branches.empty() && !cr.branches[0].points.empty()) {
-        w = cr.branches[0].points[0];
-        have = true;
-      }
+      // Affine contact is proven already (exact); a displayed pair comes from certified
+      // points of the surfaces on both sides of each other (approximate common point).
+      have = meet_by_sign_change(a, b, w);
     }
     if (affine) {
       out.status = Status::Certified;
