@@ -1,0 +1,608 @@
+// The routes for two quadrics (registry: route.hpp), in the order they are tried: closed forms
+// and convex dualities first (cheap certificates, each declining what it cannot prove), then
+// the certified QSIC topology (contact, coincidence, a common apex; it records that the affine
+// surfaces are disjoint), then a sphere against any quadric (the exact point-quadric sextic)
+// and the offset system for the rest.
+#include "surfcert/certify/distance/route.hpp"
+#include "surfcert/certify/distance/route_tables.hpp"
+
+#include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/common_apex.hpp"
+#include "surfcert/certify/distance/cone_distance.hpp"
+#include "surfcert/certify/distance/contact_sampling.hpp"
+#include "surfcert/certify/distance/convex_distance.hpp"
+#include "surfcert/certify/distance/cylinder_pair.hpp"
+#include "surfcert/certify/distance/nested_convex.hpp"
+#include "surfcert/certify/distance/plane_quadric.hpp"
+#include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/distance/quadric_pair.hpp"
+
+#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/certify/qsic.hpp"
+
+#include <arb.h>
+#include <flint/fmpq_mat.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace surfcert::certify {
+
+using core::Rational;
+
+namespace {
+
+// The ball [lower, upper] of a critical distance.
+void critical_ball(arb_t out, const CriticalDistance& c, long prec) {
+  Ball lo, hi;
+  arb_set_str(lo.v, c.lower.c_str(), prec);
+  arb_set_str(hi.v, c.upper.c_str(), prec);
+  arb_union(out, lo.v, hi.v, prec);
+}
+
+// True when the conics at infinity x^T A3 x = 0 and x^T B3 x = 0 have a common component
+// (gcd of the two ternary quadratic forms, FLINT): then a real curve of the QSIC may lie
+// entirely at infinity.
+bool conics_at_infinity_share_component(const core::QuadricMatrix& a,
+                                        const core::QuadricMatrix& b) {
+  auto form = [](const core::QuadricMatrix& q) {
+    core::Mat4 m = q.matrix();
+    for (size_t i = 0; i < 4; ++i)
+      m[i][3] = m[3][i] = Rational(0);
+    return algebra::quadric_poly(m); // homogeneous quadratic part in (x, y, z)
+  };
+  algebra::MPoly fa = form(a), fb = form(b);
+  if (fa.is_zero() || fb.is_zero()) return true; // a plane: its "conic" is the whole line
+  return !algebra::gcd(fa, fb).is_constant();
+}
+
+// Ellipsoid (x - c)^T M (x - c) = 1 and plane n.x = delta: the ellipsoid's support in the
+// direction n is n.c + sqrt(n^T M^-1 n), so the distance is
+// (|n.c - delta| - sqrt(n^T M^-1 n)) / |n| when positive, and 0 (they meet) otherwise; the
+// comparison is exact (squares of rationals), the value enclosed with Arb.
+void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
+                     const core::QuadricMatrix& p, bool ellipsoid_first, long digits) {
+  core::Mat4 m = e.matrix();
+  if (m[0][0].sign() < 0) m = core::scaled(m, Rational(-1)); // positive definite block
+  // E3^-1 by FLINT (3x3 rational).
+  fmpq_mat_t A, Ainv;
+  fmpq_mat_init(A, 3, 3);
+  fmpq_mat_init(Ainv, 3, 3);
+  for (slong i = 0; i < 3; ++i)
+    for (slong j = 0; j < 3; ++j)
+      fmpq_set(fmpq_mat_entry(A, i, j), m[static_cast<size_t>(i)][static_cast<size_t>(j)].raw());
+  fmpq_mat_inv(Ainv, A);
+  std::array<std::array<Rational, 3>, 3> inv;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      fmpq_set(inv[i][j].raw_mut(),
+               fmpq_mat_entry(Ainv, static_cast<slong>(i), static_cast<slong>(j)));
+  fmpq_mat_clear(A);
+  fmpq_mat_clear(Ainv);
+  std::array<Rational, 3> c, n;
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j)
+      c[i] -= inv[i][j] * m[j][3];
+    n[i] = Rational(2) * p(static_cast<int>(i), 3);
+  }
+  Rational delta = -p(3, 3), k = -m[3][3], nc, ninvn, nn;
+  for (size_t i = 0; i < 3; ++i) {
+    k += c[i] * m[i][i] * c[i];
+    for (size_t j = 0; j < 3; ++j)
+      if (j != i) k += c[i] * m[i][j] * c[j];
+    nc += n[i] * c[i];
+    nn += n[i] * n[i];
+    for (size_t j = 0; j < 3; ++j)
+      ninvn += n[i] * inv[i][j] * n[j];
+  }
+  Rational support2 = k * ninvn; // (n^T M^-1 n) with M = E3 / k
+  Rational gap = core::abs(nc - delta);
+  out.critical_candidates = 2;
+  out.eliminated_degree = 2;
+  out.minimizers = "1";
+  out.status = Status::Certified;
+  if (gap * gap <= support2) { // exact: the plane meets the ellipsoid
+    out.distance = Enclosure::zero();
+    out.minimizers = gap * gap == support2 ? "1" : "infinite";
+    out.note =
+        gap * gap == support2 ? "the plane touches the ellipsoid" : "the plane cuts the ellipsoid";
+    return;
+  }
+  const long prec = bits_for(digits + 10);
+  Ball sup, g, nrm, d;
+  arb_set_fmpq(sup.v, support2.raw(), prec);
+  arb_sqrt(sup.v, sup.v, prec);
+  arb_set_fmpq(g.v, gap.raw(), prec);
+  arb_set_fmpq(nrm.v, nn.raw(), prec);
+  arb_sqrt(nrm.v, nrm.v, prec);
+  arb_sub(d.v, g.v, sup.v, prec);
+  arb_div(d.v, d.v, nrm.v, prec);
+  set_distance_enclosure(out, d.v, digits);
+  // The closest points (approximate): x* = c + s M^-1 n / sqrt(n^T M^-1 n) toward the plane.
+  double sgn = (delta - nc).sign() > 0 ? 1 : -1, sq = std::sqrt(support2.to_double_approx());
+  std::array<double, 3> x{}, f{};
+  double kk = k.to_double_approx(), nd = 0, nn_d = nn.to_double_approx();
+  for (size_t i = 0; i < 3; ++i) {
+    double mi = 0;
+    for (size_t j = 0; j < 3; ++j)
+      mi += kk * inv[i][j].to_double_approx() * n[j].to_double_approx();
+    x[i] = c[i].to_double_approx() + sgn * mi / sq;
+  }
+  for (size_t i = 0; i < 3; ++i)
+    nd += n[i].to_double_approx() * x[i];
+  for (size_t i = 0; i < 3; ++i)
+    f[i] = x[i] - (nd - delta.to_double_approx()) / nn_d * n[i].to_double_approx();
+  out.pairs.push_back(ellipsoid_first ? std::array<std::array<double, 3>, 2>{x, f}
+                                      : std::array<std::array<double, 3>, 2>{f, x});
+}
+
+const core::QuadricMatrix& qa(const Query& q) {
+  return std::get<core::QuadricMatrix>(q.a);
+}
+const core::QuadricMatrix& qb(const Query& q) {
+  return std::get<core::QuadricMatrix>(q.b);
+}
+bool is_ellipsoid(const core::QuadricMatrix& m) {
+  return m.kind() == core::QuadricKind::Ellipsoid;
+}
+Outcome answer_or_not(std::optional<DistanceResult> r) {
+  return r ? Outcome::answer(std::move(*r)) : Outcome::not_applicable();
+}
+
+// Two elliptic cylinders (closed form when crossed, duality when parallel), in every mode:
+// the offset system has a curve of solutions for them.
+bool cylinders_apply(const Query& q) {
+  const auto &a = qa(q), &b = qb(q);
+  return !is_ellipsoid(a) && !is_ellipsoid(b) && !a.is_plane() && !b.is_plane();
+}
+Outcome cylinders_run(Query& q) {
+  const auto ya = convex_quadric(qa(q));
+  if (!ya || !ya->is_cylinder()) return Outcome::not_applicable();
+  const auto yb = convex_quadric(qb(q));
+  if (!yb || !yb->is_cylinder()) return Outcome::not_applicable();
+  return answer_or_not(cylinder_pair_distance(*ya, *yb, q.digits));
+}
+
+// Disjoint convex solids (ellipsoids, elliptic cylinders and paraboloids): a separating
+// direction certifies the distance without elimination; anything it cannot prove falls
+// through. First, since it is the cheapest certificate.
+bool convex_apply(const Query& q) {
+  return convex_quadric(qa(q)) && convex_quadric(qb(q));
+}
+Outcome convex_float_run(Query& q) {
+  auto r = separated_convex_distance_float(*convex_quadric(qa(q)), *convex_quadric(qb(q)));
+  return r ? Outcome::estimate(std::move(*r)) : Outcome::not_applicable();
+}
+Outcome convex_run(Query& q) {
+  return answer_or_not(
+      separated_convex_distance(*convex_quadric(qa(q)), *convex_quadric(qb(q)), q.digits));
+}
+// Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
+Outcome nested_run(Query& q) {
+  const auto ca = convex_quadric(qa(q)), cb = convex_quadric(qb(q));
+  auto r = nested_convex_distance(*ca, *cb, q.digits);
+  if (!r) return Outcome::not_applicable();
+  if (q.solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
+    DistanceResult out;
+    out.status = Status::Certified;
+    out.distance = Enclosure::zero();
+    out.minimizers = "infinite";
+    out.note = "solid distance: one solid contains the other";
+    return Outcome::answer(std::move(out));
+  }
+  return Outcome::answer(std::move(*r));
+}
+
+// An ellipsoid and a cone: the minimum over the cone's generator lines.
+bool cone_apply(const Query& q) {
+  const auto ca = convex_quadric(qa(q)), cb = convex_quadric(qb(q));
+  return (ca && ca->is_ellipsoid() && !cb) || (cb && cb->is_ellipsoid() && !ca);
+}
+Outcome cone_run(Query& q) {
+  const auto ca = convex_quadric(qa(q));
+  if (ca && ca->is_ellipsoid())
+    return answer_or_not(ellipsoid_cone_distance(*ca, qb(q), q.digits, true));
+  return answer_or_not(ellipsoid_cone_distance(*convex_quadric(qb(q)), qa(q), q.digits, false));
+}
+
+bool ellipsoid_plane_apply(const Query& q) {
+  const auto &a = qa(q), &b = qb(q);
+  return !a.is_sphere() && !b.is_sphere() && (a.is_plane() || b.is_plane()) &&
+         (is_ellipsoid(a) || is_ellipsoid(b));
+}
+Outcome ellipsoid_plane_run(Query& q) {
+  const auto &a = qa(q), &b = qb(q);
+  DistanceResult out;
+  ellipsoid_plane(out, a.is_plane() ? b : a, a.is_plane() ? a : b, !a.is_plane(), q.digits);
+  return Outcome::answer(std::move(out));
+}
+
+// A plane and any other quadric (spheres go below): decided exactly on the parallel levels.
+bool plane_apply(const Query& q) {
+  const auto &a = qa(q), &b = qb(q);
+  return (a.is_plane() || b.is_plane()) && !a.is_sphere() && !b.is_sphere();
+}
+Outcome plane_run(Query& q) {
+  const auto &a = qa(q), &b = qb(q);
+  return Outcome::answer(
+      plane_quadric_distance(a.is_plane() ? a : b, a.is_plane() ? b : a, q.digits, a.is_plane()));
+}
+
+bool always(const Query&) {
+  return true;
+}
+
+// Do the surfaces meet? The certified topology decides; when it proves the affine surfaces
+// disjoint, the query records it (the sphere and offset routes need it).
+Outcome topology_run(Query& query) {
+  const auto &a = qa(query), &b = qb(query);
+  const bool solid = query.solid;
+  const Mode mode = query.mode;
+  DistanceResult out;
+  // Do the surfaces meet? The certified topology decides.
+  QsicResult t = classify_qsic(a, b, mode == Mode::Exact ? Mode::Exact : Mode::Filtered);
+  if (t.status != Status::Certified) {
+    out.status = Status::Undecided;
+    out.note = "topology not certified";
+    return Outcome::answer(std::move(out));
+  }
+  if (t.pencil == algebra::PencilKind::Degenerate)
+    if (auto r = common_apex_contact(a, b)) {
+      return Outcome::answer(std::move(*r));
+    }
+  if (t.pencil == algebra::PencilKind::Coincident) {
+    out.status = Status::Certified;
+    out.distance = Enclosure::zero();
+    out.minimizers = "infinite";
+    out.note = "the surfaces coincide";
+    return Outcome::answer(std::move(out));
+  }
+  if (t.morphology && t.morphology->connected_components > 0) {
+    // The classification is projective: the real points may all lie at infinity (translated
+    // paraboloids meet only there). Contact needs an affine point: a real curve has one
+    // unless the conics at infinity share a component; otherwise an affine special point, or
+    // a traced point, is the witness.
+    complete_report_data(t, a, b);
+    const auto& m = *t.morphology;
+    const bool curve = m.loops + m.conics + m.lines + m.cubics > 0;
+    const bool bounded = a.kind() == core::QuadricKind::Ellipsoid ||
+                         b.kind() == core::QuadricKind::Ellipsoid; // no point at infinity
+    bool affine = bounded || (curve && !conics_at_infinity_share_component(a, b));
+    std::array<double, 3> w{};
+    bool have = false;
+    for (const auto& sp : t.special_points)
+      if (!sp.at_infinity && !have) {
+        w = sp.approx;
+        have = affine = true;
+      }
+    if (curve && !have && affine) {
+      // Affine contact is proven already (exact); a displayed pair comes from certified
+      // points of the surfaces on both sides of each other (approximate common point).
+      have = meet_by_sign_change(a, b, w);
+    }
+    if (affine) {
+      out.status = Status::Certified;
+      out.distance = Enclosure::zero();
+      out.minimizers = curve ? "infinite" : std::to_string(m.isolated_points);
+      if (have) out.pairs.push_back({w, w});
+      out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
+      return Outcome::answer(std::move(out));
+    }
+    if (curve && meet_by_sign_change(a, b, w)) {
+      out.status = Status::Certified;
+      out.distance = Enclosure::zero();
+      out.minimizers = "infinite";
+      out.pairs.push_back({w, w});
+      out.note = "the surfaces meet (certified topology: " + std::string(m.id) +
+                 "; an affine common point proven by certified points of a connected surface "
+                 "on both sides of the other; the pair is an approximate common point)";
+      return Outcome::answer(std::move(out));
+    }
+    if (curve || !t.special_points_complete) {
+      out.status = Status::Undecided;
+      out.note =
+          "the real intersection (" + std::string(m.id) + ") may lie at infinity only; not decided";
+      return Outcome::answer(std::move(out));
+    }
+    // Every real common point is at infinity: the affine surfaces are disjoint.
+  }
+  if (solid && a.kind() == core::QuadricKind::Ellipsoid &&
+      b.kind() == core::QuadricKind::Ellipsoid) {
+    complete_report_data(t, a, b);
+    if (t.ellipsoid_relation == "nested") {
+      out.status = Status::Certified;
+      out.distance = Enclosure::zero();
+      out.minimizers = "infinite";
+      out.note = "solid distance: one solid contains the other";
+      return Outcome::answer(std::move(out));
+    }
+  }
+
+  query.disjoint_proven = true;
+  return Outcome::not_applicable();
+}
+
+bool offset_apply(const Query& q) {
+  return q.disjoint_proven && !qa(q).is_sphere() && !qb(q).is_sphere();
+}
+Outcome offset_run(Query& q) {
+  DistanceResult d = quadric_pair_distance(qa(q), qb(q), q.digits);
+  if (d.method.empty()) d.method = "offset_system";
+  return Outcome::answer(std::move(d));
+}
+
+bool sphere_apply(const Query& q) {
+  return q.disjoint_proven && (qa(q).is_sphere() || qb(q).is_sphere());
+}
+Outcome sphere_run(Query& query) {
+  const auto &a = qa(query), &b = qb(query);
+  const long digits = query.digits;
+  const bool a_sphere = a.is_sphere();
+  const core::QuadricMatrix& sph = a_sphere ? a : b;
+  const core::QuadricMatrix& other = a_sphere ? b : a;
+  DistanceResult out;
+  // Centre and squared radius of the sphere k(|x|^2) - 2k c.x + k|c|^2 - k r^2.
+  std::array<Rational, 3> c;
+  Rational k = sph(0, 0), c2;
+  for (int i = 0; i < 3; ++i) {
+    c[static_cast<size_t>(i)] = -sph(i, 3) / k;
+    c2 += c[static_cast<size_t>(i)] * c[static_cast<size_t>(i)];
+  }
+  Rational r2 = c2 - sph(3, 3) / k;
+
+  // A plane (no quadratic part): 2 b.x + c0 = 0, the distance from the centre in closed form.
+  bool plane = true;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      plane = plane && other(i, j).is_zero();
+  if (plane) {
+    const long prec = bits_for(digits + 10);
+    Rational num = other(3, 3), n2;
+    for (int i = 0; i < 3; ++i) {
+      num += Rational(2) * other(i, 3) * c[static_cast<size_t>(i)];
+      n2 += Rational(4) * other(i, 3) * other(i, 3);
+    }
+    Ball dc, r, d, gap;
+    Rational q = num * num / n2; // squared distance from the centre to the plane
+    if (q <= r2) {               // the topology said the surfaces do not meet: q > r2
+      out.status = Status::Undecided;
+      out.note = "the plane meets the ball although the topology said no contact";
+      return Outcome::answer(std::move(out));
+    }
+    arb_set_fmpq(dc.v, q.raw(), prec);
+    arb_sqrt(dc.v, dc.v, prec);
+    arb_set_fmpq(r.v, r2.raw(), prec);
+    arb_sqrt(r.v, r.v, prec);
+    // dc - r = (q - r2) / (dc + r): the exact numerator keeps a tiny gap from cancelling.
+    arb_set_fmpq(gap.v, (q - r2).raw(), prec);
+    arb_add(d.v, dc.v, r.v, prec);
+    arb_div(d.v, gap.v, d.v, prec);
+    set_distance_enclosure(out, d.v, digits);
+    out.minimizers = "1";
+    out.critical_candidates = 1;
+    out.eliminated_degree = 1;
+    std::array<double, 3> f{}, s{};
+    double tf = num.to_double_approx() / n2.to_double_approx(),
+           rr = std::sqrt(r2.to_double_approx());
+    double dcd = std::sqrt(q.to_double_approx());
+    for (size_t i = 0; i < 3; ++i) {
+      double ni = 2 * other(static_cast<int>(i), 3).to_double_approx();
+      f[i] = c[i].to_double_approx() - tf * ni; // foot on the plane
+      s[i] = c[i].to_double_approx() + rr * (f[i] - c[i].to_double_approx()) / dcd; // on the sphere
+    }
+    out.pairs.push_back(a_sphere ? std::array<std::array<double, 3>, 2>{s, f}
+                                 : std::array<std::array<double, 3>, 2>{f, s});
+    out.status = Status::Certified;
+    return Outcome::answer(std::move(out));
+  }
+  // Critical distances from the centre to the other quadric.
+  //
+  // The answer is d_min - r (the quadric outside the ball) or r - d_max (a compact quadric
+  // inside it), with d_min = [min lower, min upper] and d_max = [max lower, max upper] taken
+  // over EVERY candidate: a valid enclosure of the true extreme whatever order the double
+  // midpoints propose. Which side holds is decided against these enclosures, too. The
+  // subtraction cancels when the gap is small against the critical distances, so the
+  // candidates are re-enclosed at more digits (the roots are exact: only the enclosures
+  // narrow) until (a) the side is decided and (b) the written enclosure of the gap meets
+  // upper - lower <= 10^-digits lower; failing either within the budget is undecided. Then,
+  // within a smaller budget, until (c) the minimizers separate from the other candidates or are
+  // proven tied (the same exact rational squared distance); otherwise the candidates left
+  // overlapping the extreme are all listed, ties "unproven".
+  const bool compact = other.kind() == core::QuadricKind::Ellipsoid;
+  const long first = digits + 5;
+  const long width_cap = std::max<long>(10 * first, digits + 2000); // cancellation budget
+  const long tie_cap = 2 * digits + 40;                             // separation budget
+  const int max_rounds = 12;
+  long work = first;
+  for (int round = 0;; ++round) {
+    PointQuadricResult pq = point_quadric_critical(c, other, work);
+    out.eliminated_degree = pq.sextic_degree;
+    out.critical_candidates = static_cast<int>(pq.criticals.size());
+    if (!pq.ok || pq.criticals.empty()) {
+      out.status = Status::Undecided;
+      out.note = pq.ok ? "no critical point found" : pq.note;
+      return Outcome::answer(std::move(out));
+    }
+    const size_t n = pq.criticals.size();
+    const long prec = bits_for(work + 10);
+    const bool last = round + 1 >= max_rounds;
+    Ball r;
+    arb_set_fmpq(r.v, r2.raw(), prec);
+    arb_sqrt(r.v, r.v, prec);
+    std::vector<Ball> balls(n);
+    arf_t minlo, minhi, maxlo, maxhi, bound;
+    arf_init(minlo);
+    arf_init(minhi);
+    arf_init(maxlo);
+    arf_init(maxhi);
+    arf_init(bound);
+    for (size_t i = 0; i < n; ++i) {
+      critical_ball(balls[i].v, pq.criticals[i], prec);
+      arb_get_lbound_arf(bound, balls[i].v, prec);
+      if (i == 0 || arf_cmp(bound, minlo) < 0) arf_set(minlo, bound);
+      if (i == 0 || arf_cmp(bound, maxlo) > 0) arf_set(maxlo, bound);
+      arb_get_ubound_arf(bound, balls[i].v, prec);
+      if (i == 0 || arf_cmp(bound, minhi) < 0) arf_set(minhi, bound);
+      if (i == 0 || arf_cmp(bound, maxhi) > 0) arf_set(maxhi, bound);
+    }
+    Ball dmin, dmax;
+    arb_set_interval_arf(dmin.v, minlo, minhi, prec);
+    arb_set_interval_arf(dmax.v, maxlo, maxhi, prec);
+    arf_clear(minlo);
+    arf_clear(minhi);
+    arf_clear(maxlo);
+    arf_clear(maxhi);
+    arf_clear(bound);
+    int side = 0; // +1: the quadric lies outside the ball; -1: inside
+    if (arb_gt(dmin.v, r.v))
+      side = 1;
+    else if (compact && arb_lt(dmax.v, r.v))
+      side = -1;
+    if (side == 0) {
+      // Not meeting (the topology said so), the quadric lies on one side: only precision is
+      // missing.
+      if (!last && work < width_cap) {
+        work = std::min(2 * work, width_cap);
+        continue;
+      }
+      out.status = Status::Undecided;
+      out.note = "could not separate the critical distances from the radius at " +
+                 std::to_string(work) + " digits";
+      return Outcome::answer(std::move(out));
+    }
+    const arb_struct* opt = side > 0 ? dmin.v : dmax.v;
+    Ball d;
+    if (side > 0)
+      arb_sub(d.v, dmin.v, r.v, prec);
+    else
+      arb_sub(d.v, r.v, dmax.v, prec);
+    DistanceResult trial;
+    set_distance_enclosure(trial, d.v, digits);
+    if (!trial.distance->meets_width(digits)) {
+      if (!last && work < width_cap) {
+        // Proposal: the gap loses log10(extreme / gap) digits to cancellation.
+        long need = 2 * work;
+        if (arb_is_positive(d.v)) {
+          arf_t g;
+          arf_init(g);
+          arb_get_lbound_arf(g, d.v, prec);
+          const slong lost =
+              arf_abs_bound_lt_2exp_si(arb_midref(opt)) - arf_abs_bound_lt_2exp_si(g) + 2;
+          arf_clear(g);
+          need = std::max(work + 10, digits + 5 + static_cast<long>(lost * 0.302) + 1);
+        }
+        work = std::min(need, width_cap);
+        continue;
+      }
+      out.status = Status::Undecided;
+      out.note = "the distance is much smaller than the critical distances (cancellation): "
+                 "its enclosure did not reach the requested width at " +
+                 std::to_string(work) + " digits";
+      return Outcome::answer(std::move(out));
+    }
+    // Candidates that may attain the extreme: those whose enclosure meets it.
+    std::vector<size_t> S;
+    for (size_t i = 0; i < n; ++i)
+      if (arb_overlaps(balls[i].v, opt)) S.push_back(i);
+    // Exact squared distances compare exactly: drop those beaten by another exact one.
+    const Rational* ext = nullptr;
+    for (size_t i : S)
+      if (pq.criticals[i].d2_exact &&
+          (ext == nullptr || (side > 0 ? pq.criticals[i].d2 < *ext : pq.criticals[i].d2 > *ext)))
+        ext = &pq.criticals[i].d2;
+    if (ext != nullptr) {
+      std::vector<size_t> kept;
+      for (size_t i : S)
+        if (!pq.criticals[i].d2_exact || pq.criticals[i].d2 == *ext) kept.push_back(i);
+      S.swap(kept);
+    }
+    bool all_exact = true;
+    for (size_t i : S)
+      all_exact = all_exact && pq.criticals[i].d2_exact; // then all equal *ext
+    if (S.size() > 1 && !all_exact && !last && work < tie_cap) {
+      work = std::min(2 * work, tie_cap);
+      continue;
+    }
+    // Final: the enclosure, and one pair per remaining candidate.
+    out.distance = trial.distance;
+    bool continuum = false;
+    const double rr = std::sqrt(r2.to_double_approx());
+    for (size_t i : S) {
+      const CriticalDistance& cd = pq.criticals[i];
+      continuum = continuum || cd.continuum;
+      // The pair: the foot point on the quadric, the sphere point on the ray from the centre.
+      std::array<double, 3> f = cd.foot, s{};
+      double nf = 0;
+      for (size_t j = 0; j < 3; ++j)
+        nf += (f[j] - c[j].to_double_approx()) * (f[j] - c[j].to_double_approx());
+      nf = std::sqrt(nf);
+      for (size_t j = 0; j < 3; ++j)
+        s[j] = c[j].to_double_approx() + rr * (f[j] - c[j].to_double_approx()) / nf;
+      out.pairs.push_back(a_sphere ? std::array<std::array<double, 3>, 2>{s, f}
+                                   : std::array<std::array<double, 3>, 2>{f, s});
+    }
+    out.minimizers = continuum ? "infinite" : std::to_string(S.size());
+    out.status = Status::Certified;
+    if (!continuum && S.size() > 1 && all_exact) {
+      out.ties = "proven";
+      out.note += std::string(out.note.empty() ? "" : "; ") + "the " + std::to_string(S.size()) +
+                  " minimizing pairs are at exactly the same distance (proven: the same exact "
+                  "rational squared distance from the centre to the foot points)";
+    } else if (continuum && !all_exact) {
+      out.minimizers = "undecided"; // a circle, or isolated points: not proven which
+      out.minimizer_candidates = static_cast<long>(S.size());
+      // A circle of feet overlapping point candidates not proven equal to it: "infinite"
+      // holds only if the circle attains the minimum, which is not proven (a note that
+      // prove_ties, which drops the generic tie note for continua, leaves in place).
+      out.note += std::string(out.note.empty() ? "" : "; ") +
+                  "a circle of foot points and other critical points agree to the requested "
+                  "precision: which of them attain the extreme (and so the minimizer count) is "
+                  "not proven";
+      out.ties = "unproven";
+    } else if (!all_exact) {
+      // Candidates left overlapping the extreme after the separation budget: all listed,
+      // their equality unproven.
+      note_unproven_ties(out, S.size());
+    }
+    return Outcome::answer(std::move(out));
+  }
+}
+
+} // namespace
+
+void add_quadric_pair_routes(std::vector<Route>& t) {
+  const PairKind k = PairKind::QuadricQuadric;
+  t.push_back({"cylinder_closed_form", k, kAllModes,
+               "two elliptic cylinders: crossed in closed form, parallel by duality",
+               cylinders_apply, cylinders_run});
+  t.push_back({"convex_duality_float", k, kFloatMode,
+               "nothing: a float separating-direction search (an estimate)", convex_apply,
+               convex_float_run});
+  t.push_back({"convex_duality", k, kFloatMode | kFilteredMode,
+               "disjoint convex solids: L(n) <= d <= U(n) at one exact direction", convex_apply,
+               convex_run});
+  t.push_back({"nested_convex_duality", k, kFloatMode | kFilteredMode,
+               "an ellipsoid inside an ellipsoid or elliptic cylinder: min_n h_B - h_A by branch "
+               "and bound",
+               convex_apply, nested_run});
+  t.push_back({"cone_generator_bound", k, kFloatMode | kFilteredMode,
+               "an ellipsoid and a cone apart: min over the generator lines", cone_apply,
+               cone_run});
+  t.push_back({"ellipsoid_plane_closed_form", k, kAllModes,
+               "an ellipsoid and a plane: support function, exact comparison",
+               ellipsoid_plane_apply, ellipsoid_plane_run});
+  t.push_back({"plane_closed_form", k, kAllModes,
+               "a plane and any quadric: the met levels {m(s) <= 0} exactly", plane_apply,
+               plane_run});
+  t.push_back({"qsic_topology", k, kAllModes,
+               "contact, coincidence or a common apex from the certified QSIC topology", always,
+               topology_run});
+  t.push_back({"sphere_point_quadric", k, kAllModes,
+               "a sphere and a quadric: |d - r| over the exact point-quadric critical distances",
+               sphere_apply, sphere_run});
+  t.push_back({"offset_system", k, kAllModes,
+               "two quadrics: every critical pair covered exactly (resultants), refined",
+               offset_apply, offset_run});
+}
+
+} // namespace surfcert::certify

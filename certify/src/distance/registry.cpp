@@ -1,0 +1,148 @@
+#include "surfcert/certify/distance/route.hpp"
+#include "surfcert/certify/distance/route_tables.hpp"
+
+#include "surfcert/certify/distance/solid_relation.hpp"
+#include "surfcert/certify/distance/symmetry.hpp"
+
+#include <utility>
+
+namespace surfcert::certify {
+
+const char* to_string(PairKind k) {
+  switch (k) {
+  case PairKind::QuadricQuadric:
+    return "quadric-quadric";
+  case PairKind::QuadricTorus:
+    return "quadric-torus";
+  case PairKind::QuadricCanal:
+    return "quadric-canal";
+  case PairKind::QuadricImplicit:
+    return "quadric-implicit";
+  case PairKind::TorusTorus:
+    return "torus-torus";
+  case PairKind::TorusCanal:
+    return "torus-canal";
+  case PairKind::TorusImplicit:
+    return "torus-implicit";
+  case PairKind::CanalCanal:
+    return "canal-canal";
+  case PairKind::CanalImplicit:
+    return "canal-implicit";
+  case PairKind::ImplicitImplicit:
+    return "implicit-implicit";
+  case PairKind::Parametric:
+    return "parametric";
+  }
+  return "?";
+}
+
+int surface_rank(const core::Surface& s) {
+  if (std::holds_alternative<core::QuadricMatrix>(s)) return 0;
+  if (std::holds_alternative<core::Torus>(s)) return 1;
+  if (std::holds_alternative<core::CanalSurface>(s)) return 2;
+  if (std::holds_alternative<core::ImplicitSurface>(s)) return 3;
+  return 4; // parametric
+}
+
+PairKind pair_kind(const core::Surface& a, const core::Surface& b) {
+  static const PairKind table[4][4] = {
+      {PairKind::QuadricQuadric, PairKind::QuadricTorus, PairKind::QuadricCanal,
+       PairKind::QuadricImplicit},
+      {PairKind::QuadricTorus, PairKind::TorusTorus, PairKind::TorusCanal, PairKind::TorusImplicit},
+      {PairKind::QuadricCanal, PairKind::TorusCanal, PairKind::CanalCanal, PairKind::CanalImplicit},
+      {PairKind::QuadricImplicit, PairKind::TorusImplicit, PairKind::CanalImplicit,
+       PairKind::ImplicitImplicit}};
+  const int ra = surface_rank(a), rb = surface_rank(b);
+  if (ra == 4 || rb == 4) return PairKind::Parametric;
+  return table[ra][rb];
+}
+
+const std::vector<Route>& distance_routes() {
+  static const std::vector<Route> table = [] {
+    std::vector<Route> t;
+    add_quadric_pair_routes(t);
+    add_surface_pair_routes(t);
+    return t;
+  }();
+  return table;
+}
+
+namespace {
+
+unsigned mode_bit(Mode m) {
+  switch (m) {
+  case Mode::Float:
+    return kFloatMode;
+  case Mode::Exact:
+    return kExactMode;
+  default:
+    return kFilteredMode;
+  }
+}
+
+} // namespace
+
+DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface& b0, long digits,
+                                   bool solid, Mode mode) {
+  // Canonical order: the routes read their first surface as the lower kind.
+  const bool swapped = surface_rank(a0) > surface_rank(b0);
+  const core::Surface& a = swapped ? b0 : a0;
+  const core::Surface& b = swapped ? a0 : b0;
+  Query q{a, b, digits, solid, mode};
+  const PairKind kind = pair_kind(a, b);
+
+  DistanceResult r;
+  bool answered = false;
+  std::optional<DistanceResult> established; // the latest declined result, enclosure preferred
+  std::string tried;
+  for (const Route& route : distance_routes()) {
+    if (route.kind != kind || (route.modes & mode_bit(mode)) == 0 || !route.applies(q)) continue;
+    Outcome o = route.run(q);
+    if (o.kind == Outcome::Kind::NotApplicable) continue;
+    // The route's id names the method, unless the route solved an offset system inside (a
+    // finer name, kept for the JSON contract).
+    if (o.result.method.empty())
+      o.result.method = o.result.univariate_degrees.empty() ? route.id : "offset_system";
+    if (o.kind == Outcome::Kind::Declined) {
+      tried += std::string(tried.empty() ? "" : ", ") + route.id;
+      o.result.status = Status::Undecided;
+      if (!established || o.result.distance || !established->distance)
+        established = std::move(o.result);
+      continue;
+    }
+    r = std::move(o.result);
+    if (o.kind == Outcome::Kind::Estimate) { // a float answer: never an enclosure
+      r.status = Status::Uncertified;
+      r.distance.reset();
+    } else if (r.status == Status::Uncertified) { // an Answer must be proven or undecided
+      r.status = Status::Undecided;
+      r.estimate.reset();
+    }
+    answered = true;
+    break;
+  }
+  if (!answered) {
+    if (established) {
+      r = std::move(*established);
+      r.note += std::string(r.note.empty() ? "" : "; ") +
+                "no route proved an answer (tried: " + tried + ")";
+    } else {
+      r = DistanceResult();
+      r.status = Status::Undecided;
+      r.note = std::string("not supported yet: no route for this pair (") + to_string(kind) + ": " +
+               core::surface_kind(a0) + ", " + core::surface_kind(b0) + ")";
+    }
+  }
+  r.solid = solid;
+  r.mode = mode;
+  if (swapped)
+    for (auto& pr : r.pairs)
+      std::swap(pr[0], pr[1]);
+  if (r.ties == "unproven") prove_ties(r, a0, b0);
+  // Two quadrics handle solid in their routes; the parametric route passes it on itself.
+  if (solid && kind != PairKind::QuadricQuadric && kind != PairKind::Parametric)
+    apply_solid_option(r, a0, b0);
+  return r;
+}
+
+} // namespace surfcert::certify
