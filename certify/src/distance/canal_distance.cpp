@@ -90,6 +90,9 @@ bool point_distance(arb_t out, const std::array<Rational, 3>& x, const core::Qua
   }
   PointQuadricResult pq = point_quadric_critical(x, q, digits + 5);
   if (!pq.ok || pq.criticals.empty()) return false;
+  // criticals are sorted by certified lower bounds: [front.lower, front.upper] contains the
+  // minimum (min lower <= min <= front's value <= front.upper), whichever candidate attains it;
+  // the foot is display only.
   Ball hi;
   arb_set_str(out, pq.criticals.front().lower.c_str(), prec);
   arb_set_str(hi.v, pq.criticals.front().upper.c_str(), prec);

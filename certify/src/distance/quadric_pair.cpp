@@ -125,7 +125,7 @@ public:
         arf_zero(out);
         return;
       }
-      Ball d, h, r;
+      Ball d, h, r; // front().lower: the least certified lower bound (sorted by it)
       arb_set_str(d.v, pq.criticals.front().lower.c_str(), prec);
       for (const auto& x : box) {
         arb_get_rad_arb(r.v, x.v);

@@ -355,6 +355,8 @@ DistanceResult coaxial_torus(const core::QuadricMatrix& meridian, const core::To
     return out;
   }
   const long prec = static_cast<long>(static_cast<double>(digits) * 3.33) + 128;
+  // [front.lower, front.upper] contains the least critical distance (criticals are sorted by
+  // certified lower bounds), whichever candidate attains it; its foot is display only.
   Ball m, lo, r, d;
   arb_set_str(m.v, pq.criticals.front().lower.c_str(), prec);
   arb_set_str(lo.v, pq.criticals.front().upper.c_str(), prec);
