@@ -58,7 +58,8 @@ std::string quote(const std::string& text) {
 
 class ExpressionParser {
 public:
-  ExpressionParser(const std::string& text, const Location& where) : s_(text), where_(where) {}
+  ExpressionParser(const std::string& text, const Location& where, long max_work)
+      : s_(text), where_(where), max_work_(max_work) {}
 
   Poly3 parse() {
     skip_ws();
@@ -168,12 +169,11 @@ private:
          "a coefficient of " + std::to_string(bits) + " bits");
   }
 
-  // Counts `cost` term operations against kMaxExpressionWork; fails at `at` beyond it.
+  // Counts `cost` term operations against max_work_; fails at `at` beyond it.
   void charge(long cost, std::size_t at) {
-    if (cost > kMaxExpressionWork - work_)
+    if (cost > max_work_ - work_)
       fail(at,
-           "an expression expanding with at most " + std::to_string(kMaxExpressionWork) +
-               " term operations",
+           "an expression expanding with at most " + std::to_string(max_work_) + " term operations",
            "an expansion needing " + std::to_string(work_ + cost));
     work_ += cost;
   }
@@ -395,13 +395,21 @@ private:
   const Location& where_;
   std::size_t pos_ = 0;
   int depth_ = 0;
-  long work_ = 0; // term operations spent so far, bounded by kMaxExpressionWork
+  long max_work_; // kMaxExpressionWork unless a caller asks for less
+  long work_ = 0; // term operations spent so far, bounded by max_work_
 };
 
 } // namespace
 
 Poly3 parse_polynomial(const std::string& text, const Location& where) {
-  return ExpressionParser(text, where).parse();
+  return ExpressionParser(text, where, kMaxExpressionWork).parse();
+}
+
+Poly3 parse_polynomial(const std::string& text, const Location& where, long max_work) {
+  if (max_work < 1 || max_work > kMaxExpressionWork)
+    throw InternalError("parse_polynomial: work budget " + std::to_string(max_work) +
+                        " outside [1, " + std::to_string(kMaxExpressionWork) + "]");
+  return ExpressionParser(text, where, max_work).parse();
 }
 
 } // namespace surfcert::core::io

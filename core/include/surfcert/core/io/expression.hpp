@@ -48,4 +48,9 @@ constexpr int kMaxExpressionNesting = 256;
 /// is 0); the line is kept. Empty input is an error.
 Poly3 parse_polynomial(const std::string& text, const Location& where);
 
+/// The same with a smaller budget of term operations, 1 <= max_work <= kMaxExpressionWork
+/// (checked: InternalError otherwise). For the fuzz target (tests/fuzz): under its sanitizers a
+/// term operation is about 20 times slower, and a full budget would exceed its time limit.
+Poly3 parse_polynomial(const std::string& text, const Location& where, long max_work);
+
 } // namespace surfcert::core::io
