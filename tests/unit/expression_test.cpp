@@ -274,3 +274,20 @@ TEST(ExpressionErrors, ColumnWhenLocationHasNone) {
     EXPECT_EQ(e.found(), "'@'");
   }
 }
+
+// Found with the fuzz target's round-trip property (tests/fuzz/expression_fuzz.cpp; the input
+// is longer than the fuzzer's): a coefficient of exactly the bit limit times a variable was
+// refused ("N*x": the size guard counted b1 + b2 bits for a product that has b1), so the printed
+// form "1/N*x" of the accepted "x/N" did not read back.
+TEST(ExpressionRegressions, CoefficientAtTheBitLimitTimesAVariable) {
+  Integer n;
+  fmpz_one_2exp(n.raw_mut(), 131071); // 2^131071: 131072 bits
+  const std::string ns = n.to_string();
+  Poly3 scaled = parse("x/" + ns);
+  EXPECT_EQ(parse(scaled.to_string()), scaled);
+  EXPECT_EQ(parse(ns + "*x"), X.scaled(Rational(n)));
+  EXPECT_EQ(parse("x " + ns), X.scaled(Rational(n)));
+  // One bit more is refused.
+  expect_error("2x*" + ns, 2, "coefficients of at most 131072 bits",
+               "a coefficient of 131073 bits");
+}

@@ -199,7 +199,10 @@ private:
     if (degree > kMaxExpressionDegree)
       fail(at, "a polynomial of total degree at most " + std::to_string(kMaxExpressionDegree),
            "a result of total degree " + std::to_string(degree));
-    long bits = max_coefficient_bits(a) + max_coefficient_bits(b);
+    // A product of integers of b1 and b2 bits has b1 + b2 - 1 bits at least: refuse only then
+    // (b1 + b2 refused "N*x" for a coefficient N of exactly the limit, so that the printed form
+    // "1/N*x" of an accepted "x/N" did not read back). check() below is exact.
+    long bits = max_coefficient_bits(a) + max_coefficient_bits(b) - 1;
     if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
     // Degree <= 64 already bounds the terms (at most 47905 in three variables), but not the
     // work: two dense degree-32 factors would need 43 million coefficient products.
