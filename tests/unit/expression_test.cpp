@@ -2,6 +2,8 @@
 // (compared with polynomials built by arithmetic) and every error class with its column.
 #include "surfcert/core/error.hpp"
 #include "surfcert/core/io/expression.hpp"
+#include "surfcert/core/io/json.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
 #include "surfcert/core/poly3.hpp"
 #include "surfcert/core/rational.hpp"
 
@@ -290,4 +292,24 @@ TEST(ExpressionRegressions, CoefficientAtTheBitLimitTimesAVariable) {
   // One bit more is refused.
   expect_error("2x*" + ns, 2, "coefficients of at most 131072 bits",
                "a coefficient of 131073 bits");
+}
+
+// Found while writing tests/fuzz/json_fuzz.cpp: read_surface located equation errors at the
+// opening quote, one column before the offending character (read_quadric counted the quote;
+// the implicit-surface and parametric paths did not).
+TEST(ExpressionRegressions, SurfaceEquationErrorsPointAtTheCharacter) {
+  using surfcert::core::io::parse_json;
+  using surfcert::core::io::read_surface;
+  auto column = [](const std::string& json) {
+    try {
+      (void)read_surface(parse_json(json, "t"), "t", "$");
+    } catch (const InputError& e) {
+      return e.where().column;
+    }
+    return -1;
+  };
+  //                   1234567890123456789012
+  EXPECT_EQ(column(R"("x^2 + $")"), 8);
+  EXPECT_EQ(column(R"({"equation": "x^3 + $"})"), 21);
+  EXPECT_EQ(column(R"({"type": "parametric", "x": "u + $", "y": "v", "z": "1"})"), 34);
 }

@@ -360,6 +360,7 @@ Surface read_surface(const Json& v, const std::string& source, const std::string
   if (eqj && eqj->is_string()) {
     const std::string epath = v.is_string() ? path : json_path_child(path, "equation");
     Location where = at(*eqj, source, epath);
+    if (where.column > 0) ++where.column; // past the opening quote, as read_quadric does
     Poly3 p = parse_polynomial(eqj->text(), where);
     const int d = p.total_degree();
     if (d >= 3) {
@@ -394,7 +395,9 @@ Surface read_surface(const Json& v, const std::string& source, const std::string
         if (c == 'u') c = 'x';
         if (c == 'v') c = 'y';
       }
-      return parse_polynomial(t, at(*j, source, kp));
+      Location where = at(*j, source, kp);
+      if (where.column > 0) ++where.column; // past the opening quote
+      return parse_polynomial(t, where);
     };
     ParametricSurface ps{comp("x", false), comp("y", false), comp("z", false), comp("w", true)};
     if (ps.W.is_zero()) throw InputError(at(v, source, path), "a nonzero denominator \"w\"", "0");
