@@ -10,6 +10,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 secs="${1:-60}"
 build=build-fuzz
+command -v "${CXX:-clang++}" >/dev/null ||
+  { echo "fuzz.sh: ${CXX:-clang++} not found (scripts/setup.sh installs clang)" >&2; exit 1; }
 CC="${CC:-clang}" CXX="${CXX:-clang++}" \
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSURFCERT_BUILD_FUZZ=ON >/dev/null
 cmake --build "$build" -j"$(nproc)" --target json_fuzz expression_fuzz
