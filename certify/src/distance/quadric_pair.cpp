@@ -439,8 +439,7 @@ DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
 DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                      long digits) {
   DistanceResult out = quadric_pair_distance_in_place(a, b, digits);
-  if (out.status != Status::Undecided || out.note.rfind("not supported yet: the offset", 0) != 0)
-    return out;
+  if (out.status != Status::Undecided || !out.offset_curve_of_solutions) return out;
   const long w = 2, x = 3, y = 5, z = 7, n = w * w + x * x + y * y + z * z;
   const long R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
                         {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
@@ -650,6 +649,7 @@ DistanceResult quadric_pair_distance_in_place(const core::QuadricMatrix& a,
   if (!off) {
     if (auto pc = parallel_cylinders(a, b, digits)) return *pc;
     out.status = Status::Undecided;
+    out.offset_curve_of_solutions = true;
     out.note = "not supported yet: the offset system has a curve of solutions in every tried "
                "position (" +
                why + "; e.g. surfaces of revolution sharing an axis)";
@@ -924,6 +924,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
     return out;
   }
   out.status = Status::Undecided;
+  out.offset_curve_of_solutions = true;
   out.note = "not supported yet: the offset system has a curve of solutions";
   return out;
 }
@@ -1008,6 +1009,7 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
     return out;
   }
   out.status = Status::Undecided;
+  out.offset_curve_of_solutions = true;
   out.note = "not supported yet: the offset system has a curve of solutions";
   return out;
 }

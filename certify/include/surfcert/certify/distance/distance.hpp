@@ -60,6 +60,9 @@ struct DistanceResult {
   /// Set by a route whose count rests on an unproven step (e.g. candidates merged by a
   /// float test): the count is then reported as "undecided".
   bool count_unproven = false;
+  /// Undecided because the offset system has a curve of solutions in the tried position (the
+  /// quadric pair route then retries after a rational rotation).
+  bool offset_curve_of_solutions = false;
   std::vector<std::array<std::array<double, 3>, 2>> pairs; ///< (point on a, point on b), approx
   int critical_candidates = 0;
   int eliminated_degree = 0; ///< degree of the eliminated univariate polynomial
