@@ -2,9 +2,9 @@
 // -ffp-contract=off (see the top-level CMakeLists): CGAL::Interval_nt relies on them.
 #include "surfcert/certify/pencil_filter.hpp"
 
+#include "surfcert/algebra/eigen4.hpp"
 #include "surfcert/algebra/pencil_poly.hpp"
 #include "surfcert/algebra/real_roots.hpp"
-#include "surfcert/certify/trace/eigen4.hpp"
 
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
@@ -195,11 +195,11 @@ double approx(const Rational& q) {
   return fmpz_get_d(fmpq_numref(q.raw())) / fmpz_get_d(fmpq_denref(q.raw()));
 }
 
-// Eigenvalues of a symmetric 4x4 matrix (cyclic Jacobi, shared with the tracer).
+// Eigenvalues of a symmetric 4x4 matrix (cyclic Jacobi, algebra/eigen4.hpp).
 std::array<double, 4> eigenvalues(const Mat4T<double>& m) {
   std::array<double, 4> w{};
-  trace::Mat4d v{};
-  trace::jacobi4(m, w, v);
+  algebra::Mat4d v{};
+  algebra::jacobi4(m, w, v);
   return w;
 }
 

@@ -14,7 +14,7 @@
 // infinity and planes already used. Each sample is corrected by Gauss-Newton onto
 // {plane = 0, Q = 0} (transversal even along a double conic, where grad f x grad g vanishes).
 #include "surfcert/certify/trace/conics.hpp"
-#include "surfcert/certify/trace/eigen4.hpp"
+#include "surfcert/algebra/eigen4.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -358,7 +358,7 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
     if (!m) continue;
     V4 w;
     M4 v;
-    jacobi4(*m, w, v);
+    algebra::jacobi4(*m, w, v);
     std::array<size_t, 4> idx{0, 1, 2, 3};
     std::sort(idx.begin(), idx.end(), [&](size_t i, size_t j) { return w[i] > w[j]; });
     std::vector<V4> planes;

@@ -1,13 +1,14 @@
-// surfcert::trace::jacobi4: eigen-decomposition of a symmetric 4x4 double matrix by cyclic
-// Jacobi rotations, m = sum_k w[k] v_k v_k^T with v_k the k-th column of v. Floating point
-// (no guarantee): used by the float mode's inertia estimates and to split singular pencil
-// members into planes for the conic components.
+// surfcert::algebra::jacobi4: eigen-decomposition of a symmetric 4x4 double matrix by cyclic
+// Jacobi rotations, m = sum_k w[k] v_k v_k^T with v_k the k-th column of v. A numeric utility
+// in floating point (no guarantee, nothing exact here): used by certify's float mode for its
+// inertia estimates (pencil_filter.cpp) and by the tracer (surfcert::trace) to split singular
+// pencil members into planes for the conic components.
 #pragma once
 
 #include <array>
 #include <cmath>
 
-namespace surfcert::trace {
+namespace surfcert::algebra {
 
 using Mat4d = std::array<std::array<double, 4>, 4>;
 
@@ -50,4 +51,4 @@ inline void jacobi4(Mat4d a, std::array<double, 4>& w, Mat4d& v) {
     w[k] = a[k][k];
 }
 
-} // namespace surfcert::trace
+} // namespace surfcert::algebra
