@@ -3,7 +3,7 @@
 --json` in the filtered and the exact modes. Checks every certified answer against routes that
 share nothing with it: the pair points lie on both surfaces and realise the distance; points
 sampled on both surfaces (random lines, float) are never closer than the certified lower
-bound; the two modes overlap. Usage: bench/fuzz_distance.py build/certify/surfcert N SEED [-v]
+bound; the two modes overlap. Usage: bench/fuzz_distance.py build/app/surfcert N SEED [-v]
 [--degenerate] (-v lists the undecided pairs; --degenerate draws degenerate pencils only:
 cylinders of any kind with one ruling direction, and cones with one apex). Prints the status
 counts and the number of violations."""

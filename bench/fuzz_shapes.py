@@ -4,7 +4,7 @@
 routes that share nothing with it: points sampled on both surfaces (float) are never closer
 than the certified lower bound, the reported pair points lie on both surfaces and realise the
 distance, and the two modes overlap. Usage:
-  bench/fuzz_shapes.py build/certify/surfcert N SEED [-v]
+  bench/fuzz_shapes.py build/app/surfcert N SEED [-v]
 Prints the status counts and the number of violations (exit status 1 if any)."""
 import json, math, random, subprocess, sys
 from fractions import Fraction as F

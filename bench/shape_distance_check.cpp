@@ -513,7 +513,7 @@ int main(int argc, char** argv) {
       }
       char head[160];
       std::snprintf(head, sizeof head, "family %d (%s) case %ld", fam, fam_name(fam), i + 1);
-      std::string repro = "build/certify/surfcert distance '" + k.cla + "' '" + k.clb + "'";
+      std::string repro = "build/app/surfcert distance '" + k.cla + "' '" + k.clb + "'";
       if (!what.empty()) {
         ++S.exc;
         reports.push_back(std::string("EXCEPTION ") + head + ": " + what + "\n  " + repro);

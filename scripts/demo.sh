@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh build -DSURFCERT_BUILD_TESTS=OFF
-./build/certify/surfcert run data/scenes/default.json -o build/default_report.json
+./build/app/surfcert run data/scenes/default.json -o build/default_report.json
 echo "JSON report written to build/default_report.json"

@@ -6,8 +6,8 @@
 //   comes close; rational rigid motions (integer quaternions) leave the enclosure unchanged;
 // - contact: an ellipsoid crossing the tube gives 0 with a witness on both surfaces;
 // - input: spindle tori and zero axes are refused with a location.
+#include "surfcert/app/scene.hpp"
 #include "surfcert/certify/distance/distance.hpp"
-#include "surfcert/certify/scene.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
@@ -237,13 +237,13 @@ TEST(TorusDistance, ContactAndInput) {
 TEST(TorusDistance, BatchAndSceneContract) {
   // A batch line with a torus: the distance envelope; classify with a torus: an input error at
   // $.a, the batch goes on.
-  auto ok = certify::process_batch_line(
+  auto ok = app::process_batch_line(
       R"({"id":7,"op":"distance","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],)"
       R"("major_radius":3,"minor_radius":1},"b":"z = 5","digits":20})",
       1, certify::Mode::Filtered);
   EXPECT_EQ(ok.find("status")->text(), "certified");
   EXPECT_EQ(ok.find("result")->find("distance")->find("lower")->text(), "4");
-  auto bad = certify::process_batch_line(
+  auto bad = app::process_batch_line(
       R"({"op":"classify","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],)"
       R"("major_radius":3,"minor_radius":1},"b":"z = 5"})",
       2, certify::Mode::Filtered);
@@ -254,21 +254,21 @@ TEST(TorusDistance, BatchAndSceneContract) {
       R"({"surfaces":{"T":{"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,)"
       R"("minor_radius":1},"P":"z = 5"},"queries":[{"op":"distance","a":"P","b":"T"}]})",
       "scene");
-  auto scene = certify::read_scene(doc, "scene", certify::Mode::Filtered);
-  auto res = certify::run_query(scene, scene.queries[0]);
+  auto scene = app::read_scene(doc, "scene", certify::Mode::Filtered);
+  auto res = app::run_query(scene, scene.queries[0]);
   EXPECT_EQ(res.find("result")->find("distance")->find("upper")->text(), "4");
   // A scene query's "digits" is honoured (it was ignored before this test existed).
   auto doc3 = core::io::parse_json(
       R"({"surfaces":{"S":"x^2+y^2+z^2=1","P":"x+y+z=3"},"queries":[{"op":"distance",)"
       R"("a":"S","b":"P","digits":40}]})",
       "scene");
-  auto scene3 = certify::read_scene(doc3, "scene", certify::Mode::Filtered);
+  auto scene3 = app::read_scene(doc3, "scene", certify::Mode::Filtered);
   EXPECT_EQ(scene3.queries[0].digits, 40);
-  auto r3 = certify::run_query(scene3, scene3.queries[0]);
+  auto r3 = app::run_query(scene3, scene3.queries[0]);
   EXPECT_GE(r3.find("result")->find("distance")->find("lower")->text().size(), 40u);
   auto doc2 = core::io::parse_json(
       R"({"surfaces":{"T":{"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,)"
       R"("minor_radius":1},"P":"z = 5"},"queries":[{"op":"intersect","a":"P","b":"T"}]})",
       "scene");
-  EXPECT_THROW(certify::read_scene(doc2, "scene", certify::Mode::Filtered), core::InputError);
+  EXPECT_THROW(app::read_scene(doc2, "scene", certify::Mode::Filtered), core::InputError);
 }

@@ -1,4 +1,5 @@
-// surfcert::certify scenes and batches: the `run` and `batch` front ends.
+// surfcert::app scenes and batches: the `run` and `batch` front ends of the application layer
+// (built on surfcert::certify for the decisions and surfcert::trace for the curve branches).
 //
 // A Scene names surfaces and lists queries; read_scene validates the whole document before
 // anything is computed (so a bad scene produces an error and no report). run_query computes
@@ -18,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-namespace surfcert::certify {
+namespace surfcert::app {
 
 struct Query {
   core::io::Json id;       ///< as given (null when absent)
@@ -27,7 +28,7 @@ struct Query {
   long digits = 15;        ///< distance: requested relative precision 10^-digits
   bool solid = false;      ///< distance: between solids (0 when the volumes overlap)
   std::string a, b;        ///< surface names
-  Mode mode = Mode::Filtered;
+  certify::Mode mode = certify::Mode::Filtered;
 };
 
 struct Scene {
@@ -37,7 +38,8 @@ struct Scene {
 };
 
 /// Throws core::InputError on any problem (with JSON path, line, column).
-Scene read_scene(const core::io::Json& doc, const std::string& source, Mode default_mode);
+Scene read_scene(const core::io::Json& doc, const std::string& source,
+                 certify::Mode default_mode);
 
 /// One result object: {"id", "op", "a", "b", "status", "mode", "result" | "error"}.
 core::io::Json run_query(const Scene& s, const Query& q, std::string* text_summary = nullptr);
@@ -47,10 +49,11 @@ struct BatchStats {
 };
 
 /// Reads JSON lines from `in`, writes result lines to `out` in input order.
-BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads);
+BatchStats process_batch(std::istream& in, std::ostream& out, certify::Mode default_mode,
+                         int threads);
 
 /// One batch line -> one result line (exposed for tests). line_no is 1-based.
-core::io::Json process_batch_line(const std::string& line, long line_no, Mode default_mode,
-                                  bool* fallback = nullptr);
+core::io::Json process_batch_line(const std::string& line, long line_no,
+                                  certify::Mode default_mode, bool* fallback = nullptr);
 
-} // namespace surfcert::certify
+} // namespace surfcert::app

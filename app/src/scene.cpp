@@ -1,4 +1,4 @@
-#include "surfcert/certify/scene.hpp"
+#include "surfcert/app/scene.hpp"
 
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/distance.hpp"
@@ -15,8 +15,23 @@
 #include <set>
 #include <thread>
 
-namespace surfcert::certify {
+namespace surfcert::app {
 
+using certify::classify_qsic;
+using certify::complete_report_data;
+using certify::CurveResult;
+using certify::curve_envelope_json;
+using certify::distance_envelope_json;
+using certify::DistanceResult;
+using certify::input_error_json;
+using certify::intersect_curve;
+using certify::Mode;
+using certify::parse_mode;
+using certify::qsic_envelope_json;
+using certify::qsic_result_text;
+using certify::QsicResult;
+using certify::surface_distance;
+using certify::to_string;
 using core::InputError;
 using core::Location;
 using core::Rational;
@@ -341,4 +356,4 @@ BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode,
   return st;
 }
 
-} // namespace surfcert::certify
+} // namespace surfcert::app

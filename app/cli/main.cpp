@@ -1,10 +1,10 @@
 // The `surfcert` command line: classify, run, batch. Exit codes: 0 success, 2 bad input
 // (message with location on stderr, nothing written), 3 finished with undecided results,
 // 1 internal error.
+#include "surfcert/app/scene.hpp"
 #include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
-#include "surfcert/certify/scene.hpp"
 #include "surfcert/certify/trace/export.hpp"
 #include "surfcert/core/io/expression.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
@@ -276,8 +276,8 @@ int cmd_run(const std::vector<std::string>& args) {
   }
   if (scene_path.empty()) throw UsageError("run needs a scene file");
   Json doc = core::io::parse_json(read_file(scene_path), scene_path);
-  certify::Scene scene =
-      certify::read_scene(doc, scene_path, mode.value_or(certify::Mode::Filtered));
+  app::Scene scene =
+      app::read_scene(doc, scene_path, mode.value_or(certify::Mode::Filtered));
   if (mode)
     for (auto& q : scene.queries)
       q.mode = *mode; // the command line wins over the scene
@@ -289,7 +289,7 @@ int cmd_run(const std::vector<std::string>& args) {
   bool undecided = false;
   for (const auto& q : scene.queries) {
     std::string summary;
-    Json r = certify::run_query(scene, q, &summary);
+    Json r = app::run_query(scene, q, &summary);
     if (const Json* s = r.find("status")) undecided = undecided || s->text() == "undecided";
     text += "== query " +
             (q.id.is_null() ? std::string("?")
@@ -323,7 +323,7 @@ int cmd_batch(const std::vector<std::string>& args) {
       throw UsageError("unknown batch argument " + args[i]);
   }
   std::ios::sync_with_stdio(false);
-  auto st = certify::process_batch(std::cin, std::cout, mode, threads);
+  auto st = app::process_batch(std::cin, std::cout, mode, threads);
   std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors, "
             << st.undecided << " undecided, " << st.fallbacks << " exact fallbacks\n";
   return st.undecided > 0 ? 3 : 0;
