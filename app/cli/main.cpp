@@ -2,12 +2,12 @@
 // (message with location on stderr, nothing written), 3 finished with undecided results,
 // 1 internal error.
 #include "surfcert/app/scene.hpp"
-#include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
-#include "surfcert/certify/trace/export.hpp"
 #include "surfcert/core/io/expression.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+#include "surfcert/trace/export.hpp"
+#include "surfcert/trace/intersect_curve.hpp"
 
 #include <flint/flint.h>
 
@@ -155,7 +155,7 @@ int cmd_intersect(const std::vector<std::string>& args) {
                      "\"" + export_path + "\"");
   auto a = core::io::quadric_from_equation(eq[0], Location{"<argument 1>", 1, 1, ""});
   auto b = core::io::quadric_from_equation(eq[1], Location{"<argument 2>", 1, 1, ""});
-  certify::CurveResult c = certify::intersect_curve(a, b, mode, opt);
+  trace::CurveResult c = trace::intersect_curve(a, b, mode, opt);
   std::vector<trace::Point3> special;
   for (const auto& p : c.topology.special_points)
     if (!p.at_infinity) special.push_back(p.approx);
@@ -178,7 +178,7 @@ int cmd_intersect(const std::vector<std::string>& args) {
     write_atomically(svg_path, trace::to_svg(a, b, pic));
   }
   if (json) {
-    std::cout << core::io::dump(certify::curve_envelope_json(c, a, b), 2) << "\n";
+    std::cout << core::io::dump(trace::curve_envelope_json(c, a, b), 2) << "\n";
   } else {
     std::cout << certify::qsic_result_text(c.topology, a, b);
     std::cout << "curve: " << certify::to_string(c.status) << ", " << c.branches.size()

@@ -1,9 +1,9 @@
 #include "surfcert/app/scene.hpp"
 
-#include "surfcert/certify/curve.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+#include "surfcert/trace/intersect_curve.hpp"
 
 #include <flint/flint.h>
 #include <tuple>
@@ -19,12 +19,9 @@ namespace surfcert::app {
 
 using certify::classify_qsic;
 using certify::complete_report_data;
-using certify::CurveResult;
-using certify::curve_envelope_json;
 using certify::distance_envelope_json;
 using certify::DistanceResult;
 using certify::input_error_json;
-using certify::intersect_curve;
 using certify::Mode;
 using certify::parse_mode;
 using certify::qsic_envelope_json;
@@ -33,6 +30,9 @@ using certify::QsicResult;
 using certify::surface_distance;
 using certify::to_string;
 using core::InputError;
+using trace::curve_envelope_json;
+using trace::CurveResult;
+using trace::intersect_curve;
 using core::Location;
 using core::Rational;
 using core::io::Json;

@@ -6,8 +6,8 @@
 #include "support/fixtures.hpp"
 
 #include "surfcert/certify/qsic.hpp"
-#include "surfcert/certify/trace/conics.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+#include "surfcert/trace/conics.hpp"
 
 #include <gtest/gtest.h>
 

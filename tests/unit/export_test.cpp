@@ -4,9 +4,9 @@
 // outline in the x-y view must coincide with the equator it is tangent to), and rasterised by
 // rsvg-convert into a PNG.
 #include "surfcert/certify/qsic.hpp"
-#include "surfcert/certify/trace/conics.hpp"
-#include "surfcert/certify/trace/export.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+#include "surfcert/trace/conics.hpp"
+#include "surfcert/trace/export.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,8 +3,8 @@
 // rigid motion must move the branches with the surfaces.
 #include "support/fixtures.hpp"
 
-#include "surfcert/certify/curve.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+#include "surfcert/trace/intersect_curve.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@ struct Counts {
   int loops = 0, conics = 0, points = 0;
 };
 
-Counts count(const certify::CurveResult& r) {
+Counts count(const trace::CurveResult& r) {
   Counts c;
   for (const auto& b : r.branches) {
     if (b.kind == "loop" || b.kind == "figure_eight" || b.kind == "loop_with_cusp") ++c.loops;
@@ -29,7 +29,7 @@ Counts count(const certify::CurveResult& r) {
 }
 
 // Independent check of the counts against the morphology table.
-void expect_matches_morphology(const certify::CurveResult& r, const std::string& ctx) {
+void expect_matches_morphology(const trace::CurveResult& r, const std::string& ctx) {
   ASSERT_NE(r.topology.morphology, nullptr) << ctx;
   const auto& m = *r.topology.morphology;
   Counts c = count(r);
@@ -52,7 +52,7 @@ TEST(Intersect, AllEllipsoidFixtures) {
   for (const auto& [key, e] : doc.members()) {
     core::QuadricMatrix a(fixtures::mat4_from_json(*e.find("E1"))),
         b(fixtures::mat4_from_json(*e.find("E2")));
-    auto r = certify::intersect_curve(a, b, Mode::Filtered, opt);
+    auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
     EXPECT_EQ(r.topology.tu_case, std::stoi(key));
     expect_matches_morphology(r, "ellipsoid fixture case " + key);
   }
@@ -67,7 +67,7 @@ TEST(Intersect, ReadableFixtures) {
     };
     auto a = core::io::quadric_from_equation(fix(e.find("E1")->text()), {"t", 1, 1, ""});
     auto b = core::io::quadric_from_equation(fix(e.find("E2")->text()), {"t", 1, 1, ""});
-    auto r = certify::intersect_curve(a, b, Mode::Filtered, opt);
+    auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
     EXPECT_EQ(r.topology.tu_case, std::stoi(key));
     expect_matches_morphology(r, "readable fixture case " + key);
   }
@@ -100,9 +100,9 @@ TEST(Intersect, RigidMotionMovesTheBranches) {
   for (const auto& pr : pairs) {
     auto a = core::io::quadric_from_equation(pr[0], {"t", 1, 1, ""});
     auto b = core::io::quadric_from_equation(pr[1], {"t", 1, 1, ""});
-    auto r0 = certify::intersect_curve(a, b, Mode::Exact, opt);
+    auto r0 = trace::intersect_curve(a, b, Mode::Exact, opt);
     auto a1 = a.congruent(p), b1 = b.congruent(p);
-    auto r1 = certify::intersect_curve(a1, b1, Mode::Exact, opt);
+    auto r1 = trace::intersect_curve(a1, b1, Mode::Exact, opt);
     EXPECT_EQ(r0.topology.tu_case, r1.topology.tu_case) << pr[0];
     auto c0 = count(r0), c1 = count(r1);
     EXPECT_EQ(c0.loops, c1.loops) << pr[0];
@@ -131,19 +131,19 @@ TEST(Intersect, DegenerateInputsAreNotCertifiedCurves) {
   trace::TraceOptions opt;
   auto cyl = core::io::quadric_from_equation("x^2+y^2=1", {"t", 1, 1, ""});
   auto cyl2 = core::io::quadric_from_equation("(x-1)^2+y^2=1", {"t", 1, 1, ""});
-  auto r = certify::intersect_curve(cyl, cyl2, Mode::Exact, opt);
+  auto r = trace::intersect_curve(cyl, cyl2, Mode::Exact, opt);
   EXPECT_EQ(r.status, certify::Status::Undecided);
   EXPECT_TRUE(r.branches.empty());
   auto hyp = core::io::quadric_from_equation("x^2+y^2-z^2=1", {"t", 1, 1, ""});
-  auto r2 = certify::intersect_curve(hyp, cyl, Mode::Exact, opt); // no ellipsoid: out of scope
+  auto r2 = trace::intersect_curve(hyp, cyl, Mode::Exact, opt); // no ellipsoid: out of scope
   EXPECT_EQ(r2.status, certify::Status::Undecided);
 }
 
 namespace {
 
-certify::CurveResult curve(const std::string& a, const std::string& b) {
+trace::CurveResult curve(const std::string& a, const std::string& b) {
   trace::TraceOptions opt;
-  return certify::intersect_curve(core::io::quadric_from_equation(a, {"t", 1, 1, ""}),
+  return trace::intersect_curve(core::io::quadric_from_equation(a, {"t", 1, 1, ""}),
                                   core::io::quadric_from_equation(b, {"t", 1, 1, ""}),
                                   Mode::Filtered, opt);
 }

@@ -11,8 +11,8 @@
 //  * invariance under an exact rational rigid motion (also of the 2^-20 features).
 #include "surfcert/certify/morphology.hpp"
 #include "surfcert/certify/qsic.hpp"
-#include "surfcert/certify/trace/curve.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
+#include "surfcert/trace/curve.hpp"
 
 #include <gtest/gtest.h>
 

@@ -32,7 +32,7 @@
 // the outgoing point solves f = g = 0, |X - S| = r by Newton. Start points at which the curve
 // is singular (extreme_points returns them) are not starts; they join the list of singular
 // points. A walk leaving the scene by more than 100 L is on a non-compact branch and stops.
-#include "surfcert/certify/trace/curve.hpp"
+#include "surfcert/trace/curve.hpp"
 
 #include <algorithm>
 #include <cmath>

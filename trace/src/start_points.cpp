@@ -19,7 +19,7 @@
 // tangency point. It is rotated back and corrected by Newton; points that Newton cannot
 // handle because the curve is singular there are kept when they are on both surfaces.
 // The numerical steps after the exact root isolation are not certified.
-#include "surfcert/certify/trace/curve.hpp"
+#include "surfcert/trace/curve.hpp"
 
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"

@@ -3,7 +3,7 @@
 // special points marked, and the topology in the caption).
 #pragma once
 
-#include "surfcert/certify/trace/curve.hpp"
+#include "surfcert/trace/curve.hpp"
 
 #include <string>
 #include <vector>

@@ -8,7 +8,7 @@
 // branch holding its three projected <path class="curve">, then one <circle class="special">
 // per special point and view. The caption is XML-escaped (control characters and invalid
 // UTF-8 bytes are replaced) and written as <text class="caption">.
-#include "surfcert/certify/trace/export.hpp"
+#include "surfcert/trace/export.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,8 @@
 // surfcert::trace: approximate (floating-point) pieces of the intersection curve of two
 // quadrics, produced to match a certified topology. Nothing in this namespace claims
-// certainty: intersect_curve (certify/curve.hpp) compares what the tracer returns with the
-// certified morphology and reports "undecided" when they disagree.
+// certainty: intersect_curve (trace/intersect_curve.hpp) compares what the tracer returns with
+// the certified morphology from surfcert::certify and reports "undecided" when they disagree.
+// The tracer sits above certify (it uses certify's decisions, never the other way round).
 //
 // Conventions: points are affine (x, y, z) doubles; every returned point has been corrected
 // by Newton steps onto both surfaces; `residual` is the largest max(|f|, |g|)/scale over the

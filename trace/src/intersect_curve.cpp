@@ -1,15 +1,25 @@
-#include "surfcert/certify/curve.hpp"
+// surfcert::trace::intersect_curve: certified topology plus traced branches, checked against
+// it (see intersect_curve.hpp).
+#include "surfcert/trace/intersect_curve.hpp"
 
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/special_points.hpp"
-#include "surfcert/certify/trace/conics.hpp"
+#include "surfcert/trace/conics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-namespace surfcert::certify {
+namespace surfcert::trace {
 
+using certify::classify_qsic;
+using certify::complete_report_data;
+using certify::Mode;
+using certify::qsic_envelope_json;
+using certify::QsicResult;
+using certify::special_points;
+using certify::Status;
+using certify::to_string;
 using core::io::Json;
 
 std::vector<std::string> expected_branch_kinds(int c) {
@@ -49,12 +59,12 @@ bool isolated_kind(const std::string& k) {
   return k == "acnode" || k == "isolated_point";
 }
 
-double residual(const trace::QuadricPair& q, const trace::Point3& p) {
+double residual(const QuadricPair& q, const Point3& p) {
   double n = 1 + p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
   return std::max(std::fabs(q.f(p)), std::fabs(q.g(p))) / n;
 }
 
-bool branches_match(const std::vector<trace::Branch>& branches, int c) {
+bool branches_match(const std::vector<Branch>& branches, int c) {
   std::vector<std::string> got, want = expected_branch_kinds(c);
   for (const auto& br : branches)
     got.push_back(br.kind);
@@ -63,7 +73,7 @@ bool branches_match(const std::vector<trace::Branch>& branches, int c) {
   return got == want;
 }
 
-double diameter(const trace::Branch& br) {
+double diameter(const Branch& br) {
   double d = 0;
   for (size_t i = 0; i < br.points.size(); i += std::max<size_t>(1, br.points.size() / 16))
     for (const auto& q : br.points) {
@@ -89,7 +99,7 @@ void drop_point_sections(CurveResult& out, int expected_conics, double tol) {
     order[i] = i;
   std::sort(order.begin(), order.end(),
             [&](size_t x, size_t y) { return diameter(br[x]) > diameter(br[y]); });
-  std::vector<trace::Branch> keep;
+  std::vector<Branch> keep;
   for (size_t r = 0; r < order.size(); ++r) {
     const auto& b = br[order[r]];
     bool droppable = false;
@@ -108,14 +118,14 @@ void drop_point_sections(CurveResult& out, int expected_conics, double tol) {
 } // namespace
 
 CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode,
-                            const trace::TraceOptions& opt) {
+                            const TraceOptions& opt) {
   QsicResult t = classify_qsic(a, b, mode == Mode::Float ? Mode::Filtered : mode);
   complete_report_data(t, a, b);
   return trace_curve(a, b, std::move(t), opt);
 }
 
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                        QsicResult topology, const trace::TraceOptions& opt) {
+                        QsicResult topology, const TraceOptions& opt) {
   CurveResult out;
   out.tolerance = opt.tolerance;
   out.topology = std::move(topology);
@@ -137,8 +147,8 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     out.note = "intersect needs one ellipsoid (or sphere): the curve may be unbounded otherwise";
     return out;
   }
-  trace::QuadricPair q(a, b);
-  std::vector<trace::Point3> singular;
+  QuadricPair q(a, b);
+  std::vector<Point3> singular;
   for (const auto& p : t.special_points) {
     if (p.at_infinity) continue;
     if (isolated_kind(p.kind))
@@ -150,13 +160,13 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   if (quartic_case(c)) {
     // Float start points first (cheap); if the branches traced from them do not reproduce the
     // certified topology (a small loop missed), the exact extreme points are used instead.
-    out.branches = trace::march(q, trace::extreme_points_float(q), singular, opt);
+    out.branches = march(q, extreme_points_float(q), singular, opt);
     if (!branches_match(out.branches, c)) {
-      out.branches = trace::march(q, trace::extreme_points(a, b), singular, opt);
+      out.branches = march(q, extreme_points(a, b), singular, opt);
       out.exact_start_points = true;
     }
   } else if (t.morphology->conics > 0) {
-    out.branches = trace::conic_branches(a, b, t.facts, opt);
+    out.branches = conic_branches(a, b, t.facts, opt);
     drop_point_sections(out, t.morphology->conics, opt.tolerance);
   }
   for (const auto& br : out.branches)
@@ -173,7 +183,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   std::sort(want.begin(), want.end());
   bool points_ok = static_cast<int>(out.isolated_points.size()) == t.morphology->isolated_points;
   bool closed_ok = std::all_of(out.branches.begin(), out.branches.end(),
-                               [](const trace::Branch& br) { return br.closed; });
+                               [](const Branch& br) { return br.closed; });
   out.matches_topology = got == want && points_ok && closed_ok && t.special_points_complete;
   if (out.matches_topology) {
     out.status = Status::Certified;
@@ -205,7 +215,7 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
     std::snprintf(buf, sizeof buf, "%.17g", x);
     return Json::number_text(buf);
   };
-  auto point = [&](const trace::Point3& p) {
+  auto point = [&](const Point3& p) {
     Json a3 = Json::array();
     for (double x : p)
       a3.push_back(num(x));
@@ -235,4 +245,4 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
   return env;
 }
 
-} // namespace surfcert::certify
+} // namespace surfcert::trace

@@ -1,6 +1,6 @@
 // QuadricPair (the pair as normalised doubles) and project_onto_curve (minimum-norm
 // Gauss-Newton onto f = g = 0). Approximate, like all of surfcert::trace.
-#include "surfcert/certify/trace/curve.hpp"
+#include "surfcert/trace/curve.hpp"
 
 #include <algorithm>
 #include <cmath>

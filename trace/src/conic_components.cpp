@@ -13,7 +13,8 @@
 // and degenerate conics (a point: a tangent plane; a line pair) are skipped, as are planes at
 // infinity and planes already used. Each sample is corrected by Gauss-Newton onto
 // {plane = 0, Q = 0} (transversal even along a double conic, where grad f x grad g vanishes).
-#include "surfcert/certify/trace/conics.hpp"
+#include "surfcert/trace/conics.hpp"
+
 #include "surfcert/algebra/eigen4.hpp"
 
 #include <algorithm>

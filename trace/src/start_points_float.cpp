@@ -6,7 +6,7 @@
 // missed; the caller checks the traced branches against the certified topology and then
 // falls back to the exact construction.
 #include "surfcert/algebra/real_roots.hpp"
-#include "surfcert/certify/trace/curve.hpp"
+#include "surfcert/trace/curve.hpp"
 
 #include <cmath>
 #include <complex>

@@ -11,7 +11,7 @@
 #pragma once
 
 #include "surfcert/algebra/pencil.hpp"
-#include "surfcert/certify/trace/curve.hpp"
+#include "surfcert/trace/curve.hpp"
 
 namespace surfcert::trace {
 

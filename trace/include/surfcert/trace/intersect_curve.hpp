@@ -1,0 +1,57 @@
+// surfcert::trace::intersect_curve: the certified topology of the intersection of two
+// quadrics (from surfcert::certify) plus every branch of the curve as a polyline, checked
+// against that topology. This is the tracer layer's entry point: built on certify, used by
+// the application layer (surfcert::app) and the CLI.
+//
+// The topology (certify::classify_qsic) is certified. The branches come from the float tracer
+// (trace/curve.hpp, trace/conics.hpp) and are approximations: every point is corrected onto
+// both surfaces and the largest residual is reported. Invariant: status is Certified only when
+// the branches returned have exactly the number and kinds the certified morphology prescribes
+// (loops, figure eight, loop with cusp, conics, double conic, isolated points); otherwise
+// Undecided, with what was found and why.
+// Scope: an ellipsoid (or sphere) and any second quadric, where the real curve is bounded
+// and the projective topology is the affine one.
+#pragma once
+
+#include "surfcert/certify/qsic.hpp"
+#include "surfcert/core/io/json.hpp"
+#include "surfcert/trace/curve.hpp"
+
+#include <string>
+#include <vector>
+
+namespace surfcert::trace {
+
+struct CurveResult {
+  certify::QsicResult topology;
+  certify::Status status = certify::Status::Error;
+  std::vector<Branch> branches;
+  std::vector<Point3> isolated_points;
+  double max_residual = 0; ///< max over returned points of max(|f|, |g|), normalised quadrics
+  double tolerance = 2e-4;
+  bool matches_topology = false;
+  bool exact_start_points = false; ///< the float start points missed a branch: exact ones used
+  std::string note;
+};
+
+/// Topology (in `mode`), special points, and branches (tracing only what the topology needs:
+/// conics from the factored singular members, quartic branches by marching from exact extreme
+/// points, isolated points from the exact special points).
+CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                            certify::Mode mode, const TraceOptions& opt);
+
+/// The same from a topology already computed by certify::classify_qsic
+/// (certify::complete_report_data is not needed: the special points are computed here when
+/// missing).
+CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                        certify::QsicResult topology, const TraceOptions& opt);
+
+/// {"status", "mode", ..., "result": {classification fields..., "branches": [...],
+/// "isolated_points": [...], "max_residual", "tolerance", "branches_match_topology"}}.
+core::io::Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
+                                   const core::QuadricMatrix& b);
+
+/// Expected branch kinds for a Tu case (ellipsoid cases), e.g. {"loop", "loop"} for case 1.
+std::vector<std::string> expected_branch_kinds(int tu_case);
+
+} // namespace surfcert::trace
