@@ -531,7 +531,10 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
   arb_get_ubound_arf(u, U.v, prec);
   if (arf_sgn(l) > 0) { // S1 misses every ball: the distance is min phi
     out.status = done ? Status::Certified : Status::Undecided;
-    if (!done) out.note = "the enclosure did not reach the requested width";
+    if (!done) {
+      out.note = "the enclosure did not reach the requested width";
+      out.width_short = true;
+    }
     out.distance = Enclosure::from_bounds(l, u, digits);
     if (out.minimizers.empty()) out.minimizers = std::to_string(best.size());
     for (const auto& cd : best)

@@ -57,14 +57,34 @@ void finalize(DistanceResult& r, long digits) {
 
 // Computes, and when a certified enclosure misses the width contract, computes once more
 // with more digits (a route's own refinement stopped short, e.g. cancellation in d - r).
+// A tiny distance computed as a difference of O(1) quantities loses digits to cancellation:
+// up to three retries, each doubling the working digits (capped at 1000).
 template <class F> DistanceResult with_width_contract(F&& compute, long digits) {
   DistanceResult r = compute(digits);
-  if (r.status == Status::Certified && r.distance && !r.distance->is_zero() &&
-      !r.distance->meets_width(digits) && digits < 1000) {
-    DistanceResult finer = compute(std::min(2 * digits + 10, 1000L));
+  auto short_of_width = [digits](const DistanceResult& x) {
+    if (x.status == Status::Certified)
+      return x.distance && !x.distance->is_zero() && !x.distance->meets_width(digits);
+    return x.status == Status::Undecided && x.width_short;
+  };
+  long working = digits;
+  for (int retry = 0; retry < 3 && short_of_width(r) && working < 1000; ++retry) {
+    working = std::min(2 * working + 10, 1000L);
+    DistanceResult finer = compute(working);
+    if (finer.status == Status::Undecided && finer.width_short && finer.distance &&
+        finer.distance->meets_width(digits)) {
+      // Everything but the width was proven at `working` digits, and the enclosure (which
+      // holds) meets the width asked for: certified at the requested digits.
+      finer.status = Status::Certified;
+      finer.width_short = false;
+      finer.note = "certified to " + std::to_string(digits) + " digits with " +
+                   std::to_string(working) + " working digits (cancellation in a small distance)";
+    }
     if (finer.status == Status::Certified && finer.distance &&
-        (finer.distance->is_zero() || finer.distance->meets_width(digits)))
+        (finer.distance->is_zero() || finer.distance->meets_width(digits))) {
       r = std::move(finer);
+      break;
+    }
+    if (finer.status != Status::Certified && !finer.width_short) break; // another reason
   }
   finalize(r, digits);
   return r;

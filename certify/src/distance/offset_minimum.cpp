@@ -347,6 +347,7 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
   } else if (!done) {
     out.status = Status::Undecided;
     out.note = "the enclosure did not reach the requested width";
+    out.width_short = true;
   } else {
     out.status = Status::Certified;
     note_unproven_ties(out, cover.boxes.size());

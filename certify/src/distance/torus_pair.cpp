@@ -274,6 +274,13 @@ std::optional<DistanceResult> coaxial_tori(const core::Torus& a, const core::Tor
 
 } // namespace
 
+namespace {
+// Disjoint tubes: min over K1 of dist(K1(t), K2) - r1 - r2 at working precision prec
+// (nullopt: not proven at that precision).
+std::optional<DistanceResult> circle_pair_distance(const core::Torus& a, const core::Torus& b,
+                                                   long digits, long prec);
+} // namespace
+
 std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const core::Torus& b,
                                                   long digits) {
   if (auto r = coaxial_tori(a, b, digits)) return r;
@@ -281,7 +288,17 @@ std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const co
     if (auto r = nested_tubes(a, b, true, digits)) return r;
   if (a.r > b.r)
     if (auto r = nested_tubes(b, a, false, digits)) return r;
-  const long prec = bits_for(digits + 10);
+  // A tiny gap between the tubes is a difference of O(1) quantities: when the minimum is not
+  // separated from r1 + r2 at the first precision, retry with more working digits.
+  for (long extra : {10L, 40L + digits, 120L + 2 * digits})
+    if (auto r = circle_pair_distance(a, b, digits, bits_for(digits + extra))) return r;
+  return std::nullopt;
+}
+
+namespace {
+
+std::optional<DistanceResult> circle_pair_distance(const core::Torus& a, const core::Torus& b,
+                                                   long digits, long prec) {
   const Circle c1(a, prec), c2(b, prec);
   Ball r12, r;
   set_q(r12.v, a.r, prec);
@@ -349,5 +366,7 @@ std::optional<DistanceResult> torus_pair_distance(const core::Torus& a, const co
   }
   return res;
 }
+
+} // namespace
 
 } // namespace surfcert::certify

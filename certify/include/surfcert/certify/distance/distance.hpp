@@ -63,6 +63,9 @@ struct DistanceResult {
   /// Undecided because the offset system has a curve of solutions in the tried position (the
   /// quadric pair route then retries after a rational rotation).
   bool offset_curve_of_solutions = false;
+  /// Undecided only because the enclosure (which holds) is wider than asked: more working
+  /// digits may certify it (surface_distance retries).
+  bool width_short = false;
   std::vector<std::array<std::array<double, 3>, 2>> pairs; ///< (point on a, point on b), approx
   int critical_candidates = 0;
   int eliminated_degree = 0; ///< degree of the eliminated univariate polynomial
