@@ -37,7 +37,7 @@ TEST(CertifiedContract, UnprovenCountIsUndecidedNotACount) {
   const auto s = certify::surface_distance(a, q("x^2/4 + y^2/9 + z^2/49 = 1"), 15, false);
   ASSERT_EQ(s.status, certify::Status::Certified) << s.note;
   EXPECT_EQ(s.minimizers, "2");
-  EXPECT_EQ(s.ties, "proven");
+  EXPECT_EQ(s.ties, certify::Ties::Proven);
 }
 
 TEST(CertifiedContract, FlatQuarticAgainstCylinderNeverCountsThree) {

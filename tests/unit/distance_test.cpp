@@ -331,7 +331,7 @@ TEST(Distance, SphereRouteNearTies) {
           // minimizer. (Filtered mode answers the ellipsoid by convex duality.)
           if (exact || hyperboloid) {
             EXPECT_EQ(r.minimizers, "1") << ctx;
-            EXPECT_TRUE(r.ties.empty()) << ctx << " " << r.ties;
+            EXPECT_EQ(r.ties, certify::Ties::None) << ctx;
             EXPECT_EQ(r.pairs.size(), 1u) << ctx;
           }
         }
@@ -348,7 +348,7 @@ TEST(Distance, SphereRouteExactTieIsProven) {
         certify::surface_distance(q("x^2+y^2+z^2=1"), q(quad), 15, false, certify::Mode::Exact);
     expect_certified_around(r, h, 15, quad);
     EXPECT_EQ(r.minimizers, "2") << quad;
-    EXPECT_EQ(r.ties, "proven") << quad << " " << r.note;
+    EXPECT_EQ(r.ties, certify::Ties::Proven) << quad << " " << r.note;
     EXPECT_EQ(r.pairs.size(), 2u) << quad;
   }
   mpfr_clear(h);
@@ -398,7 +398,7 @@ TEST(Distance, SphereRouteNearTiesInsideAndUnseparated) {
     // the count must not read "2" — it is "undecided" with both candidates kept.
     EXPECT_EQ(r.minimizers, "undecided");
     EXPECT_EQ(r.minimizer_candidates, 2);
-    EXPECT_EQ(r.ties, "unproven") << r.note;
+    EXPECT_EQ(r.ties, certify::Ties::Unproven) << r.note;
   }
   mpfr_clears(truth, far, e, static_cast<mpfr_ptr>(nullptr));
 }

@@ -141,7 +141,7 @@ TEST(ImplicitDistance, CubicAgainstATorus) {
   const auto r = certify::surface_distance(cubic, torus, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.minimizers, "2");
-  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   double best = 1e300;
   for (int i = -600; i <= 600; ++i)
     for (int j = -600; j <= 600; ++j) {

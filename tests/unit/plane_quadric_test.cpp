@@ -128,7 +128,7 @@ TEST(PlaneQuadric, ParaboloidTiltedPlane) {
 TEST(PlaneQuadric, TiesLinesPlanesAndNonAttainment) {
   auto r = pq("z = 0", "x^2 + y^2 - z^2 = -1"); // between the sheets: 1, twice
   EXPECT_EQ(r.minimizers, "2");
-  EXPECT_EQ(r.ties, "proven");
+  EXPECT_EQ(r.ties, certify::Ties::Proven);
   EXPECT_LE(lo(r), 1);
   EXPECT_GE(hi(r), 1);
   expect_pair_ok(r, q("z = 0"), q("x^2 + y^2 - z^2 = -1"));

@@ -347,13 +347,13 @@ TEST(SphereFamily, TwoEndBallMinimaAreReportedAsTies) {
     ASSERT_TRUE(r.has_value()) << digits;
     EXPECT_TRUE(encloses(*r, ref)) << digits << ": " << r->lower();
     EXPECT_EQ(r->minimizers, "2") << r->note;
-    EXPECT_EQ(r->ties, "unproven");
+    EXPECT_EQ(r->ties, certify::Ties::Unproven);
     ASSERT_EQ(r->pairs.size(), 2u);
     EXPECT_NEAR(r->pairs[0][1][0], -r->pairs[1][1][0], 1e-9); // mirror images in x
     // the regions let the exact symmetry x -> -x of both surfaces prove the tie
     certify::DistanceResult t = *r;
     certify::prove_ties(t, core::Surface(torus_z()), core::Surface(K));
-    EXPECT_EQ(t.ties, "proven") << t.note;
+    EXPECT_EQ(t.ties, certify::Ties::Proven) << t.note;
   }
   mpfr_clear(ref);
 }

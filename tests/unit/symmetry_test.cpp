@@ -164,7 +164,7 @@ TEST(Symmetry, SeedPairTiesProvenInBothRoutes) {
     const auto r = certify::surface_distance(a, b, 15, false, mode);
     ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
     EXPECT_EQ(r.minimizers, "2");
-    EXPECT_EQ(r.ties, "proven") << r.note;
+    EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
     EXPECT_EQ(r.note.find("not proven"), std::string::npos) << r.note;
     EXPECT_NE(r.note.find("exactly the same distance"), std::string::npos) << r.note;
     expect_orbit(r, G);
@@ -174,7 +174,7 @@ TEST(Symmetry, SeedPairTiesProvenInBothRoutes) {
   const auto ma = moved(a), mb = moved(b);
   const auto r = certify::surface_distance(ma, mb, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   EXPECT_TRUE(overlap(r, certify::surface_distance(a, b, 15, false)));
   expect_orbit(r, certify::common_symmetries(core::Surface(ma), core::Surface(mb)));
   // The JSON reports it.
@@ -192,7 +192,7 @@ TEST(Symmetry, FourMinimizersOfAConcentricPair) {
     const auto r = certify::surface_distance(a, b, 15, false, mode);
     ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
     EXPECT_EQ(r.minimizers, "4");
-    EXPECT_EQ(r.ties, "proven") << r.note;
+    EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
     expect_orbit(r, G);
     if (mode == certify::Mode::Exact) {
       EXPECT_TRUE(overlap(r, prev));
@@ -210,7 +210,7 @@ TEST(Symmetry, SphereInsideEllipsoidExactRationalTie) {
   EXPECT_LE(std::stod(r.lower()), 1.0);
   EXPECT_GE(std::stod(r.upper()), 1.0);
   EXPECT_EQ(r.minimizers, "2");
-  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
 }
 
 TEST(Symmetry, TinyAsymmetryStaysUnproven) {
@@ -219,25 +219,25 @@ TEST(Symmetry, TinyAsymmetryStaysUnproven) {
   const auto a = q(kInner), b = q("x^2/4 + (y - 1/10^30)^2/9 + z^2/49 = 1");
   const auto r = certify::surface_distance(a, b, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_NE(r.ties, "proven") << r.note;
+  EXPECT_NE(r.ties, certify::Ties::Proven) << r.note;
   if (r.minimizers == "2") {
-    EXPECT_EQ(r.ties, "unproven");
+    EXPECT_EQ(r.ties, certify::Ties::Unproven);
   }
 }
 
 TEST(Symmetry, AmbiguousImagesProveNothing) {
   // Hand-made regions: the mirror image of region 0 meets regions 1 and 2, so nothing follows.
   certify::DistanceResult r;
-  r.ties = "unproven";
+  r.ties = certify::Ties::Unproven;
   r.tie_regions = {{{-1e-3, 1e-3}, {0.99, 1.01}, {-3.01, -2.99}},
                    {{-1e-3, 1e-3}, {-1.01, -0.99}, {-3.01, -2.99}},
                    {{-1e-3, 1e-3}, {-1.005, -0.995}, {-3.01, -2.99}}};
   certify::prove_ties(r, S(kInner), S(kOuter));
-  EXPECT_EQ(r.ties, "unproven");
+  EXPECT_EQ(r.ties, certify::Ties::Unproven);
   // Two well separated mirror regions are proven.
   r.tie_regions.pop_back();
   certify::prove_ties(r, S(kInner), S(kOuter));
-  EXPECT_EQ(r.ties, "proven");
+  EXPECT_EQ(r.ties, certify::Ties::Proven);
 }
 
 TEST(Symmetry, TorusRoutesProveTies) {
@@ -254,7 +254,7 @@ TEST(Symmetry, TorusRoutesProveTies) {
     EXPECT_LE(std::stod(r.lower()), 0.5);
     EXPECT_GE(std::stod(r.upper()), 0.5);
     EXPECT_EQ(r.minimizers, "2");
-    EXPECT_EQ(r.ties, "proven") << r.note;
+    EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
     expect_orbit(r, certify::common_symmetries(e, t));
   }
 }
@@ -272,7 +272,7 @@ TEST(Symmetry, TwoToriProveTies) {
   const auto r = certify::surface_distance(A, B, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.minimizers, "2");
-  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   expect_orbit(r, certify::common_symmetries(A, B));
   auto dist = [](double a, double b) {
     const double dx = 2 * std::cos(a), dy = 2 * std::sin(a) - 2 * std::cos(b),
@@ -311,7 +311,7 @@ TEST(Symmetry, CanalRouteProvesTies) {
   // a float test, so the count itself may stay unproven (two candidates), never a wrong count.
   EXPECT_TRUE(r.minimizers == "2" || (r.minimizers == "undecided" && r.minimizer_candidates == 2))
       << r.minimizers;
-  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   EXPECT_NEAR(r.approx(), std::sqrt(15.0) / 2 - 1.5, 1e-15);
   expect_orbit(r, certify::common_symmetries(canal, sphere));
 }
@@ -324,7 +324,7 @@ TEST(Symmetry, ConeRouteProvesTies) {
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.method, "cone_generator_bound");
   EXPECT_EQ(r.minimizers, "2");
-  EXPECT_EQ(r.ties, "proven") << r.note;
+  EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   EXPECT_NEAR(r.approx(), 5 / std::sqrt(2.0) - 1, 1e-14);
   expect_orbit(r, certify::common_symmetries(cone, sphere));
 }

@@ -10,6 +10,17 @@ namespace surfcert::certify {
 
 using core::io::Json;
 
+const char* to_string(Ties t) {
+  switch (t) {
+  case Ties::Proven:
+    return "proven";
+  case Ties::Unproven:
+    return "unproven";
+  default:
+    return "";
+  }
+}
+
 const char* const kUnprovenTiesNote =
     "several minimizing pairs at distances that agree to the requested precision: "
     "listed as minimizers (their equality is not proven)";
@@ -17,7 +28,7 @@ const char* const kUnprovenTiesNote =
 void note_unproven_ties(DistanceResult& out, size_t count) {
   if (count < 2) return;
   out.note += std::string(out.note.empty() ? "" : "; ") + kUnprovenTiesNote;
-  out.ties = "unproven";
+  out.ties = Ties::Unproven;
 }
 
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
@@ -39,7 +50,7 @@ bool is_count(const std::string& m) {
 void finalize(DistanceResult& r, long digits) {
   if (r.status == Status::Certified && is_count(r.minimizers)) {
     const long n = std::stol(r.minimizers);
-    if ((n > 1 && r.ties == "unproven") || r.count_unproven) {
+    if ((n > 1 && r.ties == Ties::Unproven) || r.count_unproven) {
       r.minimizer_candidates = n;
       r.minimizers = "undecided";
       r.note += std::string(r.note.empty() ? "" : "; ") +
@@ -164,7 +175,7 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
   res.set("solid", Json::boolean(r.solid));
   res.set("mode", Json::string(to_string(r.mode)));
   if (!r.method.empty()) res.set("method", Json::string(r.method));
-  if (!r.ties.empty()) res.set("ties", Json::string(r.ties));
+  if (r.ties != Ties::None) res.set("ties", Json::string(to_string(r.ties)));
   o.set("result", res);
   return o;
 }

@@ -544,7 +544,7 @@ Outcome sphere_run(Query& query) {
     out.minimizers = continuum ? "infinite" : std::to_string(S.size());
     out.status = Status::Certified;
     if (!continuum && S.size() > 1 && all_exact) {
-      out.ties = "proven";
+      out.ties = Ties::Proven;
       out.note += std::string(out.note.empty() ? "" : "; ") + "the " + std::to_string(S.size()) +
                   " minimizing pairs are at exactly the same distance (proven: the same exact "
                   "rational squared distance from the centre to the foot points)";
@@ -558,7 +558,7 @@ Outcome sphere_run(Query& query) {
                   "a circle of foot points and other critical points agree to the requested "
                   "precision: which of them attain the extreme (and so the minimizer count) is "
                   "not proven";
-      out.ties = "unproven";
+      out.ties = Ties::Unproven;
     } else if (!all_exact) {
       // Candidates left overlapping the extreme after the separation budget: all listed,
       // their equality unproven.

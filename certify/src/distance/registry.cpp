@@ -138,7 +138,7 @@ DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface&
   if (swapped)
     for (auto& pr : r.pairs)
       std::swap(pr[0], pr[1]);
-  if (r.ties == "unproven") prove_ties(r, a0, b0);
+  if (r.ties == Ties::Unproven) prove_ties(r, a0, b0);
   // Two quadrics handle solid in their routes; the parametric route passes it on itself.
   if (solid && kind != PairKind::QuadricQuadric && kind != PairKind::Parametric)
     apply_solid_option(r, a0, b0);

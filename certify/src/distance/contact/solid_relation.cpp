@@ -309,7 +309,7 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
     r.distance = Enclosure::zero();
     r.minimizers = "infinite";
     r.pairs.clear();
-    r.ties.clear();
+    r.ties = Ties::None;
     r.note = "solid distance: one solid contains the other (surface distance " + was + ")";
   } else if (n < 0) {
     r.note += std::string(r.note.empty() ? "" : "; ") +

@@ -188,7 +188,7 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
     out.note = "plane and quadric: the nearest parallel level the quadric reaches (" + how +
                "), a root of a polynomial of degree <= 2 over Q; closed form in Arb";
     if (nr.tie && out.minimizers == "2") {
-      out.ties = "proven";
+      out.ties = Ties::Proven;
       out.note += "; two levels at exactly the same distance on both sides of the plane "
                   "(the roots are +-rho exactly)";
     }

@@ -401,7 +401,7 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
     if (out.status == Status::Certified) {
       if (place == AxisPlacement::Off) {
         out.minimizers = "infinite";
-        out.ties.clear();
+        out.ties = Ties::None;
         out.tie_regions.clear();
         out.note = "coaxial surfaces of revolution: circles of closest pairs (proven off the "
                    "axis; one pair per circle shown)";
@@ -411,7 +411,7 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
                    (out.note.empty() ? std::string() : "; " + out.note);
       } else {
         out.minimizers = "undecided";
-        out.ties.clear();
+        out.ties = Ties::None;
         out.tie_regions.clear();
         out.note = "coaxial surfaces of revolution: the distance is certified, but whether the "
                    "closest points lie on the axis or form circles was not decided";

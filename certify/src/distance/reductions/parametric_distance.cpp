@@ -341,7 +341,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
   out.solid = solid;
   out.mode = mode;
   out.pairs.clear();
-  out.ties.clear();
+  out.ties = Ties::None;
   out.tie_regions.clear(); // they isolate the implicit route's minimizers, not ours
   out.tie_directions = out.tie_lines = false;
   out.minimizer_candidates = 0;
@@ -400,7 +400,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
     out.minimizers.clear();
     out.minimizer_candidates = 0;
     out.count_unproven = false;
-    out.ties.clear();
+    out.ties = Ties::None;
     out.pairs.clear();
     out.estimate.reset();
     if (imp.status == Status::Certified || imp.status == Status::Undecided)
@@ -451,7 +451,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
         // The contact set of the closure is not counted: the image crosses the other surface,
         // but a parametrisation may collapse the crossing curve to a point.
         out.minimizers = "undecided";
-        out.ties.clear();
+        out.ties = Ties::None;
         return finish("the image meets the other surface: exact image points on a parameter "
                       "segment (W nonzero on it) on both sides of it");
       }
@@ -472,7 +472,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
           // q is strictly inside the other solid, so are the image points near it (W(u, v) != 0
           // there: P is continuous and, its image a surface, not constant): infinitely many.
           out.minimizers = "infinite";
-          out.ties.clear();
+          out.ties = Ties::None;
           return finish("solid distance 0: an exact image point lies inside the other solid");
         }
       }
@@ -547,7 +547,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
   out.minimizers = continuum ? "undecided" : std::to_string(witnessed);
   out.minimizer_candidates = 0;
   out.count_unproven = !continuum;
-  out.ties.clear();
+  out.ties = Ties::None;
   std::string extra =
       "certified as [lower bound of the implicit surface, |q - y| for an exact image point q and "
       "a point y of the other surface proven by an exact sign change]; minimizers: the implicit "

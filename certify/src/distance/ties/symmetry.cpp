@@ -331,10 +331,10 @@ void prove_ties(DistanceResult& r, const core::Surface& a, const core::Surface& 
     const std::string unproven = std::string("; ") + kUnprovenTiesNote;
     const size_t at = r.note.find(unproven);
     if (at != std::string::npos) r.note.erase(at, unproven.size());
-    r.ties.clear();
+    r.ties = Ties::None;
     return;
   }
-  if (r.ties != "unproven" || n < 2) return;
+  if (r.ties != Ties::Unproven || n < 2) return;
   for (const auto& reg : r.tie_regions)
     if (reg.empty() || reg.size() % 3 != 0 || reg.size() != r.tie_regions[0].size()) return;
   const std::vector<Isometry> G = common_symmetries(a, b);
@@ -409,7 +409,7 @@ void prove_ties(DistanceResult& r, const core::Surface& a, const core::Surface& 
   for (size_t i = 0; i < n; ++i)
     for (size_t j = 0; j < n; ++j)
       if (i != j && !reach[i][j]) return;
-  r.ties = "proven";
+  r.ties = Ties::Proven;
   const std::string unproven = kUnprovenTiesNote;
   const size_t at = r.note.find(unproven);
   std::string proven = "the " + std::to_string(n) +

@@ -39,6 +39,11 @@
 
 namespace surfcert::certify {
 
+/// Whether several minimizers are proven to be at the same distance (JSON "ties":
+/// absent, "proven", "unproven").
+enum class Ties { None, Proven, Unproven };
+const char* to_string(Ties t);
+
 struct DistanceResult {
   Status status = Status::Error;
   std::string note;
@@ -78,10 +83,10 @@ struct DistanceResult {
   /// "offset_system", "closed_form", ...); empty when not recorded.
   std::string method;
   Mode mode = Mode::Filtered; ///< the mode the query ran in
-  /// Several minimizers: "unproven" (their distances agree to the requested precision only)
-  /// or "proven" (equal distances proven by an exact symmetry, symmetry.hpp); empty for one
-  /// minimizer or a continuum.
-  std::string ties;
+  /// Several minimizers: Unproven (their distances agree to the requested precision only;
+  /// the count is then reported "undecided") or Proven (equal distances proven by an exact
+  /// symmetry, symmetry.hpp, or equal exact values); None for one minimizer or a continuum.
+  Ties ties = Ties::None;
   /// For that proof, from routes that can give them: one region per minimizer (outward double
   /// intervals, three per point or direction) such that every global minimizer lies in a
   /// region and no region holds two; directions (unit normals) when tie_directions.
