@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pkgs="build-essential cmake libgmp-dev libmpfr-dev libmpfi-dev libflint-dev libflint-arb-dev
-      libcalcium-dev libcgal-dev libboost-dev libgtest-dev librsvg2-bin libxml2-utils python3
+      libcalcium-dev libcgal-dev libboost-dev libgtest-dev libcli11-dev libtbb-dev librsvg2-bin libxml2-utils python3
       clang libclang-rt-14-dev"  # clang + libFuzzer runtime: scripts/fuzz.sh only (builds use g++)
 missing=""
 for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
