@@ -6,14 +6,17 @@
 #include "surfcert/trace/intersect_curve.hpp"
 
 #include <flint/flint.h>
-#include <tuple>
+#include <tbb/global_control.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_scheduler_observer.h>
 
-#include <atomic>
 #include <cstdio>
 #include <istream>
+#include <memory>
+#include <mutex>
 #include <ostream>
 #include <set>
-#include <thread>
+#include <tuple>
 
 namespace surfcert::app {
 
@@ -288,71 +291,113 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
     out.set("status", Json::string("error"));
     out.set("error", input_error_json(e));
   } catch (const std::exception& e) {
-    out.set("status", Json::string("error"));
-    Json err = Json::object();
-    err.set("kind", Json::string("internal"));
-    err.set("message", Json::string(e.what()));
-    out.set("error", err);
+    return internal_error_line(*out.find("id"), e.what());
   }
   return out;
 }
 
-BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads) {
+Json internal_error_line(const Json& id, const std::string& message) {
+  Json out = Json::object();
+  out.set("id", id);
+  out.set("status", Json::string("error"));
+  Json err = Json::object();
+  err.set("kind", Json::string("internal"));
+  err.set("message", Json::string(message));
+  out.set("error", err);
+  return out;
+}
+
+FlintAbort::FlintAbort()
+    : std::runtime_error("FLINT/Arb aborted (flint_abort: an internal error in the arithmetic "
+                         "library)") {}
+
+namespace {
+
+[[noreturn]] void throw_flint_abort() {
+  std::fflush(stdout); // FLINT printed its diagnostic with printf just before aborting
+  throw FlintAbort();
+}
+
+// Frees FLINT's thread-local caches when a TBB worker leaves the scheduler (as the old worker
+// threads did with flint_cleanup before they ended).
+class FlintCleanupObserver : public tbb::task_scheduler_observer {
+public:
+  FlintCleanupObserver() { observe(true); }
+  ~FlintCleanupObserver() override { observe(false); }
+  void on_scheduler_exit(bool is_worker) override {
+    if (is_worker) flint_cleanup();
+  }
+};
+
+struct BatchItem {
+  std::string line;
+  long line_no = 0;
+  std::string result;
+  std::string status, kind;
+  bool fallback = false;
+};
+
+} // namespace
+
+void install_flint_abort_handler() {
+  static std::once_flag once;
+  std::call_once(once, [] { flint_set_abort(&throw_flint_abort); });
+}
+
+BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads,
+                         const BatchAnswer& answer) {
+  install_flint_abort_handler();
   BatchStats st;
   if (threads < 1) threads = 1;
-  const size_t chunk = 4096;
-  std::vector<std::string> lines;
-  std::vector<std::string> results;
-  std::vector<char> fb;
-  std::vector<std::string> status;
-  long first_line = 1;
-  bool eof = false;
-  while (!eof) {
-    lines.clear();
-    std::string l;
-    while (lines.size() < chunk) {
-      if (!std::getline(in, l)) {
-        eof = true;
-        break;
-      }
-      lines.push_back(l);
-    }
-    if (lines.empty()) break;
-    results.assign(lines.size(), std::string());
-    fb.assign(lines.size(), 0);
-    status.assign(lines.size(), std::string());
-    std::atomic<size_t> next{0};
-    auto work = [&]() {
-      for (size_t i; (i = next++) < lines.size();) {
-        bool f = false;
-        Json r = process_batch_line(lines[i], first_line + static_cast<long>(i), default_mode, &f);
-        fb[i] = f ? 1 : 0;
-        if (const Json* s = r.find("status")) status[i] = s->text();
-        results[i] = core::io::dump(r);
-      }
-    };
-    if (threads == 1) {
-      work();
-    } else {
-      std::vector<std::thread> pool;
-      for (int t = 0; t < threads; ++t)
-        pool.emplace_back([&]() {
-          work();
-          flint_cleanup(); // free this thread's FLINT caches
-        });
-      for (auto& t : pool)
-        t.join();
-    }
-    for (size_t i = 0; i < results.size(); ++i) {
-      out << results[i] << '\n';
-      ++st.lines;
-      if (status[i] == "error") ++st.errors;
-      if (status[i] == "undecided") ++st.undecided;
-      st.fallbacks += fb[i];
-    }
-    out.flush();
-    first_line += static_cast<long>(lines.size());
-  }
+  // --threads N: at most N threads answer lines, and at most 4 N lines are in flight (read,
+  // being answered, or waiting for an earlier line to be written).
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<size_t>(threads));
+  FlintCleanupObserver cleanup;
+  long next_line = 1;
+  tbb::parallel_pipeline(
+      static_cast<size_t>(4 * threads),
+      tbb::make_filter<void, std::shared_ptr<BatchItem>>(
+          tbb::filter_mode::serial_in_order,
+          [&](tbb::flow_control& fc) -> std::shared_ptr<BatchItem> {
+            auto item = std::make_shared<BatchItem>();
+            if (!std::getline(in, item->line)) {
+              fc.stop();
+              return nullptr;
+            }
+            item->line_no = next_line++;
+            return item;
+          }) &
+          tbb::make_filter<std::shared_ptr<BatchItem>, std::shared_ptr<BatchItem>>(
+              tbb::filter_mode::parallel,
+              [default_mode, &answer](std::shared_ptr<BatchItem> item) {
+                Json r;
+                try { // the per-line guard: nothing escapes into the pipeline
+                  r = answer ? answer(item->line, item->line_no, default_mode, &item->fallback)
+                             : process_batch_line(item->line, item->line_no, default_mode,
+                                                  &item->fallback);
+                } catch (const std::exception& e) {
+                  r = internal_error_line(Json::null(), e.what());
+                } catch (...) {
+                  r = internal_error_line(Json::null(), "unknown exception");
+                }
+                if (const Json* s = r.find("status")) item->status = s->text();
+                if (const Json* e = r.find("error"))
+                  if (const Json* k = e->is_object() ? e->find("kind") : nullptr)
+                    if (k->is_string()) item->kind = k->text();
+                item->result = core::io::dump(r);
+                return item;
+              }) &
+          tbb::make_filter<std::shared_ptr<BatchItem>, void>(
+              tbb::filter_mode::serial_in_order, [&](std::shared_ptr<BatchItem> item) {
+                out << item->result << '\n';
+                out.flush();
+                ++st.lines;
+                if (item->status == "error") ++st.errors;
+                if (item->status == "error" && item->kind == "internal") ++st.internal;
+                if (item->status == "undecided") ++st.undecided;
+                st.fallbacks += item->fallback ? 1 : 0;
+              }));
   return st;
 }
 

@@ -7,14 +7,20 @@
 // "intersect" adds the branches of the curve (traced or produced as conics); "distance" takes
 // any two surfaces (quadrics or tori), the other ops need two quadrics (checked on reading).
 // process_batch reads JSON lines and writes one JSON line per input line, in input order,
-// using N worker threads; a bad line yields an error line and the batch goes on.
+// through a TBB pipeline (serial in-order read -> parallel answer -> serial in-order write and
+// flush), so each answer is written as soon as it and all earlier ones are done; at most N
+// lines are answered at once. A bad line yields an error line and the batch goes on; so does a
+// line on which FLINT/Arb aborts (flint_abort is turned into a FlintAbort exception by
+// install_flint_abort_handler and answered as an "internal" error line).
 #pragma once
 
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/surface.hpp"
 
+#include <functional>
 #include <iosfwd>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,13 +50,34 @@ Scene read_scene(const core::io::Json& doc, const std::string& source,
 /// One result object: {"id", "op", "a", "b", "status", "mode", "result" | "error"}.
 core::io::Json run_query(const Scene& s, const Query& q, std::string* text_summary = nullptr);
 
-struct BatchStats {
-  long lines = 0, errors = 0, fallbacks = 0, undecided = 0;
+/// Thrown (through FLINT's C frames) by the handler install_flint_abort_handler installs, in
+/// place of FLINT's default flint_abort (which calls abort()).
+struct FlintAbort : std::runtime_error {
+  FlintAbort();
 };
 
-/// Reads JSON lines from `in`, writes result lines to `out` in input order.
+/// Installs (once, idempotent) a flint_abort handler that flushes stdout (where FLINT prints
+/// its diagnostic) and throws FlintAbort.
+void install_flint_abort_handler();
+
+struct BatchStats {
+  long lines = 0, errors = 0, fallbacks = 0, undecided = 0;
+  long internal = 0; ///< error lines of kind "internal" (also counted in errors)
+};
+
+/// How a batch answers one line (default: process_batch_line; tests substitute their own).
+using BatchAnswer = std::function<core::io::Json(const std::string& line, long line_no,
+                                                 certify::Mode default_mode, bool* fallback)>;
+
+/// Reads JSON lines from `in`, writes result lines to `out` in input order, each flushed as
+/// soon as it and every earlier line are answered; at most `threads` lines answered at once.
+/// Any exception escaping `answer` (e.g. FlintAbort) gives that line an "internal" error line.
 BatchStats process_batch(std::istream& in, std::ostream& out, certify::Mode default_mode,
-                         int threads);
+                         int threads, const BatchAnswer& answer = {});
+
+/// The error line of a line whose computation failed inside (not a bad input):
+/// {"id": id, "status": "error", "error": {"kind": "internal", "message": message}}.
+core::io::Json internal_error_line(const core::io::Json& id, const std::string& message);
 
 /// One batch line -> one result line (exposed for tests). line_no is 1-based.
 core::io::Json process_batch_line(const std::string& line, long line_no,
