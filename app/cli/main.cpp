@@ -1,6 +1,7 @@
-// The `surfcert` command line: classify, run, batch. Exit codes: 0 success, 2 bad input
-// (message with location on stderr, nothing written), 3 finished with undecided results,
-// 1 internal error.
+// The `surfcert` command line (CLI11): classify, intersect, distance, run, batch. Exit codes:
+// 0 success, 2 bad input or bad command line (message with location or option on stderr,
+// nothing written), 3 finished with undecided results, 1 internal error (for batch: some line
+// was answered with an "internal" error line, e.g. FLINT/Arb aborted on it).
 #include "surfcert/app/scene.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
@@ -9,12 +10,20 @@
 #include "surfcert/trace/export.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
 
+#include <CLI/CLI.hpp>
 #include <flint/flint.h>
 
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+
+#include <ext/stdio_filebuf.h>
+#include <unistd.h>
+
+#ifndef SURFCERT_VERSION
+#error "SURFCERT_VERSION comes from project(surfcert VERSION ...) (app/CMakeLists.txt)"
+#endif
 
 using namespace surfcert;
 using core::InputError;
@@ -23,8 +32,8 @@ using core::io::Json;
 
 namespace {
 
-const char* kUsage =
-    "surfcert 0.1.0: certified topology of the intersection of two quadrics\n"
+const std::string kUsage =
+    "surfcert " SURFCERT_VERSION ": certified topology of the intersection of two quadrics\n"
     "\n"
     "usage:\n"
     "  surfcert classify 'EQ_A' 'EQ_B' [--mode exact|filtered|float] [--json]\n"
@@ -35,7 +44,14 @@ const char* kUsage =
     "surfaces incl. {\"type\":\"torus\",...})\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N]     (JSON lines on stdin -> JSON lines on stdout)\n"
-    "  surfcert --help | --version\n"
+    "  surfcert --help | --version | COMMAND --help\n"
+    "\n"
+    "Options take their value as `--opt value` or `--opt=value`; --mode is exact, filtered or\n"
+    "float, --digits 1..1000, --tol 1e-12..1, --threads 1..256. batch writes one answer line per\n"
+    "input line, in input order, each as soon as it and all earlier lines are answered.\n"
+    "Exit codes: 0 success; 2 bad input or command line (nothing written); 3 some result\n"
+    "undecided; 1 internal error (batch: some line got an \"internal\" error line, e.g. FLINT\n"
+    "aborted on it; the other lines are still answered).\n"
     "\n"
     "Equations are polynomials in x, y, z (e.g. 'x^2 + y^2/4 + z^2 = 1'); numbers are read\n"
     "exactly (0.1 = 1/10). Mode filtered (default) answers from interval arithmetic when it is\n"
@@ -44,6 +60,13 @@ const char* kUsage =
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// The batch answers: a stream buffer on a duplicate of the original stdout.
+struct BatchOutput {
+  explicit BatchOutput(int fd) : buf(fd, std::ios::out) {}
+  ~BatchOutput() { buf.close(); }
+  __gnu_cxx::stdio_filebuf<char> buf;
 };
 
 certify::Mode mode_arg(const std::string& v) {
@@ -85,22 +108,32 @@ void write_atomically(const std::string& path, const std::string& content) {
   }
 }
 
-int cmd_classify(const std::vector<std::string>& args) {
+// The options CLI11 parsed (the equations are CLI11's leftovers: an equation may start with
+// '-', e.g. '-x^2 + y = 0', which CLI11 would otherwise take for a short option).
+struct Opts {
+  std::string mode = "filtered";
+  bool mode_given = false;
+  bool json = false, solid = false;
+  std::string tol, export_path, svg_path, out_path, scene_path;
+  long digits = 15;
+  int threads = 1;
+};
+
+// The equations of classify / intersect / distance: the arguments CLI11 left over, of which
+// any `--name` is an unknown option.
+std::vector<std::string> equations(const CLI::App& sub) {
   std::vector<std::string> eq;
-  certify::Mode mode = certify::Mode::Filtered;
-  bool json = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--json")
-      json = true;
-    else if (args[i] == "--mode" && i + 1 < args.size())
-      mode = mode_arg(args[++i]);
-    else if (args[i].rfind("--mode=", 0) == 0)
-      mode = mode_arg(args[i].substr(7));
-    else if (args[i].size() > 1 && args[i][0] == '-' && args[i][1] == '-')
-      throw UsageError("unknown option " + args[i]);
-    else
-      eq.push_back(args[i]);
+  for (const auto& a : sub.remaining()) {
+    if (a.size() > 1 && a[0] == '-' && a[1] == '-')
+      throw UsageError("unknown option " + a + " for " + sub.get_name());
+    eq.push_back(a);
   }
+  return eq;
+}
+
+int cmd_classify(const std::vector<std::string>& eq, const Opts& o) {
+  certify::Mode mode = mode_arg(o.mode);
+  bool json = o.json;
   if (eq.size() != 2) throw UsageError("classify needs exactly two equations");
   auto a = core::io::quadric_from_equation(eq[0], Location{"<argument 1>", 1, 1, ""});
   auto b = core::io::quadric_from_equation(eq[1], Location{"<argument 2>", 1, 1, ""});
@@ -119,33 +152,20 @@ std::string tol_text(double t) {
   return buf;
 }
 
-int cmd_intersect(const std::vector<std::string>& args) {
-  std::vector<std::string> eq;
-  certify::Mode mode = certify::Mode::Filtered;
-  bool json = false;
-  std::string export_path, svg_path;
+// --tol: a number (read exactly, e.g. 1/1000 or 2e-4) from 1e-12 to 1; 0 when it is none.
+double tol_value(const std::string& v) {
+  auto t = core::Rational::from_string(v);
+  double d = t ? t->to_double_approx() : 0;
+  return d >= 1e-12 && d <= 1 ? d : 0;
+}
+
+int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
+  certify::Mode mode = mode_arg(o.mode);
+  bool json = o.json;
+  const std::string& export_path = o.export_path;
+  const std::string& svg_path = o.svg_path;
   trace::TraceOptions opt;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--json")
-      json = true;
-    else if (args[i] == "--mode" && i + 1 < args.size())
-      mode = mode_arg(args[++i]);
-    else if (args[i] == "--export" && i + 1 < args.size())
-      export_path = args[++i];
-    else if (args[i] == "--svg" && i + 1 < args.size())
-      svg_path = args[++i];
-    else if (args[i] == "--tol" && i + 1 < args.size()) {
-      auto t = core::Rational::from_string(args[++i]);
-      double d = t ? t->to_double_approx() : 0;
-      if (!(d >= 1e-12 && d <= 1))
-        throw InputError(Location{"<command line>", 0, 0, ""}, "--tol between 1e-12 and 1",
-                         "\"" + args[i] + "\"");
-      opt.tolerance = d;
-    } else if (args[i].size() > 1 && args[i][0] == '-' && args[i][1] == '-')
-      throw UsageError("unknown option " + args[i]);
-    else
-      eq.push_back(args[i]);
-  }
+  if (!o.tol.empty()) opt.tolerance = tol_value(o.tol);
   if (eq.size() != 2) throw UsageError("intersect needs exactly two equations");
   auto ends_with = [](const std::string& s, const std::string& e) {
     return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
@@ -192,31 +212,10 @@ int cmd_intersect(const std::vector<std::string>& args) {
   return c.status == certify::Status::Undecided ? 3 : 0;
 }
 
-int cmd_distance(const std::vector<std::string>& args) {
-  std::vector<std::string> eq;
-  long digits = 15;
-  bool json = false, solid = false;
-  certify::Mode mode = certify::Mode::Filtered;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--json")
-      json = true;
-    else if (args[i] == "--mode" && i + 1 < args.size())
-      mode = mode_arg(args[++i]);
-    else if (args[i].rfind("--mode=", 0) == 0)
-      mode = mode_arg(args[i].substr(7));
-    else if (args[i] == "--solid")
-      solid = true;
-    else if (args[i] == "--digits" && i + 1 < args.size()) {
-      auto d = core::Integer::from_string(args[++i]);
-      if (!d || *d < core::Integer(1) || core::Integer(1000) < *d)
-        throw InputError(Location{"<command line>", 0, 0, ""}, "--digits from 1 to 1000",
-                         "\"" + args[i] + "\"");
-      digits = static_cast<long>(d->to_double_approx());
-    } else if (args[i].size() > 1 && args[i][0] == '-' && args[i][1] == '-')
-      throw UsageError("unknown option " + args[i]);
-    else
-      eq.push_back(args[i]);
-  }
+int cmd_distance(const std::vector<std::string>& eq, const Opts& o) {
+  long digits = o.digits;
+  bool json = o.json, solid = o.solid;
+  certify::Mode mode = mode_arg(o.mode);
   if (eq.size() != 2) throw UsageError("distance needs exactly two surfaces");
   // An argument starting with '{' is a JSON surface (shapes, matrices, a torus), else an
   // equation.
@@ -256,25 +255,12 @@ int cmd_distance(const std::vector<std::string>& args) {
   return d.status == certify::Status::Undecided ? 3 : 0;
 }
 
-int cmd_run(const std::vector<std::string>& args) {
-  std::string scene_path, out_path;
-  bool json = false;
+int cmd_run(const Opts& o) {
+  const std::string& scene_path = o.scene_path;
+  const std::string& out_path = o.out_path;
+  bool json = o.json;
   std::optional<certify::Mode> mode;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "-o" && i + 1 < args.size())
-      out_path = args[++i];
-    else if (args[i] == "--json")
-      json = true;
-    else if (args[i] == "--mode" && i + 1 < args.size())
-      mode = mode_arg(args[++i]);
-    else if (!args[i].empty() && args[i][0] == '-')
-      throw UsageError("unknown option " + args[i]);
-    else if (scene_path.empty())
-      scene_path = args[i];
-    else
-      throw UsageError("run takes one scene file");
-  }
-  if (scene_path.empty()) throw UsageError("run needs a scene file");
+  if (o.mode_given) mode = mode_arg(o.mode);
   Json doc = core::io::parse_json(read_file(scene_path), scene_path);
   app::Scene scene =
       app::read_scene(doc, scene_path, mode.value_or(certify::Mode::Filtered));
@@ -282,7 +268,7 @@ int cmd_run(const std::vector<std::string>& args) {
     for (auto& q : scene.queries)
       q.mode = *mode; // the command line wins over the scene
   Json report = Json::object();
-  report.set("surfcert_version", Json::string("0.1.0"));
+  report.set("surfcert_version", Json::string(SURFCERT_VERSION));
   report.set("scene", Json::string(scene_path));
   Json results = Json::array();
   std::string text;
@@ -304,63 +290,135 @@ int cmd_run(const std::vector<std::string>& args) {
   return undecided ? 3 : 0;
 }
 
-int cmd_batch(const std::vector<std::string>& args) {
-  certify::Mode mode = certify::Mode::Filtered;
-  int threads = 1;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--mode" && i + 1 < args.size())
-      mode = mode_arg(args[++i]);
-    else if (args[i] == "--threads" && i + 1 < args.size()) {
-      try {
-        threads = std::stoi(args[++i]);
-      } catch (...) {
-        threads = 0;
-      }
-      if (threads < 1 || threads > 256)
-        throw InputError(Location{"<command line>", 0, 0, ""}, "--threads between 1 and 256",
-                         "\"" + args[i] + "\"");
-    } else
-      throw UsageError("unknown batch argument " + args[i]);
-  }
+int cmd_batch(const Opts& o) {
+  certify::Mode mode = mode_arg(o.mode);
   std::ios::sync_with_stdio(false);
-  auto st = app::process_batch(std::cin, std::cout, mode, threads);
-  std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors, "
-            << st.undecided << " undecided, " << st.fallbacks << " exact fallbacks\n";
+  // FLINT prints the diagnostic of an abort with printf on stdout: while the batch runs, fd 1
+  // is stderr and the answers go to a private duplicate of the original stdout.
+  std::cout.flush();
+  std::fflush(stdout);
+  int out_fd = ::dup(1);
+  if (out_fd < 0 || ::dup2(2, 1) < 0) throw std::runtime_error("cannot duplicate stdout");
+  BatchOutput answers(out_fd);
+  app::BatchStats st;
+  {
+    std::ostream out(&answers.buf);
+    st = app::process_batch(std::cin, out, mode, o.threads);
+    out.flush();
+  }
+  std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("
+            << st.internal << " internal), " << st.undecided << " undecided, " << st.fallbacks
+            << " exact fallbacks\n";
+  if (st.internal > 0) return 1;
   return st.undecided > 0 ? 3 : 0;
+}
+
+CLI::Option* add_mode(CLI::App* sub, Opts& o) {
+  return sub
+      ->add_option("--mode", o.mode, "exact, filtered (default: interval filter, exact fallback) or float")
+      ->check(CLI::IsMember({"exact", "filtered", "float"}))
+      ->type_name("exact|filtered|float");
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+  app::install_flint_abort_handler(); // a FLINT abort becomes an internal error (exit code 1)
   int rc = 1;
+  Opts o;
+  CLI::App cli{"surfcert: certified topology of the intersection of two quadrics", "surfcert"};
+  cli.set_version_flag("--version", "surfcert " SURFCERT_VERSION);
+  cli.require_subcommand(1);
+  cli.footer("See README.md for the JSON contract.");
+
+  CLI::App* classify = cli.add_subcommand("classify", "classify 'EQ_A' 'EQ_B': topology of the curve");
+  classify->allow_extras();
+  add_mode(classify, o);
+  classify->add_flag("--json", o.json, "JSON envelope on stdout");
+
+  CLI::App* intersect =
+      cli.add_subcommand("intersect", "intersect 'EQ_A' 'EQ_B': topology and traced branches");
+  intersect->allow_extras();
+  add_mode(intersect, o);
+  intersect->add_flag("--json", o.json, "JSON envelope on stdout");
+  intersect
+      ->add_option("--tol", o.tol, "geometric tolerance of the traced branches, 1e-12 to 1")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return tol_value(v) > 0 ? std::string()
+                                    : "expected a number from 1e-12 to 1, found \"" + v + "\"";
+          },
+          "1e-12..1"));
+  intersect->add_option("--export", o.export_path, "write the branches to F.obj or F.ply");
+  intersect->add_option("--svg", o.svg_path, "draw the curve to F.svg");
+
+  CLI::App* distance = cli.add_subcommand(
+      "distance", "distance 'SURF_A' 'SURF_B': certified distance (equations or JSON surfaces)");
+  distance->allow_extras();
+  add_mode(distance, o);
+  distance->add_flag("--json", o.json, "JSON envelope on stdout");
+  distance->add_flag("--solid", o.solid, "distance between solids (0 when they overlap)");
+  distance->add_option("--digits", o.digits, "requested relative precision 10^-N, 1 to 1000")
+      ->check(CLI::Range(1L, 1000L));
+
+  CLI::App* run = cli.add_subcommand("run", "run SCENE.json: every query of a scene");
+  run->add_option("scene", o.scene_path, "the scene file")->required();
+  run->add_option("-o", o.out_path, "also write the JSON report to this file (atomically)");
+  run->add_flag("--json", o.json, "JSON report on stdout");
+  add_mode(run, o);
+
+  CLI::App* batch =
+      cli.add_subcommand("batch", "JSON lines on stdin -> JSON lines on stdout, in input order");
+  add_mode(batch, o);
+  batch->add_option("--threads", o.threads, "lines answered at once, 1 to 256")
+      ->check(CLI::Range(1, 256));
+
   try {
-    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    if (argc < 2) {
       std::cout << kUsage;
-      rc = args.empty() ? 2 : 0;
-    } else if (args[0] == "--version") {
-      std::cout << "surfcert 0.1.0\n";
-      rc = 0;
+      rc = 2;
     } else {
-      std::vector<std::string> rest(args.begin() + 1, args.end());
-      if (args[0] == "classify")
-        rc = cmd_classify(rest);
-      else if (args[0] == "run")
-        rc = cmd_run(rest);
-      else if (args[0] == "intersect")
-        rc = cmd_intersect(rest);
-      else if (args[0] == "distance")
-        rc = cmd_distance(rest);
-      else if (args[0] == "batch")
-        rc = cmd_batch(rest);
-      else
-        throw UsageError("unknown command " + args[0]);
+      const std::string first = argv[1];
+      if (!first.empty() && first[0] != '-' && first != "classify" && first != "intersect" &&
+          first != "distance" && first != "run" && first != "batch")
+        throw UsageError("unknown command " + first);
+      try {
+        cli.parse(argc, argv);
+      } catch (const CLI::CallForHelp&) {
+        auto subs = cli.get_subcommands();
+        std::cout << (subs.empty() ? kUsage : subs[0]->help());
+        flint_cleanup();
+        return 0;
+      } catch (const CLI::CallForAllHelp&) {
+        std::cout << cli.help("", CLI::AppFormatMode::All);
+        flint_cleanup();
+        return 0;
+      } catch (const CLI::CallForVersion& e) {
+        std::cout << e.what() << "\n";
+        flint_cleanup();
+        return 0;
+      } catch (const CLI::ParseError& e) {
+        throw UsageError(e.what());
+      }
+      for (CLI::App* sub : cli.get_subcommands())
+        for (CLI::Option* opt : sub->get_options())
+          if (opt->get_name() == "--mode" && opt->count() > 0) o.mode_given = true;
+      if (classify->parsed())
+        rc = cmd_classify(equations(*classify), o);
+      else if (intersect->parsed())
+        rc = cmd_intersect(equations(*intersect), o);
+      else if (distance->parsed())
+        rc = cmd_distance(equations(*distance), o);
+      else if (run->parsed())
+        rc = cmd_run(o);
+      else if (batch->parsed())
+        rc = cmd_batch(o);
     }
   } catch (const InputError& e) {
     std::cerr << "surfcert: error: " << e.what() << "\n";
     rc = 2;
   } catch (const UsageError& e) {
-    std::cerr << "surfcert: " << e.what() << "\n\n" << kUsage;
+    std::cerr << "surfcert: error: " << e.what() << "\n\n" << kUsage;
     rc = 2;
   } catch (const std::exception& e) {
     std::cerr << "surfcert: internal error: " << e.what() << "\n";

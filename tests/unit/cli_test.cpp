@@ -7,6 +7,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -257,4 +258,68 @@ TEST(Cli, JsonDoublesAreReadAsExactDyadicsAndStringsAsDecimals) {
   EXPECT_EQ(m.find("a")->items()[0].items()[0].text(), "3602879701896397/36028797018963968");
   EXPECT_EQ(m.find("b")->items()[0].items()[0].text(), "1/10");
   EXPECT_EQ(m.find("b")->items()[3].items()[3].text(), "-1/4");
+}
+
+TEST(Cli, OptionsTakeTheirValueEitherWay) {
+  const std::string a = "'x^2+y^2+z^2=1'", b = "'(x-3)^2+y^2+z^2=1'";
+  auto spaced = run("distance --digits 20 --mode exact --json " + a + " " + b);
+  auto joined = run("distance --digits=20 --mode=exact --json " + a + " " + b);
+  ASSERT_EQ(spaced.code, 0) << spaced.err;
+  ASSERT_EQ(joined.code, 0) << joined.err;
+  EXPECT_EQ(spaced.out, joined.out);
+  std::string in = "{\"id\": 1, \"op\": \"classify\", \"a\": " + std::string("\"x^2+y^2+z^2=1\"") +
+                   ", \"b\": \"(x-1)^2+y^2+z^2=1\"}\n";
+  auto t1 = run("batch --threads 2 --mode exact", in);
+  auto t2 = run("batch --threads=2 --mode=exact", in);
+  ASSERT_EQ(t1.code, 0) << t1.err;
+  EXPECT_EQ(t1.out, t2.out);
+  auto tol = run("intersect --tol=1/1000 'x^2+y^2+z^2=1' '(x-1)^2+y^2+z^2=1' --json");
+  EXPECT_EQ(tol.code, 0) << tol.err;
+  // An equation may start with '-' (not an option).
+  auto neg = run("classify '-x^2-y^2-z^2=-1' '(x-1)^2+y^2+z^2=1'");
+  EXPECT_EQ(neg.code, 0) << neg.err;
+  EXPECT_NE(neg.out.find("one_conic"), std::string::npos) << neg.out;
+}
+
+TEST(Cli, BadOptionsExitTwoNamingTheOption) {
+  const std::string eqs = " 'x^2+y^2+z^2=1' '(x-3)^2+y^2+z^2=1'";
+  struct Bad {
+    std::string args, needle;
+  } cases[] = {
+      {"distance --digits 2000" + eqs, "--digits"},
+      {"distance --digits=0" + eqs, "--digits"},
+      {"distance --digits=many" + eqs, "--digits"},
+      {"classify --mode=fast" + eqs, "--mode"},
+      {"classify --mode" + eqs, "--mode"},
+      {"intersect --tol 5" + eqs, "--tol"},
+      {"classify --bogus" + eqs, "--bogus"},
+      {"batch --threads 0", "--threads"},
+      {"batch --threads=257", "--threads"},
+      {"batch --frobnicate", "--frobnicate"},
+      {"frobnicate", "frobnicate"},
+      {"run", "scene"},
+  };
+  for (const auto& c : cases) {
+    auto r = run(c.args, "");
+    EXPECT_EQ(r.code, 2) << c.args;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << " -> " << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.args << " -> " << r.out;
+  }
+}
+
+TEST(Cli, VersionAndHelp) {
+  auto v = run("--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_EQ(v.out.rfind("surfcert ", 0), 0u) << v.out;
+  EXPECT_EQ(std::count(v.out.begin(), v.out.end(), '\n'), 1) << v.out;
+  auto h = run("--help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_NE(h.out.find("--opt=value"), std::string::npos);
+  EXPECT_NE(h.out.find(v.out.substr(0, v.out.size() - 1)), std::string::npos)
+      << "one version string: " << v.out << " / " << h.out;
+  auto sub = run("distance --help");
+  EXPECT_EQ(sub.code, 0);
+  EXPECT_NE(sub.out.find("--digits"), std::string::npos) << sub.out;
+  auto none = run("");
+  EXPECT_EQ(none.code, 2);
 }
