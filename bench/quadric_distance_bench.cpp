@@ -800,9 +800,9 @@ int main(int argc, char** argv) {
         const Case& c = cases[static_cast<size_t>(i)];
         const Run& run = runs[0][static_cast<size_t>(i)];
         std::printf("- case %ld (15 digits: %s, [%s, %s], float f = %.6g): `%s` | `%s`\n", i,
-                    run.threw ? "exception" : certify::to_string(run.r.status), run.r.lower().c_str(),
-                    run.r.upper().c_str(), fl[static_cast<size_t>(i)].f, equation(c.a).c_str(),
-                    equation(c.b).c_str());
+                    run.threw ? "exception" : certify::to_string(run.r.status),
+                    run.r.lower().c_str(), run.r.upper().c_str(), fl[static_cast<size_t>(i)].f,
+                    equation(c.a).c_str(), equation(c.b).c_str());
       }
     }
     std::printf("\n");

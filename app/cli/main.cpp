@@ -262,8 +262,7 @@ int cmd_run(const Opts& o) {
   std::optional<certify::Mode> mode;
   if (o.mode_given) mode = mode_arg(o.mode);
   Json doc = core::io::parse_json(read_file(scene_path), scene_path);
-  app::Scene scene =
-      app::read_scene(doc, scene_path, mode.value_or(certify::Mode::Filtered));
+  app::Scene scene = app::read_scene(doc, scene_path, mode.value_or(certify::Mode::Filtered));
   if (mode)
     for (auto& q : scene.queries)
       q.mode = *mode; // the command line wins over the scene
@@ -315,7 +314,8 @@ int cmd_batch(const Opts& o) {
 
 CLI::Option* add_mode(CLI::App* sub, Opts& o) {
   return sub
-      ->add_option("--mode", o.mode, "exact, filtered (default: interval filter, exact fallback) or float")
+      ->add_option("--mode", o.mode,
+                   "exact, filtered (default: interval filter, exact fallback) or float")
       ->check(CLI::IsMember({"exact", "filtered", "float"}))
       ->type_name("exact|filtered|float");
 }
@@ -331,7 +331,8 @@ int main(int argc, char** argv) {
   cli.require_subcommand(1);
   cli.footer("See README.md for the JSON contract.");
 
-  CLI::App* classify = cli.add_subcommand("classify", "classify 'EQ_A' 'EQ_B': topology of the curve");
+  CLI::App* classify =
+      cli.add_subcommand("classify", "classify 'EQ_A' 'EQ_B': topology of the curve");
   classify->allow_extras();
   add_mode(classify, o);
   classify->add_flag("--json", o.json, "JSON envelope on stdout");
@@ -341,8 +342,7 @@ int main(int argc, char** argv) {
   intersect->allow_extras();
   add_mode(intersect, o);
   intersect->add_flag("--json", o.json, "JSON envelope on stdout");
-  intersect
-      ->add_option("--tol", o.tol, "geometric tolerance of the traced branches, 1e-12 to 1")
+  intersect->add_option("--tol", o.tol, "geometric tolerance of the traced branches, 1e-12 to 1")
       ->check(CLI::Validator(
           [](std::string& v) {
             return tol_value(v) > 0 ? std::string()

@@ -33,14 +33,14 @@ using certify::QsicResult;
 using certify::surface_distance;
 using certify::to_string;
 using core::InputError;
-using trace::curve_envelope_json;
-using trace::CurveResult;
-using trace::intersect_curve;
 using core::Location;
 using core::Rational;
 using core::io::Json;
 using core::io::json_path_child;
 using core::io::json_path_index;
+using trace::curve_envelope_json;
+using trace::CurveResult;
+using trace::intersect_curve;
 
 namespace {
 
@@ -183,9 +183,9 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
     if (text_summary)
       *text_summary =
           "distance: " + std::string(to_string(d.status)) +
-          (d.distance ? " in [" + d.lower() + ", " + d.upper() + "], minimizers " + d.minimizers
-                      : d.estimate ? " estimate " + std::to_string(d.estimate->value)
-                                   : std::string()) +
+          (d.distance   ? " in [" + d.lower() + ", " + d.upper() + "], minimizers " + d.minimizers
+           : d.estimate ? " estimate " + std::to_string(d.estimate->value)
+                        : std::string()) +
           (d.note.empty() ? "" : "\nnote: " + d.note) +
           (d.method.empty() ? "" : "\nmethod: " + d.method + " (mode " + to_string(d.mode) + ")") +
           "\n";

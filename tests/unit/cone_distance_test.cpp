@@ -27,7 +27,8 @@ namespace {
 
 // [lower - rho, upper - rho] of the smallest critical distance from c, outward rounded.
 surfcert::testing::Bounds sextic_minus(const std::array<core::Rational, 3>& c,
-                                     const core::QuadricMatrix& cone, long rho_num, long rho_den) {
+                                       const core::QuadricMatrix& cone, long rho_num,
+                                       long rho_den) {
   auto pq = certify::point_quadric_critical(c, cone, 30);
   EXPECT_TRUE(pq.ok);
   surfcert::testing::Bounds r;

@@ -52,8 +52,8 @@ TEST(FlintAbort, BatchAnswersInternalErrorAndGoesOn) {
     };
     std::istringstream is(in);
     std::ostringstream os;
-    auto st = surfcert::app::process_batch(is, os, surfcert::certify::Mode::Filtered, threads,
-                                           answer);
+    auto st =
+        surfcert::app::process_batch(is, os, surfcert::certify::Mode::Filtered, threads, answer);
     EXPECT_EQ(st.lines, 5);
     EXPECT_EQ(st.errors, 2);
     EXPECT_EQ(st.internal, 2);

@@ -147,7 +147,8 @@ TEST(ImplicitBnb, EllipsoidsAgainstTheOffsetRoute) {
                                              core::QuadricMatrix::from_poly(P(b)), 15, false,
                                              certify::Mode::Exact);
     ASSERT_EQ(e.status, certify::Status::Certified) << e.note;
-    EXPECT_TRUE(overlap(r, e)) << r.lower() << " " << r.upper() << " vs " << e.lower() << " " << e.upper();
+    EXPECT_TRUE(overlap(r, e)) << r.lower() << " " << r.upper() << " vs " << e.lower() << " "
+                               << e.upper();
     // the reported points lie on their surfaces and realise the distance
     const auto& pq = r.pairs[0];
     const double d = std::hypot(pq[0][0] - pq[1][0], pq[0][1] - pq[1][1], pq[0][2] - pq[1][2]);

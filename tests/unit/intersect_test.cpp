@@ -144,8 +144,8 @@ namespace {
 trace::CurveResult curve(const std::string& a, const std::string& b) {
   trace::TraceOptions opt;
   return trace::intersect_curve(core::io::quadric_from_equation(a, {"t", 1, 1, ""}),
-                                  core::io::quadric_from_equation(b, {"t", 1, 1, ""}),
-                                  Mode::Filtered, opt);
+                                core::io::quadric_from_equation(b, {"t", 1, 1, ""}), Mode::Filtered,
+                                opt);
 }
 
 } // namespace

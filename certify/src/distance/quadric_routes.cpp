@@ -598,7 +598,8 @@ void add_quadric_pair_routes(std::vector<Route>& t) {
                "contact, coincidence or a common apex from the certified QSIC topology", always,
                topology_run});
   t.push_back({"sphere_point_quadric", k, kAllModes,
-               "a sphere and a quadric: the gap d - r (or r - d) over the exact point-quadric critical distances",
+               "a sphere and a quadric: the gap d - r (or r - d) over the exact point-quadric "
+               "critical distances",
                sphere_apply, sphere_run});
   t.push_back({"offset_system", k, kAllModes,
                "two quadrics: every critical pair covered exactly (resultants), refined",

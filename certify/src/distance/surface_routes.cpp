@@ -211,8 +211,8 @@ void add_surface_pair_routes(std::vector<Route>& t) {
                "two tori as quartics: box pairs + Krawczyk", always, torus_pair_bnb_run});
   t.push_back({"sign_change_contact", K::TorusTorus, kAllModes, contact, always, contact_run});
   t.push_back({"sphere_family_bnb", K::TorusCanal, kAllModes,
-               "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk", always,
-               sphere_family_run});
+               "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk",
+               always, sphere_family_run});
   t.push_back({"sign_change_contact", K::TorusCanal, kAllModes, contact, always, contact_run});
   t.push_back({"implicit_bnb", K::TorusImplicit, kAllModes,
                "a torus and a bounded implicit surface: box pairs + Krawczyk", always,
@@ -228,8 +228,8 @@ void add_surface_pair_routes(std::vector<Route>& t) {
                "two capsules: segment-segment distance (exact square) minus the radii", always,
                capsule_pair_run});
   t.push_back({"sphere_family_bnb", K::CanalCanal, kAllModes,
-               "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk", always,
-               sphere_family_run});
+               "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk",
+               always, sphere_family_run});
   t.push_back({"sign_change_contact", K::CanalCanal, kAllModes, contact, always, contact_run});
   t.push_back({"sign_change_contact", K::CanalImplicit, kAllModes, contact, always, contact_run});
   t.push_back({"implicit_bnb", K::ImplicitImplicit, kAllModes,

@@ -44,8 +44,7 @@ struct Scene {
 };
 
 /// Throws core::InputError on any problem (with JSON path, line, column).
-Scene read_scene(const core::io::Json& doc, const std::string& source,
-                 certify::Mode default_mode);
+Scene read_scene(const core::io::Json& doc, const std::string& source, certify::Mode default_mode);
 
 /// One result object: {"id", "op", "a", "b", "status", "mode", "result" | "error"}.
 core::io::Json run_query(const Scene& s, const Query& q, std::string* text_summary = nullptr);
@@ -80,7 +79,7 @@ BatchStats process_batch(std::istream& in, std::ostream& out, certify::Mode defa
 core::io::Json internal_error_line(const core::io::Json& id, const std::string& message);
 
 /// One batch line -> one result line (exposed for tests). line_no is 1-based.
-core::io::Json process_batch_line(const std::string& line, long line_no,
-                                  certify::Mode default_mode, bool* fallback = nullptr);
+core::io::Json process_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
+                                  bool* fallback = nullptr);
 
 } // namespace surfcert::app
