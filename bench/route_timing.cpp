@@ -56,8 +56,8 @@ int main() {
                 .count());
       }
       std::sort(ts.begin(), ts.end());
-      std::printf("| %s | %ld | %.0f us | %s | %s |\n", c[0], dg, ts[3], r.method.c_str(),
-                  r.lower().substr(0, 20).c_str());
+      std::printf("| %s | %ld | %.0f us | %s | %s |\n", c[0], dg, ts[3],
+                  certify::to_string(r.method), r.lower().substr(0, 20).c_str());
     }
   }
 }

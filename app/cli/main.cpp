@@ -250,7 +250,7 @@ int cmd_distance(const std::vector<std::string>& eq, const Opts& o) {
       std::cout << "  pair (" << p[0][0] << ", " << p[0][1] << ", " << p[0][2] << ") - (" << p[1][0]
                 << ", " << p[1][1] << ", " << p[1][2] << ")\n";
     if (!d.note.empty()) std::cout << "note: " << d.note << "\n";
-    if (!d.method.empty()) std::cout << "method: " << d.method << "\n";
+    if (d.method != certify::Method::None) std::cout << "method: " << to_string(d.method) << "\n";
   }
   return d.status == certify::Status::Undecided ? 3 : 0;
 }

@@ -183,11 +183,14 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
     if (text_summary)
       *text_summary =
           "distance: " + std::string(to_string(d.status)) +
-          (d.distance   ? " in [" + d.lower() + ", " + d.upper() + "], minimizers " + d.minimizers
+          (d.distance
+               ? " in [" + d.lower() + ", " + d.upper() + "], minimizers " + d.minimizers.str()
            : d.estimate ? " estimate " + std::to_string(d.estimate->value)
                         : std::string()) +
           (d.note.empty() ? "" : "\nnote: " + d.note) +
-          (d.method.empty() ? "" : "\nmethod: " + d.method + " (mode " + to_string(d.mode) + ")") +
+          (d.method == certify::Method::None ? ""
+                                             : "\nmethod: " + std::string(to_string(d.method)) +
+                                                   " (mode " + to_string(d.mode) + ")") +
           "\n";
   } else if (q.op == "intersect") {
     const auto& a = std::get<core::QuadricMatrix>(s.surface(q.a));

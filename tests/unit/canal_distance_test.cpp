@@ -43,7 +43,7 @@ TEST(CanalDistance, CapsuleAgainstSpheres) {
   expect_value(r, 3.0, "inside");
   // One minimizer; the canal route merges duplicate candidates by a float test, so its count
   // may stay unproven ("undecided", one candidate), never a wrong count.
-  EXPECT_TRUE(r.minimizers == "1" || (r.minimizers == "undecided" && r.minimizer_candidates == 1))
+  EXPECT_TRUE(r.minimizers == "1" || (r.minimizers == "undecided" && r.minimizer_candidates() == 1))
       << r.minimizers;
   // Foot at the end B = (4,0,0): |(7,4,0) - B| - 2 = 3, in the end cap.
   expect_value(certify::surface_distance(eq("(x-7)^2+(y-4)^2+z^2=1"), c, 15, false), 3.0, "end");

@@ -51,7 +51,7 @@ TEST(CapsulePair, HandComputedConfigurations) {
   ASSERT_EQ(perp.status, certify::Status::Certified) << perp.note;
   EXPECT_TRUE(overlap(perp, exact_value("1.5"))) << perp.lower(); // 3 - 1 - 1/2
   EXPECT_EQ(perp.minimizers, "1");
-  EXPECT_EQ(perp.method, "capsule_closed_form");
+  EXPECT_EQ(perp.method, certify::Method::CapsuleClosedForm);
   auto par =
       certify::surface_distance(surf(c1), surf(capsule({-2, 5, 0}, {2, 5, 0}, 1, 2)), 15, false);
   ASSERT_EQ(par.status, certify::Status::Certified);
@@ -107,12 +107,12 @@ TEST(CapsulePair, RandomAgainstAFloatSampling) {
 TEST(CapsulePair, CrossingAndCurvedCanalsAreNotAnsweredHere) {
   auto x = certify::surface_distance(surf(capsule({0, 0, 0}, {4, 0, 0}, 1, 1)),
                                      surf(capsule({2, -3, 0}, {2, 3, 0}, 1, 1)), 15, false);
-  EXPECT_NE(x.method, "capsule_closed_form");
+  EXPECT_NE(x.method, certify::Method::CapsuleClosedForm);
   EXPECT_NE(x.status, certify::Status::Certified);
   auto c = certify::surface_distance(
       surf(capsule({0, 0, 0}, {4, 0, 0}, 1, 1)),
       surf(R"({"type":"canal","spine":[["10","1","0"],["0","0","1"],["0","0","0"]],)"
            R"("radius":["1/2"],"interval":[0,1]})"),
       15, false);
-  EXPECT_NE(c.method, "capsule_closed_form");
+  EXPECT_NE(c.method, certify::Method::CapsuleClosedForm);
 }

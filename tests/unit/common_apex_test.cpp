@@ -71,6 +71,6 @@ TEST(CommonApex, TextbookPairs) {
   const auto e = certify::surface_distance(q("x^2 + y^2 - z^2/100 = 0"),
                                            q("y^2 + z^2 - x^2/100 = 0"), 15, false);
   ASSERT_EQ(e.status, certify::Status::Certified) << e.note;
-  EXPECT_EQ(e.method, "common_apex");
+  EXPECT_EQ(e.method, certify::Method::CommonApex);
   EXPECT_EQ(e.minimizers, "1");
 }

@@ -59,7 +59,7 @@ TEST(ConeDistance, SphereAgainstThePointQuadricSextic) {
   const auto round = q("x^2 + y^2 - z^2 = 0");
   auto r = certify::surface_distance(q("(x-4)^2 + y^2 + z^2 = 1"), round, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.method, "cone_generator_bound");
+  EXPECT_EQ(r.method, certify::Method::ConeGeneratorBound);
   EXPECT_EQ(r.minimizers, "2"); // the generators x = z and x = -z
   EXPECT_TRUE(overlap(r, sextic_minus({4, 0, 0}, round, 1, 1))) << r.lower();
   // a tilted elliptic cone with its vertex at (1/2, -1, 0)
@@ -67,7 +67,7 @@ TEST(ConeDistance, SphereAgainstThePointQuadricSextic) {
                           .congruent(motion(1, 0, 0, 0, {core::Rational(1, 2), -1, 0}));
   auto t = certify::surface_distance(q("(x-5)^2 + (y-1)^2 + (z-1)^2 = 1/4"), tilted, 20, false);
   ASSERT_EQ(t.status, certify::Status::Certified) << t.note;
-  EXPECT_EQ(t.method, "cone_generator_bound");
+  EXPECT_EQ(t.method, certify::Method::ConeGeneratorBound);
   EXPECT_TRUE(overlap(t, sextic_minus({5, 1, 1}, tilted, 1, 2))) << t.lower();
 }
 
@@ -89,7 +89,8 @@ TEST(ConeDistance, RandomEllipsoidsAgainstTheOffsetMethod) {
       w = qd(rng), x = qd(rng), y = qd(rng), z = qd(rng);
     auto e = core::QuadricMatrix(m).congruent(motion(w, x, y, z, {off(rng), off(rng), off(rng)}));
     auto r = certify::surface_distance(e, cone, 15, false);
-    if (r.method != "cone_generator_bound") continue; // crossing draws: the exact route
+    if (r.method != certify::Method::ConeGeneratorBound)
+      continue; // crossing draws: the exact route
     auto ex = certify::surface_distance(e, cone, 15, false, certify::Mode::Exact);
     ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
     EXPECT_TRUE(overlap(r, ex)) << "case " << i << ": " << r.lower() << " vs " << ex.lower();
@@ -102,12 +103,12 @@ TEST(ConeDistance, RandomEllipsoidsAgainstTheOffsetMethod) {
 TEST(ConeDistance, AnswersOnlyWhatItProves) {
   const auto round = q("x^2 + y^2 - z^2 = 0");
   auto cross = certify::surface_distance(q("(x-1)^2 + y^2 + (z-1)^2 = 1/4"), round, 15, false);
-  EXPECT_NE(cross.method, "cone_generator_bound");
+  EXPECT_NE(cross.method, certify::Method::ConeGeneratorBound);
   EXPECT_EQ(cross.status, certify::Status::Certified); // the exact route: they meet
   EXPECT_EQ(cross.upper(), "0");
   auto axis = certify::surface_distance(q("x^2 + y^2 + (z-5)^2 = 1"), round, 15, false);
-  EXPECT_NE(axis.method, "cone_generator_bound"); // a circle of minimizers
+  EXPECT_NE(axis.method, certify::Method::ConeGeneratorBound); // a circle of minimizers
   auto many = certify::surface_distance(q("(x-4)^2 + y^2 + z^2 = 1"), round, 40, false);
-  EXPECT_NE(many.method, "cone_generator_bound");
+  EXPECT_NE(many.method, certify::Method::ConeGeneratorBound);
   EXPECT_EQ(many.status, certify::Status::Certified);
 }

@@ -361,8 +361,8 @@ TEST(ConvexDistance, ModesThroughThePublicApi) {
   auto fl = certify::surface_distance(a, b, 20, false, certify::Mode::Float);
   ASSERT_EQ(fil.status, certify::Status::Certified);
   ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
-  EXPECT_EQ(fil.method, "convex_duality");
-  EXPECT_EQ(ex.method, "offset_system");
+  EXPECT_EQ(fil.method, certify::Method::ConvexDuality);
+  EXPECT_EQ(ex.method, certify::Method::OffsetSystem);
   EXPECT_FALSE(ex.univariate_degrees.empty());
   EXPECT_TRUE(overlap(fil, ex)) << fil.lower() << " vs " << ex.lower();
   EXPECT_EQ(fl.status, certify::Status::Uncertified);

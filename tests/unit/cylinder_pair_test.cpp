@@ -80,7 +80,7 @@ TEST(CylinderPair, CrossedCircularClosedForm) {
     for (long digits : {15L, 100L}) {
       const auto res = dist(A, B, digits);
       ASSERT_EQ(res.status, certify::Status::Certified) << "seed 4242 case " << k << res.note;
-      EXPECT_EQ(res.method, "cylinder_closed_form");
+      EXPECT_EQ(res.method, certify::Method::CylinderClosedForm);
       EXPECT_EQ(res.minimizers, "1");
       mpfr_t d, l, u;
       mpfr_inits2(1000, d, l, u, static_cast<mpfr_ptr>(nullptr));

@@ -397,7 +397,7 @@ TEST(Distance, SphereRouteNearTiesInsideAndUnseparated) {
     // Not separated within the budget and not proven equal: the true minimizer is unique, so
     // the count must not read "2" — it is "undecided" with both candidates kept.
     EXPECT_EQ(r.minimizers, "undecided");
-    EXPECT_EQ(r.minimizer_candidates, 2);
+    EXPECT_EQ(r.minimizer_candidates(), 2);
     EXPECT_EQ(r.ties, certify::Ties::Unproven) << r.note;
   }
   mpfr_clears(truth, far, e, static_cast<mpfr_ptr>(nullptr));

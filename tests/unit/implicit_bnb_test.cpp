@@ -75,7 +75,7 @@ certify::DistanceResult run(const core::Poly3& f, const core::Poly3& g, long dig
 
 void expect_certified(const certify::DistanceResult& r, long digits) {
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.method, "implicit_bnb");
+  EXPECT_EQ(r.method, certify::Method::ImplicitBnb);
   EXPECT_LE(log10_rel_width(r), -static_cast<double>(digits) + 1e-9);
   EXPECT_GE(r.critical_candidates, 1);
   ASSERT_FALSE(r.pairs.empty());

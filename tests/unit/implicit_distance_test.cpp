@@ -62,7 +62,7 @@ TEST(ImplicitDistance, CubicGraphAgainstSpheres) {
   EXPECT_NEAR(r.pairs[0][0][2], h(r.pairs[0][0][0], r.pairs[0][0][1]), 1e-9); // on the cubic
   // The answer comes from the branch and bound with the cubic clipped near the sphere; the
   // offset system (normal lines of the cubic through the centre, exact elimination) agrees.
-  EXPECT_EQ(r.method, "implicit_bnb");
+  EXPECT_EQ(r.method, certify::Method::ImplicitBnb);
   const auto o = certify::implicit_quadric_distance(
       std::get<core::ImplicitSurface>(cubic).f,
       std::get<core::QuadricMatrix>(surf("x^2 + y^2 + (z-4)^2 = 1")), 20, true);
@@ -128,7 +128,7 @@ TEST(ImplicitDistance, BoundedQuarticAgainstPlanes) {
   EXPECT_EQ(r.upper(), "0") << r.note;
   r = certify::surface_distance(surf("x^3 + y^3 + z^3 = 1"), surf("z = 5"), 15, false);
   EXPECT_EQ(r.upper(), "0") << r.note;
-  EXPECT_EQ(r.method, "sign_change_contact");
+  EXPECT_EQ(r.method, certify::Method::SignChangeContact);
 }
 
 TEST(ImplicitDistance, CubicAgainstATorus) {
@@ -160,7 +160,7 @@ TEST(ImplicitDistance, BoundedQuarticAgainstEllipsoids) {
   const auto quartic = surf("x^4 + y^4 + z^4 = 1");
   auto r = certify::surface_distance(quartic, surf("(x - 7/2)^2 + y^2 + z^2 = 1/4"), 25, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.method, "implicit_bnb");
+  EXPECT_EQ(r.method, certify::Method::ImplicitBnb);
   mpfr_t two;
   mpfr_init2(two, 200);
   mpfr_set_ui(two, 2, MPFR_RNDN);
@@ -176,7 +176,7 @@ TEST(ImplicitDistance, BoundedQuarticAgainstEllipsoids) {
   const auto sph = surf("(x-3)^2 + (y-1)^2 + (z-1/2)^2 = 1");
   auto b = certify::surface_distance(bumpy, sph, 20, false);
   ASSERT_EQ(b.status, certify::Status::Certified) << b.note;
-  EXPECT_EQ(b.method, "implicit_bnb");
+  EXPECT_EQ(b.method, certify::Method::ImplicitBnb);
   auto o = certify::implicit_quadric_distance(std::get<core::ImplicitSurface>(bumpy).f,
                                               std::get<core::QuadricMatrix>(sph), 20, true);
   ASSERT_EQ(o.status, certify::Status::Certified) << o.note;
@@ -201,7 +201,7 @@ TEST(ImplicitDistance, BoundedQuarticAgainstATiltedCylinder) {
   const auto cyl = surf("(x-3)^2 + y^2 + z^2 - ((x-3) + y + 2z)^2/6 = 1");
   const auto r = certify::surface_distance(quartic, cyl, 20, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.method, "implicit_bnb");
+  EXPECT_EQ(r.method, certify::Method::ImplicitBnb);
   const auto point = [](double th, double ph) {
     const double u[3] = {std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)};
     const double A = u[0] * u[0] * u[0] * u[0] + u[1] * u[1] * u[1] * u[1] +
@@ -265,7 +265,7 @@ TEST(ImplicitDistance, ExtremeScalesAndTranslations) {
       const auto r = certify::surface_distance(surf(subst(Q, x, y, z)), surf(subst(other, x, y, z)),
                                                15, false);
       ASSERT_EQ(r.status, certify::Status::Certified) << s << ": " << r.note;
-      EXPECT_EQ(r.method, "implicit_bnb") << s;
+      EXPECT_EQ(r.method, certify::Method::ImplicitBnb) << s;
       EXPECT_TRUE(surfcert::testing::overlap_scaled(base, s, r))
           << s << ": " << r.lower() << " vs " << base.lower();
     }
@@ -273,7 +273,7 @@ TEST(ImplicitDistance, ExtremeScalesAndTranslations) {
         certify::surface_distance(surf(subst(Q, "(x-1000000)", "y", "z")),
                                   surf(subst(other, "(x-1000000)", "y", "z")), 15, false);
     ASSERT_EQ(t.status, certify::Status::Certified) << t.note;
-    EXPECT_EQ(t.method, "implicit_bnb");
+    EXPECT_EQ(t.method, certify::Method::ImplicitBnb);
     EXPECT_TRUE(surfcert::testing::overlap(base, t)) << t.lower() << " vs " << base.lower();
     ASSERT_FALSE(t.pairs.empty());
     ASSERT_FALSE(base.pairs.empty());
@@ -289,7 +289,7 @@ TEST(ImplicitDistance, DegreeEightAgainstAPlane) {
   ASSERT_TRUE(std::holds_alternative<core::ImplicitSurface>(octic));
   const auto r = certify::surface_distance(octic, surf("x + y + z = 5"), 25, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.method, "implicit_bnb");
+  EXPECT_EQ(r.method, certify::Method::ImplicitBnb);
   mpfr_t d, t;
   mpfr_inits2(300, d, t, static_cast<mpfr_ptr>(nullptr));
   mpfr_set_ui(t, 3, MPFR_RNDN);

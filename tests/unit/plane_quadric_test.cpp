@@ -209,7 +209,7 @@ TEST(PlaneQuadric, MotionsScalingsSwaps) {
   const auto base = certify::plane_quadric_distance(P, Q, 30, true);
   const auto m = motion(3, 1, -2, 5, {Rational(7, 3), Rational(-2), Rational(1, 9)});
   const auto moved = certify::surface_distance(P.congruent(m), Q.congruent(m), 30, false);
-  EXPECT_EQ(moved.method, "plane_closed_form");
+  EXPECT_EQ(moved.method, certify::Method::PlaneClosedForm);
   EXPECT_TRUE(overlap(base, moved)) << base.lower() << " " << moved.lower();
   // Swapped: the same distance, the quadric's point first.
   const auto sw = certify::surface_distance(Q, P, 30, false);

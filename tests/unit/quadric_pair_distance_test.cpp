@@ -172,7 +172,7 @@ TEST(QuadricPairDistance, RigidMotionsScalingAndPrecision) {
     auto m =
         certify::surface_distance(a.congruent(p), b.congruent(p), 15, false, certify::Mode::Exact);
     ASSERT_EQ(m.status, certify::Status::Certified) << k << " " << m.note;
-    EXPECT_EQ(m.method, "offset_system");
+    EXPECT_EQ(m.method, certify::Method::OffsetSystem);
     EXPECT_TRUE(overlap(r, m)) << k << ": " << m.lower() << " vs " << r.lower();
   }
   // Scaling by s scales d by s (s = 10^8 and 10^-8).
@@ -225,7 +225,7 @@ TEST(QuadricPairDistance, EllipsoidAgainstUnboundedQuadrics) {
   // attained (no minimizer).
   auto u = certify::surface_distance(q("x*y = 1"), q("x = 0"), 15, false);
   if (u.status == certify::Status::Certified) {
-    EXPECT_EQ(u.method, "plane_closed_form");
+    EXPECT_EQ(u.method, certify::Method::PlaneClosedForm);
     EXPECT_EQ(u.upper(), "0");
     EXPECT_EQ(u.minimizers, "0");
   }

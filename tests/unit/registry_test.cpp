@@ -36,8 +36,8 @@ const char* kCapsule = R"({"type":"capsule","from":[0,0,5],"to":[4,0,5],"radius"
 TEST(Registry, EveryRouteIsDescribed) {
   std::set<certify::PairKind> kinds;
   for (const auto& r : certify::distance_routes()) {
-    EXPECT_NE(r.id, nullptr);
-    EXPECT_GT(std::strlen(r.id), 0u);
+    EXPECT_NE(r.id, certify::Method::None);
+    EXPECT_GT(std::strlen(certify::to_string(r.id)), 0u);
     EXPECT_GT(std::strlen(r.proves), 0u) << r.id;
     EXPECT_NE(r.modes & certify::kAllModes, 0u) << r.id;
     EXPECT_NE(r.applies, nullptr);
@@ -55,10 +55,10 @@ TEST(Registry, EveryRouteIsDescribed) {
   // Non-quadric tables end with the contact fallback.
   for (auto k : kinds) {
     if (k == certify::PairKind::QuadricQuadric || k == certify::PairKind::Parametric) continue;
-    const char* last = nullptr;
+    certify::Method last = certify::Method::None;
     for (const auto& r : certify::distance_routes())
       if (r.kind == k) last = r.id;
-    EXPECT_STREQ(last, "sign_change_contact") << certify::to_string(k);
+    EXPECT_EQ(last, certify::Method::SignChangeContact) << certify::to_string(k);
   }
 }
 
@@ -120,7 +120,52 @@ TEST(Registry, FloatModeIsAnEstimate) {
   const auto r = certify::surface_distance(S("x^2+y^2+z^2=1"), S("(x-5)^2/4+y^2+z^2=1"), 15, false,
                                            certify::Mode::Float);
   EXPECT_EQ(r.status, certify::Status::Uncertified);
-  EXPECT_EQ(r.method, "convex_duality_float");
+  EXPECT_EQ(r.method, certify::Method::ConvexDualityFloat);
   EXPECT_FALSE(r.distance.has_value());
   ASSERT_TRUE(r.estimate.has_value());
+}
+
+// Method and Minimizers are enums with fixed JSON spellings: every method reads back from its
+// spelling, no two share one, and the envelope carries the count with how it was proven.
+TEST(Registry, MethodSpellingsRoundTrip) {
+  std::set<std::string> seen;
+  for (int i = 0; i <= static_cast<int>(certify::Method::ParametricReduction); ++i) {
+    const auto m = static_cast<certify::Method>(i);
+    const std::string text = certify::to_string(m);
+    EXPECT_TRUE(seen.insert(text).second) << text;
+    const auto back = certify::method_from_string(text);
+    ASSERT_TRUE(back.has_value()) << text;
+    EXPECT_EQ(*back, m);
+  }
+  EXPECT_FALSE(certify::method_from_string("no_such_route").has_value());
+}
+
+TEST(Registry, MinimizersCarryTheirProof) {
+  using M = certify::Minimizers;
+  EXPECT_EQ(M::count(2, M::Proof::Exact).str(), "2");
+  EXPECT_STREQ(M::count(2, M::Proof::Interval).proof_str(), "interval");
+  EXPECT_EQ(M::continuum(M::Proof::Exact).str(), "infinite");
+  EXPECT_EQ(M::not_attained(M::Proof::Exact).str(), "0");
+  EXPECT_EQ(M::undecided(3).str(), "undecided");
+  EXPECT_STREQ(M::undecided(3).proof_str(), "unproven");
+  EXPECT_TRUE(M().empty());
+  // A plane and a sphere: one minimizer, proven exactly (the closed form).
+  const auto plane = certify::surface_distance(S("z = 3"), S("x^2+y^2+z^2 = 1"), 15, false);
+  ASSERT_EQ(plane.status, certify::Status::Certified) << plane.note;
+  const auto j = certify::distance_envelope_json(plane, 15);
+  const auto* res = j.find("result");
+  ASSERT_NE(res, nullptr);
+  ASSERT_NE(res->find("minimizers"), nullptr);
+  EXPECT_EQ(res->find("minimizers")->text(), "1");
+  ASSERT_NE(res->find("minimizers_proof"), nullptr);
+  EXPECT_EQ(res->find("minimizers_proof")->text(), plane.minimizers.proof_str());
+  EXPECT_NE(res->find("minimizers_proof")->text(), "unproven");
+  // A parametric surface: this route's method, the implicit route beside it.
+  const auto par = certify::surface_distance(S(R"({"type":"parametric","x":"u","y":"v","z":"0"})"),
+                                             S("x^2+y^2+(z-3)^2 = 1"), 15, false);
+  EXPECT_EQ(par.method, certify::Method::ParametricReduction) << par.note;
+  EXPECT_NE(par.reduced_by, certify::Method::None) << par.note;
+  const auto pj = certify::distance_envelope_json(par, 15);
+  ASSERT_NE(pj.find("result")->find("reduced_by"), nullptr);
+  EXPECT_EQ(pj.find("result")->find("method")->text(), "parametric_reduction");
 }

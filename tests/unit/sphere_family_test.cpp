@@ -165,7 +165,7 @@ void expect_closed_form(const core::Surface& a, const core::Surface& b, long q, 
     EXPECT_TRUE(encloses(*r, ref))
         << what << " digits " << digits << ": [" << r->lower() << ", " << r->upper() << "]";
     EXPECT_EQ(r->minimizers, "1") << what << ": " << r->note;
-    EXPECT_EQ(r->method, "sphere_family_bnb");
+    EXPECT_EQ(r->method, certify::Method::SphereFamilyBnb);
     ASSERT_EQ(r->pairs.size(), 1u) << what;
     EXPECT_NEAR(pair_length(r->pairs[0]), r->approx(), 1e-9) << what;
     if (prev) {

@@ -309,7 +309,7 @@ TEST(Symmetry, CanalRouteProvesTies) {
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   // Two minimizers; their equality is proven, but the canal route's candidates were merged by
   // a float test, so the count itself may stay unproven (two candidates), never a wrong count.
-  EXPECT_TRUE(r.minimizers == "2" || (r.minimizers == "undecided" && r.minimizer_candidates == 2))
+  EXPECT_TRUE(r.minimizers == "2" || (r.minimizers == "undecided" && r.minimizer_candidates() == 2))
       << r.minimizers;
   EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   EXPECT_NEAR(r.approx(), std::sqrt(15.0) / 2 - 1.5, 1e-15);
@@ -322,7 +322,7 @@ TEST(Symmetry, ConeRouteProvesTies) {
   const auto cone = S("x^2 + y^2 - z^2 = 0"), sphere = S("(x-5)^2 + y^2 + z^2 = 1");
   const auto r = certify::surface_distance(cone, sphere, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-  EXPECT_EQ(r.method, "cone_generator_bound");
+  EXPECT_EQ(r.method, certify::Method::ConeGeneratorBound);
   EXPECT_EQ(r.minimizers, "2");
   EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   EXPECT_NEAR(r.approx(), 5 / std::sqrt(2.0) - 1, 1e-14);

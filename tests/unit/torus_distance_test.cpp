@@ -116,7 +116,7 @@ TEST(TorusDistance, EllipsoidAgainstFloatSearchAndRigidMotions) {
                                       false, certify::Mode::Exact);
   ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
   EXPECT_EQ(ex.system_degrees, (std::vector<long>{2, 2, 4}));
-  EXPECT_EQ(ex.method, "offset_system");
+  EXPECT_EQ(ex.method, certify::Method::OffsetSystem);
   EXPECT_LE(lo(ex), hi(r));
   EXPECT_LE(lo(r), hi(ex));
   // Float search: ellipsoid samples against the torus distance |dist(x, K) - r|.

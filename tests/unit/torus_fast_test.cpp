@@ -315,7 +315,7 @@ TEST(TorusFast, RefusesWhatItCannotProve) {
   // The dispatcher uses the fast path for an ellipsoid outside.
   auto d = certify::quadric_torus_distance(q("(x-7)^2 + y^2/4 + (z-1)^2/9 = 1"), kZ, 15, true);
   EXPECT_NE(d.note.find("branch and bound"), std::string::npos) << d.note;
-  EXPECT_EQ(d.method, "torus_circle_bound");
+  EXPECT_EQ(d.method, certify::Method::TorusCircleBound);
   EXPECT_TRUE(d.system_degrees.empty());
 }
 

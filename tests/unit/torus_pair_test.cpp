@@ -94,7 +94,7 @@ double float_circles(const T& a, const T& b) {
 void expect_float_agrees(const T& a, const T& b, const std::string& ctx) {
   auto r = certify::surface_distance(torus(a), torus(b), 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << ctx << " " << r.note;
-  EXPECT_EQ(r.method, "torus_circle_pair") << ctx;
+  EXPECT_EQ(r.method, certify::Method::TorusCirclePair) << ctx;
   const double f = float_circles(a, b) - a.r - b.r;
   EXPECT_LE(lo(r), f + 1e-12 * (1 + f)) << ctx; // never above a float pair distance
   EXPECT_NEAR(hi(r), f, 1e-9 * (1 + f)) << ctx;
@@ -191,7 +191,7 @@ TEST(TorusPair, ContinuaAndCrossingTubesStayUndecided) {
                                      torus({{5.5, 0, 0}, {0, 0, 1}, 2, 0.5}), 15, false);
   EXPECT_EQ(x.status, certify::Status::Certified) << x.note;
   EXPECT_EQ(x.upper(), "0");
-  EXPECT_EQ(x.method, "implicit_bnb");
+  EXPECT_EQ(x.method, certify::Method::ImplicitBnb);
   ASSERT_FALSE(x.pairs.empty());
   const auto& w = x.pairs[0][0];
   EXPECT_NEAR(std::hypot(std::hypot(w[0], w[1]) - 3, w[2]), 0.5, 1e-9);
@@ -273,7 +273,7 @@ TEST(TorusPair, CoaxialToriAgainstSampling) {
     const auto r = certify::surface_distance(torus(a), torus(b), 15, false);
     ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
     EXPECT_EQ(r.minimizers, "infinite");
-    EXPECT_EQ(r.method, "torus_coaxial_closed_form");
+    EXPECT_EQ(r.method, certify::Method::TorusCoaxialClosedForm);
     const auto pb = torus_points(b, 120, 40);
     double best = 1e300;
     for (const auto& p : pa)

@@ -37,10 +37,6 @@ void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
 
 namespace {
 
-bool is_count(const std::string& m) {
-  return !m.empty() && std::all_of(m.begin(), m.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
 // What every answer goes through last, whatever route produced it:
 // - a minimizer count that is not proven (several candidates whose equality is unproven, or
 //   a route that says its count is not proven) becomes "undecided", the candidate count kept
@@ -48,11 +44,10 @@ bool is_count(const std::string& m) {
 // - the width contract: a certified enclosure satisfies upper - lower <= 10^-digits lower on
 //   the printed decimals, or the answer is not certified.
 void finalize(DistanceResult& r, long digits) {
-  if (r.status == Status::Certified && is_count(r.minimizers)) {
-    const long n = std::stol(r.minimizers);
+  if (r.status == Status::Certified && r.minimizers.is_count()) {
+    const long n = r.minimizers.value();
     if ((n > 1 && r.ties == Ties::Unproven) || r.count_unproven) {
-      r.minimizer_candidates = n;
-      r.minimizers = "undecided";
+      r.minimizers = Minimizers::undecided(n);
       r.note += std::string(r.note.empty() ? "" : "; ") +
                 "the number of minimizers is not proven (" + std::to_string(n) + " candidate" +
                 (n == 1 ? "" : "s") + " not separated from the minimum)";
@@ -136,9 +131,12 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
     e.set("certified", Json::boolean(false));
     res.set("estimate", e);
   }
-  if (!r.minimizers.empty()) res.set("minimizers", Json::string(r.minimizers));
-  if (r.minimizer_candidates > 0)
-    res.set("minimizer_candidates", Json::number(r.minimizer_candidates));
+  if (!r.minimizers.empty()) {
+    res.set("minimizers", Json::string(r.minimizers.str()));
+    res.set("minimizers_proof", Json::string(r.minimizers.proof_str()));
+  }
+  if (r.minimizer_candidates() > 0)
+    res.set("minimizer_candidates", Json::number(r.minimizer_candidates()));
   Json pairs = Json::array();
   for (const auto& pr : r.pairs) {
     Json pj = Json::array();
@@ -174,7 +172,8 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
   res.set("digits", Json::number(digits));
   res.set("solid", Json::boolean(r.solid));
   res.set("mode", Json::string(to_string(r.mode)));
-  if (!r.method.empty()) res.set("method", Json::string(r.method));
+  if (r.method != Method::None) res.set("method", Json::string(to_string(r.method)));
+  if (r.reduced_by != Method::None) res.set("reduced_by", Json::string(to_string(r.reduced_by)));
   if (r.ties != Ties::None) res.set("ties", Json::string(to_string(r.ties)));
   o.set("result", res);
   return o;

@@ -99,11 +99,12 @@ void ellipsoid_plane(DistanceResult& out, const core::QuadricMatrix& e,
   Rational gap = core::abs(nc - delta);
   out.critical_candidates = 2;
   out.eliminated_degree = 2;
-  out.minimizers = "1";
+  out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
   out.status = Status::Certified;
   if (gap * gap <= support2) { // exact: the plane meets the ellipsoid
     out.distance = Enclosure::zero();
-    out.minimizers = gap * gap == support2 ? "1" : "infinite";
+    out.minimizers = gap * gap == support2 ? Minimizers::count(1, Minimizers::Proof::Exact)
+                                           : Minimizers::continuum(Minimizers::Proof::Exact);
     out.note =
         gap * gap == support2 ? "the plane touches the ellipsoid" : "the plane cuts the ellipsoid";
     return;
@@ -186,7 +187,7 @@ Outcome nested_run(Query& q) {
     DistanceResult out;
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = "solid distance: one solid contains the other";
     return Outcome::answer(std::move(out));
   }
@@ -253,7 +254,7 @@ Outcome topology_run(Query& query) {
   if (t.pencil == algebra::PencilKind::Coincident) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = "the surfaces coincide";
     return Outcome::answer(std::move(out));
   }
@@ -283,7 +284,9 @@ Outcome topology_run(Query& query) {
     if (affine) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
-      out.minimizers = curve ? "infinite" : std::to_string(m.isolated_points);
+      out.minimizers =
+          curve ? Minimizers::continuum(Minimizers::Proof::Exact)
+                : Minimizers::count(static_cast<long>(m.isolated_points), Minimizers::Proof::Exact);
       if (have) out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
       return Outcome::answer(std::move(out));
@@ -291,7 +294,7 @@ Outcome topology_run(Query& query) {
     if (curve && meet_by_sign_change(a, b, w)) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
-      out.minimizers = "infinite";
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
       out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) +
                  "; an affine common point proven by certified points of a connected surface "
@@ -312,7 +315,7 @@ Outcome topology_run(Query& query) {
     if (t.ellipsoid_relation == "nested") {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
-      out.minimizers = "infinite";
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
       out.note = "solid distance: one solid contains the other";
       return Outcome::answer(std::move(out));
     }
@@ -327,7 +330,7 @@ bool offset_apply(const Query& q) {
 }
 Outcome offset_run(Query& q) {
   DistanceResult d = quadric_pair_distance(qa(q), qb(q), q.digits);
-  if (d.method.empty()) d.method = "offset_system";
+  if (d.method == Method::None) d.method = Method::OffsetSystem;
   return Outcome::answer(std::move(d));
 }
 
@@ -378,7 +381,7 @@ Outcome sphere_run(Query& query) {
     arb_add(d.v, dc.v, r.v, prec);
     arb_div(d.v, gap.v, d.v, prec);
     set_distance_enclosure(out, d.v, digits);
-    out.minimizers = "1";
+    out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
     out.critical_candidates = 1;
     out.eliminated_degree = 1;
     std::array<double, 3> f{}, s{};
@@ -541,7 +544,9 @@ Outcome sphere_run(Query& query) {
       out.pairs.push_back(a_sphere ? std::array<std::array<double, 3>, 2>{s, f}
                                    : std::array<std::array<double, 3>, 2>{f, s});
     }
-    out.minimizers = continuum ? "infinite" : std::to_string(S.size());
+    const auto proof = all_exact ? Minimizers::Proof::Exact : Minimizers::Proof::Interval;
+    out.minimizers = continuum ? Minimizers::continuum(proof)
+                               : Minimizers::count(static_cast<long>(S.size()), proof);
     out.status = Status::Certified;
     if (!continuum && S.size() > 1 && all_exact) {
       out.ties = Ties::Proven;
@@ -549,8 +554,8 @@ Outcome sphere_run(Query& query) {
                   " minimizing pairs are at exactly the same distance (proven: the same exact "
                   "rational squared distance from the centre to the foot points)";
     } else if (continuum && !all_exact) {
-      out.minimizers = "undecided"; // a circle, or isolated points: not proven which
-      out.minimizer_candidates = static_cast<long>(S.size());
+      // A circle, or isolated points: not proven which.
+      out.minimizers = Minimizers::undecided(static_cast<long>(S.size()));
       // A circle of feet overlapping point candidates not proven equal to it: "infinite"
       // holds only if the circle attains the minimum, which is not proven (a note that
       // prove_ties, which drops the generic tie note for continua, leaves in place).
@@ -572,36 +577,36 @@ Outcome sphere_run(Query& query) {
 
 void add_quadric_pair_routes(std::vector<Route>& t) {
   const PairKind k = PairKind::QuadricQuadric;
-  t.push_back({"cylinder_closed_form", k, kAllModes,
+  t.push_back({Method::CylinderClosedForm, k, kAllModes,
                "two elliptic cylinders: crossed in closed form, parallel by duality",
                cylinders_apply, cylinders_run});
-  t.push_back({"convex_duality_float", k, kFloatMode,
+  t.push_back({Method::ConvexDualityFloat, k, kFloatMode,
                "nothing: a float separating-direction search (an estimate)", convex_apply,
                convex_float_run});
-  t.push_back({"convex_duality", k, kFloatMode | kFilteredMode,
+  t.push_back({Method::ConvexDuality, k, kFloatMode | kFilteredMode,
                "disjoint convex solids: L(n) <= d <= U(n) at one exact direction", convex_apply,
                convex_run});
-  t.push_back({"nested_convex_duality", k, kFloatMode | kFilteredMode,
+  t.push_back({Method::NestedConvexDuality, k, kFloatMode | kFilteredMode,
                "an ellipsoid inside an ellipsoid or elliptic cylinder: min_n h_B - h_A by branch "
                "and bound",
                convex_apply, nested_run});
-  t.push_back({"cone_generator_bound", k, kFloatMode | kFilteredMode,
+  t.push_back({Method::ConeGeneratorBound, k, kFloatMode | kFilteredMode,
                "an ellipsoid and a cone apart: min over the generator lines", cone_apply,
                cone_run});
-  t.push_back({"ellipsoid_plane_closed_form", k, kAllModes,
+  t.push_back({Method::EllipsoidPlaneClosedForm, k, kAllModes,
                "an ellipsoid and a plane: support function, exact comparison",
                ellipsoid_plane_apply, ellipsoid_plane_run});
-  t.push_back({"plane_closed_form", k, kAllModes,
+  t.push_back({Method::PlaneClosedForm, k, kAllModes,
                "a plane and any quadric: the met levels {m(s) <= 0} exactly", plane_apply,
                plane_run});
-  t.push_back({"qsic_topology", k, kAllModes,
+  t.push_back({Method::QsicTopology, k, kAllModes,
                "contact, coincidence or a common apex from the certified QSIC topology", always,
                topology_run});
-  t.push_back({"sphere_point_quadric", k, kAllModes,
+  t.push_back({Method::SpherePointQuadric, k, kAllModes,
                "a sphere and a quadric: the gap d - r (or r - d) over the exact point-quadric "
                "critical distances",
                sphere_apply, sphere_run});
-  t.push_back({"offset_system", k, kAllModes,
+  t.push_back({Method::OffsetSystem, k, kAllModes,
                "two quadrics: every critical pair covered exactly (resultants), refined",
                offset_apply, offset_run});
 }

@@ -101,10 +101,10 @@ DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface&
     if (o.kind == Outcome::Kind::NotApplicable) continue;
     // The route's id names the method, unless the route solved an offset system inside (a
     // finer name, kept for the JSON contract).
-    if (o.result.method.empty())
-      o.result.method = o.result.univariate_degrees.empty() ? route.id : "offset_system";
+    if (o.result.method == Method::None)
+      o.result.method = o.result.univariate_degrees.empty() ? route.id : Method::OffsetSystem;
     if (o.kind == Outcome::Kind::Declined) {
-      tried += std::string(tried.empty() ? "" : ", ") + route.id;
+      tried += std::string(tried.empty() ? "" : ", ") + to_string(route.id);
       o.result.status = Status::Undecided;
       if (!established || o.result.distance || !established->distance)
         established = std::move(o.result);

@@ -40,7 +40,7 @@ void swap_pairs(DistanceResult& r) {
     std::swap(pr[0], pr[1]);
 }
 Outcome offset_declined_or_answer(DistanceResult r) {
-  if (r.method.empty() && !r.univariate_degrees.empty()) r.method = "offset_system";
+  if (r.method == Method::None && !r.univariate_degrees.empty()) r.method = Method::OffsetSystem;
   return Outcome::certified_or_declined(std::move(r));
 }
 
@@ -162,7 +162,7 @@ Outcome contact_run(Query& q) {
   DistanceResult r;
   r.status = Status::Certified;
   r.distance = Enclosure::zero();
-  r.minimizers = "infinite";
+  r.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
   // Display only: list the float-polished common point when it is one.
   const bool located = residual <= 1e-9 * (1 + std::hypot(w[0], w[1], w[2]));
   if (located) r.pairs.push_back({w, w});
@@ -178,64 +178,69 @@ Outcome contact_run(Query& q) {
 void add_surface_pair_routes(std::vector<Route>& t) {
   using K = PairKind;
   const char* contact = "contact: certified points of one connected surface on both sides";
-  t.push_back({"parametric_reduction", K::Parametric, kAllModes,
+  t.push_back({Method::ParametricReduction, K::Parametric, kAllModes,
                "the implicit equation's routes, lower bound; an upper bound witnessed by an "
                "exact image point",
                always, parametric_run});
-  t.push_back({"torus_distance", K::QuadricTorus, kFloatMode | kFilteredMode,
+  t.push_back({Method::TorusDistance, K::QuadricTorus, kFloatMode | kFilteredMode,
                "a quadric and a torus: circle bound or offset system", always, quadric_torus_run});
-  t.push_back({"torus_distance", K::QuadricTorus, kExactMode,
+  t.push_back({Method::TorusDistance, K::QuadricTorus, kExactMode,
                "a quadric and a torus: the exact offset system", always, quadric_torus_exact_run});
-  t.push_back({"sign_change_contact", K::QuadricTorus, kAllModes, contact, always, contact_run});
-  t.push_back({"canal_distance", K::QuadricCanal, kAllModes,
+  t.push_back(
+      {Method::SignChangeContact, K::QuadricTorus, kAllModes, contact, always, contact_run});
+  t.push_back({Method::CanalDistance, K::QuadricCanal, kAllModes,
                "a quadric and a canal surface: min over the spine of point-quadric distances",
                always, quadric_canal_run});
-  t.push_back({"sign_change_contact", K::QuadricCanal, kAllModes, contact, always, contact_run});
-  t.push_back({"implicit_bnb", K::QuadricImplicit, kAllModes,
+  t.push_back(
+      {Method::SignChangeContact, K::QuadricCanal, kAllModes, contact, always, contact_run});
+  t.push_back({Method::ImplicitBnb, K::QuadricImplicit, kAllModes,
                "an ellipsoid and a bounded implicit surface: box pairs + Krawczyk", ellipsoid_first,
                ellipsoid_implicit_bnb_run});
-  t.push_back({"implicit_bnb", K::QuadricImplicit, kAllModes,
+  t.push_back({Method::ImplicitBnb, K::QuadricImplicit, kAllModes,
                "an ellipsoid and an unbounded implicit surface clipped to a proven margin",
                ellipsoid_first, ellipsoid_implicit_clipped_run});
-  t.push_back({"implicit_bnb", K::QuadricImplicit, kAllModes,
+  t.push_back({Method::ImplicitBnb, K::QuadricImplicit, kAllModes,
                "an unbounded quadric clipped near a bounded implicit surface",
                quadric_clipped_applies, quadric_clipped_run});
-  t.push_back({"offset_system", K::QuadricImplicit, kAllModes,
+  t.push_back({Method::OffsetSystem, K::QuadricImplicit, kAllModes,
                "the offset system with the implicit source (degree <= 6)", always,
                quadric_implicit_offset_run});
-  t.push_back({"sign_change_contact", K::QuadricImplicit, kAllModes, contact, always, contact_run});
-  t.push_back({"torus_circle_pair", K::TorusTorus, kAllModes,
+  t.push_back(
+      {Method::SignChangeContact, K::QuadricImplicit, kAllModes, contact, always, contact_run});
+  t.push_back({Method::TorusCirclePair, K::TorusTorus, kAllModes,
                "two tori: circle-circle distance by branch and bound, coaxial closed form", always,
                torus_pair_run});
-  t.push_back({"implicit_bnb", K::TorusTorus, kAllModes,
+  t.push_back({Method::ImplicitBnb, K::TorusTorus, kAllModes,
                "two tori as quartics: box pairs + Krawczyk", always, torus_pair_bnb_run});
-  t.push_back({"sign_change_contact", K::TorusTorus, kAllModes, contact, always, contact_run});
-  t.push_back({"sphere_family_bnb", K::TorusCanal, kAllModes,
+  t.push_back({Method::SignChangeContact, K::TorusTorus, kAllModes, contact, always, contact_run});
+  t.push_back({Method::SphereFamilyBnb, K::TorusCanal, kAllModes,
                "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk",
                always, sphere_family_run});
-  t.push_back({"sign_change_contact", K::TorusCanal, kAllModes, contact, always, contact_run});
-  t.push_back({"implicit_bnb", K::TorusImplicit, kAllModes,
+  t.push_back({Method::SignChangeContact, K::TorusCanal, kAllModes, contact, always, contact_run});
+  t.push_back({Method::ImplicitBnb, K::TorusImplicit, kAllModes,
                "a torus and a bounded implicit surface: box pairs + Krawczyk", always,
                torus_implicit_bnb_run});
-  t.push_back({"implicit_bnb", K::TorusImplicit, kAllModes,
+  t.push_back({Method::ImplicitBnb, K::TorusImplicit, kAllModes,
                "a torus and an unbounded implicit surface clipped to a proven margin", always,
                torus_implicit_clipped_run});
-  t.push_back({"offset_system", K::TorusImplicit, kAllModes,
+  t.push_back({Method::OffsetSystem, K::TorusImplicit, kAllModes,
                "the offset system with the implicit source (degree <= 6)", always,
                torus_implicit_offset_run});
-  t.push_back({"sign_change_contact", K::TorusImplicit, kAllModes, contact, always, contact_run});
-  t.push_back({"capsule_closed_form", K::CanalCanal, kAllModes,
+  t.push_back(
+      {Method::SignChangeContact, K::TorusImplicit, kAllModes, contact, always, contact_run});
+  t.push_back({Method::CapsuleClosedForm, K::CanalCanal, kAllModes,
                "two capsules: segment-segment distance (exact square) minus the radii", always,
                capsule_pair_run});
-  t.push_back({"sphere_family_bnb", K::CanalCanal, kAllModes,
+  t.push_back({Method::SphereFamilyBnb, K::CanalCanal, kAllModes,
                "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk",
                always, sphere_family_run});
-  t.push_back({"sign_change_contact", K::CanalCanal, kAllModes, contact, always, contact_run});
-  t.push_back({"sign_change_contact", K::CanalImplicit, kAllModes, contact, always, contact_run});
-  t.push_back({"implicit_bnb", K::ImplicitImplicit, kAllModes,
+  t.push_back({Method::SignChangeContact, K::CanalCanal, kAllModes, contact, always, contact_run});
+  t.push_back(
+      {Method::SignChangeContact, K::CanalImplicit, kAllModes, contact, always, contact_run});
+  t.push_back({Method::ImplicitBnb, K::ImplicitImplicit, kAllModes,
                "two bounded implicit surfaces: box pairs + Krawczyk", always, implicit_pair_run});
   t.push_back(
-      {"sign_change_contact", K::ImplicitImplicit, kAllModes, contact, always, contact_run});
+      {Method::SignChangeContact, K::ImplicitImplicit, kAllModes, contact, always, contact_run});
 }
 
 } // namespace surfcert::certify

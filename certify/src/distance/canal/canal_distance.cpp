@@ -344,7 +344,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     if (has_root_in(side, c.t0, c.t1)) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
-      out.minimizers = "infinite";
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
       out.note = "the spine crosses the plane: they meet";
       return out;
     }
@@ -353,7 +353,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     if (e.is_zero()) {
       // phi constant on the interval (a segment parallel to the plane, constant radius): the
       // ends carry the value; every t is a minimizer.
-      out.minimizers = "infinite";
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     } else if (e.degree() > 0) {
       algebra::UPolyZ z = e.primitive_integer();
       fmpz_poly_factor_t f;
@@ -536,10 +536,12 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
       out.width_short = true;
     }
     out.distance = Enclosure::from_bounds(l, u, digits);
-    if (out.minimizers.empty()) out.minimizers = std::to_string(best.size());
+    if (out.minimizers.empty())
+      out.minimizers =
+          Minimizers::count(static_cast<long>(best.size()), Minimizers::Proof::Interval);
     for (const auto& cd : best)
       pair_out(cd);
-    if (out.minimizers != "infinite") note_unproven_ties(out, best.size());
+    if (!out.minimizers.is_continuum()) note_unproven_ties(out, best.size());
     // Tie regions (symmetry.hpp): the spine points C([ta, tb]); every minimizing parameter
     // lies in a kept interval, and a symmetry of both surfaces maps spine points to spine
     // points with the same phi.
@@ -563,12 +565,12 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
   } else if (arf_sgn(u) < 0 && q.kind() != core::QuadricKind::Ellipsoid) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     out.note = "the quadric enters the canal solid and, being unbounded, leaves it: they meet";
   } else if (arf_sgn(u) < 0 && ellipsoid_point_outside(q, c)) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     out.note = "the ellipsoid has certified points inside and outside the canal solid: they meet";
   } else {
     out.status = Status::Undecided;

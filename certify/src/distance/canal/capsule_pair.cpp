@@ -105,7 +105,8 @@ std::optional<DistanceResult> capsule_pair_distance(const core::CanalSurface& a,
                    ohi = hi < Rational(1) ? hi : Rational(1);
     continuum = olo < ohi;
   }
-  out.minimizers = continuum ? "infinite" : "1";
+  out.minimizers = continuum ? Minimizers::continuum(Minimizers::Proof::Exact)
+                             : Minimizers::count(1, Minimizers::Proof::Exact);
   out.critical_candidates = static_cast<int>(cand.size());
   const V pa = along(A->p, A->u, cand[bi].first), pb = along(B->p, B->u, cand[bi].second);
   const double Dd = std::sqrt(best.to_double_approx());
@@ -116,7 +117,7 @@ std::optional<DistanceResult> capsule_pair_distance(const core::CanalSurface& a,
     pr[1][i] = pb[i].to_double_approx() - B->r.to_double_approx() * dir;
   }
   out.pairs.push_back(pr);
-  out.method = "capsule_closed_form";
+  out.method = Method::CapsuleClosedForm;
   out.note = "two capsules with disjoint solids: segment-segment distance (exact rational square) "
              "minus both radii";
   return out;

@@ -856,7 +856,7 @@ std::optional<DistanceResult> sphere_family_distance(const core::Surface& a, con
   DistanceResult out;
   out.status = Status::Certified;
   set_distance_enclosure(out, d.v, digits);
-  out.method = "sphere_family_bnb";
+  out.method = Method::SphereFamilyBnb;
   out.critical_candidates = candidates;
   size_t count = 0, unique = 0;
   std::string kinds;
@@ -887,7 +887,7 @@ std::optional<DistanceResult> sphere_family_distance(const core::Surface& a, con
     report(s.v, t.v, c.s0, c.s1);
   }
   arf_clear(hi);
-  out.minimizers = std::to_string(count);
+  out.minimizers = Minimizers::count(static_cast<long>(count), Minimizers::Proof::Interval);
   out.note = "disjoint solids as unions of balls: d = min over both parameters of |C1(s) - "
              "C2(t)| - r1(s) - r2(t), by a 2-D branch and bound with mean-value bounds (Arb); a "
              "positive minimum proves the solids disjoint; " +

@@ -338,7 +338,8 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
   for (const auto& bp : best)
     out.pairs.push_back(source_is_a ? std::array<std::array<double, 3>, 2>{bp.p, bp.q}
                                     : std::array<std::array<double, 3>, 2>{bp.q, bp.p});
-  out.minimizers = std::to_string(cover.boxes.size());
+  out.minimizers =
+      Minimizers::count(static_cast<long>(cover.boxes.size()), Minimizers::Proof::Interval);
   if (!compact) {
     out.status = Status::Undecided;
     out.note = "neither surface is bounded: the minimum over the critical pairs is enclosed, "

@@ -307,7 +307,7 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
   if (n > 0) {
     const std::string was = "[" + r.lower() + ", " + r.upper() + "]";
     r.distance = Enclosure::zero();
-    r.minimizers = "infinite";
+    r.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     r.pairs.clear();
     r.ties = Ties::None;
     r.note = "solid distance: one solid contains the other (surface distance " + was + ")";

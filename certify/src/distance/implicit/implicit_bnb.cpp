@@ -875,7 +875,7 @@ Box tight_hull(Tree& t, int root) {
 DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long digits, double clip,
                              double* clip_short) {
   DistanceResult out;
-  out.method = "implicit_bnb";
+  out.method = Method::ImplicitBnb;
   out.mode = Mode::Filtered;
   CGAL::Protect_FPU_rounding<true> guard;
   Surf sa = make_surf(f), sb = make_surf(g);
@@ -1010,7 +1010,7 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
         if (const auto w = contact_witness(sa, sb, centre(ov))) {
           out.status = Status::Certified;
           out.distance = Enclosure::zero();
-          out.minimizers = "infinite";
+          out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
           out.pairs.push_back({*w, *w});
           out.note = "the surfaces cross: a common point proven by 2-D Krawczyk with one "
                      "coordinate fixed (transversal, so a curve of contact); the pair is that "
@@ -1176,7 +1176,7 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   }
   out.status = Status::Certified;
   set_distance_enclosure(out, d.v, digits);
-  out.minimizers = std::to_string(idx.size());
+  out.minimizers = Minimizers::count(static_cast<long>(idx.size()), Minimizers::Proof::Interval);
   note_unproven_ties(out, idx.size());
   // Tie regions (symmetry.hpp): the f-point part of each minimizer's Krawczyk box. Every
   // global minimizer is a critical pair in one of these boxes; when the f-parts are pairwise

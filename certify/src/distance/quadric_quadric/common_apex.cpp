@@ -156,7 +156,7 @@ std::optional<DistanceResult> common_apex_contact(const core::QuadricMatrix& a,
   const auto p = common_singular_point(a, b);
   if (!p) return std::nullopt;
   DistanceResult out;
-  out.method = "common_apex";
+  out.method = Method::CommonApex;
   out.distance = Enclosure::zero();
   const std::array<double, 3> w{(*p)[0].to_double_approx(), (*p)[1].to_double_approx(),
                                 (*p)[2].to_double_approx()};
@@ -166,13 +166,13 @@ std::optional<DistanceResult> common_apex_contact(const core::QuadricMatrix& a,
                            (*p)[1].to_string() + ", " + (*p)[2].to_string() + ")";
   if (real_conics_disjoint(A, B)) {
     out.status = Status::Certified;
-    out.minimizers = "1";
+    out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
     out.note = apex + " and meet nowhere else (their direction conics have no common real "
                       "point)";
   } else if (sign_change_on_conic(A, B) || sign_change_on_conic(B, A) ||
              common_line_by_double_line(A, B)) {
     out.status = Status::Certified;
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = apex + " and common real lines through it (proven)";
   } else {
     out.status = Status::Undecided;

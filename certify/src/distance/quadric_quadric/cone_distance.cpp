@@ -351,9 +351,10 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
     pair_at(d.v, &pe, &pc, n0, tm.v);
     out.pairs.push_back(ellipsoid_first ? std::array<D3, 2>{pe, pc} : std::array<D3, 2>{pc, pe});
   }
-  out.minimizers = std::to_string(pm.minimizers.size());
+  out.minimizers =
+      Minimizers::count(static_cast<long>(pm.minimizers.size()), Minimizers::Proof::Interval);
   out.critical_candidates = static_cast<int>(pm.minimizers.size());
-  out.method = "cone_generator_bound";
+  out.method = Method::ConeGeneratorBound;
   out.note = "ellipsoid and cone do not meet: minimum over the cone's generator lines of the "
              "line-ellipsoid distance, by branch and bound with slab (support-function) lower "
              "bounds (Arb)";

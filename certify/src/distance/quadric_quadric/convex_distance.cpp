@@ -428,7 +428,7 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
 
   DistanceResult out;
   out.status = Status::Certified;
-  out.minimizers = "1";
+  out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
   out.critical_candidates = 1;
   out.eliminated_degree = 0;
   out.note = "disjoint convex solids: certified by a separating direction (support-function "
@@ -463,7 +463,7 @@ std::optional<DistanceResult> separated_convex_distance_float(const ConvexQuadri
   if (!d.finite || !(d.phi > 0)) return std::nullopt;
   DistanceResult out;
   out.status = Status::Uncertified;
-  out.minimizers = "1";
+  out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
   out.critical_candidates = 1;
   V3<double> pa = d.pa, pb = d.pb;
   if (a.is_cylinder() || b.is_cylinder()) { // slide along the cylinder's line of support

@@ -59,9 +59,9 @@ std::optional<DistanceResult> cylinder_pair_distance(const ConvexQuadric& a, con
   if (n[0].is_zero() && n[1].is_zero() && n[2].is_zero()) {
     auto r = separated_convex_distance(a, b, digits);
     if (!r) return std::nullopt;
-    r->minimizers = "infinite";
+    r->minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     r->critical_candidates = 1;
-    r->method = "convex_duality";
+    r->method = Method::ConvexDuality;
     r->note = "disjoint parallel cylinders: certified by a separating direction orthogonal to "
               "the common axis (support-function duality, Arb); a line of closest pairs (one "
               "shown)";
@@ -95,9 +95,9 @@ std::optional<DistanceResult> cylinder_pair_distance(const ConvexQuadric& a, con
   DistanceResult out;
   out.status = Status::Certified;
   set_distance_enclosure(out, d.v, digits);
-  out.minimizers = "1";
+  out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
   out.critical_candidates = 1;
-  out.method = "cylinder_closed_form";
+  out.method = Method::CylinderClosedForm;
   out.note = "disjoint crossed cylinders: the only direction admissible for both support "
              "functions is the common normal of the axes; d = (|n.(c_B - c_A)| - sqrt(n^T W_A n) "
              "- sqrt(n^T W_B n)) / |n| (exact sign decision, Arb); unique closest pair on the "

@@ -1178,7 +1178,7 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   DistanceResult out;
   out.status = Status::Certified;
   set_distance_enclosure(out, d.v, digits);
-  out.minimizers = std::to_string(mins.size());
+  out.minimizers = Minimizers::count(static_cast<long>(mins.size()), Minimizers::Proof::Interval);
   out.critical_candidates = static_cast<int>(crit.size());
   out.eliminated_degree = 0;
   out.note = "nested convex solids: the " + std::string(inner_is_a ? "first" : "second") +

@@ -94,7 +94,7 @@ void enclose(arb_t d, const Quad& h, const NearestRoot& nr, const Rational& nn, 
 DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
                                       const core::QuadricMatrix& q, long digits, bool plane_first) {
   DistanceResult out;
-  out.method = "plane_closed_form";
+  out.method = Method::PlaneClosedForm;
   // The plane n.x = delta (its matrix holds n as half the linear part).
   const V3 n{plane(0, 3), plane(1, 3), plane(2, 3)};
   const Rational nn = dot(n, n), delta = -plane(3, 3) * Rational(1, 2);
@@ -144,7 +144,7 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
     out.pairs.push_back(plane_first ? std::array<std::array<double, 3>, 2>{y, x}
                                     : std::array<std::array<double, 3>, 2>{x, y});
   };
-  auto meet = [&](const std::string& how, const char* count, double u, double v) {
+  auto meet = [&](const std::string& how, Minimizers count, double u, double v) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
     out.minimizers = count;
@@ -155,7 +155,7 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
   auto not_attained = [&](const std::string& why) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "0";
+    out.minimizers = Minimizers::not_attained(Minimizers::Proof::Exact);
     out.note = "the surfaces do not meet but approach each other at infinity (" + why +
                "): the distance is the infimum 0, not attained";
     return out;
@@ -181,13 +181,13 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
       add_pair(sg * rho, uv[0], uv[1]);
     }
     if (std::string(shape) == "point") {
-      out.minimizers = nr.tie ? "2" : "1";
+      out.minimizers = Minimizers::count(nr.tie ? 2 : 1, Minimizers::Proof::Exact);
     } else {
-      out.minimizers = "infinite";
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     }
     out.note = "plane and quadric: the nearest parallel level the quadric reaches (" + how +
                "), a root of a polynomial of degree <= 2 over Q; closed form in Arb";
-    if (nr.tie && out.minimizers == "2") {
+    if (nr.tie && out.minimizers == Minimizers::count(2, Minimizers::Proof::Exact)) {
       out.ties = Ties::Proven;
       out.note += "; two levels at exactly the same distance on both sides of the plane "
                   "(the roots are +-rho exactly)";
@@ -197,7 +197,9 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
 
   if (det.sign() < 0) { // indefinite: every level is met; a witness on a line through (0, 0)
     const Rational f0 = f.c[0];
-    if (f0.is_zero()) return meet("a hyperbola or two lines", "infinite", 0, 0);
+    if (f0.is_zero())
+      return meet("a hyperbola or two lines", Minimizers::continuum(Minimizers::Proof::Exact), 0,
+                  0);
     // A direction (du, dv) where the form has the sign opposite to f0 (exists: A indefinite):
     // (1, 0), (0, 1), the vertex direction (1, -A01/A11') of A(1, t), or, when A11 = 0, a
     // point of the linear A(1, t). Along it lambda^2 a + 2 lambda g.d + f0 has a real root.
@@ -215,11 +217,12 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
                      gb = (g[0].c[0] * d[0] + g[1].c[0] * d[1]).to_double_approx(),
                      c0 = f0.to_double_approx();
         const double lam = (-gb + std::sqrt(gb * gb - a * c0)) / a;
-        return meet("a hyperbola or two lines", "infinite", lam * d[0].to_double_approx(),
-                    lam * d[1].to_double_approx());
+        return meet("a hyperbola or two lines", Minimizers::continuum(Minimizers::Proof::Exact),
+                    lam * d[0].to_double_approx(), lam * d[1].to_double_approx());
       }
     }
-    return meet("a hyperbola or two lines", "infinite", 0, 0); // unreachable: A indefinite
+    return meet("a hyperbola or two lines", Minimizers::continuum(Minimizers::Proof::Exact), 0,
+                0); // unreachable: A indefinite
   }
 
   if (det.sign() > 0) { // definite: S = {m <= 0}, m = f - g^T A^-1 g (sign normalised)
@@ -237,8 +240,10 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
       const auto cu = centre(0);
       const double t = std::sqrt(std::max(0.0, -m.c[0].to_double_approx() * sg.to_double_approx() /
                                                    A[0][0].to_double_approx()));
-      return m.c[0].is_zero() ? meet("they touch at one point", "1", cu[0], cu[1])
-                              : meet("an ellipse", "infinite", cu[0] + t, cu[1]);
+      return m.c[0].is_zero() ? meet("they touch at one point",
+                                     Minimizers::count(1, Minimizers::Proof::Exact), cu[0], cu[1])
+                              : meet("an ellipse", Minimizers::continuum(Minimizers::Proof::Exact),
+                                     cu[0] + t, cu[1]);
     }
     return at_nearest(m, "point", "a tangency point", centre);
   }
@@ -267,14 +272,15 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
     if (!gk.zero()) {
       if (!gk.c[0].is_zero()) {
         const auto w = uv(0, -f.c[0].to_double_approx() / (2 * gk.c[0].to_double_approx()));
-        return meet("a parabola", "infinite", w[0], w[1]);
+        return meet("a parabola", Minimizers::continuum(Minimizers::Proof::Exact), w[0], w[1]);
       }
       const Rational disc0 = gw.c[0] * gw.c[0] - a * f.c[0];
       if (disc0.sign() >= 0) {
         const auto w = uv((-gw.c[0].to_double_approx() + std::sqrt(disc0.to_double_approx())) /
                               a.to_double_approx(),
                           0);
-        return meet(disc0.is_zero() ? "a line" : "two lines", "infinite", w[0], w[1]);
+        return meet(disc0.is_zero() ? "a line" : "two lines",
+                    Minimizers::continuum(Minimizers::Proof::Exact), w[0], w[1]);
       }
       return not_attained("a parabolic section whose axis is parallel to the plane");
     }
@@ -285,8 +291,8 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
       const double gw0 = gw.c[0].to_double_approx(), ad = a.to_double_approx();
       const double disc = std::max(0.0, gw0 * gw0 - ad * f.c[0].to_double_approx());
       const auto w = uv((-gw0 + std::sqrt(disc)) / ad, 0);
-      return meet(m.c[0].is_zero() ? "they touch along a line" : "two lines", "infinite", w[0],
-                  w[1]);
+      return meet(m.c[0].is_zero() ? "they touch along a line" : "two lines",
+                  Minimizers::continuum(Minimizers::Proof::Exact), w[0], w[1]);
     }
     return at_nearest(m, "line", "a line of contact", line_point);
   }
@@ -296,12 +302,16 @@ DistanceResult plane_quadric_distance(const core::QuadricMatrix& plane,
     const double g0 = g[0].c[0].to_double_approx(), g1 = g[1].c[0].to_double_approx();
     if (!g[0].c[0].is_zero() || !g[1].c[0].is_zero()) {
       const double k0 = -f.c[0].to_double_approx() / (2 * (g0 * g0 + g1 * g1));
-      return meet("a line", "infinite", k0 * g0, k0 * g1);
+      return meet("a line", Minimizers::continuum(Minimizers::Proof::Exact), k0 * g0, k0 * g1);
     }
-    if (f.c[0].is_zero()) return meet("the plane lies in the quadric", "infinite", 0, 0);
+    if (f.c[0].is_zero())
+      return meet("the plane lies in the quadric", Minimizers::continuum(Minimizers::Proof::Exact),
+                  0, 0);
     return not_attained("the quadric is asymptotic to the plane");
   }
-  if (f.c[0].is_zero()) return meet("the plane lies in the quadric", "infinite", 0, 0);
+  if (f.c[0].is_zero())
+    return meet("the plane lies in the quadric", Minimizers::continuum(Minimizers::Proof::Exact), 0,
+                0);
   return at_nearest(f, "plane", "a parallel plane", [](double) {
     return std::array<double, 2>{0, 0};
   });

@@ -400,7 +400,7 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
       }
     if (out.status == Status::Certified) {
       if (place == AxisPlacement::Off) {
-        out.minimizers = "infinite";
+        out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
         out.ties = Ties::None;
         out.tie_regions.clear();
         out.note = "coaxial surfaces of revolution: circles of closest pairs (proven off the "
@@ -410,7 +410,7 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
                    "exactly)" +
                    (out.note.empty() ? std::string() : "; " + out.note);
       } else {
-        out.minimizers = "undecided";
+        out.minimizers = Minimizers::undecided(static_cast<long>(out.pairs.size()));
         out.ties = Ties::None;
         out.tie_regions.clear();
         out.note = "coaxial surfaces of revolution: the distance is certified, but whether the "
@@ -560,7 +560,7 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
     if (!meet.ok) return std::nullopt; // a common component of the sections
     if (!meet.boxes.empty()) {
       DistanceResult out;
-      out.method = "parallel_sections";
+      out.method = Method::ParallelSections;
       std::array<double, 3> w{};
       std::vector<std::array<double, 3>> near; // the candidate common points of the sections
       for (const auto& bx : meet.boxes) {
@@ -573,7 +573,7 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
       if (meet_by_sign_change(a, b, w, near)) {
         out.status = Status::Certified;
         out.distance = Enclosure::zero();
-        out.minimizers = "infinite";
+        out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
         out.pairs.push_back({w, w});
         out.note = "two cylinders with a common ruling direction meet (a connected piece of one "
                    "has certified points on both sides of the other; the pair is an "
@@ -607,8 +607,9 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
                                "in a plane orthogonal to it, solved exactly; every minimizing "
                                "pair extends to a line of pairs parallel to the rulings";
       out.note = out.note.empty() ? line : line + "; " + out.note;
-      if (out.status == Status::Certified) out.minimizers = "infinite"; // lines of pairs
-      out.method = "parallel_sections";
+      if (out.status == Status::Certified)
+        out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact); // lines of pairs
+      out.method = Method::ParallelSections;
       return out;
     }
   return std::nullopt;
@@ -884,7 +885,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
   if (meet) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = "the surfaces meet (the quadric's equation takes both signs at certified points "
                "of the bounded implicit surface)";
     return out;
@@ -960,7 +961,7 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
   if (meet) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = "the surfaces meet (f takes both signs at certified points of the ellipsoid)";
     return out;
   }

@@ -344,8 +344,11 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
   out.ties = Ties::None;
   out.tie_regions.clear(); // they isolate the implicit route's minimizers, not ours
   out.tie_directions = out.tie_lines = false;
-  out.minimizer_candidates = 0;
+  out.minimizers = {};
   out.count_unproven = false;
+  // This route's answer; the route that solved the implicit problem is reported beside it.
+  out.method = Method::ParametricReduction;
+  out.reduced_by = imp.method;
   std::string note = "distance to the closure of the parametrised surface (implicit form " +
                      f->to_string() + " = 0)";
 
@@ -397,8 +400,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
   };
   auto undecided = [&](const std::string& why) {
     out.status = Status::Undecided;
-    out.minimizers.clear();
-    out.minimizer_candidates = 0;
+    out.minimizers = {};
     out.count_unproven = false;
     out.ties = Ties::None;
     out.pairs.clear();
@@ -450,7 +452,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
         out.estimate.reset();
         // The contact set of the closure is not counted: the image crosses the other surface,
         // but a parametrisation may collapse the crossing curve to a point.
-        out.minimizers = "undecided";
+        out.minimizers = Minimizers::undecided(0);
         out.ties = Ties::None;
         return finish("the image meets the other surface: exact image points on a parameter "
                       "segment (W nonzero on it) on both sides of it");
@@ -471,7 +473,7 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
           out.estimate.reset();
           // q is strictly inside the other solid, so are the image points near it (W(u, v) != 0
           // there: P is continuous and, its image a surface, not constant): infinitely many.
-          out.minimizers = "infinite";
+          out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
           out.ties = Ties::None;
           return finish("solid distance 0: an exact image point lies inside the other solid");
         }
@@ -543,9 +545,10 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
   // The count rests on the implicit minimizers having a witness, whose membership in the
   // closure is not proven: a numeric count is marked unproven (finalize reports "undecided");
   // a continuum of implicit minimizers says nothing about how many lie in the closure.
-  const bool continuum = imp.minimizers == "infinite";
-  out.minimizers = continuum ? "undecided" : std::to_string(witnessed);
-  out.minimizer_candidates = 0;
+  const bool continuum = imp.minimizers.is_continuum();
+  out.minimizers =
+      continuum ? Minimizers::undecided(0)
+                : Minimizers::count(static_cast<long>(witnessed), Minimizers::Proof::Interval);
   out.count_unproven = !continuum;
   out.ties = Ties::None;
   std::string extra =

@@ -327,7 +327,7 @@ std::vector<Isometry> common_symmetries(const core::Surface& a, const core::Surf
 
 void prove_ties(DistanceResult& r, const core::Surface& a, const core::Surface& b) {
   const size_t n = r.tie_regions.size();
-  if (r.minimizers == "infinite") { // a continuum: ties between listed points mean nothing
+  if (r.minimizers.is_continuum()) { // a continuum: ties between listed points mean nothing
     const std::string unproven = std::string("; ") + kUnprovenTiesNote;
     const size_t at = r.note.find(unproven);
     if (at != std::string::npos) r.note.erase(at, unproven.size());

@@ -195,7 +195,7 @@ DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, 
     } else if (arb_lt(dmin.v, rs.v) && arb_gt(dmax.v, rs.v)) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
-      out.minimizers = "infinite";
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
       out.note = "the sphere meets the torus (its radius lies strictly between the smallest and "
                  "largest distances from its centre to the torus)";
       return out;
@@ -221,7 +221,8 @@ DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, 
     if (enough) {
       out.status = Status::Certified;
       out.distance = Enclosure::from_bounds(lo, hi, digits);
-      out.minimizers = (on_axis || on_circle) ? "infinite" : "1";
+      out.minimizers = (on_axis || on_circle) ? Minimizers::continuum(Minimizers::Proof::Exact)
+                                              : Minimizers::count(1, Minimizers::Proof::Exact);
       if (!on_axis && !on_circle) { // the pair, approximately
         std::array<double, 3> kk{};
         Ball dd;
@@ -282,14 +283,15 @@ DistanceResult plane_torus(const core::QuadricMatrix& pl, const core::Torus& t, 
   if (alpha * alpha < beta || X.sign() < 0 || X * X < Rational(4) * beta * gamma) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = "the plane cuts the torus";
     return out;
   }
   if (X * X == Rational(4) * beta * gamma) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = circle ? "infinite" : "1";
+    out.minimizers = circle ? Minimizers::continuum(Minimizers::Proof::Exact)
+                            : Minimizers::count(1, Minimizers::Proof::Exact);
     out.note = "the plane touches the torus";
     return out;
   }
@@ -313,7 +315,8 @@ DistanceResult plane_torus(const core::QuadricMatrix& pl, const core::Torus& t, 
   arf_clear(lo);
   arf_clear(hi);
   out.status = Status::Certified;
-  out.minimizers = circle ? "infinite" : "1";
+  out.minimizers = circle ? Minimizers::continuum(Minimizers::Proof::Exact)
+                          : Minimizers::count(1, Minimizers::Proof::Exact);
   if (!circle) { // approximate pair: the point of K nearest the plane, then along -n
     double s = (nc - delta).sign() > 0 ? 1 : -1, nd = std::sqrt(nn.to_double_approx()),
            ad = std::sqrt(aa.to_double_approx());
@@ -365,7 +368,7 @@ DistanceResult coaxial_torus(const core::QuadricMatrix& meridian, const core::To
   if (arb_lt(m.v, r.v)) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = "the coaxial surface of revolution enters the tube: it meets the torus";
     return out;
   }
@@ -384,7 +387,7 @@ DistanceResult coaxial_torus(const core::QuadricMatrix& meridian, const core::To
   arf_clear(l);
   arf_clear(h);
   out.status = Status::Certified;
-  out.minimizers = "infinite";
+  out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
   out.note = "coaxial surfaces of revolution: a circle of closest pairs (one shown)";
   // One representative pair, approximately: the meridian foot (X, Z) in the half-plane of a
   // unit vector u orthogonal to the axis.
@@ -564,7 +567,7 @@ DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const 
   if (c == Contact::Meet) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = "infinite";
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
     out.note = "the quadric meets the torus (certified points of the quadric inside and outside "
                "the solid torus); the pair is an approximate common point (float bisection)";
     out.pairs.push_back({witness, witness});

@@ -910,10 +910,10 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
   for (const Interval* I : reps)
     out.pairs.push_back(quadric_first ? std::array<D3, 2>{I->up.p, I->up.q}
                                       : std::array<D3, 2>{I->up.q, I->up.p});
-  out.minimizers = std::to_string(reps.size());
+  out.minimizers = Minimizers::count(static_cast<long>(reps.size()), Minimizers::Proof::Interval);
   out.critical_candidates = static_cast<int>(reps.size());
   out.eliminated_degree = 0;
-  out.method = "torus_circle_bound";
+  out.method = Method::TorusCircleBound;
   out.note = "ellipsoid outside the solid torus: certified by branch and bound over the core "
              "circle (support-function duality lower bounds with Taylor forms, Arb; genuine "
              "pairs: support points and their exact distance to the torus); no elimination "

@@ -149,9 +149,9 @@ std::optional<DistanceResult> nested_tubes(const core::Torus& in, const core::To
     res.pairs.push_back(pr);
   }
   const size_t groups = pm.minimizers.size();
-  res.minimizers = std::to_string(groups);
+  res.minimizers = Minimizers::count(static_cast<long>(groups), Minimizers::Proof::Interval);
   res.critical_candidates = static_cast<int>(groups);
-  res.method = "torus_circle_pair";
+  res.method = Method::TorusCirclePair;
   res.note = std::string("nested tubes: the ") + (inner_is_a ? "first" : "second") +
              " torus lies inside the other's tube; d = r_out - r_in - max dist(K_in, K_out), by "
              "branch and bound over the inner circle (Arb)";
@@ -186,8 +186,8 @@ std::optional<DistanceResult> coaxial_tori(const core::Torus& a, const core::Tor
   const Rational h2 = hx * hx / xx, dR = a.R - b.R;
   const Rational D2 = dR * dR + h2, s = a.r + b.r, del = core::abs(a.r - b.r);
   DistanceResult out;
-  out.method = "torus_coaxial_closed_form";
-  out.minimizers = "infinite";
+  out.method = Method::TorusCoaxialClosedForm;
+  out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
   out.status = Status::Certified;
   // Meridian-plane points as 3D doubles: e orthogonal to the axis, n the unit axis.
   const double xn = std::sqrt(xx.to_double_approx());
@@ -347,9 +347,9 @@ std::optional<DistanceResult> circle_pair_distance(const core::Torus& a, const c
     res.pairs.push_back(pr);
   }
   const size_t groups = pm.minimizers.size();
-  res.minimizers = std::to_string(groups);
+  res.minimizers = Minimizers::count(static_cast<long>(groups), Minimizers::Proof::Interval);
   res.critical_candidates = static_cast<int>(groups);
-  res.method = "torus_circle_pair";
+  res.method = Method::TorusCirclePair;
   res.note = "disjoint tubes: distance of the core circles minus both tube radii, by branch "
              "and bound over one circle (Arb)";
   note_unproven_ties(res, groups);

@@ -6,26 +6,30 @@
 // - `distance` is an Enclosure (enclosure.hpp): built only from a proof, so no float can fill
 //   it; a certified answer's enclosure meets upper - lower <= 10^-digits lower on the printed
 //   decimals. surface_distance checks that once for every route; a route that stops short is
-//   run once more with 2 digits + 10, and the answer is undecided if it still misses.
+//   rerun up to three times, each doubling the working digits (+10, at most 1000), and the
+//   answer is undecided if it still misses.
 // - `estimate` holds a float-mode answer (status Uncertified); it never fills `distance`.
-// - `minimizers` is a proven count, "infinite", "0" (not attained), or "undecided" when the
-//   count is not proven: several candidates whose equality is unproven (ties "unproven"), or
-//   a route that set count_unproven; minimizer_candidates then says how many.
+// - `minimizers` (minimizers.hpp) is a proven count, a continuum, "not attained", or
+//   undecided when the count is not proven (several candidates whose equality is unproven,
+//   ties "unproven", or a route that set count_unproven), with the number of candidates; each
+//   established value says whether exact arithmetic or rigorous enclosures proved it.
+// - `method` (method.hpp) is the registry route that answered; `reduced_by` the route that
+//   solved a reduced problem (a parametric surface through its implicit equation).
 // - `pairs` are approximate points (doubles), for display; `tie_regions` are outward boxes
 //   handed to the tie proof (symmetry.hpp).
 //
-// Routes (each falls through to the next when it cannot prove its answer): the convex
-// dualities, closed forms and branch and bounds of the README's table; pairs with a sphere
-// through the exact point-quadric sextic: d_min and d_max are [min lower, min upper] and
-// [max lower, max upper] over every critical candidate (never a float-sorted first), the side
-// decided against them, candidates re-enclosed until |d - r| meets the width and the
-// minimizers separate or are proven tied; two quadrics through the offset system
-// (quadric_pair.hpp); tori, canal, implicit and parametric surfaces through their own files.
-// Whether two quadrics meet is decided by the certified QSIC topology (an exact special point
-// or an exact argument proves an affine common point; a traced point is display only).
+// How an answer is found: the route registry (route.hpp) puts the pair in canonical order and
+// tries the routes of its pair kind in table order (closed forms, convex dualities, branch and
+// bounds with Krawczyk certificates, the exact offset systems; the README has the table), then
+// applies once, for every route, the contact fallback, the tie proof, the width contract and
+// the count rule. Whether two quadrics meet is decided by the certified QSIC topology (an exact
+// special point or an exact argument proves an affine common point; a traced point is display
+// only).
 #pragma once
 
 #include "surfcert/certify/distance/enclosure.hpp"
+#include "surfcert/certify/distance/method.hpp"
+#include "surfcert/certify/distance/minimizers.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/surface.hpp"
@@ -57,11 +61,10 @@ struct DistanceResult {
   const std::string lower() const { return distance ? distance->lower() : std::string(); }
   const std::string upper() const { return distance ? distance->upper() : std::string(); }
   double approx() const { return distance ? distance->approx() : estimate ? estimate->value : 0.0; }
-  /// A proven count ("1", "2", ...), "infinite" (a continuum), "0" (an infimum that is not
-  /// attained), or "undecided" (a certified distance whose minimizer count is not proven:
-  /// minimizer_candidates then holds the number of candidates not separated from it).
-  std::string minimizers;
-  long minimizer_candidates = 0;
+  /// How many minimizers, and how that is proven (minimizers.hpp); Undecided for a certified
+  /// distance whose count is not proven (it then holds the number of candidates).
+  Minimizers minimizers;
+  long minimizer_candidates() const { return minimizers.is_undecided() ? minimizers.value() : 0; }
   /// Set by a route whose count rests on an unproven step (e.g. candidates merged by a
   /// float test): the count is then reported as "undecided".
   bool count_unproven = false;
@@ -79,9 +82,10 @@ struct DistanceResult {
   /// seed 000 Table 1). Empty when the closed forms or the point-quadric sextic applied.
   std::vector<long> system_degrees, bivariate_degrees, univariate_degrees, squarefree_degrees;
   bool solid = false; ///< solid distance requested (0 when the volumes overlap)
-  /// Which route produced the answer ("convex_duality", "nested_convex_duality",
-  /// "offset_system", "closed_form", ...); empty when not recorded.
-  std::string method;
+  /// Which route produced the answer (the JSON "method"; method.hpp); None when not recorded.
+  Method method = Method::None;
+  /// A reduction's answer (parametric_reduction): the route that solved the reduced problem.
+  Method reduced_by = Method::None;
   Mode mode = Mode::Filtered; ///< the mode the query ran in
   /// Several minimizers: Unproven (their distances agree to the requested precision only;
   /// the count is then reported "undecided") or Proven (equal distances proven by an exact
@@ -105,9 +109,10 @@ struct DistanceResult {
 DistanceResult surface_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                 long digits, bool solid, Mode mode = Mode::Filtered);
 
-/// Any two supported surfaces: two quadrics as above; a quadric and a ring torus
-/// (quadric_torus_distance). Two tori: undecided ("not supported yet"). `solid` applies to
-/// two ellipsoids only.
+/// Any two supported surfaces (quadrics, tori, canal surfaces, implicit and parametric
+/// surfaces; route.hpp lists the pair kinds). `solid` asks for the distance between the
+/// solids: for two quadrics, and for closed surfaces of the other kinds (0 when one solid
+/// holds a point of the other).
 DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, long digits,
                                 bool solid, Mode mode = Mode::Filtered);
 
@@ -122,9 +127,10 @@ extern const char* const kUnprovenTiesNote;
 /// out.distance = the enclosure of the ball d (lower clamped at 0).
 void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
 
-/// {"status", "note"?, "result": {"distance": {"lower", "upper", "approx"}, "minimizers",
-/// "pairs", "critical_candidates", "eliminated_degree", "digits", "solid", "mode",
-/// "method"?, "ties"?}}
+/// {"status", "note"?, "result": {"distance"?: {"lower", "upper", "approx"}, "estimate"?:
+/// {"value", "certified": false}, "minimizers"?, "minimizers_proof"?, "minimizer_candidates"?,
+/// "pairs", "pair_points_approximate", "critical_candidates", "eliminated_degree",
+/// "degrees"?, "digits", "solid", "mode", "method"?, "reduced_by"?, "ties"?}}
 core::io::Json distance_envelope_json(const DistanceResult& r, long digits);
 
 } // namespace surfcert::certify

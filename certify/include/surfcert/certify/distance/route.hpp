@@ -83,7 +83,7 @@ struct Outcome {
 enum RouteModes : unsigned { kFloatMode = 1, kFilteredMode = 2, kExactMode = 4, kAllModes = 7 };
 
 struct Route {
-  const char* id;
+  Method id; ///< the JSON "method" of its answers (method.hpp)
   PairKind kind;
   unsigned modes;
   const char* proves; ///< what an answer of this route proves (the README's table)
