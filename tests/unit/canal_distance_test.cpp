@@ -41,10 +41,10 @@ TEST(CanalDistance, CapsuleAgainstSpheres) {
   // Foot inside the segment: |(2,5,0) - (2,0,0)| - 1 - 1.
   auto r = certify::surface_distance(eq("(x-2)^2+(y-5)^2+z^2=1"), c, 15, false);
   expect_value(r, 3.0, "inside");
-  // One minimizer; the canal route merges duplicate candidates by a float test, so its count
-  // may stay unproven ("undecided", one candidate), never a wrong count.
-  EXPECT_TRUE(r.minimizers == "1" || (r.minimizers == "undecided" && r.minimizer_candidates() == 1))
-      << r.minimizers;
+  // One minimizer, proven: candidates over one isolated spine parameter are merged exactly, and
+  // the foot of a spine point on a sphere (not at its centre) is unique.
+  EXPECT_EQ(r.minimizers, "1");
+  EXPECT_EQ(r.minimizers.proof(), certify::Minimizers::Proof::Interval);
   // Foot at the end B = (4,0,0): |(7,4,0) - B| - 2 = 3, in the end cap.
   expect_value(certify::surface_distance(eq("(x-7)^2+(y-4)^2+z^2=1"), c, 15, false), 3.0, "end");
   // Irrational: c = (-1, 1, 1): |c - A| = sqrt(3): sqrt(3) - 1 - 1/2.
@@ -154,4 +154,16 @@ TEST(CanalDistance, InputErrors) {
       js(R"({"type":"canal","spine":[[0,1],[0],[0]],"radius":["1/4",-1,1],"interval":[-2,2]})"), 15,
       false);
   EXPECT_NE(r.status, certify::Status::Certified);
+}
+
+// A spine inside an ellipsoid, through its centre along the longest axis: from (t, 0, 0) the
+// nearest points are the two feet (9t/8, 0, +-sqrt(1 - 9t^2/64)) at distance sqrt(1 - t^2/8),
+// smallest at the ends t = +-1: d = sqrt(7/8) - 1/10 at four pairs. Interior points of a
+// non-spherical ellipsoid may have several feet, so the route must not count one pair per
+// spine parameter: "4" or "undecided", never "1" or "2".
+TEST(CanalDistance, SeveralFeetPerSpinePointAreNotCountedAsOne) {
+  const auto c = js(R"({"type":"capsule","from":[-1,0,0],"to":[1,0,0],"radius":"1/10"})");
+  const auto r = certify::surface_distance(eq("x^2/9 + y^2/4 + z^2 = 1"), c, 15, false);
+  expect_value(r, std::sqrt(7.0 / 8.0) - 0.1, "inside");
+  EXPECT_TRUE(r.minimizers == "4" || r.minimizers == "undecided") << r.minimizers;
 }

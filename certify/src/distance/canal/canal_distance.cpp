@@ -3,6 +3,7 @@
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/convex_quadric.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 
@@ -105,6 +106,10 @@ struct Candidate {
   Ball lo, up;     // lower bound of phi over the t-interval; phi(t_c) (a ball)
   Rational tc;     // the rational parameter of the upper bound
   Rational ta, tb; // the t-interval (hull of the merged ones): a tie region is C([ta, tb])
+  // Which critical parameter this is, exactly: the index of its isolated root (distinct
+  // indices are distinct real numbers), or kEnd0 / kEnd1 for t0 / t1 (a root equal to an end
+  // is given the end's key, decided by an exact evaluation).
+  long key = 0;
   std::array<double, 3> p{}, q{};
 };
 
@@ -155,6 +160,50 @@ bool candidate(Candidate& cd, const core::QuadricMatrix& q, const core::CanalSur
     cd.q[i] = x[i].to_double_approx() +
               (n > 0 ? rtc.to_double_approx() * (cd.p[i] - x[i].to_double_approx()) / n : 0);
   return true;
+}
+
+constexpr long kEnd0 = -1, kEnd1 = -2;
+
+// Whether the foot of every spine point C(t), t in [ta, tb], on q is unique, proven: always
+// for a plane; for a sphere when C([ta, tb]) avoids its centre; for the convex solid of an
+// ellipsoid or elliptic cylinder when C([ta, tb]) is strictly outside it (the nearest point of
+// a convex set to an outside point is unique).
+// Otherwise unknown (a point inside, or a non-convex quadric, may have several feet).
+bool unique_foot(const core::QuadricMatrix& q, const core::CanalSurface& c, const Rational& ta,
+                 const Rational& tb) {
+  if (q.is_plane()) return true;
+  const auto cq = convex_quadric(q);
+  if (!cq || cq->is_paraboloid()) return false;
+  const long prec = 128;
+  Ball T, hi, x[4], v, term;
+  arb_set_fmpq(T.v, ta.raw(), prec);
+  arb_set_fmpq(hi.v, tb.raw(), prec);
+  arb_union(T.v, T.v, hi.v, prec);
+  for (size_t i = 0; i < 3; ++i)
+    eval_ball(x[i].v, c.spine[i], T.v, prec);
+  arb_one(x[3].v);
+  if (q.is_sphere()) { // inside too: every point but the centre has one nearest point
+    Ball d2, ci;
+    for (size_t i = 0; i < 3; ++i) {
+      arb_set_fmpq(ci.v, cq->c[i].raw(), prec);
+      arb_sub(ci.v, x[i].v, ci.v, prec);
+      arb_addmul(d2.v, ci.v, ci.v, prec);
+    }
+    if (arb_is_positive(d2.v)) return true;
+  }
+  // sign of q on C(T) against its sign at the centre (inside the solid).
+  std::array<Rational, 4> centre{cq->c[0], cq->c[1], cq->c[2], Rational(1)};
+  Rational at_centre;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      at_centre += q(i, j) * centre[static_cast<size_t>(i)] * centre[static_cast<size_t>(j)];
+      arb_mul(term.v, x[i].v, x[j].v, prec);
+      Ball qij;
+      arb_set_fmpq(qij.v, q(i, j).raw(), prec);
+      arb_addmul(v.v, qij.v, term.v, prec);
+    }
+  const int inside = at_centre.sign();
+  return inside != 0 && (inside < 0 ? arb_is_positive(v.v) : arb_is_negative(v.v));
 }
 
 // The (alpha, t) system over Z (variables x = alpha, y = t).
@@ -431,23 +480,40 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
   for (long bits = 16; !done; bits *= 2) {
     Rational width(1);
     fmpq_div_2exp(width.raw_mut(), width.raw(), static_cast<ulong>(bits));
-    std::vector<std::pair<Rational, Rational>> ts;
+    struct TInterval {
+      Rational lo, hi;
+      long key;
+    };
+    std::vector<TInterval> ts;
+    // The key of an isolated root of `factor` in [lo, hi]: an end's key when the root is that
+    // end (the factor vanishes there: the interval isolates one root), its index otherwise.
+    auto key_of = [&](const algebra::UPolyZ& factor, const Rational& lo, const Rational& hi,
+                      long index) {
+      if (lo <= c.t0 && c.t0 <= hi && factor.sign_at(c.t0) == 0) return kEnd0;
+      if (lo <= c.t1 && c.t1 <= hi && factor.sign_at(c.t1) == 0) return kEnd1;
+      return index;
+    };
     if (cover) {
       algebra::refine_cover(*cover, width);
-      for (const auto& b : cover->boxes)
-        ts.emplace_back(cover->roots[1][b[1]].lo, cover->roots[1][b[1]].hi);
+      for (const auto& b : cover->boxes) {
+        const auto& r = cover->roots[1][b[1]];
+        ts.push_back(
+            {r.lo, r.hi, key_of(cover->factors[1][r.factor], r.lo, r.hi, static_cast<long>(b[1]))});
+      }
     } else {
-      for (auto& r : tints) { // plane: the exact critical parameters, refined by bisection
+      for (size_t i = 0; i < tints.size(); ++i) { // plane: the exact critical parameters
+        auto& r = tints[i];
         algebra::refine_root(tfactors[r.factor], r.lo, r.hi, width);
-        ts.emplace_back(r.lo, r.hi);
+        ts.push_back({r.lo, r.hi, key_of(tfactors[r.factor], r.lo, r.hi, static_cast<long>(i))});
       }
     }
     std::vector<Candidate> cands;
-    for (auto [lo, hi] : ts) {
+    for (auto [lo, hi, key] : ts) {
       if (hi < c.t0 || lo > c.t1) continue;
       if (lo < c.t0) lo = c.t0;
       if (hi > c.t1) hi = c.t1;
       Candidate cd;
+      cd.key = key;
       if (!candidate(cd, q, c, lo, hi, digits)) {
         out.status = Status::Undecided;
         out.note = "point-quadric distance undecided inside the interval";
@@ -465,6 +531,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
       cd.tb = e->tb;
       cd.p = e->p;
       cd.q = e->q;
+      cd.key = e == &e0 ? kEnd0 : kEnd1;
       cands.push_back(std::move(cd));
     }
     arf_t l, u, w;
@@ -501,27 +568,26 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     arf_clear(w);
     if (bits > 2 * target_bits + 256) break;
   }
-  // One minimizer per critical point: candidates from several boxes over the same parameter
-  // (several alpha boxes, or an interior box at an end) with the same foot are merged. The
-  // merge is a float judgement (feet within 1e-9): when it fires, the count is not proven.
+  // One minimizer per critical parameter: candidates with the same key are the same spine
+  // point (several alpha boxes over one isolated t root, or a root equal to an end), merged
+  // exactly. Each spine point gives one minimizing pair only if its foot on q is unique:
+  // proven for a plane and for points outside an ellipsoid or elliptic cylinder; otherwise the
+  // count is not proven (a point may have several nearest feet).
   {
     std::vector<Candidate> uniq;
-    bool merged = false;
     for (auto& cd : best) {
-      bool dup = false;
-      for (auto& u : uniq) {
-        double dp = std::hypot(cd.p[0] - u.p[0], cd.p[1] - u.p[1], cd.p[2] - u.p[2]),
-               sc = 1 + std::hypot(u.p[0], u.p[1], u.p[2]);
-        if (!dup && dp <= 1e-9 * sc) { // merged: its interval joins the kept one's region
-          dup = merged = true;
-          u.ta = std::min(u.ta, cd.ta);
-          u.tb = std::max(u.tb, cd.tb);
-        }
+      auto same = std::find_if(uniq.begin(), uniq.end(),
+                               [&](const Candidate& u) { return u.key == cd.key; });
+      if (same == uniq.end()) {
+        uniq.push_back(std::move(cd));
+        continue;
       }
-      if (!dup) uniq.push_back(std::move(cd));
+      same->ta = std::min(same->ta, cd.ta); // its interval joins the kept one's region
+      same->tb = std::max(same->tb, cd.tb);
     }
     best = std::move(uniq);
-    out.count_unproven = out.count_unproven || merged;
+    for (const auto& cd : best)
+      out.count_unproven = out.count_unproven || !unique_foot(q, c, cd.ta, cd.tb);
   }
   out.critical_candidates = static_cast<int>(best.size());
   arf_t l, u;
