@@ -178,6 +178,8 @@ Outcome contact_run(Query& q) {
 void add_surface_pair_routes(std::vector<Route>& t) {
   using K = PairKind;
   const char* contact = "contact: certified points of one connected surface on both sides";
+  const char* balls =
+      "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk";
   t.push_back({Method::ParametricReduction, K::Parametric, kAllModes,
                "the implicit equation's routes, lower bound; an upper bound witnessed by an "
                "exact image point",
@@ -186,13 +188,9 @@ void add_surface_pair_routes(std::vector<Route>& t) {
                "a quadric and a torus: circle bound or offset system", always, quadric_torus_run});
   t.push_back({Method::TorusDistance, K::QuadricTorus, kExactMode,
                "a quadric and a torus: the exact offset system", always, quadric_torus_exact_run});
-  t.push_back(
-      {Method::SignChangeContact, K::QuadricTorus, kAllModes, contact, always, contact_run});
   t.push_back({Method::CanalDistance, K::QuadricCanal, kAllModes,
                "a quadric and a canal surface: min over the spine of point-quadric distances",
                always, quadric_canal_run});
-  t.push_back(
-      {Method::SignChangeContact, K::QuadricCanal, kAllModes, contact, always, contact_run});
   t.push_back({Method::ImplicitBnb, K::QuadricImplicit, kAllModes,
                "an ellipsoid and a bounded implicit surface: box pairs + Krawczyk", ellipsoid_first,
                ellipsoid_implicit_bnb_run});
@@ -205,18 +203,13 @@ void add_surface_pair_routes(std::vector<Route>& t) {
   t.push_back({Method::OffsetSystem, K::QuadricImplicit, kAllModes,
                "the offset system with the implicit source (degree <= 6)", always,
                quadric_implicit_offset_run});
-  t.push_back(
-      {Method::SignChangeContact, K::QuadricImplicit, kAllModes, contact, always, contact_run});
   t.push_back({Method::TorusCirclePair, K::TorusTorus, kAllModes,
                "two tori: circle-circle distance by branch and bound, coaxial closed form", always,
                torus_pair_run});
   t.push_back({Method::ImplicitBnb, K::TorusTorus, kAllModes,
                "two tori as quartics: box pairs + Krawczyk", always, torus_pair_bnb_run});
-  t.push_back({Method::SignChangeContact, K::TorusTorus, kAllModes, contact, always, contact_run});
-  t.push_back({Method::SphereFamilyBnb, K::TorusCanal, kAllModes,
-               "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk",
-               always, sphere_family_run});
-  t.push_back({Method::SignChangeContact, K::TorusCanal, kAllModes, contact, always, contact_run});
+  t.push_back(
+      {Method::SphereFamilyBnb, K::TorusCanal, kAllModes, balls, always, sphere_family_run});
   t.push_back({Method::ImplicitBnb, K::TorusImplicit, kAllModes,
                "a torus and a bounded implicit surface: box pairs + Krawczyk", always,
                torus_implicit_bnb_run});
@@ -226,21 +219,18 @@ void add_surface_pair_routes(std::vector<Route>& t) {
   t.push_back({Method::OffsetSystem, K::TorusImplicit, kAllModes,
                "the offset system with the implicit source (degree <= 6)", always,
                torus_implicit_offset_run});
-  t.push_back(
-      {Method::SignChangeContact, K::TorusImplicit, kAllModes, contact, always, contact_run});
   t.push_back({Method::CapsuleClosedForm, K::CanalCanal, kAllModes,
                "two capsules: segment-segment distance (exact square) minus the radii", always,
                capsule_pair_run});
-  t.push_back({Method::SphereFamilyBnb, K::CanalCanal, kAllModes,
-               "unions of balls: min dist(C1(s), C2(t)) - r1 - r2 by branch and bound + Krawczyk",
-               always, sphere_family_run});
-  t.push_back({Method::SignChangeContact, K::CanalCanal, kAllModes, contact, always, contact_run});
   t.push_back(
-      {Method::SignChangeContact, K::CanalImplicit, kAllModes, contact, always, contact_run});
+      {Method::SphereFamilyBnb, K::CanalCanal, kAllModes, balls, always, sphere_family_run});
   t.push_back({Method::ImplicitBnb, K::ImplicitImplicit, kAllModes,
                "two bounded implicit surfaces: box pairs + Krawczyk", always, implicit_pair_run});
-  t.push_back(
-      {Method::SignChangeContact, K::ImplicitImplicit, kAllModes, contact, always, contact_run});
+  // Every non-quadric table ends with the contact fallback (the registry tries a kind's
+  // routes in table order, so appending them last keeps them last).
+  for (K k : {K::QuadricTorus, K::QuadricCanal, K::QuadricImplicit, K::TorusTorus, K::TorusCanal,
+              K::TorusImplicit, K::CanalCanal, K::CanalImplicit, K::ImplicitImplicit})
+    t.push_back({Method::SignChangeContact, k, kAllModes, contact, always, contact_run});
 }
 
 } // namespace surfcert::certify

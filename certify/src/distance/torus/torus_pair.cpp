@@ -41,6 +41,31 @@ struct Circle {
   }
 };
 
+// Display only (the pairs are approximate points): the midpoint of a ball point, and the
+// nearest point of the core circle of t (unit axis from its Circle) to a double point p.
+std::array<double, 3> midpoint(const Ball (&p)[3]) {
+  return {arf_get_d(arb_midref(p[0].v), ARF_RND_NEAR), arf_get_d(arb_midref(p[1].v), ARF_RND_NEAR),
+          arf_get_d(arb_midref(p[2].v), ARF_RND_NEAR)};
+}
+std::array<double, 3> nearest_on_core(const std::array<double, 3>& p, const core::Torus& t,
+                                      const Circle& k) {
+  std::array<double, 3> w{}, nd{}, out{};
+  double h = 0, rl = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    nd[i] = arf_get_d(arb_midref(k.n[i].v), ARF_RND_NEAR);
+    w[i] = p[i] - t.centre[i].to_double_approx();
+    h += w[i] * nd[i];
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    w[i] -= h * nd[i]; // the component in the circle's plane
+    rl += w[i] * w[i];
+  }
+  rl = std::sqrt(rl);
+  for (size_t i = 0; i < 3; ++i)
+    out[i] = t.centre[i].to_double_approx() + (rl > 0 ? t.R.to_double_approx() * w[i] / rl : 0);
+  return out;
+}
+
 // f(t) = dist(K1(pi t), K2) and f'(t) over the ball t; the point K1(t) (for the pairs).
 void circle_circle(Dual& f, Ball (*point)[3], const Circle& c1, const Circle& c2, const arb_t t,
                    long prec) {
@@ -120,26 +145,8 @@ std::optional<DistanceResult> nested_tubes(const core::Torus& in, const core::To
     Dual f;
     circle_circle(f, &p, ci, co, tm.v, prec);
     // nearest point k of K_out to c = K_in(t), then the two surface points on the ray k -> c
-    std::array<double, 3> c{}, k{}, nd{};
-    double h = 0;
-    for (size_t i = 0; i < 3; ++i) {
-      c[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
-      nd[i] = arf_get_d(arb_midref(co.n[i].v), ARF_RND_NEAR);
-      h += (c[i] - out.centre[i].to_double_approx()) * nd[i];
-    }
-    double rl = 0;
-    std::array<double, 3> w{};
-    for (size_t i = 0; i < 3; ++i) {
-      w[i] = c[i] - out.centre[i].to_double_approx() - h * nd[i];
-      rl += w[i] * w[i];
-    }
-    rl = std::sqrt(rl);
-    double fd = 0;
-    for (size_t i = 0; i < 3; ++i) {
-      k[i] = out.centre[i].to_double_approx() + (rl > 0 ? out.R.to_double_approx() * w[i] / rl : 0);
-      fd += (c[i] - k[i]) * (c[i] - k[i]);
-    }
-    fd = std::sqrt(fd);
+    const std::array<double, 3> c = midpoint(p), k = nearest_on_core(c, out, co);
+    const double fd = std::hypot(c[0] - k[0], c[1] - k[1], c[2] - k[2]);
     std::array<std::array<double, 3>, 2> pr{};
     for (size_t i = 0; i < 3; ++i) {
       const double dir = fd > 0 ? (c[i] - k[i]) / fd : 0;
@@ -321,22 +328,9 @@ std::optional<DistanceResult> circle_pair_distance(const core::Torus& a, const c
     Ball p[3];
     Dual f;
     circle_circle(f, &p, c1, c2, tm.v, prec);
-    // nearest point of K2 to p (double): o2 + R2 (radial unit), then both surface points
-    std::array<double, 3> pd{}, q{}, w{}, nd{};
-    double h = 0, fd = arf_get_d(arb_midref(f.v.v), ARF_RND_NEAR);
-    for (size_t i = 0; i < 3; ++i) {
-      pd[i] = arf_get_d(arb_midref(p[i].v), ARF_RND_NEAR);
-      nd[i] = arf_get_d(arb_midref(c2.n[i].v), ARF_RND_NEAR);
-      w[i] = pd[i] - b.centre[i].to_double_approx();
-      h += w[i] * nd[i];
-    }
-    double rl = 0;
-    for (size_t i = 0; i < 3; ++i)
-      rl += (w[i] - h * nd[i]) * (w[i] - h * nd[i]);
-    rl = std::sqrt(rl);
-    for (size_t i = 0; i < 3; ++i)
-      q[i] = b.centre[i].to_double_approx() +
-             (rl > 0 ? b.R.to_double_approx() * (w[i] - h * nd[i]) / rl : 0);
+    // nearest point of K2 to p (double), then both surface points
+    const std::array<double, 3> pd = midpoint(p), q = nearest_on_core(pd, b, c2);
+    const double fd = arf_get_d(arb_midref(f.v.v), ARF_RND_NEAR);
     std::array<std::array<double, 3>, 2> pr{};
     const double ra = a.r.to_double_approx(), rb = b.r.to_double_approx();
     for (size_t i = 0; i < 3; ++i) {
