@@ -1,14 +1,11 @@
 #include "surfcert/algebra/real_roots.hpp"
 
-#include <acb.h>
-#include <arb_fmpz_poly.h>
-
-#include <algorithm>
-#include <optional>
+#include "surfcert/algebra/arb.hpp"
 
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <optional>
 
 namespace surfcert::algebra {
 

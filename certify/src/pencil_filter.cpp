@@ -2,6 +2,7 @@
 // -ffp-contract=off (see the top-level CMakeLists): CGAL::Interval_nt relies on them.
 #include "surfcert/certify/pencil_filter.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/eigen4.hpp"
 #include "surfcert/algebra/pencil_poly.hpp"
 #include "surfcert/algebra/real_roots.hpp"
@@ -10,8 +11,6 @@
 #include <CGAL/Interval_nt.h>
 
 #include <algorithm>
-#include <arf.h>
-
 #include <cmath>
 
 namespace surfcert::certify {

@@ -2,13 +2,12 @@
 // CGAL's Descartes isolator vs Arb's complex root enclosures vs a Sturm count), inertia
 // (Descartes vs exact LDL^T vs Sylvester's law on P^T D P), the closed-form pencil
 // determinant vs FLINT's fmpq_mat_det, D4 vs FLINT's discriminant, signs in Q(sqrt d).
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/algebra/pencil_poly.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 
-#include <acb.h>
-#include <arb_fmpz_poly.h>
 #include <flint/fmpq_mat.h>
 #include <gtest/gtest.h>
 

@@ -17,10 +17,10 @@
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/mpoly.hpp"
 #include "surfcert/certify/qsic.hpp"
 
-#include <arb.h>
 #include <flint/fmpq_mat.h>
 
 #include <algorithm>

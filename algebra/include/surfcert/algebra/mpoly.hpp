@@ -7,10 +7,10 @@
 // semantics (copies are deep). Ball evaluation encloses the value over a box of balls.
 #pragma once
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/upoly.hpp"
 #include "surfcert/core/rational.hpp"
 
-#include <arb.h>
 #include <flint/fmpz_mpoly.h>
 
 #include <array>

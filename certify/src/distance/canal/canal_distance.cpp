@@ -1,5 +1,6 @@
 #include "surfcert/certify/distance/canal_distance.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/ball.hpp"
@@ -7,7 +8,6 @@
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 
-#include <arb.h>
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 

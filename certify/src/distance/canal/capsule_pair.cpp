@@ -1,8 +1,7 @@
 #include "surfcert/certify/distance/capsule_pair.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/ball.hpp"
-
-#include <arb.h>
 
 #include <cmath>
 

@@ -1,8 +1,7 @@
 #include "surfcert/certify/distance/critical_signs.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
-
-#include <arb.h>
 
 namespace surfcert::certify {
 

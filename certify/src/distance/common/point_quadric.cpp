@@ -13,10 +13,10 @@
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"
 
-#include <arb.h>
 #include <flint/fmpz_poly.h>
 #include <flint/fmpz_poly_factor.h>
 #include <mpfr.h>

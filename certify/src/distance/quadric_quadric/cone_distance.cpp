@@ -1,8 +1,7 @@
 #include "surfcert/certify/distance/cone_distance.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/periodic_bnb.hpp"
-
-#include <arb.h>
 
 #include <cmath>
 #include <vector>

@@ -10,9 +10,8 @@
 #include "surfcert/certify/distance/quadratic_forms.hpp"
 #include "surfcert/certify/distance/revolution.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/core/torus.hpp"
-
-#include <arb.h>
 
 #include <algorithm>
 #include <cmath>

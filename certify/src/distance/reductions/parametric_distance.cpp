@@ -1,13 +1,12 @@
 #include "surfcert/certify/distance/parametric_distance.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/implicit_bnb.hpp"
 #include "surfcert/certify/distance/solid_relation.hpp"
 
 #include <flint/fmpq.h>
 #include <flint/fmpz_mat.h>
-
-#include <arb.h>
 
 #include <algorithm>
 #include <cmath>

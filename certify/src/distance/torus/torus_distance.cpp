@@ -2,6 +2,7 @@
 
 #include "surfcert/certify/distance/quadric_pair.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/critical_signs.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
@@ -9,8 +10,6 @@
 #include "surfcert/certify/distance/revolution.hpp"
 #include "surfcert/certify/distance/torus_fast.hpp"
 #include "surfcert/certify/qsic.hpp"
-
-#include <arb.h>
 
 #include <cmath>
 #include <optional>

@@ -1,9 +1,8 @@
 #include "surfcert/certify/distance/torus_pair.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/periodic_bnb.hpp"
-
-#include <arb.h>
 
 #include <cmath>
 #include <vector>

@@ -1,31 +1,17 @@
-// surfcert::certify::Ball (RAII over Arb's arb_t) and outward-rounded decimal bounds: the two
-// pieces every certified enclosure in the distance code needs.
+// The ball type (algebra::Ball, RAII over Arb's arb_t) and outward-rounded decimal bounds: the
+// two pieces every certified enclosure in the distance code needs.
 #pragma once
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/core/rational.hpp"
-
-#include <arb.h>
 
 #include <array>
 #include <string>
 
 namespace surfcert::certify {
 
-struct Ball {
-  arb_t v;
-  Ball() { arb_init(v); }
-  Ball(const Ball&) = delete;
-  Ball& operator=(const Ball&) = delete;
-  Ball(Ball&& o) noexcept {
-    arb_init(v);
-    arb_swap(v, o.v);
-  }
-  Ball& operator=(Ball&& o) noexcept {
-    arb_swap(v, o.v);
-    return *this;
-  }
-  ~Ball() { arb_clear(v); }
-};
+// The Arb ball value type lives with the Arb includes (surfcert/algebra/arb.hpp).
+using algebra::Ball;
 
 /// Decimal text of x with `digits` significant digits, rounded down (lower bound) or up
 /// (upper bound), so the text never lies inside the enclosure it bounds.

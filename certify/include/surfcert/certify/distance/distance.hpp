@@ -27,14 +27,13 @@
 // only).
 #pragma once
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/enclosure.hpp"
 #include "surfcert/certify/distance/method.hpp"
 #include "surfcert/certify/distance/minimizers.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/surface.hpp"
-
-#include <arb.h>
 
 #include <array>
 #include <optional>

@@ -16,37 +16,14 @@
 // printed decimals (meets_width checks it exactly, in MPFR).
 #pragma once
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/core/rational.hpp"
-
-#include <arb.h>
 
 #include <string>
 
 namespace surfcert::certify {
 
-/// RAII over arf_t (copyable: an exact binary floating-point number).
-class Arf {
-public:
-  Arf() { arf_init(v); }
-  Arf(const Arf& o) {
-    arf_init(v);
-    arf_set(v, o.v);
-  }
-  Arf& operator=(const Arf& o) {
-    arf_set(v, o.v);
-    return *this;
-  }
-  Arf(Arf&& o) noexcept {
-    arf_init(v);
-    arf_swap(v, o.v);
-  }
-  Arf& operator=(Arf&& o) noexcept {
-    arf_swap(v, o.v);
-    return *this;
-  }
-  ~Arf() { arf_clear(v); }
-  arf_t v;
-};
+using algebra::Arf;
 
 class Enclosure {
 public:

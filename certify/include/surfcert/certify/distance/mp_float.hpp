@@ -7,9 +7,9 @@
 // has to happen inside that scope.
 #pragma once
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/core/rational.hpp"
 
-#include <arb.h>
 #include <boost/multiprecision/mpfr.hpp>
 #include <flint/fmpq.h>
 
