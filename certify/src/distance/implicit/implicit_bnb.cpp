@@ -1,9 +1,9 @@
 #include "surfcert/certify/distance/implicit_bnb.hpp"
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 
 #include <CGAL/Interval_nt.h>
-#include <arb_mat.h>
 #include <mpfr.h>
 
 #include <algorithm>
@@ -533,14 +533,7 @@ bool newton_float(const Surf& a, const Surf& b, V8& x) {
   return r < 1e-9;
 }
 
-struct ArbVec {
-  arb_ptr v;
-  slong n;
-  explicit ArbVec(slong k) : v(_arb_vec_init(k)), n(k) {}
-  ArbVec(const ArbVec&) = delete;
-  ArbVec& operator=(const ArbVec&) = delete;
-  ~ArbVec() { _arb_vec_clear(v, n); }
-};
+using algebra::BallVec;
 struct ArbMat {
   arb_mat_t m;
   ArbMat(slong r, slong c) { arb_mat_init(m, r, c); }
@@ -551,7 +544,7 @@ struct ArbMat {
 
 // F(x) (8 balls) and J(x) at the ball vector x.
 void lagrange_arb(const Surf& a, const Surf& b, arb_srcptr x, arb_ptr F, arb_mat_t J, long prec) {
-  ArbVec gf(3), gg(3);
+  BallVec gf(3), gg(3);
   Ball t, u;
   for (size_t i = 0; i < 3; ++i) {
     evala(gf.v + i, a.g[i], x, prec);
@@ -614,7 +607,7 @@ bool strictly_inside(const arb_t k, const arb_t x, long prec) {
 // Krawczyk on X (8 balls) about the point xh (8 exact balls, inside X): true when K(X) lies in
 // the interior of X (then X holds exactly one zero, and it lies in K, written to k).
 bool krawczyk(const Surf& a, const Surf& b, arb_srcptr X, arb_srcptr xh, arb_ptr k, long prec) {
-  ArbVec F(8), dx(8), t(8);
+  BallVec F(8), dx(8), t(8);
   ArbMat J(8, 8), Jm(8, 8), Y(8, 8), M(8, 8);
   lagrange_arb(a, b, xh, F.v, Jm.m, prec);
   lagrange_arb(a, b, X, nullptr, J.m, prec);
@@ -710,7 +703,7 @@ std::optional<Critical> prove_cluster(const Surf& a, const Surf& b, const Box& h
     X[i] = DI(std::min(X[i].inf(), x[i]) - r, std::max(X[i].sup(), x[i]) + r);
   }
   const long prec = 128;
-  ArbVec Xa(8), xh(8), k(8);
+  BallVec Xa(8), xh(8), k(8);
   for (size_t i = 0; i < 8; ++i) {
     set_interval(Xa.v + i, X[i].inf(), X[i].sup(), prec);
     arb_set_d(xh.v + i, x[i]);
@@ -728,7 +721,7 @@ std::optional<Critical> prove_cluster(const Surf& a, const Surf& b, const Box& h
 // Refines the critical pair of c at `digits` (Newton in Arb, Krawczyk on a tiny box inside c.X).
 bool refine(const Surf& a, const Surf& b, Critical& c, long digits) {
   for (long prec = bits_for(digits); prec <= 4 * bits_for(digits) + 256; prec *= 2) {
-    ArbVec x(8), F(8), X(8), k(8);
+    BallVec x(8), F(8), X(8), k(8);
     ArbMat J(8, 8);
     for (slong i = 0; i < 8; ++i)
       arb_set_d(x.v + i, c.x[static_cast<size_t>(i)]);

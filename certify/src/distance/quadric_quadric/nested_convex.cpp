@@ -29,88 +29,29 @@ constexpr double kMinRadius = 1.0 / (1 << 26);
 
 using DI = CGAL::Interval_nt<false>;
 
-// Arb balls with value semantics; the working precision is set by a PrecisionScope.
-thread_local long t_prec = 128;
-struct PrecisionScope {
-  explicit PrecisionScope(long p) : saved(t_prec) { t_prec = p; }
-  ~PrecisionScope() { t_prec = saved; }
-  PrecisionScope(const PrecisionScope&) = delete;
-  PrecisionScope& operator=(const PrecisionScope&) = delete;
-  long saved;
-};
-struct AB {
-  arb_t v;
-  AB() { arb_init(v); }
-  AB(double d) { // NOLINT: implicit like the double intervals
-    arb_init(v);
-    arb_set_d(v, d);
-  }
-  AB(const AB& o) {
-    arb_init(v);
-    arb_set(v, o.v);
-  }
-  AB(AB&& o) noexcept {
-    arb_init(v);
-    arb_swap(v, o.v);
-  }
-  AB& operator=(const AB& o) {
-    arb_set(v, o.v);
-    return *this;
-  }
-  AB& operator=(AB&& o) noexcept {
-    arb_swap(v, o.v);
-    return *this;
-  }
-  ~AB() { arb_clear(v); }
-};
-AB operator+(const AB& a, const AB& b) {
-  AB r;
-  arb_add(r.v, a.v, b.v, t_prec);
-  return r;
-}
-AB operator-(const AB& a, const AB& b) {
-  AB r;
-  arb_sub(r.v, a.v, b.v, t_prec);
-  return r;
-}
-AB operator-(const AB& a) {
-  AB r;
-  arb_neg(r.v, a.v);
-  return r;
-}
-AB operator*(const AB& a, const AB& b) {
-  AB r;
-  arb_mul(r.v, a.v, b.v, t_prec);
-  return r;
-}
-AB operator/(const AB& a, const AB& b) {
-  AB r;
-  arb_div(r.v, a.v, b.v, t_prec);
-  return r;
-}
-AB& operator+=(AB& a, const AB& b) {
-  arb_add(a.v, a.v, b.v, t_prec);
-  return a;
-}
+// Arb balls (algebra::Ball) with value semantics; their operators, and the helpers below,
+// round at ball_precision(), which a PrecisionScope sets.
+using algebra::ball_precision;
+using algebra::PrecisionScope;
 
 // The interface: certain signs and comparisons, the symmetric hull [-sup|x|, sup|x|], exact
 // midpoints, tight squares, intersections.
 bool finite(const DI& x) {
   return std::isfinite(x.inf()) && std::isfinite(x.sup());
 }
-bool finite(const AB& x) {
+bool finite(const Ball& x) {
   return arb_is_finite(x.v) != 0;
 }
 bool is_zero(const DI& x) {
   return x.inf() == 0 && x.sup() == 0;
 }
-bool is_zero(const AB& x) {
+bool is_zero(const Ball& x) {
   return arb_is_zero(x.v) != 0;
 }
 bool pos(const DI& x) {
   return x.inf() > 0;
 }
-bool pos(const AB& x) {
+bool pos(const Ball& x) {
   return arb_is_positive(x.v) != 0;
 }
 bool neg(const DI& x) {
@@ -119,57 +60,57 @@ bool neg(const DI& x) {
 bool gt(const DI& a, const DI& b) {
   return a.inf() > b.sup();
 }
-bool gt(const AB& a, const AB& b) {
+bool gt(const Ball& a, const Ball& b) {
   return arb_gt(a.v, b.v) != 0;
 }
 DI sqrt_(const DI& x) {
   return CGAL::sqrt(x);
 }
-AB sqrt_(const AB& x) {
-  AB r;
-  arb_sqrt(r.v, x.v, t_prec);
+Ball sqrt_(const Ball& x) {
+  Ball r;
+  arb_sqrt(r.v, x.v, ball_precision());
   return r;
 }
 DI sym(const DI& x) {
   const double s = std::max(-x.inf(), x.sup());
   return DI(-s, s);
 }
-AB sym(const AB& x) {
-  AB r;
+Ball sym(const Ball& x) {
+  Ball r;
   arb_get_mag(arb_radref(r.v), x.v);
   return r;
 }
 DI lower_point(const DI& x) {
   return DI(x.inf());
 }
-AB lower_point(const AB& x) {
-  AB r;
-  arb_get_lbound_arf(arb_midref(r.v), x.v, t_prec);
+Ball lower_point(const Ball& x) {
+  Ball r;
+  arb_get_lbound_arf(arb_midref(r.v), x.v, ball_precision());
   return r;
 }
 DI upper_point(const DI& x) {
   return DI(x.sup());
 }
-AB upper_point(const AB& x) {
-  AB r;
-  arb_get_ubound_arf(arb_midref(r.v), x.v, t_prec);
+Ball upper_point(const Ball& x) {
+  Ball r;
+  arb_get_ubound_arf(arb_midref(r.v), x.v, ball_precision());
   return r;
 }
 DI midpoint(const DI& x) {
   return DI(0.5 * (x.inf() + x.sup()));
 } // a point of x
-AB midpoint(const AB& x) {
-  AB r;
+Ball midpoint(const Ball& x) {
+  Ball r;
   arb_get_mid_arb(r.v, x.v);
   return r;
 }
 DI square(const DI& x) {
   return CGAL::square(x);
 }
-AB square(const AB& x) {
-  AB r;
+Ball square(const Ball& x) {
+  Ball r;
   if (!arb_contains_zero(x.v)) {
-    arb_sqr(r.v, x.v, t_prec);
+    arb_sqr(r.v, x.v, ball_precision());
     return r;
   }
   arb_get_mag(arb_radref(r.v), x.v); // [0, |x|^2] as a ball
@@ -184,48 +125,48 @@ bool intersect(DI& out, const DI& a, const DI& b) {
   out = DI(lo, hi);
   return true;
 }
-bool intersect(AB& out, const AB& a, const AB& b) {
-  return arb_intersection(out.v, a.v, b.v, t_prec) != 0;
+bool intersect(Ball& out, const Ball& a, const Ball& b) {
+  return arb_intersection(out.v, a.v, b.v, ball_precision()) != 0;
 }
 bool interior(const DI& X, const DI& K) {
   return X.inf() < K.inf() && K.sup() < X.sup();
 }
-bool interior(const AB& X, const AB& K) {
+bool interior(const Ball& X, const Ball& K) {
   return arb_contains_interior(X.v, K.v) != 0;
 }
 bool disjoint(const DI& a, const DI& b) {
   return a.sup() < b.inf() || b.sup() < a.inf();
 }
-bool disjoint(const AB& a, const AB& b) {
+bool disjoint(const Ball& a, const Ball& b) {
   return arb_overlaps(a.v, b.v) == 0;
 }
 bool contains(const DI& X, const DI& Y) {
   return X.inf() <= Y.inf() && Y.sup() <= X.sup();
 }
-bool contains(const AB& X, const AB& Y) {
+bool contains(const Ball& X, const Ball& Y) {
   return arb_contains(X.v, Y.v) != 0;
 }
 
 // Outward conversions.
-DI to_di(const AB& x) {
+DI to_di(const Ball& x) {
   return DI(arf_get_d(arb_midref(lower_point(x).v), ARF_RND_FLOOR),
             arf_get_d(arb_midref(upper_point(x).v), ARF_RND_CEIL));
 }
-AB to_ab(const DI& x) {
-  AB r;
+Ball to_ab(const DI& x) {
+  Ball r;
   arf_t lo, hi;
   arf_init_set_si(lo, 0);
   arf_init_set_si(hi, 0);
   arf_set_d(lo, x.inf());
   arf_set_d(hi, x.sup());
-  arb_set_interval_arf(r.v, lo, hi, t_prec);
+  arb_set_interval_arf(r.v, lo, hi, ball_precision());
   arf_clear(lo);
   arf_clear(hi);
   return r;
 }
-AB from_rational(const Rational& q) {
-  AB r;
-  arb_set_fmpq(r.v, q.raw(), t_prec);
+Ball from_rational(const Rational& q) {
+  Ball r;
+  arb_set_fmpq(r.v, q.raw(), ball_precision());
   return r;
 }
 
@@ -381,11 +322,11 @@ template <class I> struct Ctx {
 };
 
 // The chart polynomials in Arb at the current precision (exact rationals rounded once).
-Ctx<AB> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const Frame& f) {
-  Ctx<AB> C;
+Ctx<Ball> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const Frame& f) {
+  Ctx<Ball> C;
   C.D = f.D;
   C.k = f.D - 1;
-  AB Wi[3][3], Wo[3][3], dc[3];
+  Ball Wi[3][3], Wo[3][3], dc[3];
   for (size_t i = 0; i < 3; ++i) {
     for (size_t l = 0; l < 3; ++l) {
       C.E[l][i] = from_rational(f.E[l][i]);
@@ -397,19 +338,19 @@ Ctx<AB> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const F
   for (int a = 0; a < C.D; ++a)
     for (int s : {1, -1}) {
       const Chart ch{a, s};
-      ChartPoly<AB>& P = C.cp[static_cast<size_t>(ch.id())];
-      AB v[3][3]; // v0 = s E_a, v1, v2 = the free basis vectors
+      ChartPoly<Ball>& P = C.cp[static_cast<size_t>(ch.id())];
+      Ball v[3][3]; // v0 = s E_a, v1, v2 = the free basis vectors
       for (size_t i = 0; i < 3; ++i) {
-        v[0][i] = C.E[a][i] * AB(s);
+        v[0][i] = C.E[a][i] * Ball(s);
         for (int j = 0; j < C.k; ++j)
           v[j + 1][i] = C.E[free_index(ch, j)][i];
       }
       const int slot[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}}; // coefficient of v_x^T M v_y
       for (int x = 0; x <= C.k; ++x)
         for (int y = x; y <= C.k; ++y) {
-          AB qo(0), qi(0), nn(0);
+          Ball qo(0), qi(0), nn(0);
           for (size_t i = 0; i < 3; ++i) {
-            AB wo(0), wi(0);
+            Ball wo(0), wi(0);
             for (size_t j = 0; j < 3; ++j) {
               wo += Wo[i][j] * v[y][j];
               wi += Wi[i][j] * v[y][j];
@@ -418,13 +359,13 @@ Ctx<AB> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const F
             qi += v[x][i] * wi;
             nn += v[x][i] * v[y][i];
           }
-          const AB two(x == y ? 1 : 2);
+          const Ball two(x == y ? 1 : 2);
           P.Qo[slot[x][y]] = qo * two;
           P.Qi[slot[x][y]] = qi * two;
           P.N[slot[x][y]] = nn * two;
         }
       for (int x = 0; x <= C.k; ++x) {
-        P.l[x] = AB(0);
+        P.l[x] = Ball(0);
         for (size_t i = 0; i < 3; ++i)
           P.l[x] += v[x][i] * dc[i];
       }
@@ -432,7 +373,7 @@ Ctx<AB> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const F
   return C;
 }
 
-Ctx<DI> to_di(const Ctx<AB>& A) {
+Ctx<DI> to_di(const Ctx<Ball>& A) {
   Ctx<DI> C;
   C.D = A.D;
   C.k = A.k;
@@ -927,11 +868,11 @@ bool branch_and_bound(const Ctx<DI>& C, const std::vector<Chart>& charts, DI& U,
 // A proven box at the final precision: E contracts onto its critical point, V encloses G there.
 struct Tight {
   Chart ch;
-  AB X[2], E[2], V;
+  Ball X[2], E[2], V;
 };
 
 // Largest log2 radius of a box.
-double log2_size(const AB* E, int k) {
+double log2_size(const Ball* E, int k) {
   double size = -1e300;
   for (int j = 0; j < k; ++j)
     size = std::max(size, mag_get_d_log2_approx(arb_radref(E[j].v)));
@@ -943,19 +884,19 @@ double log2_size(const AB* E, int k) {
 // with its Krawczyk image; when that barely shrinks (a box proven with little margin), a small
 // box around the Newton point inside E is proven instead (same point: E holds only one).
 // Quadratic convergence either way. False if it stalls.
-bool tighten(Tight& c, const Ctx<AB>& C, const AB& tol) {
+bool tighten(Tight& c, const Ctx<Ball>& C, const Ball& tol) {
   const int k = C.k;
   const Monomials& M = monomials(k);
   for (int j = 0; j < k; ++j)
     c.E[j] = c.X[j];
   for (int it = 0; it < 200; ++it) {
-    BoxForms<AB> B;
+    BoxForms<Ball> B;
     if (!box_value(B, C, c.ch, c.E)) return false;
     c.V = value_enclosure(B, M);
-    AB w;
+    Ball w;
     arb_get_rad_arb(w.v, c.V.v);
-    if (finite(c.V) && gt(lower_point(c.V) * tol, w * AB(8))) return true;
-    AB K[2], H[2][2], Z[2];
+    if (finite(c.V) && gt(lower_point(c.V) * tol, w * Ball(8))) return true;
+    Ball K[2], H[2][2], Z[2];
     if (!g_taylor(B.TX, C, c.ch, c.E, 3)) return false;
     hessian_enclosure(H, B, M);
     if (!krawczyk(K, B, H, c.E, k)) return false;
@@ -963,15 +904,15 @@ bool tighten(Tight& c, const Ctx<AB>& C, const AB& tol) {
       if (!intersect(Z[j], c.E[j], K[j])) return false; // impossible: the point is in both
     const double before = log2_size(c.E, k), after = log2_size(Z, k);
     if (after > before - 1) {
-      AB N[2], KN[2];
-      BoxForms<AB> BN;
+      Ball N[2], KN[2];
+      BoxForms<Ball> BN;
       bool ok = true;
       for (int j = 0; j < k && ok; ++j) {
         N[j] = midpoint(K[j]); // the Newton point m - Y g(m)
-        AB r = N[j] - B.m[j];
+        Ball r = N[j] - B.m[j];
         arb_get_mag(arb_radref(N[j].v), r.v);
         mag_mul_2exp_si(arb_radref(N[j].v), arb_radref(N[j].v), 1);
-        mag_add_ui_2exp_si(arb_radref(N[j].v), arb_radref(N[j].v), 1, 40 - t_prec);
+        mag_add_ui_2exp_si(arb_radref(N[j].v), arb_radref(N[j].v), 1, 40 - ball_precision());
         ok = contains(c.E[j], N[j]);
       }
       ok = ok && krawczyk_box(KN, BN, C, c.ch, N);
@@ -992,12 +933,12 @@ bool tighten(Tight& c, const Ctx<AB>& C, const AB& tol) {
 
 // True when the enclosure E of chart `from` lies inside the box X of chart `to` (then the
 // critical point in E is the unique one of X).
-bool inside(const Chart& from, const AB* E, const Chart& to, const AB* X, int k) {
-  AB coef[3];
-  coef[from.a] = AB(from.s);
+bool inside(const Chart& from, const Ball* E, const Chart& to, const Ball* X, int k) {
+  Ball coef[3];
+  coef[from.a] = Ball(from.s);
   for (int j = 0; j < k; ++j)
     coef[free_index(from, j)] = E[j];
-  const AB base = coef[to.a] * AB(to.s);
+  const Ball base = coef[to.a] * Ball(to.s);
   if (!pos(base)) return false;
   for (int j = 0; j < k; ++j)
     if (!contains(X[j], coef[free_index(to, j)] / base)) return false;
@@ -1005,10 +946,10 @@ bool inside(const Chart& from, const AB* E, const Chart& to, const AB* X, int k)
 }
 
 // The unit direction of a chart point.
-void unit_direction(AB (&n)[3], const Ctx<AB>& C, const Chart& ch, const AB* u) {
-  AB N(0);
+void unit_direction(Ball (&n)[3], const Ctx<Ball>& C, const Chart& ch, const Ball* u) {
+  Ball N(0);
   for (size_t i = 0; i < 3; ++i) {
-    n[i] = C.E[ch.a][i] * AB(ch.s);
+    n[i] = C.E[ch.a][i] * Ball(ch.s);
     for (int j = 0; j < C.k; ++j)
       n[i] += u[j] * C.E[free_index(ch, j)][i];
     N += n[i] * n[i];
@@ -1019,8 +960,8 @@ void unit_direction(AB (&n)[3], const Ctx<AB>& C, const Chart& ch, const AB* u) 
 }
 
 // True when the unit directions of two enclosures are certainly different.
-bool distinct(const Tight& x, const Tight& y, const Ctx<AB>& C) {
-  AB n[2][3];
+bool distinct(const Tight& x, const Tight& y, const Ctx<Ball>& C) {
+  Ball n[2][3];
   unit_direction(n[0], C, x.ch, x.E);
   unit_direction(n[1], C, y.ch, y.E);
   for (size_t i = 0; i < 3; ++i)
@@ -1104,7 +1045,7 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
 
   // The chart polynomials (Arb, then outward to double intervals), the certified upper bound
   // G(best) (any direction gives G >= min G), and the branch and bound.
-  Ctx<AB> Cs;
+  Ctx<Ball> Cs;
   {
     const PrecisionScope scope(128);
     Cs = make_ctx(inner, outer, f);
@@ -1125,13 +1066,13 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   // Contract the candidates that can hold the minimum, best first, at the final precision.
   const long pf = bits_for(digits + 10);
   const PrecisionScope scope(pf);
-  const Ctx<AB> C = make_ctx(inner, outer, f);
-  AB tol;
+  const Ctx<Ball> C = make_ctx(inner, outer, f);
+  Ball tol;
   arb_ui_pow_ui(tol.v, 10, static_cast<ulong>(digits), pf);
   arb_inv(tol.v, tol.v, pf);
   std::sort(crit.begin(), crit.end(),
             [](const Critical& x, const Critical& y) { return x.value.inf() < y.value.inf(); });
-  AB Ua = to_ab(U);
+  Ball Ua = to_ab(U);
   std::vector<Tight> done;
   for (const Critical& c : crit) {
     if (c.value.inf() > arf_get_d(arb_midref(Ua.v), ARF_RND_CEIL))
@@ -1150,13 +1091,13 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   }
   if (done.empty()) return std::nullopt;
   // d = min over the critical directions of G, in [min lower, Ua].
-  AB lo = lower_point(done[0].V);
+  Ball lo = lower_point(done[0].V);
   for (const Tight& t : done)
     if (arb_lt(lower_point(t.V).v, lo.v)) lo = lower_point(t.V);
   // F > 0 everywhere (the inner solid lies in the interior of the outer one) and the requested
   // relative width.
   if (!pos(lo) || !arb_le((Ua - lo).v, (lo * tol).v)) return std::nullopt;
-  AB d;
+  Ball d;
   arb_set_interval_arf(d.v, arb_midref(lo.v), arb_midref(Ua.v), pf);
 
   // Minimizers: the contracted critical directions whose enclosure meets [lo, Ua]; two of them
@@ -1191,15 +1132,15 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   // one of them.
   out.tie_directions = true;
   for (const Tight* t : mins) {
-    AB n[3];
+    Ball n[3];
     unit_direction(n, C, t->ch, t->E);
     std::vector<std::array<double, 2>> reg;
-    for (const AB& x : n)
+    for (const Ball& x : n)
       reg.push_back(outward_interval(x.v));
     out.tie_regions.push_back(std::move(reg));
   }
   for (const Tight* t : mins) {
-    AB m[2], n[3];
+    Ball m[2], n[3];
     for (int j = 0; j < k; ++j)
       m[j] = midpoint(t->E[j]);
     unit_direction(n, C, t->ch, m);
