@@ -131,18 +131,47 @@ std::vector<std::string> equations(const CLI::App& sub) {
   return eq;
 }
 
+// A quadric argument: a JSON surface when it starts with '{' (shapes, matrices), else an
+// equation; readings receives how float data in it was read exactly.
+core::QuadricMatrix quadric_arg(const std::string& text, const std::string& src,
+                                core::io::Readings& readings) {
+  if (!text.empty() && text[0] == '{')
+    return core::io::read_quadric(core::io::parse_json(text, src), src, "$", &readings);
+  return core::io::quadric_from_equation(text, Location{src, 1, 1, ""});
+}
+
+// The readings of float input: a "readings" field of the JSON answer, or text lines.
+void report_readings(const core::io::Readings& readings, core::io::Json* envelope) {
+  if (readings.empty()) return;
+  if (envelope) {
+    envelope->set("readings", core::io::readings_json(readings));
+    return;
+  }
+  for (const auto& r : readings) {
+    std::cout << "reading " << r.path << ": " << r.reading;
+    for (const auto& [name, value] : r.deviations)
+      std::cout << "; " << name << " = " << value;
+    std::cout << "\n";
+  }
+}
+
 int cmd_classify(const std::vector<std::string>& eq, const Opts& o) {
   certify::Mode mode = mode_arg(o.mode);
   bool json = o.json;
-  if (eq.size() != 2) throw UsageError("classify needs exactly two equations");
-  auto a = core::io::quadric_from_equation(eq[0], Location{"<argument 1>", 1, 1, ""});
-  auto b = core::io::quadric_from_equation(eq[1], Location{"<argument 2>", 1, 1, ""});
+  if (eq.size() != 2) throw UsageError("classify needs exactly two surfaces");
+  core::io::Readings readings;
+  auto a = quadric_arg(eq[0], "<argument 1>", readings);
+  auto b = quadric_arg(eq[1], "<argument 2>", readings);
   certify::QsicResult r = certify::classify_qsic(a, b, mode);
   certify::complete_report_data(r, a, b);
-  if (json)
-    std::cout << core::io::dump(certify::qsic_envelope_json(r, a, b), 2) << "\n";
-  else
+  if (json) {
+    core::io::Json env = certify::qsic_envelope_json(r, a, b);
+    report_readings(readings, &env);
+    std::cout << core::io::dump(env, 2) << "\n";
+  } else {
+    report_readings(readings, nullptr);
     std::cout << certify::qsic_result_text(r, a, b);
+  }
   return r.status == certify::Status::Undecided ? 3 : 0;
 }
 
@@ -166,15 +195,17 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   const std::string& svg_path = o.svg_path;
   trace::TraceOptions opt;
   if (!o.tol.empty()) opt.tolerance = tol_value(o.tol);
-  if (eq.size() != 2) throw UsageError("intersect needs exactly two equations");
+  if (eq.size() != 2) throw UsageError("intersect needs exactly two surfaces");
   auto ends_with = [](const std::string& s, const std::string& e) {
     return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
   };
   if (!export_path.empty() && !ends_with(export_path, ".obj") && !ends_with(export_path, ".ply"))
     throw InputError(Location{"<command line>", 0, 0, ""}, "--export FILE.obj or FILE.ply",
                      "\"" + export_path + "\"");
-  auto a = core::io::quadric_from_equation(eq[0], Location{"<argument 1>", 1, 1, ""});
-  auto b = core::io::quadric_from_equation(eq[1], Location{"<argument 2>", 1, 1, ""});
+  core::io::Readings readings;
+  auto a = quadric_arg(eq[0], "<argument 1>", readings);
+  auto b = quadric_arg(eq[1], "<argument 2>", readings);
+  if (!json) report_readings(readings, nullptr);
   trace::CurveResult c = trace::intersect_curve(a, b, mode, opt);
   std::vector<trace::Point3> special;
   for (const auto& p : c.topology.special_points)
@@ -198,7 +229,9 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
     write_atomically(svg_path, trace::to_svg(a, b, pic));
   }
   if (json) {
-    std::cout << core::io::dump(trace::curve_envelope_json(c, a, b), 2) << "\n";
+    core::io::Json env = trace::curve_envelope_json(c, a, b);
+    report_readings(readings, &env);
+    std::cout << core::io::dump(env, 2) << "\n";
   } else {
     std::cout << certify::qsic_result_text(c.topology, a, b);
     std::cout << "curve: " << certify::to_string(c.status) << ", " << c.branches.size()
@@ -219,9 +252,10 @@ int cmd_distance(const std::vector<std::string>& eq, const Opts& o) {
   if (eq.size() != 2) throw UsageError("distance needs exactly two surfaces");
   // An argument starting with '{' is a JSON surface (shapes, matrices, a torus), else an
   // equation.
-  auto surface = [](const std::string& text, const std::string& src) -> core::Surface {
+  core::io::Readings readings;
+  auto surface = [&readings](const std::string& text, const std::string& src) -> core::Surface {
     if (!text.empty() && text[0] == '{')
-      return core::io::read_surface(core::io::parse_json(text, src), src, "$");
+      return core::io::read_surface(core::io::parse_json(text, src), src, "$", &readings);
     core::Poly3 p = core::io::parse_polynomial(text, Location{src, 1, 1, ""});
     if (p.total_degree() >= 3) { // an implicit surface of degree 3..kMaxImplicitDegree
       if (p.total_degree() > core::kMaxImplicitDegree)
@@ -236,8 +270,11 @@ int cmd_distance(const std::vector<std::string>& eq, const Opts& o) {
   certify::DistanceResult d = certify::surface_distance(
       surface(eq[0], "<argument 1>"), surface(eq[1], "<argument 2>"), digits, solid, mode);
   if (json) {
-    std::cout << core::io::dump(certify::distance_envelope_json(d, digits), 2) << "\n";
+    core::io::Json env = certify::distance_envelope_json(d, digits);
+    report_readings(readings, &env);
+    std::cout << core::io::dump(env, 2) << "\n";
   } else {
+    report_readings(readings, nullptr);
     std::cout << "distance: " << certify::to_string(d.status);
     if (d.estimate) {
       char buf[40];

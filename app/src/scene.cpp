@@ -255,8 +255,9 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       const Json* jb = doc.find("b");
       if (!ja) throw InputError(at(doc, source, "$.a"), "a surface \"a\"", "none");
       if (!jb) throw InputError(at(doc, source, "$.b"), "a surface \"b\"", "none");
-      const core::Surface sa = core::io::read_surface(*ja, source, "$.a");
-      const core::Surface sb = core::io::read_surface(*jb, source, "$.b");
+      core::io::Readings readings; // how float data was read exactly (surface_reader.hpp)
+      const core::Surface sa = core::io::read_surface(*ja, source, "$.a", &readings);
+      const core::Surface sb = core::io::read_surface(*jb, source, "$.b", &readings);
       const core::QuadricMatrix* a = std::get_if<core::QuadricMatrix>(&sa);
       const core::QuadricMatrix* b = std::get_if<core::QuadricMatrix>(&sb);
       if (op->text() != "distance")
@@ -287,6 +288,7 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       }
       for (const auto& [k, v] : env.members())
         out.set(k, v);
+      if (!readings.empty()) out.set("readings", core::io::readings_json(readings));
     } catch (const InputError& e) {
       throw fix(e);
     }

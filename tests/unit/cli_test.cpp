@@ -100,8 +100,8 @@ TEST(Cli, BadScenesExitTwoAndWriteNothing) {
     const char* scene;
     const char* needle;
   } cases[] = {
-      {R"({"surfaces": {"A": {"matrix": [[1,2,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]}, "B": "x^2+y^2+z^2=4"}, "queries": [{"op": "classify", "a": "A", "b": "B"}]})",
-       "$.surfaces.A.matrix[0][1]"},
+      {R"({"surfaces": {"A": {"matrix": [[1,0,0,0],[0,1,"1/0",0],[0,0,1,0],[0,0,0,-1]]}, "B": "x^2+y^2+z^2=4"}, "queries": [{"op": "classify", "a": "A", "b": "B"}]})",
+       "$.surfaces.A.matrix[1][2]"},
       {R"({"surfaces": {"A": {"type": "sphere", "radius": 0}, "B": "x^2=1"}, "queries": []})",
        "$.surfaces.A.radius"},
       {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1, -2, 1]}, "B": "x^2=1"}, "queries": []})",
@@ -116,8 +116,8 @@ TEST(Cli, BadScenesExitTwoAndWriteNothing) {
        "$.queries[0].op"},
       {"{\"surfaces\": {\"A\": \"x^2+y^2=1\",\n \"B\": \"x^2 + + = 1\"}, \"queries\": []}", ":2:"},
       {"{\"surfaces\": {}, \n\n  \"queries\": [,]}", ":3:"},
-      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1,1,1], "rotation": {"matrix": [[1,0,0],[0,1,0],[0,1,1]]}}, "B": "x^2=1"}, "queries": []})",
-       "orthogonal"},
+      {R"({"surfaces": {"A": {"type": "ellipsoid", "radii": [1,1,1], "rotation": {"matrix": [[1,0,0],[0,1,0],[0,1,0]]}}, "B": "x^2=1"}, "queries": []})",
+       "invertible"},
   };
   for (const auto& c : cases) {
     std::string scene = tmp_path("scene.json"), report = tmp_path("report.json");
@@ -258,6 +258,21 @@ TEST(Cli, JsonDoublesAreReadAsExactDyadicsAndStringsAsDecimals) {
   EXPECT_EQ(m.find("a")->items()[0].items()[0].text(), "3602879701896397/36028797018963968");
   EXPECT_EQ(m.find("b")->items()[0].items()[0].text(), "1/10");
   EXPECT_EQ(m.find("b")->items()[3].items()[3].text(), "-1/4");
+}
+
+// classify / intersect take JSON surfaces on the command line like distance; a non-symmetric
+// matrix is read as its symmetric part and the answer says so ("readings").
+TEST(Cli, ClassifyTakesJsonSurfacesAndReportsReadings) {
+  const std::string a = R"('{"matrix": [[1,1,0,0],[-1,1,0,0],[0,0,1,0],[0,0,0,-1]]}')";
+  const std::string b = R"('{"type": "sphere", "center": [3, 0, 0], "radius": 1}')";
+  auto r = run("classify --json " + a + " " + b);
+  ASSERT_EQ(r.code, 0) << r.err;
+  Json o = surfcert::core::io::parse_json(r.out, "out");
+  ASSERT_NE(o.find("readings"), nullptr) << r.out;
+  EXPECT_EQ(o.find("readings")->items()[0].find("path")->text(), "$.matrix");
+  EXPECT_EQ(o.find("status")->text(), "certified");
+  auto t = run("intersect " + a + " " + b);
+  EXPECT_NE(t.out.find("reading $.matrix"), std::string::npos) << t.out;
 }
 
 TEST(Cli, OptionsTakeTheirValueEitherWay) {

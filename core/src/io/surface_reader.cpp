@@ -2,6 +2,7 @@
 
 #include "surfcert/core/io/expression.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -62,9 +63,38 @@ Rational read_positive(const Json& v, const std::string& source, const std::stri
   return r;
 }
 
-// Rotation (local -> world) from {"quaternion": [w,x,y,z]} or {"matrix": 3x3}.
+// The exact inverse of an invertible 3x3 matrix (adjugate / determinant).
+std::array<std::array<Rational, 3>, 3> inverse3(const std::array<std::array<Rational, 3>, 3>& r) {
+  std::array<std::array<Rational, 3>, 3> inv;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      // cofactor of r[j][i]
+      const size_t a0 = (j + 1) % 3, a1 = (j + 2) % 3, b0 = (i + 1) % 3, b1 = (i + 2) % 3;
+      inv[i][j] = r[a0][b0] * r[a1][b1] - r[a0][b1] * r[a1][b0];
+    }
+  Rational det;
+  for (size_t k = 0; k < 3; ++k)
+    det += r[0][k] * inv[k][0];
+  for (auto& row : inv)
+    for (auto& e : row)
+      e = e / det;
+  return inv;
+}
+
+// The largest |entry| of an exact deviation, as short decimal text (for a Reading).
+std::string max_abs_text(const std::vector<Rational>& entries) {
+  Rational m;
+  for (const auto& e : entries)
+    if (core::abs(e) > m) m = core::abs(e);
+  return m.to_decimal_approx(3);
+}
+
+// Rotation (local -> world) from {"quaternion": [w,x,y,z]} or {"matrix": 3x3}. A matrix is
+// read exactly as given: any invertible R (a double matrix is never exactly orthogonal) poses
+// the shape as c + R S, with a Reading saying how far R^T R is from I (and det R when it is
+// not 1).
 std::array<std::array<Rational, 3>, 3> read_rotation(const Json& v, const std::string& source,
-                                                     const std::string& path) {
+                                                     const std::string& path, Readings* readings) {
   std::array<std::array<Rational, 3>, 3> r;
   if (!v.is_object())
     throw InputError(at(v, source, path),
@@ -92,28 +122,34 @@ std::array<std::array<Rational, 3>, 3> read_rotation(const Json& v, const std::s
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j)
         r[i][j] = rows[i][j];
-    // Exact check: R^T R = I and det R = 1.
+    Rational d = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
+                 r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                 r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+    if (d.is_zero())
+      throw InputError(at(*m, source, mp), "an invertible rotation matrix", "det = 0");
+    std::vector<Rational> defect; // the entries of R^T R - I, exact
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j) {
         Rational s;
         for (size_t k = 0; k < 3; ++k)
           s += r[k][i] * r[k][j];
-        if (s != Rational(i == j ? 1 : 0))
-          throw InputError(at(*m, source, mp), "an orthogonal rotation matrix (R^T R = I exactly)",
-                           "(R^T R)[" + std::to_string(i) + "][" + std::to_string(j) +
-                               "] = " + s.to_string());
+        defect.push_back(s - Rational(i == j ? 1 : 0));
       }
-    Rational d = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
-                 r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
-                 r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
-    if (d != Rational(1))
-      throw InputError(at(*m, source, mp), "a proper rotation (det = 1)", "det = " + d.to_string());
+    const bool orthogonal =
+        std::all_of(defect.begin(), defect.end(), [](const Rational& e) { return e.is_zero(); });
+    if (readings && (!orthogonal || d != Rational(1)))
+      readings->push_back(
+          {mp,
+           "the matrix R read exactly as given: the shape is c + R S for the unit shape S (R is "
+           "not a rotation, so the surface is the image of S under this linear map)",
+           {{"max_abs(R^T R - I)", max_abs_text(defect)}, {"det(R)", d.to_decimal_approx(17)}}});
     return r;
   }
   throw InputError(at(v, source, path), "a field \"quaternion\" or \"matrix\"", "neither");
 }
 
-QuadricMatrix read_shape(const Json& v, const std::string& source, const std::string& path) {
+QuadricMatrix read_shape(const Json& v, const std::string& source, const std::string& path,
+                         Readings* readings) {
   const Json& tj = require(v, "type", source, path);
   std::string tpath = json_path_child(path, "type");
   if (!tj.is_string()) throw InputError(at(tj, source, tpath), "a shape name string", describe(tj));
@@ -185,14 +221,16 @@ QuadricMatrix read_shape(const Json& v, const std::string& source, const std::st
   for (size_t i = 0; i < 3; ++i)
     rot[i][i] = Rational(1);
   if (const Json* rj = v.find("rotation"))
-    rot = read_rotation(*rj, source, json_path_child(path, "rotation"));
-  // World point x = R u + c, so u = R^T (x - c): T = [[R^T, -R^T c], [0, 1]], M = T^T L T.
+    rot = read_rotation(*rj, source, json_path_child(path, "rotation"), readings);
+  // World point x = R u + c, so u = R^-1 (x - c): T = [[R^-1, -R^-1 c], [0, 1]], M = T^T L T
+  // (R^-1 = R^T for a rotation; the exact inverse otherwise).
+  const auto inv = inverse3(rot);
   Mat4 t;
   for (size_t i = 0; i < 3; ++i) {
     Rational s;
     for (size_t j = 0; j < 3; ++j) {
-      t[i][j] = rot[j][i];
-      s += rot[j][i] * c[j];
+      t[i][j] = inv[i][j];
+      s += inv[i][j] * c[j];
     }
     t[i][3] = -s;
   }
@@ -201,6 +239,21 @@ QuadricMatrix read_shape(const Json& v, const std::string& source, const std::st
 }
 
 } // namespace
+
+Json readings_json(const Readings& rs) {
+  Json out = Json::array();
+  for (const auto& r : rs) {
+    Json o = Json::object();
+    o.set("path", Json::string(r.path));
+    o.set("reading", Json::string(r.reading));
+    Json d = Json::object();
+    for (const auto& [name, value] : r.deviations)
+      d.set(name, Json::string(value));
+    o.set("deviations", d);
+    out.push_back(o);
+  }
+  return out;
+}
 
 Location json_location(const Json& v, const std::string& source, const std::string& path) {
   return Location{source, v.line(), v.column(), path};
@@ -249,7 +302,8 @@ QuadricMatrix quadric_from_equation(const std::string& text, const Location& whe
   return QuadricMatrix::from_poly(p);
 }
 
-QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::string& path) {
+QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::string& path,
+                           Readings* readings) {
   if (v.is_string()) {
     Location w = at(v, source, path);
     if (w.column > 0) ++w.column; // past the opening quote
@@ -264,7 +318,7 @@ QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::
     check_fields(v, {"equation"}, source, path);
     std::string ep = json_path_child(path, "equation");
     if (!e->is_string()) throw InputError(at(*e, source, ep), "an equation string", describe(*e));
-    return read_quadric(*e, source, ep);
+    return read_quadric(*e, source, ep, readings);
   }
   if (const Json* m = v.find("matrix")) {
     check_fields(v, {"matrix"}, source, path);
@@ -274,18 +328,24 @@ QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j)
         a[i][j] = rows[i][j];
+    // A non-symmetric M means the quadric p^T M p, which is p^T ((M + M^T) / 2) p exactly:
+    // read as its symmetric part, with a Reading giving the asymmetry.
+    std::vector<Rational> asym;
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = i + 1; j < 4; ++j)
-        if (a[i][j] != a[j][i])
-          throw InputError(
-              at(m->items()[i].items()[j], source, json_path_index(json_path_index(mp, i), j)),
-              "a symmetric matrix (entry equal to [" + std::to_string(j) + "][" +
-                  std::to_string(i) + "] = " + a[j][i].to_string() + ")",
-              a[i][j].to_string());
+        if (a[i][j] != a[j][i]) {
+          asym.push_back(a[i][j] - a[j][i]);
+          a[i][j] = a[j][i] = (a[i][j] + a[j][i]) * Rational(1, 2);
+        }
+    if (readings && !asym.empty())
+      readings->push_back({mp,
+                           "a non-symmetric matrix M read as its symmetric part (M + M^T) / 2: "
+                           "the same quadric p^T M p, exactly",
+                           {{"max_abs(M - M^T)", max_abs_text(asym)}}});
     if (is_zero(a)) throw InputError(at(*m, source, mp), "a nonzero matrix", "all entries zero");
     return QuadricMatrix(a);
   }
-  if (v.find("type")) return read_shape(v, source, path);
+  if (v.find("type")) return read_shape(v, source, path, readings);
   throw InputError(at(v, source, path), "a field \"matrix\", \"equation\" or \"type\"",
                    "an object without them");
 }
@@ -354,7 +414,8 @@ Surface read_canal(const Json& v, const std::string& source, const std::string& 
 
 } // namespace
 
-Surface read_surface(const Json& v, const std::string& source, const std::string& path) {
+Surface read_surface(const Json& v, const std::string& source, const std::string& path,
+                     Readings* readings) {
   // An equation of degree 3 to 12 (string or {"equation": ...}) is an implicit surface.
   const Json* eqj = v.is_string() ? &v : (v.is_object() ? v.find("equation") : nullptr);
   if (eqj && eqj->is_string()) {
@@ -373,7 +434,7 @@ Surface read_surface(const Json& v, const std::string& source, const std::string
       return ImplicitSurface{std::move(p)};
     }
   }
-  if (!v.is_object()) return read_quadric(v, source, path);
+  if (!v.is_object()) return read_quadric(v, source, path, readings);
   const Json* tj = v.find("type");
   if (tj && tj->is_string() && tj->text() == "parametric") {
     check_fields(v, {"type", "x", "y", "z", "w"}, source, path);
@@ -405,7 +466,8 @@ Surface read_surface(const Json& v, const std::string& source, const std::string
   }
   if (tj && tj->is_string() && (tj->text() == "canal" || tj->text() == "capsule"))
     return read_canal(v, source, path, tj->text() == "capsule");
-  if (!tj || !tj->is_string() || tj->text() != "torus") return read_quadric(v, source, path);
+  if (!tj || !tj->is_string() || tj->text() != "torus")
+    return read_quadric(v, source, path, readings);
   check_fields(v, {"type", "center", "axis", "major_radius", "minor_radius"}, source, path);
   std::string cp = json_path_child(path, "center"), ap = json_path_child(path, "axis");
   auto c = read_vector(require(v, "center", source, path), 3, source, cp);
