@@ -1,4 +1,5 @@
 #include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include "surfcert/algebra/real_roots.hpp"
 
@@ -210,6 +211,7 @@ SolutionCover cover_real_solutions_2d(const MPoly& F, const MPoly& G, const Rati
 }
 
 void refine_cover(SolutionCover& c, const Rational& width) {
+  core::check_budget(); // each refinement round of a caller's loop is a budget step
   std::array<std::vector<bool>, 3> used;
   for (size_t k = 0; k < 3; ++k)
     used[k].assign(c.roots[k].size(), false);

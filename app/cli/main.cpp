@@ -43,7 +43,8 @@ const std::string kUsage =
     "(equations, or JSON "
     "surfaces incl. {\"type\":\"torus\",...})\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
-    "  surfcert batch [--mode M] [--threads N]     (JSON lines on stdin -> JSON lines on stdout)\n"
+    "  surfcert batch [--mode M] [--threads N] [--budget-ms MS]\n"
+    "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
     "  surfcert --help | --version | COMMAND --help\n"
     "\n"
     "Options take their value as `--opt value` or `--opt=value`; --mode is exact, filtered or\n"
@@ -117,6 +118,7 @@ struct Opts {
   std::string tol, export_path, svg_path, out_path, scene_path;
   long digits = 15;
   int threads = 1;
+  double budget_ms = 0; ///< batch: default per-line time budget (0 = none)
 };
 
 // The equations of classify / intersect / distance: the arguments CLI11 left over, of which
@@ -339,7 +341,11 @@ int cmd_batch(const Opts& o) {
   app::BatchStats st;
   {
     std::ostream out(&answers.buf);
-    st = app::process_batch(std::cin, out, mode, o.threads);
+    const double budget = o.budget_ms;
+    st = app::process_batch(std::cin, out, mode, o.threads,
+                            [budget](const std::string& line, long no, certify::Mode m, bool* fb) {
+                              return app::process_batch_line(line, no, m, fb, budget);
+                            });
     out.flush();
   }
   std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("
@@ -409,6 +415,11 @@ int main(int argc, char** argv) {
   add_mode(batch, o);
   batch->add_option("--threads", o.threads, "lines answered at once, 1 to 256")
       ->check(CLI::Range(1, 256));
+  batch
+      ->add_option("--budget-ms", o.budget_ms,
+                   "default time budget per line in ms (a line's \"budget_ms\" overrides; past "
+                   "it the line answers undecided, reason \"budget\"); 0 = none")
+      ->check(CLI::Range(0.0, 1e9));
 
   try {
     if (argc < 2) {

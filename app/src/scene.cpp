@@ -2,6 +2,7 @@
 
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
+#include "surfcert/core/budget.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -10,6 +11,7 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_scheduler_observer.h>
 
+#include <chrono>
 #include <cstdio>
 #include <istream>
 #include <memory>
@@ -83,6 +85,16 @@ double read_tolerance(const Json& v, const std::string& source, const std::strin
   double d = t.to_double_approx();
   if (!(d >= 1e-12 && d <= 1))
     throw InputError(at(v, source, path), "a tolerance between 1e-12 and 1",
+                     t.to_decimal_approx(6));
+  return d;
+}
+
+// budget_ms: a time limit in milliseconds, 0 (none) to 10^9.
+double read_budget(const Json& v, const std::string& source, const std::string& path) {
+  Rational t = core::io::read_number(v, source, path);
+  double d = t.to_double_approx();
+  if (!(d >= 0 && d <= 1e9))
+    throw InputError(at(v, source, path), "a budget in milliseconds, 0 (none) to 1e9",
                      t.to_decimal_approx(6));
   return d;
 }
@@ -218,7 +230,18 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   return o;
 }
 
-Json process_batch_line(const std::string& line, long line_no, Mode default_mode, bool* fallback) {
+Json process_batch_line(const std::string& line, long line_no, Mode default_mode, bool* fallback,
+                        double default_budget_ms) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // Every answer reports its own wall time (parse, decide, build the answer).
+  auto timed = [t0](Json o) {
+    char buf[32];
+    std::snprintf(
+        buf, sizeof buf, "%.3f",
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    o.set("time_ms", Json::number_text(buf));
+    return o;
+  };
   Json out = Json::object();
   out.set("id", Json::null());
   const std::string source = "<stdin>";
@@ -241,8 +264,8 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       if (!doc.is_object())
         throw InputError(at(doc, source, "$"), "a JSON object {\"id\", \"op\", \"a\", \"b\"}",
                          core::io::type_name(doc.type()));
-      check_fields(doc, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid"}, source,
-                   "$");
+      check_fields(doc, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms"},
+                   source, "$");
       const Json* op = doc.find("op");
       if (!known_op(op))
         throw InputError(
@@ -266,25 +289,41 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
           if (!q)
             throw InputError(at(*j, source, key),
                              "a quadric (\"" + op->text() + "\" needs two quadrics)", "a torus");
+      double budget_ms = default_budget_ms;
+      if (const Json* bj = doc.find("budget_ms"))
+        budget_ms = read_budget(*bj, source, "$.budget_ms");
+      // Past the budget the line answers undecided with reason "budget" (a distance keeps what
+      // its earlier routes established; core/budget.hpp); other lines are not held up by it.
+      core::BudgetScope budget(budget_ms);
       Json env;
-      if (op->text() == "distance") {
-        long digits = 15;
-        bool solid = false;
-        if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");
-        if (const Json* sd = doc.find("solid")) solid = read_bool(*sd, source, "$.solid");
-        env = distance_envelope_json(surface_distance(sa, sb, digits, solid, mode), digits);
-      } else if (op->text() == "intersect") {
-        trace::TraceOptions opt;
-        if (const Json* t = doc.find("tolerance"))
-          opt.tolerance = read_tolerance(*t, source, "$.tolerance");
-        CurveResult c = intersect_curve(*a, *b, mode, opt);
-        if (fallback) *fallback = c.topology.exact_fallback;
-        env = curve_envelope_json(c, *a, *b);
-      } else {
-        QsicResult r = classify_qsic(*a, *b, mode);
-        complete_report_data(r, *a, *b);
-        if (fallback) *fallback = r.exact_fallback;
-        env = qsic_envelope_json(r, *a, *b);
+      try {
+        if (op->text() == "distance") {
+          long digits = 15;
+          bool solid = false;
+          if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");
+          if (const Json* sd = doc.find("solid")) solid = read_bool(*sd, source, "$.solid");
+          env = distance_envelope_json(surface_distance(sa, sb, digits, solid, mode), digits);
+        } else if (op->text() == "intersect") {
+          trace::TraceOptions opt;
+          if (const Json* t = doc.find("tolerance"))
+            opt.tolerance = read_tolerance(*t, source, "$.tolerance");
+          CurveResult c = intersect_curve(*a, *b, mode, opt);
+          if (fallback) *fallback = c.topology.exact_fallback;
+          env = curve_envelope_json(c, *a, *b);
+        } else {
+          QsicResult r = classify_qsic(*a, *b, mode);
+          complete_report_data(r, *a, *b);
+          if (fallback) *fallback = r.exact_fallback;
+          env = qsic_envelope_json(r, *a, *b);
+        }
+      } catch (const core::BudgetExceeded&) {
+        env = Json::object();
+        env.set("status", Json::string("undecided"));
+        env.set("reason", Json::string("budget"));
+        char ms[32];
+        std::snprintf(ms, sizeof ms, "%g", budget_ms);
+        env.set("note", Json::string(std::string("the time budget of ") + ms +
+                                     " ms ran out before the answer was proven"));
       }
       for (const auto& [k, v] : env.members())
         out.set(k, v);
@@ -296,9 +335,9 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
     out.set("status", Json::string("error"));
     out.set("error", input_error_json(e));
   } catch (const std::exception& e) {
-    return internal_error_line(*out.find("id"), e.what());
+    return timed(internal_error_line(*out.find("id"), e.what()));
   }
-  return out;
+  return timed(std::move(out));
 }
 
 Json internal_error_line(const Json& id, const std::string& message) {

@@ -90,7 +90,10 @@ template <class F> DistanceResult with_width_contract(F&& compute, long digits) 
       r = std::move(finer);
       break;
     }
-    if (finer.status != Status::Certified && !finer.width_short) break; // another reason
+    if (finer.status != Status::Certified && !finer.width_short) { // another reason
+      r.budget_exhausted = r.budget_exhausted || finer.budget_exhausted;
+      break;
+    }
   }
   finalize(r, digits);
   return r;
@@ -112,6 +115,7 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
 Json distance_envelope_json(const DistanceResult& r, long digits) {
   Json o = Json::object();
   o.set("status", Json::string(to_string(r.status)));
+  if (r.budget_exhausted) o.set("reason", Json::string("budget"));
   if (!r.note.empty()) o.set("note", Json::string(r.note));
   Json res = Json::object();
   if (r.distance) { // a proven enclosure (certified, or what an undecided answer established)

@@ -3,6 +3,7 @@
 
 #include "surfcert/certify/distance/solid_relation.hpp"
 #include "surfcert/certify/distance/symmetry.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include <utility>
 
@@ -95,9 +96,19 @@ DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface&
   bool answered = false;
   std::optional<DistanceResult> established; // the latest declined result, enclosure preferred
   std::string tried;
+  bool out_of_time = false;
   for (const Route& route : distance_routes()) {
     if (route.kind != kind || (route.modes & mode_bit(mode)) == 0 || !route.applies(q)) continue;
-    Outcome o = route.run(q);
+    Outcome o;
+    try {
+      core::check_budget();
+      o = route.run(q);
+    } catch (const core::BudgetExceeded&) {
+      // Past the query's budget: stop; what earlier routes established is the answer.
+      tried += std::string(tried.empty() ? "" : ", ") + to_string(route.id) + " (stopped)";
+      out_of_time = true;
+      break;
+    }
     if (o.kind == Outcome::Kind::NotApplicable) continue;
     // The route's id names the method, unless the route solved an offset system inside (a
     // finer name, kept for the JSON contract).
@@ -125,13 +136,18 @@ DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface&
     if (established) {
       r = std::move(*established);
       r.note += std::string(r.note.empty() ? "" : "; ") +
-                "no route proved an answer (tried: " + tried + ")";
+                (out_of_time ? "the time budget ran out (tried: "
+                             : "no route proved an answer (tried: ") +
+                tried + ")";
     } else {
       r = DistanceResult();
       r.status = Status::Undecided;
-      r.note = std::string("not supported yet: no route for this pair (") + to_string(kind) + ": " +
-               core::surface_kind(a0) + ", " + core::surface_kind(b0) + ")";
+      r.note = out_of_time
+                   ? "the time budget ran out before any route answered (tried: " + tried + ")"
+                   : std::string("not supported yet: no route for this pair (") + to_string(kind) +
+                         ": " + core::surface_kind(a0) + ", " + core::surface_kind(b0) + ")";
     }
+    r.budget_exhausted = out_of_time;
   }
   r.solid = solid;
   r.mode = mode;

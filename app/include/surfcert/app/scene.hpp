@@ -78,8 +78,10 @@ BatchStats process_batch(std::istream& in, std::ostream& out, certify::Mode defa
 /// {"id": id, "status": "error", "error": {"kind": "internal", "message": message}}.
 core::io::Json internal_error_line(const core::io::Json& id, const std::string& message);
 
-/// One batch line -> one result line (exposed for tests). line_no is 1-based.
+/// One batch line -> one result line (exposed for tests). line_no is 1-based. The line's
+/// "budget_ms" (else default_budget_ms; 0 = none) limits its wall time: past it the answer is
+/// undecided with "reason": "budget" (core/budget.hpp). Every answer carries "time_ms".
 core::io::Json process_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
-                                  bool* fallback = nullptr);
+                                  bool* fallback = nullptr, double default_budget_ms = 0);
 
 } // namespace surfcert::app

@@ -1,4 +1,5 @@
 #include "surfcert/certify/distance/sphere_family.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include "surfcert/certify/distance/ball.hpp"
 
@@ -119,6 +120,7 @@ bool radius_positive(const Family& f, long prec) {
   if (f.periodic) return true;
   std::vector<std::pair<Rational, Rational>> live{{f.t0, f.t1}};
   for (int round = 0; round < 40 && !live.empty(); ++round) {
+    core::check_budget();
     std::vector<std::pair<Rational, Rational>> next;
     for (const auto& [a, b] : live) {
       Ball T, x;
@@ -280,6 +282,7 @@ Outcome branch_and_bound(std::vector<Box>& live, const Family& A, const Family& 
                          long digits, const arf_t extra_lower, const arf_t extra_upper, Ball& d,
                          int max_rounds) {
   for (int round = 0; round < max_rounds; ++round) {
+    core::check_budget();
     arf_t best, lowest;
     arf_init(best);
     arf_init(lowest);

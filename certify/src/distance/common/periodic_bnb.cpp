@@ -1,4 +1,5 @@
 #include "surfcert/certify/distance/periodic_bnb.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include <algorithm>
 
@@ -74,12 +75,13 @@ bool periodic_minimize(const PeriodicBound& bound, const arb_t shift, long digit
     arf_set_si_2exp_si(live[static_cast<size_t>(k)].mid, 2 * (2 * k + 1) + 1, -6);
     mag_set_ui_2exp_si(live[static_cast<size_t>(k)].rad, 1, -5);
   }
-  arf_t best, lowest;
-  arf_init(best);
-  arf_init(lowest);
+  // RAII: the loop below may leave by a budget exception (core/budget.hpp).
+  algebra::Arf best_owner, lowest_owner;
+  arf_ptr best = best_owner.v, lowest = lowest_owner.v;
   bool ok = false;
   const int max_rounds = static_cast<int>(2 * prec);
   for (int round = 0; round < max_rounds && !ok; ++round) {
+    core::check_budget();
     arf_pos_inf(best);
     for (auto& I : live) {
       Ball tm, T;
@@ -121,8 +123,6 @@ bool periodic_minimize(const PeriodicBound& bound, const arb_t shift, long digit
       }
     live.swap(next);
   }
-  arf_clear(best);
-  arf_clear(lowest);
   if (!ok) return false;
   // Groups of adjacent survivors (sorted by t; the first and the last group may join across
   // t = 0 = 2); one representative each: its interval with the smallest upper bound.

@@ -1,4 +1,5 @@
 #include "surfcert/certify/distance/implicit_bnb.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/ball.hpp"
@@ -233,6 +234,7 @@ std::optional<double> bounding_radius(const Poly& f) {
       stack.push_back(b);
     }
   while (!stack.empty()) {
+    core::check_budget();
     Box b = stack.back();
     stack.pop_back();
     if (++work > 200000) return std::nullopt;
@@ -982,6 +984,7 @@ DistanceResult pair_distance(const core::Poly3& f, const core::Poly3& g, long di
   for (int round = 0; round < kRounds; ++round, h /= 8) {
     std::vector<Pair> fin;
     while (!queue.empty()) {
+      core::check_budget();
       const Pair pr = queue.top();
       queue.pop();
       if (pr.lb > ub) continue;

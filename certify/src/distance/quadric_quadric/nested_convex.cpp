@@ -1,4 +1,5 @@
 #include "surfcert/certify/distance/nested_convex.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include <CGAL/Interval_nt.h>
 #include <flint/fmpq.h>
@@ -792,6 +793,7 @@ bool branch_and_bound(const Ctx<DI>& C, const std::vector<Chart>& charts, DI& U,
       }
   int examined = 0;
   while (!stack.empty()) {
+    core::check_budget();
     const Box b = stack.back();
     stack.pop_back();
     if (++examined > kBoxBudget) return false;

@@ -1,4 +1,5 @@
 #include "surfcert/certify/distance/torus_fast.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include "surfcert/certify/distance/mp_float.hpp"
 #include <flint/fmpq.h>
@@ -712,6 +713,7 @@ Search::Outcome Search::branch_and_bound(const ArbModel& M, long target_bits) {
   const long prec = M.prec;
   Ball thr, tmp;
   for (int round = 0; round < 200; ++round) {
+    core::check_budget();
     // Float order: the most promising first, so the upper bound drops early.
     std::vector<size_t> order;
     for (size_t i = 0; i < alive_.size(); ++i)

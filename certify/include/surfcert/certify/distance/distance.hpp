@@ -73,6 +73,9 @@ struct DistanceResult {
   /// Undecided only because the enclosure (which holds) is wider than asked: more working
   /// digits may certify it (surface_distance retries).
   bool width_short = false;
+  /// Undecided because the query's time budget ran out (core/budget.hpp): what earlier
+  /// routes established is kept (JSON "reason": "budget").
+  bool budget_exhausted = false;
   std::vector<std::array<std::array<double, 3>, 2>> pairs; ///< (point on a, point on b), approx
   int critical_candidates = 0;
   int eliminated_degree = 0; ///< degree of the eliminated univariate polynomial
