@@ -13,8 +13,10 @@
 #include <CLI/CLI.hpp>
 #include <flint/flint.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -342,10 +344,28 @@ int cmd_batch(const Opts& o) {
   {
     std::ostream out(&answers.buf);
     const double budget = o.budget_ms;
-    st = app::process_batch(std::cin, out, mode, o.threads,
-                            [budget](const std::string& line, long no, certify::Mode m, bool* fb) {
-                              return app::process_batch_line(line, no, m, fb, budget);
-                            });
+    // A progress line on a terminal (stderr): lines/s and the outcomes so far, twice a second.
+    const auto t0 = std::chrono::steady_clock::now();
+    auto last = t0;
+    std::function<void(const app::BatchStats&)> progress;
+    if (::isatty(2))
+      progress = [&](const app::BatchStats& s) {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last < std::chrono::milliseconds(500)) return;
+        last = now;
+        const double secs = std::chrono::duration<double>(now - t0).count();
+        std::fprintf(stderr, "\r%ld lines, %.1f lines/s, %ld certified, %ld undecided, %ld errors ",
+                     s.lines, secs > 0 ? static_cast<double>(s.lines) / secs : 0.0, s.certified,
+                     s.undecided, s.errors);
+        std::fflush(stderr);
+      };
+    st = app::process_batch(
+        std::cin, out, mode, o.threads,
+        [budget](const std::string& line, long no, certify::Mode m, bool* fb) {
+          return app::process_batch_line(line, no, m, fb, budget);
+        },
+        progress);
+    if (progress) std::fputs("\n", stderr);
     out.flush();
   }
   std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("

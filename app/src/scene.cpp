@@ -389,7 +389,8 @@ void install_flint_abort_handler() {
 }
 
 BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads,
-                         const BatchAnswer& answer) {
+                         const BatchAnswer& answer,
+                         const std::function<void(const BatchStats&)>& progress) {
   install_flint_abort_handler();
   BatchStats st;
   if (threads < 1) threads = 1;
@@ -444,7 +445,9 @@ BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode,
                 if (item->status == "error") ++st.errors;
                 if (item->status == "error" && item->kind == "internal") ++st.internal;
                 if (item->status == "undecided") ++st.undecided;
+                if (item->status == "certified") ++st.certified;
                 st.fallbacks += item->fallback ? 1 : 0;
+                if (progress) progress(st);
               }));
   return st;
 }

@@ -5,7 +5,9 @@
 // anything is computed (so a bad scene produces an error and no report). run_query computes
 // only what its op needs: "classify" builds the pencil and decides the topology, nothing else;
 // "intersect" adds the branches of the curve (traced or produced as conics); "distance" takes
-// any two surfaces (quadrics or tori), the other ops need two quadrics (checked on reading).
+// any two surfaces (quadrics, tori, canal, implicit and parametric surfaces: the distance
+// registry's pair kinds), the other ops need two quadrics (checked on reading). Surfaces are
+// read exactly (surface_reader.hpp); how float data was read is reported ("readings").
 // process_batch reads JSON lines and writes one JSON line per input line, in input order,
 // through a TBB pipeline (serial in-order read -> parallel answer -> serial in-order write and
 // flush), so each answer is written as soon as it and all earlier ones are done; at most N
@@ -29,7 +31,7 @@ namespace surfcert::app {
 
 struct Query {
   core::io::Json id;       ///< as given (null when absent)
-  std::string op;          ///< "classify" or "intersect"
+  std::string op;          ///< "classify", "intersect" or "distance"
   double tolerance = 2e-4; ///< intersect: geometric tolerance of the traced branches
   long digits = 15;        ///< distance: requested relative precision 10^-digits
   bool solid = false;      ///< distance: between solids (0 when the volumes overlap)
@@ -38,7 +40,7 @@ struct Query {
 };
 
 struct Scene {
-  std::vector<std::pair<std::string, core::Surface>> surfaces; ///< quadrics or tori
+  std::vector<std::pair<std::string, core::Surface>> surfaces; ///< any supported surface
   std::vector<Query> queries;
   const core::Surface& surface(const std::string& name) const;
 };
@@ -60,7 +62,7 @@ struct FlintAbort : std::runtime_error {
 void install_flint_abort_handler();
 
 struct BatchStats {
-  long lines = 0, errors = 0, fallbacks = 0, undecided = 0;
+  long lines = 0, errors = 0, fallbacks = 0, undecided = 0, certified = 0;
   long internal = 0; ///< error lines of kind "internal" (also counted in errors)
 };
 
@@ -71,8 +73,11 @@ using BatchAnswer = std::function<core::io::Json(const std::string& line, long l
 /// Reads JSON lines from `in`, writes result lines to `out` in input order, each flushed as
 /// soon as it and every earlier line are answered; at most `threads` lines answered at once.
 /// Any exception escaping `answer` (e.g. FlintAbort) gives that line an "internal" error line.
+/// `progress`, when given, is called after each written line with the counts so far (from the
+/// writing stage: one call at a time).
 BatchStats process_batch(std::istream& in, std::ostream& out, certify::Mode default_mode,
-                         int threads, const BatchAnswer& answer = {});
+                         int threads, const BatchAnswer& answer = {},
+                         const std::function<void(const BatchStats&)>& progress = {});
 
 /// The error line of a line whose computation failed inside (not a bad input):
 /// {"id": id, "status": "error", "error": {"kind": "internal", "message": message}}.
