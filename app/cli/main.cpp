@@ -45,7 +45,7 @@ const std::string kUsage =
     "(equations, or JSON "
     "surfaces incl. {\"type\":\"torus\",...})\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
-    "  surfcert batch [--mode M] [--threads N] [--budget-ms MS]\n"
+    "  surfcert batch [--mode M] [--threads N] [--budget-ms MS] [--unordered]\n"
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
     "  surfcert --help | --version | COMMAND --help\n"
     "\n"
@@ -120,7 +120,8 @@ struct Opts {
   std::string tol, export_path, svg_path, out_path, scene_path;
   long digits = 15;
   int threads = 1;
-  double budget_ms = 0; ///< batch: default per-line time budget (0 = none)
+  double budget_ms = 0;   ///< batch: default per-line time budget (0 = none)
+  bool unordered = false; ///< batch: write answers as they complete
 };
 
 // The equations of classify / intersect / distance: the arguments CLI11 left over, of which
@@ -364,7 +365,7 @@ int cmd_batch(const Opts& o) {
         [budget](const std::string& line, long no, certify::Mode m, bool* fb) {
           return app::process_batch_line(line, no, m, fb, budget);
         },
-        progress);
+        progress, !o.unordered);
     if (progress) std::fputs("\n", stderr);
     out.flush();
   }
@@ -440,6 +441,8 @@ int main(int argc, char** argv) {
                    "default time budget per line in ms (a line's \"budget_ms\" overrides; past "
                    "it the line answers undecided, reason \"budget\"); 0 = none")
       ->check(CLI::Range(0.0, 1e9));
+  batch->add_flag("--unordered", o.unordered,
+                  "write each answer as soon as it is done (not in input order; key by \"id\")");
 
   try {
     if (argc < 2) {

@@ -390,7 +390,7 @@ void install_flint_abort_handler() {
 
 BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads,
                          const BatchAnswer& answer,
-                         const std::function<void(const BatchStats&)>& progress) {
+                         const std::function<void(const BatchStats&)>& progress, bool ordered) {
   install_flint_abort_handler();
   BatchStats st;
   if (threads < 1) threads = 1;
@@ -438,7 +438,8 @@ BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode,
                 return item;
               }) &
           tbb::make_filter<std::shared_ptr<BatchItem>, void>(
-              tbb::filter_mode::serial_in_order, [&](std::shared_ptr<BatchItem> item) {
+              ordered ? tbb::filter_mode::serial_in_order : tbb::filter_mode::serial_out_of_order,
+              [&](std::shared_ptr<BatchItem> item) {
                 out << item->result << '\n';
                 out.flush();
                 ++st.lines;

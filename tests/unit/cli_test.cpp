@@ -163,6 +163,30 @@ TEST(Cli, RunWritesReportAtomically) {
   std::remove(report.c_str());
 }
 
+// A slow line (two tori 1e-20 apart, stopped by its budget after >= 300 ms) ahead of fast ones:
+// in input order it comes first; with --unordered a fast answer overtakes it.
+TEST(Cli, BatchUnorderedStreamsAsCompleted) {
+  std::string in =
+      R"({"id":"slow","op":"distance","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],)"
+      R"("major_radius":3,"minor_radius":1},"b":{"type":"torus","center":)"
+      R"(["799999999999999999999/100000000000000000000",0,0],"axis":[0,0,1],"major_radius":3,)"
+      R"("minor_radius":1},"budget_ms":300})"
+      "\n";
+  for (int i = 0; i < 4; ++i)
+    in += "{\"id\": " + std::to_string(i) +
+          R"(, "op": "classify", "a": "x^2+y^2+z^2=1", "b": "(x-3)^2+y^2+z^2=1"})" + "\n";
+  auto first_id = [](const std::string& out) {
+    const Json o = surfcert::core::io::parse_json(out.substr(0, out.find('\n')), "out");
+    return surfcert::core::io::dump(*o.find("id"));
+  };
+  auto ordered = run("batch --threads 2", in);
+  auto unordered = run("batch --threads 2 --unordered", in);
+  EXPECT_EQ(first_id(ordered.out), "\"slow\"");
+  EXPECT_NE(first_id(unordered.out), "\"slow\"");
+  EXPECT_EQ(std::count(unordered.out.begin(), unordered.out.end(), '\n'), 5);
+  EXPECT_NE(unordered.out.find("\"reason\":\"budget\""), std::string::npos);
+}
+
 TEST(Cli, BatchKeepsOrderAndSurvivesBadLines) {
   std::string in;
   std::vector<std::string> ids;

@@ -74,10 +74,12 @@ using BatchAnswer = std::function<core::io::Json(const std::string& line, long l
 /// soon as it and every earlier line are answered; at most `threads` lines answered at once.
 /// Any exception escaping `answer` (e.g. FlintAbort) gives that line an "internal" error line.
 /// `progress`, when given, is called after each written line with the counts so far (from the
-/// writing stage: one call at a time).
+/// writing stage: one call at a time). ordered = false writes each answer as soon as it is done
+/// (input order is then not kept: callers key answers by their "id").
 BatchStats process_batch(std::istream& in, std::ostream& out, certify::Mode default_mode,
                          int threads, const BatchAnswer& answer = {},
-                         const std::function<void(const BatchStats&)>& progress = {});
+                         const std::function<void(const BatchStats&)>& progress = {},
+                         bool ordered = true);
 
 /// The error line of a line whose computation failed inside (not a bad input):
 /// {"id": id, "status": "error", "error": {"kind": "internal", "message": message}}.
