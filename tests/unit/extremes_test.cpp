@@ -1,10 +1,13 @@
 // Numerical extremes with closed-form answers: tangent configurations perturbed by 2^-40 and
 // 2^-100, scales of 10^-30 and 10^30, and huge translations. Exact and filtered modes must give
 // the closed-form topology; float mode is only counted (it is uncertified by design).
+#include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 using namespace surfcert;
 using certify::Mode;
@@ -86,4 +89,39 @@ TEST(Extremes, FarFromTheOrigin) {
   RecordProperty("float_mode_misses", float_misses);
   std::cout << "float mode missed " << float_misses
             << " of the extreme configurations (uncertified)\n";
+}
+
+// Two spheres at extreme magnitudes (issue 12: a radius of 1e-200 next to 1 ran past 60 s; at
+// 1e150 with a radius of 1e-150, 117 s), against the closed form D - r1 - r2 / |r1 - r2| - D
+// computed here with MPFR-free exact reasoning: the enclosure must contain the value, meet the
+// width, and the pair points must be finite. Concentric spheres: a continuum.
+TEST(Extremes, SpheresAtExtremeMagnitudes) {
+  struct Case {
+    double r1, r2, dx; // spheres at (0,0,0) and (dx,0,0)
+    double expect;     // the distance as a double (checked to 1e-15 relative)
+    const char* minimizers;
+  };
+  const Case cases[] = {{1, 1e-200, 3, 2, "1"},
+                        {1, 1e-200, 0, 1, "infinite"},
+                        {1, 5e-324, 3, 2, "1"},
+                        {1e150, 1e-150, 3e150, 2e150, "1"},
+                        {1e-300, 1e-300, 1e-299, 8e-300, "1"},
+                        {1e300, 1, 0, 1e300, "infinite"}};
+  for (const auto& c : cases)
+    for (auto mode : {Mode::Exact, Mode::Filtered}) {
+      const auto a = sphere(Rational(0), Rational::exact_from_double(c.r1));
+      const auto b = sphere(Rational::exact_from_double(c.dx), Rational::exact_from_double(c.r2));
+      const auto r = certify::surface_distance(a, b, 15, false, mode);
+      const std::string what = std::to_string(c.r1) + " " + std::to_string(c.r2) + " " +
+                               std::to_string(c.dx) + " " + certify::to_string(mode);
+      ASSERT_EQ(r.status, certify::Status::Certified) << what << " " << r.note;
+      EXPECT_LE(std::stod(r.lower()), c.expect * (1 + 1e-15)) << what;
+      EXPECT_GE(std::stod(r.upper()), c.expect * (1 - 1e-15)) << what;
+      EXPECT_TRUE(r.distance->meets_width(15)) << what;
+      EXPECT_EQ(r.minimizers, c.minimizers) << what;
+      for (const auto& pr : r.pairs)
+        for (const auto& p : pr)
+          for (double x : p)
+            EXPECT_TRUE(std::isfinite(x)) << what;
+    }
 }

@@ -4,6 +4,7 @@
 #include "surfcert/certify/distance/route.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace surfcert::certify {
@@ -143,6 +144,13 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
     res.set("minimizer_candidates", Json::number(r.minimizer_candidates()));
   Json pairs = Json::array();
   for (const auto& pr : r.pairs) {
+    // Display points: one that is not finite (an overflowing double) is left out, never
+    // written as "nan" (not JSON) or allowed to fail the answer.
+    bool finite = true;
+    for (const auto& p : pr)
+      for (double x : p)
+        finite = finite && std::isfinite(x);
+    if (!finite) continue;
     Json pj = Json::array();
     for (const auto& p : pr) {
       Json a3 = Json::array();

@@ -334,6 +334,85 @@ Outcome offset_run(Query& q) {
   return Outcome::answer(std::move(d));
 }
 
+// Centre and squared radius of a sphere k(|x|^2) - 2k c.x + k|c|^2 - k r^2 = 0, exactly.
+std::pair<std::array<Rational, 3>, Rational> sphere_centre(const core::QuadricMatrix& s) {
+  std::array<Rational, 3> c;
+  Rational k = s(0, 0), c2;
+  for (int i = 0; i < 3; ++i) {
+    c[static_cast<size_t>(i)] = -s(i, 3) / k;
+    c2 += c[static_cast<size_t>(i)] * c[static_cast<size_t>(i)];
+  }
+  return {c, c2 - s(3, 3) / k};
+}
+
+// Two disjoint spheres in closed form: D = |c1 - c2| against the radii. Apart (D^2 > r1^2 +
+// r2^2, exact: disjoint spheres are either apart, D > r1 + r2, or nested, D < |r1 - r2|):
+// d = D - r1 - r2; nested: d = |r1 - r2| - D. One pair on the line of centres, a continuum
+// when they are concentric. The irrational square roots are enclosed by Arb at growing
+// precision until the enclosure meets the width (a radius of 1e-200 next to 1 needs none of
+// the point-quadric machinery, whose candidates would differ by 1e-200).
+Outcome two_spheres(const core::QuadricMatrix& s1, const core::QuadricMatrix& s2, long digits,
+                    bool s1_first) {
+  const auto [c1, q1] = sphere_centre(s1);
+  const auto [c2, q2] = sphere_centre(s2);
+  Rational D2;
+  for (size_t i = 0; i < 3; ++i)
+    D2 += (c1[i] - c2[i]) * (c1[i] - c2[i]);
+  const bool apart = D2 > q1 + q2;
+  const bool first_outer = q1 > q2; // nested: which sphere holds the other
+  DistanceResult out;
+  for (long prec = bits_for(digits + 10);; prec *= 2) {
+    Ball D, r1, r2, d;
+    arb_set_fmpq(D.v, D2.raw(), prec);
+    arb_sqrt(D.v, D.v, prec);
+    arb_set_fmpq(r1.v, q1.raw(), prec);
+    arb_sqrt(r1.v, r1.v, prec);
+    arb_set_fmpq(r2.v, q2.raw(), prec);
+    arb_sqrt(r2.v, r2.v, prec);
+    if (apart) {
+      arb_sub(d.v, D.v, r1.v, prec);
+      arb_sub(d.v, d.v, r2.v, prec);
+    } else {
+      arb_sub(d.v, first_outer ? r1.v : r2.v, first_outer ? r2.v : r1.v, prec);
+      arb_sub(d.v, d.v, D.v, prec);
+    }
+    out.distance = Enclosure::from_ball(d.v, digits);
+    if (out.distance->meets_width(digits) || prec > (1L << 20)) break;
+  }
+  out.status = out.distance->meets_width(digits) ? Status::Certified : Status::Undecided;
+  out.width_short = out.status != Status::Certified;
+  out.minimizers = D2.is_zero() ? Minimizers::continuum(Minimizers::Proof::Exact)
+                                : Minimizers::count(1, Minimizers::Proof::Exact);
+  out.critical_candidates = 1;
+  // The pair on the line of centres (doubles, display): u from c1 to c2 (any axis when
+  // concentric).
+  // sqrt of a rational as a double through Arb: the square may overflow a double (r = 1e300).
+  auto sqrt_d = [](const Rational& q) {
+    Ball x;
+    arb_set_fmpq(x.v, q.raw(), 128);
+    arb_sqrt(x.v, x.v, 128);
+    return arf_get_d(arb_midref(x.v), ARF_RND_NEAR);
+  };
+  std::array<double, 3> u{1, 0, 0}, p1{}, p2{};
+  const double Dd = sqrt_d(D2);
+  if (Dd > 0)
+    for (size_t i = 0; i < 3; ++i)
+      u[i] = (c2[i].to_double_approx() - c1[i].to_double_approx()) / Dd;
+  const double r1d = sqrt_d(q1), r2d = sqrt_d(q2);
+  // Apart: c1 + r1 u and c2 - r2 u; nested: both toward the side the inner centre is offset
+  // to (from the outer centre), i.e. +u when the first is outer, -u otherwise.
+  const double s1d = apart || first_outer ? 1 : -1, s2d = apart ? -1 : (first_outer ? 1 : -1);
+  for (size_t i = 0; i < 3; ++i) {
+    p1[i] = c1[i].to_double_approx() + s1d * r1d * u[i];
+    p2[i] = c2[i].to_double_approx() + s2d * r2d * u[i];
+  }
+  out.pairs.push_back(s1_first ? std::array<std::array<double, 3>, 2>{p1, p2}
+                               : std::array<std::array<double, 3>, 2>{p2, p1});
+  out.note = apart ? "two spheres apart: |c1 - c2| - r1 - r2 (closed form)"
+                   : "a sphere inside a sphere: |r1 - r2| - |c1 - c2| (closed form)";
+  return Outcome::answer(std::move(out));
+}
+
 bool sphere_apply(const Query& q) {
   return q.disjoint_proven && (qa(q).is_sphere() || qb(q).is_sphere());
 }
@@ -398,6 +477,7 @@ Outcome sphere_run(Query& query) {
     out.status = Status::Certified;
     return Outcome::answer(std::move(out));
   }
+  if (other.is_sphere()) return two_spheres(sph, other, digits, a_sphere);
   // Critical distances from the centre to the other quadric.
   //
   // The answer is d_min - r (the quadric outside the ball) or r - d_max (a compact quadric
