@@ -11,6 +11,7 @@
 
 namespace surfcert::algebra {
 
+using core::Poly3;
 using core::Rational;
 
 namespace {
@@ -32,21 +33,21 @@ std::vector<UPolyZ> distinct_factors(const UPolyZ& p) {
 // An element of the ideal (a, b) free of `var`: the Sylvester resultant, except when neither
 // polynomial involves `var` (FLINT's resultant of two constants in `var` is 1, which would
 // silently drop every solution): then a itself (or b when a is constant) already qualifies.
-MPoly eliminant(const MPoly& a, const MPoly& b, int var) {
+Poly3 eliminant(const Poly3& a, const Poly3& b, int var) {
   if (a.degree(var) <= 0 && b.degree(var) <= 0) return a.is_constant() ? b : a;
   return resultant(a, b, var);
 }
 
 // Eliminant onto variable `keep` (0 = x, 1 = y from resultants in (x, y); `other` is the
 // variable eliminated second). Tries the pairs in order; zero when all vanish identically.
-MPoly eliminate_pair(const std::vector<MPoly>& R, int other) {
+Poly3 eliminate_pair(const std::vector<Poly3>& R, int other) {
   for (size_t i = 0; i < R.size(); ++i)
     for (size_t j = i + 1; j < R.size(); ++j) {
       if (R[i].is_zero() || R[j].is_zero()) continue;
-      MPoly e = eliminant(R[i], R[j], other);
+      Poly3 e = eliminant(R[i], R[j], other);
       if (!e.is_zero()) return e;
     }
-  return MPoly();
+  return Poly3();
 }
 
 // Isolating intervals (exactly one root each) of the irreducible factors.
@@ -72,7 +73,7 @@ void interval_ball(arb_t out, const RootInterval& iv, long prec) {
   arb_clear(a);
 }
 
-bool excludes_zero(const MPoly& f, const std::array<const arb_struct*, 3>& b, long prec) {
+bool excludes_zero(const Poly3& f, const std::array<const arb_struct*, 3>& b, long prec) {
   arb_t v;
   arb_init(v);
   evaluate(v, f, b, prec);
@@ -120,13 +121,13 @@ void box_balls(const SolutionCover& c, const std::array<size_t, 3>& box, arb_t x
   interval_ball(z, c.roots[2][box[2]], prec);
 }
 
-SolutionCover cover_real_solutions(const std::array<MPoly, 3>& F, const Rational& width0) {
+SolutionCover cover_real_solutions(const std::array<Poly3, 3>& F, const Rational& width0) {
   SolutionCover c;
   c.system = F;
   // (x, y) resultants: z eliminated from pairs of equations; (y, z) ones: x eliminated.
-  std::vector<MPoly> rz{eliminant(F[0], F[1], 2), eliminant(F[0], F[2], 2)};
-  std::vector<MPoly> rx{eliminant(F[0], F[1], 0), eliminant(F[0], F[2], 0)};
-  MPoly ex = eliminate_pair(rz, 1), ey = eliminate_pair(rz, 0), ez = eliminate_pair(rx, 1);
+  std::vector<Poly3> rz{eliminant(F[0], F[1], 2), eliminant(F[0], F[2], 2)};
+  std::vector<Poly3> rx{eliminant(F[0], F[1], 0), eliminant(F[0], F[2], 0)};
+  Poly3 ex = eliminate_pair(rz, 1), ey = eliminate_pair(rz, 0), ez = eliminate_pair(rx, 1);
   if (ex.is_zero() || ey.is_zero() || ez.is_zero()) {
     rz.push_back(eliminant(F[1], F[2], 2));
     rx.push_back(eliminant(F[1], F[2], 0));
@@ -141,7 +142,7 @@ SolutionCover cover_real_solutions(const std::array<MPoly, 3>& F, const Rational
   }
   for (const auto& r : rz)
     if (!r.is_zero()) c.xy_resultants.push_back(r);
-  const std::array<MPoly*, 3> e{&ex, &ey, &ez};
+  const std::array<Poly3*, 3> e{&ex, &ey, &ez};
   for (size_t k = 0; k < 3; ++k) {
     UPolyZ u = to_univariate(*e[k], static_cast<int>(k));
     c.eliminant_degree[k] = u.degree();
@@ -177,19 +178,19 @@ SolutionCover cover_real_solutions(const std::array<MPoly, 3>& F, const Rational
   return c;
 }
 
-SolutionCover cover_real_solutions_2d(const MPoly& F, const MPoly& G, const Rational& width0) {
+SolutionCover cover_real_solutions_2d(const Poly3& F, const Poly3& G, const Rational& width0) {
   SolutionCover c;
   if (F.degree(2) > 0 || G.degree(2) > 0)
     throw std::invalid_argument("cover_real_solutions_2d: the equations involve z");
   c.dims = 2;
-  c.system = {F, G, MPoly::var(2)};
-  const MPoly ex = eliminant(F, G, 1), ey = eliminant(F, G, 0);
+  c.system = {F, G, Poly3::variable(2)};
+  const Poly3 ex = eliminant(F, G, 1), ey = eliminant(F, G, 0);
   c.bivariate_degree = {F.total_degree(), G.total_degree()};
   if (ex.is_zero() || ey.is_zero()) {
     c.note = "the two equations share a curve of solutions";
     return c;
   }
-  const std::array<const MPoly*, 2> e{&ex, &ey};
+  const std::array<const Poly3*, 2> e{&ex, &ey};
   for (size_t k = 0; k < 2; ++k) {
     UPolyZ u = to_univariate(*e[k], static_cast<int>(k));
     c.eliminant_degree[k] = u.degree();

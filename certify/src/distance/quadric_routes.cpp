@@ -18,7 +18,7 @@
 #include "surfcert/certify/distance/quadric_pair.hpp"
 
 #include "surfcert/algebra/arb.hpp"
-#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/algebra/poly_ops.hpp"
 #include "surfcert/certify/qsic.hpp"
 
 #include <flint/fmpq_mat.h>
@@ -51,7 +51,7 @@ bool conics_at_infinity_share_component(const core::QuadricMatrix& a,
       m[i][3] = m[3][i] = Rational(0);
     return algebra::quadric_poly(m); // homogeneous quadratic part in (x, y, z)
   };
-  algebra::MPoly fa = form(a), fb = form(b);
+  core::Poly3 fa = form(a), fb = form(b);
   if (fa.is_zero() || fb.is_zero()) return true; // a plane: its "conic" is the whole line
   return !algebra::gcd(fa, fb).is_constant();
 }

@@ -40,13 +40,16 @@ int variable_index(char c) {
   }
 }
 
+long coefficient_bits(const Rational& c) {
+  const fmpq* q = c.raw();
+  return static_cast<long>(std::max(fmpz_bits(fmpq_numref(q)), fmpz_bits(fmpq_denref(q))));
+}
+
 long max_coefficient_bits(const Poly3& p) {
   long bits = 0;
-  for (const auto& term : p.terms()) {
-    const fmpq* q = term.second.raw();
-    bits = std::max(bits, static_cast<long>(fmpz_bits(fmpq_numref(q))));
-    bits = std::max(bits, static_cast<long>(fmpz_bits(fmpq_denref(q))));
-  }
+  p.for_each_term([&](const Poly3::Exponent&, const Rational& c) {
+    bits = std::max(bits, coefficient_bits(c));
+  });
   return bits;
 }
 
@@ -71,7 +74,9 @@ public:
       Poly3 rhs = parse_expr();
       skip_ws();
       if (peek() == '=') fail(pos_, "at most one '='", "'='");
-      add_into(result, rhs, true, eq);
+      Poly3::Terms acc = result.terms();
+      add_into(acc, rhs, true, eq);
+      result = Poly3(acc);
     }
     if (!at_end()) fail(pos_, "end of expression", describe(pos_));
     return result;
@@ -158,11 +163,13 @@ private:
     if (degree > kMaxExpressionDegree)
       fail(at, "a polynomial of total degree at most " + std::to_string(kMaxExpressionDegree),
            "a result of total degree " + std::to_string(degree));
-    if (static_cast<long>(p.terms().size()) > kMaxExpressionTerms)
-      fail(at, "a polynomial with at most " + std::to_string(kMaxExpressionTerms) + " terms",
-           "a result with " + std::to_string(p.terms().size()) + " terms");
+    if (p.length() > kMaxExpressionTerms) too_many_terms(at, p.length());
     long bits = max_coefficient_bits(p);
     if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
+  }
+  [[noreturn]] void too_many_terms(std::size_t at, long terms) {
+    fail(at, "a polynomial with at most " + std::to_string(kMaxExpressionTerms) + " terms",
+         "a result with " + std::to_string(terms) + " terms");
   }
   [[noreturn]] void too_many_bits(std::size_t at, long bits) {
     fail(at, "coefficients of at most " + std::to_string(kMaxExpressionCoefficientBits) + " bits",
@@ -178,18 +185,25 @@ private:
     work_ += cost;
   }
 
-  // acc += t or acc -= t in place: copying acc for each term of a long sum would make
-  // "big + 1 + 1 + ..." quadratic. Only the touched coefficients can have grown.
-  void add_into(Poly3& acc, const Poly3& t, bool subtract, std::size_t at) {
-    for (const auto& [e, c] : t.terms()) {
-      acc.add_term(e, subtract ? -c : c);
-      auto it = acc.terms().find(e);
-      if (it == acc.terms().end()) continue;
-      const fmpq* q = it->second.raw();
-      long bits = static_cast<long>(std::max(fmpz_bits(fmpq_numref(q)), fmpz_bits(fmpq_denref(q))));
+  // acc += t or acc -= t in place, on a term map: a Poly3 sum rewrites the whole accumulator,
+  // which would make "big + 1 + 1 + ..." quadratic. Only the touched coefficients can have
+  // grown; the degree cannot have.
+  void add_into(Poly3::Terms& acc, const Poly3& t, bool subtract, std::size_t at) {
+    t.for_each_term([&](const Poly3::Exponent& e, const Rational& c) {
+      auto it = acc.try_emplace(e).first;
+      if (subtract)
+        it->second -= c;
+      else
+        it->second += c;
+      if (it->second.is_zero()) {
+        acc.erase(it);
+        return;
+      }
+      const long bits = coefficient_bits(it->second);
       if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
-    }
-    if (static_cast<long>(acc.terms().size()) > kMaxExpressionTerms) check(acc, at);
+    });
+    if (static_cast<long>(acc.size()) > kMaxExpressionTerms)
+      too_many_terms(at, static_cast<long>(acc.size()));
   }
 
   // a * b, refusing before the work when the degree or coefficient size would exceed the limits.
@@ -206,18 +220,21 @@ private:
     if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
     // Degree <= 64 already bounds the terms (at most 47905 in three variables), but not the
     // work: two dense degree-32 factors would need 43 million coefficient products.
-    charge(static_cast<long>(a.terms().size()) * static_cast<long>(b.terms().size()), at);
+    charge(a.length() * b.length(), at);
     Poly3 r = a * b;
     check(r, at);
     return r;
   }
 
   Poly3 parse_expr() {
-    Poly3 acc = parse_signed_term();
+    Poly3 first = parse_signed_term();
+    skip_ws();
+    if (peek() != '+' && peek() != '-') return first;
+    Poly3::Terms acc = first.terms();
     for (;;) {
       skip_ws();
       char op = peek();
-      if (op != '+' && op != '-') return acc;
+      if (op != '+' && op != '-') return Poly3(acc);
       std::size_t at = pos_;
       ++pos_;
       Poly3 t = parse_signed_term();
@@ -265,7 +282,7 @@ private:
             --end;
           fail(start, "a constant nonzero divisor", quote(s_.substr(start, end - start)));
         }
-        charge(static_cast<long>(acc.terms().size()), at); // "big/1/1/1..." is not free
+        charge(acc.length(), at); // "big/1/1/1..." is not free
         acc = acc.scaled(Rational(1) / divisor.coeff(0, 0, 0));
         check(acc, at);
       } else if (is_digit(c) || (c == '.' && is_digit(peek(1))) || is_ident_start(c) || c == '(') {

@@ -1,5 +1,5 @@
 // surfcert::algebra::SolutionCover: finitely many boxes whose union contains every real
-// solution of a square polynomial system F1 = F2 = F3 = 0 over Z[x, y, z].
+// solution of a square polynomial system F1 = F2 = F3 = 0 over Q[x, y, z] (core::Poly3).
 //
 // How: Sylvester resultants (FLINT) eliminate z from two pairs of equations, then y (or x)
 // from the two bivariate resultants, giving for each coordinate a univariate eliminant that
@@ -16,7 +16,7 @@
 // What a box is NOT: a certificate that a solution exists in it, or that it holds only one.
 #pragma once
 
-#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/algebra/poly_ops.hpp"
 
 #include <array>
 #include <string>
@@ -36,8 +36,8 @@ struct SolutionCover {
   bool ok = false;
   int dims = 3; ///< 2 for cover_real_solutions_2d (z unused)
   std::string note;
-  std::array<MPoly, 3> system;
-  std::vector<MPoly> xy_resultants; ///< nonzero resultants in (x, y), used to discard
+  std::array<core::Poly3, 3> system;
+  std::vector<core::Poly3> xy_resultants; ///< nonzero resultants in (x, y), used to discard
   /// Distinct irreducible factors (FLINT) of the projections onto x, y, z: isolating roots
   /// factor by factor is much cheaper than on their product (degree 66 -> 36 + 24 + 6 for two
   /// generic ellipsoids: 20 ms instead of 170 ms).
@@ -50,11 +50,13 @@ struct SolutionCover {
 };
 
 /// The cover of the real solutions of F (see above), intervals refined to width <= width0.
-SolutionCover cover_real_solutions(const std::array<MPoly, 3>& F, const core::Rational& width0);
+SolutionCover cover_real_solutions(const std::array<core::Poly3, 3>& F,
+                                   const core::Rational& width0);
 
 /// The same for two equations F(x, y) = G(x, y) = 0 in the plane (z unused: its single
 /// "interval" is [0, 0]).
-SolutionCover cover_real_solutions_2d(const MPoly& F, const MPoly& G, const core::Rational& width0);
+SolutionCover cover_real_solutions_2d(const core::Poly3& F, const core::Poly3& G,
+                                      const core::Rational& width0);
 
 /// Narrows every kept box's intervals to width <= width and discards boxes proved empty.
 void refine_cover(SolutionCover& c, const core::Rational& width);

@@ -8,7 +8,7 @@
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 
-#include <flint/fmpz_mpoly_factor.h>
+#include <flint/fmpq_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 
 #include <algorithm>
@@ -17,8 +17,8 @@
 
 namespace surfcert::certify {
 
-using algebra::MPoly;
 using core::Integer;
+using core::Poly3;
 using core::Rational;
 
 namespace {
@@ -208,12 +208,12 @@ bool unique_foot(const core::QuadricMatrix& q, const core::CanalSurface& c, cons
 
 // The (alpha, t) system over Z (variables x = alpha, y = t).
 // Returns F, G and det(I + alpha M3).
-std::array<MPoly, 3> canal_system(const core::QuadricMatrix& q, const core::CanalSurface& c) {
+std::array<Poly3, 3> canal_system(const core::QuadricMatrix& q, const core::CanalSurface& c) {
   Integer den(1);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
       fmpz_lcm(den.raw_mut(), den.raw(), q(i, j).den().raw());
-  auto Mq = [&](int i, int j) { return MPoly((q(i, j) * Rational(den)).num()); };
+  auto Mq = [&](int i, int j) { return Poly3((q(i, j) * Rational(den)).num()); };
   Integer dc(1), dr(1);
   for (const auto& s : c.spine)
     for (const auto& v : s)
@@ -221,90 +221,90 @@ std::array<MPoly, 3> canal_system(const core::QuadricMatrix& q, const core::Cana
   const auto rp = derivative(c.radius);
   for (const auto& v : rp)
     fmpz_lcm(dr.raw_mut(), dr.raw(), v.den().raw());
-  const MPoly al = MPoly::var(0), t = MPoly::var(1);
+  const Poly3 al = Poly3::variable(0), t = Poly3::variable(1);
   auto poly_t = [&](const std::vector<Rational>& cf, const Integer& scale) {
-    MPoly r, pw(1);
+    Poly3 r, pw(1);
     for (const auto& v : cf) {
-      r = r + MPoly((v * Rational(scale)).num()) * pw;
+      r = r + Poly3((v * Rational(scale)).num()) * pw;
       pw = pw * t;
     }
     return r;
   };
-  std::array<MPoly, 3> C, Cp;
+  std::array<Poly3, 3> C, Cp;
   for (size_t i = 0; i < 3; ++i) {
     C[i] = poly_t(c.spine[i], dc);
     Cp[i] = poly_t(derivative(c.spine[i]), dc);
   }
   // A = I + alpha M3; adjugate and determinant.
-  std::array<std::array<MPoly, 3>, 3> A;
+  std::array<std::array<Poly3, 3>, 3> A;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       A[static_cast<size_t>(i)][static_cast<size_t>(j)] =
-          (i == j ? MPoly(1) : MPoly(0)) + al * Mq(i, j);
-  auto a = [&](size_t i, size_t j) -> const MPoly& { return A[i][j]; };
-  std::array<std::array<MPoly, 3>, 3> adj;
+          (i == j ? Poly3(1) : Poly3(0)) + al * Mq(i, j);
+  auto a = [&](size_t i, size_t j) -> const Poly3& { return A[i][j]; };
+  std::array<std::array<Poly3, 3>, 3> adj;
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j) {
       // adj[i][j] = cofactor of a(j, i)
       size_t r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
       adj[i][j] = a(r0, c0) * a(r1, c1) - a(r0, c1) * a(r1, c0);
     }
-  const MPoly D = a(0, 0) * adj[0][0] + a(0, 1) * adj[1][0] + a(0, 2) * adj[2][0];
-  std::array<MPoly, 3> V, Np;
+  const Poly3 D = a(0, 0) * adj[0][0] + a(0, 1) * adj[1][0] + a(0, 2) * adj[2][0];
+  std::array<Poly3, 3> V, Np;
   for (size_t i = 0; i < 3; ++i)
-    V[i] = C[i] - al * MPoly(dc) * Mq(static_cast<int>(i), 3);
+    V[i] = C[i] - al * Poly3(dc) * Mq(static_cast<int>(i), 3);
   for (size_t i = 0; i < 3; ++i)
     Np[i] = adj[i][0] * V[0] + adj[i][1] * V[1] + adj[i][2] * V[2];
-  const MPoly den_p = MPoly(dc) * D; // p = Np / den_p
-  MPoly F = Mq(3, 3) * den_p * den_p;
+  const Poly3 den_p = Poly3(dc) * D; // p = Np / den_p
+  Poly3 F = Mq(3, 3) * den_p * den_p;
   for (size_t i = 0; i < 3; ++i) {
-    F = F + MPoly(2) * Mq(static_cast<int>(i), 3) * Np[i] * den_p;
+    F = F + Poly3(2) * Mq(static_cast<int>(i), 3) * Np[i] * den_p;
     for (size_t j = 0; j < 3; ++j)
       F = F + Np[i] * Mq(static_cast<int>(i), static_cast<int>(j)) * Np[j];
   }
-  std::array<MPoly, 3> u; // dc D (C - p)
+  std::array<Poly3, 3> u; // dc D (C - p)
   for (size_t i = 0; i < 3; ++i)
     u[i] = C[i] * D - Np[i];
-  const MPoly uc = u[0] * Cp[0] + u[1] * Cp[1] + u[2] * Cp[2];
+  const Poly3 uc = u[0] * Cp[0] + u[1] * Cp[1] + u[2] * Cp[2];
   bool const_r = true;
   for (const auto& v : rp)
     const_r = const_r && v.is_zero();
   if (const_r) return {F, uc, D};
-  const MPoly rpt = poly_t(rp, dr), uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-  return {F, MPoly(dr) * MPoly(dr) * uc * uc - MPoly(dc) * MPoly(dc) * rpt * rpt * uu, D};
+  const Poly3 rpt = poly_t(rp, dr), uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  return {F, Poly3(dr) * Poly3(dr) * uc * uc - Poly3(dc) * Poly3(dc) * rpt * rpt * uu, D};
 }
 
 // Divides F and G by their common factors that involve alpha only (see the caller); false
 // (with a note) when a common factor involves t.
-bool strip_alpha_factors(MPoly& F, MPoly& G, const MPoly& D, std::string& note) {
-  MPoly H = algebra::gcd(F, G);
+bool strip_alpha_factors(Poly3& F, Poly3& G, const Poly3& D, std::string& note) {
+  Poly3 H = algebra::gcd(F, G);
   if (H.is_constant()) return true;
-  fmpz_mpoly_factor_t fac;
-  fmpz_mpoly_factor_init(fac, MPoly::ctx());
-  if (!fmpz_mpoly_factor(fac, H.raw(), MPoly::ctx())) {
-    fmpz_mpoly_factor_clear(fac, MPoly::ctx());
+  fmpq_mpoly_factor_t fac;
+  fmpq_mpoly_factor_init(fac, Poly3::ctx());
+  if (!fmpq_mpoly_factor(fac, H.raw(), Poly3::ctx())) {
+    fmpq_mpoly_factor_clear(fac, Poly3::ctx());
     note = "factorisation failed";
     return false;
   }
   bool ok = true;
   for (slong i = 0; i < fac->num && ok; ++i) {
-    MPoly h;
-    fmpz_mpoly_set(h.raw_mut(), fac->poly + i, MPoly::ctx());
-    MPoly quo;
-    if (h.degree(1) > 0 || !fmpz_mpoly_divides(quo.raw_mut(), D.raw(), h.raw(), MPoly::ctx())) {
+    Poly3 h;
+    fmpq_mpoly_set(h.raw_mut(), fac->poly + i, Poly3::ctx());
+    Poly3 quo;
+    if (h.degree(1) > 0 || !fmpq_mpoly_divides(quo.raw_mut(), D.raw(), h.raw(), Poly3::ctx())) {
       ok = false; // a genuine curve of critical pairs (or the spine on the quadric)
       note = "the canal system has a curve of solutions (a common factor not from the "
              "parametrisation)";
       break;
     }
-    for (MPoly* P : {&F, &G})
+    for (Poly3* P : {&F, &G})
       for (;;) {
-        MPoly qd;
-        if (!fmpz_mpoly_divides(qd.raw_mut(), P->raw(), h.raw(), MPoly::ctx())) break;
+        Poly3 qd;
+        if (!fmpq_mpoly_divides(qd.raw_mut(), P->raw(), h.raw(), Poly3::ctx())) break;
         *P = qd;
       }
   }
-  fmpz_mpoly_factor_clear(fac, MPoly::ctx());
+  fmpq_mpoly_factor_clear(fac, Poly3::ctx());
   return ok;
 }
 

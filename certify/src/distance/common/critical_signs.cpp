@@ -5,21 +5,21 @@
 
 namespace surfcert::certify {
 
-using algebra::MPoly;
+using core::Poly3;
 using core::Rational;
 
-CriticalSigns critical_signs(const SourceQuadric& src, const MPoly& h, const CriticalStop& enough) {
+CriticalSigns critical_signs(const SourceQuadric& src, const Poly3& h, const CriticalStop& enough) {
   // grad f x grad h = 0 is three equations of which two generic combinations (fixed small
   // integers, so runs are reproducible) suffice together with f = 0: the cover then holds the
   // critical points (and possibly a few spurious isolated points, which only add boxes whose
   // sign is tested like the others).
-  const algebra::MVec3 gh{h.derivative(0), h.derivative(1), h.derivative(2)};
-  const algebra::MVec3 v = algebra::cross(src.N, gh);
+  const std::array<core::Poly3, 3> gh{h.derivative(0), h.derivative(1), h.derivative(2)};
+  const std::array<core::Poly3, 3> v = core::cross(src.N, gh);
   const std::array<std::array<long, 3>, 2> ls{{{3, -5, 7}, {2, 7, -11}}};
-  MPoly e1, e2;
+  Poly3 e1, e2;
   for (size_t i = 0; i < 3; ++i) {
-    e1 = e1 + MPoly(ls[0][i]) * v[i];
-    e2 = e2 + MPoly(ls[1][i]) * v[i];
+    e1 = e1 + Poly3(ls[0][i]) * v[i];
+    e2 = e2 + Poly3(ls[1][i]) * v[i];
   }
   CriticalSigns st;
   algebra::SolutionCover cc = algebra::cover_real_solutions({src.f, e1, e2}, Rational(1, 16));

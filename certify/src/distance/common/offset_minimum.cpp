@@ -10,7 +10,7 @@
 
 namespace surfcert::certify {
 
-using algebra::MPoly;
+using core::Poly3;
 using core::Rational;
 
 std::array<const arb_struct*, 3> ball_point(const Ball (&x)[3]) {
@@ -59,58 +59,30 @@ bool ball_quadratic_roots(const arb_t a2, const arb_t a1, const arb_t a0, Ball (
   return true;
 }
 
-SourceQuadric::SourceQuadric(algebra::MPoly f_any) : f(std::move(f_any)) {
+SourceQuadric::SourceQuadric(core::Poly3 f_any) : f(std::move(f_any)) {
   for (size_t i = 0; i < 3; ++i)
     N[i] = f.derivative(static_cast<int>(i));
 }
 
 namespace {
 
-// Exact value of an integer polynomial at a rational point.
-Rational eval_exact(const MPoly& a, const Rational (&c)[3]) {
-  Rational v;
-  fmpz_t k;
-  fmpz_init(k);
-  slong e[3];
-  for (slong i = 0; i < a.terms(); ++i) {
-    fmpz_mpoly_get_term_coeff_fmpz(k, a.raw(), i, MPoly::ctx());
-    fmpz_mpoly_get_term_exp_si(e, a.raw(), i, MPoly::ctx());
-    Rational t;
-    fmpq_set_fmpz_frac(t.raw_mut(), k, core::Integer(1).raw());
-    for (size_t j = 0; j < 3; ++j)
-      for (slong m = 0; m < e[j]; ++m)
-        t = t * c[j];
-    v += t;
-  }
-  fmpz_clear(k);
-  return v;
-}
-
 // A point of f = 0 on the line c + t n (n = grad f(c)): the real root t of the exact
 // univariate polynomial closest to 0 (isolated exactly, enclosed by a ball).
-bool project_general(const MPoly& f, const std::array<MPoly, 3>& N, const Rational (&c)[3],
+bool project_general(const Poly3& f, const std::array<Poly3, 3>& N, const Rational (&c)[3],
                      Ball (&p)[3], long prec) {
   Rational n[3];
   for (size_t i = 0; i < 3; ++i)
-    n[i] = eval_exact(N[i], c);
+    n[i] = N[i].evaluate(c[0], c[1], c[2]);
   algebra::UPolyQ u; // f(c + t n), term by term
-  fmpz_t k;
-  fmpz_init(k);
-  slong e[3];
-  for (slong i = 0; i < f.terms(); ++i) {
-    fmpz_mpoly_get_term_coeff_fmpz(k, f.raw(), i, MPoly::ctx());
-    fmpz_mpoly_get_term_exp_si(e, f.raw(), i, MPoly::ctx());
-    Rational co;
-    fmpq_set_fmpz_frac(co.raw_mut(), k, core::Integer(1).raw());
+  f.for_each_term([&](const Poly3::Exponent& e, const Rational& co) {
     algebra::UPolyQ t(co);
     for (size_t j = 0; j < 3; ++j) {
       algebra::UPolyQ lin = algebra::UPolyQ::from_coeffs({c[j], n[j]});
-      for (slong m = 0; m < e[j]; ++m)
+      for (int m = 0; m < e[j]; ++m)
         t = t * lin;
     }
     u = u + t;
-  }
-  fmpz_clear(k);
+  });
   if (u.degree() <= 0) return false;
   algebra::UPolyZ z = u.primitive_integer();
   fmpz_poly_factor_t fac;
@@ -154,13 +126,7 @@ SourceQuadric::SourceQuadric(const core::QuadricMatrix& q)
     N[i] = f.derivative(static_cast<int>(i));
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j) {
-      MPoly h = N[i].derivative(static_cast<int>(j)); // a constant
-      fmpz_t c;
-      fmpz_init(c);
-      const ulong zero[3] = {0, 0, 0};
-      fmpz_mpoly_get_coeff_fmpz_ui(c, h.raw(), zero, MPoly::ctx());
-      fmpq_set_fmpz_frac(hess[i][j].raw_mut(), c, core::Integer(1).raw());
-      fmpz_clear(c);
+      hess[i][j] = N[i].derivative(static_cast<int>(j)).coeff(0, 0, 0); // a constant
     }
 }
 
@@ -192,7 +158,7 @@ bool SourceQuadric::project(const Rational (&c)[3], Ball (&p)[3], long prec) con
   return true;
 }
 
-int certified_sign_near(const SourceQuadric& src, const MPoly& h, const algebra::SolutionCover& c,
+int certified_sign_near(const SourceQuadric& src, const Poly3& h, const algebra::SolutionCover& c,
                         const std::array<size_t, 3>& box, long prec, std::array<double, 3>* at) {
   Rational centre[3];
   for (size_t k = 0; k < 3; ++k)

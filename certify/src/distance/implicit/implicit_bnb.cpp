@@ -62,18 +62,6 @@ Poly compile(const core::Poly3& p) {
   return out;
 }
 
-core::Poly3 derivative(const core::Poly3& p, int var) {
-  core::Poly3 out;
-  const auto v = static_cast<size_t>(var);
-  for (const auto& [e, c] : p.terms()) {
-    if (e[v] == 0) continue;
-    auto f = e;
-    f[v] -= 1;
-    out.add_term(f, c * Rational(e[v]));
-  }
-  return out;
-}
-
 DI ipow(const DI& x, int k) {
   if (k == 0) return DI(1);
   if (k == 1) return x;
@@ -158,12 +146,12 @@ Surf make_surf(const core::Poly3& p0, const D3& shift = {}) {
   s.f = compile(p);
   std::array<core::Poly3, 3> g;
   for (int i = 0; i < 3; ++i) {
-    g[static_cast<size_t>(i)] = derivative(p, i);
+    g[static_cast<size_t>(i)] = p.derivative(i);
     s.g[static_cast<size_t>(i)] = compile(g[static_cast<size_t>(i)]);
   }
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = i; j < 3; ++j)
-      s.h[hidx(i, j)] = compile(derivative(g[i], static_cast<int>(j)));
+      s.h[hidx(i, j)] = compile(g[i].derivative(static_cast<int>(j)));
   s.f.shift = shift;
   for (Poly& q : s.g)
     q.shift = shift;

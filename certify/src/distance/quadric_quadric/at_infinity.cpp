@@ -1,7 +1,7 @@
 #include "surfcert/certify/distance/at_infinity.hpp"
 
 #include "surfcert/algebra/inertia.hpp"
-#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/algebra/poly_ops.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/quadratic_forms.hpp"
 #include "surfcert/core/torus.hpp"
@@ -61,17 +61,17 @@ bool disjoint_from(const M3& m, const M3& other) {
 
 // The form x^T m x as an integer polynomial (denominators cleared: the zero set is all that
 // counts).
-algebra::MPoly form_poly(const M3& m) {
+core::Poly3 form_poly(const M3& m) {
   core::Integer den(1);
   for (const auto& row : m)
     for (const auto& x : row)
       fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
-  algebra::MPoly f;
+  core::Poly3 f;
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
-      f = f + algebra::MPoly((m[i][j] * Rational(den)).num()) *
-                  algebra::MPoly::var(static_cast<int>(i)) *
-                  algebra::MPoly::var(static_cast<int>(j));
+      f = f + core::Poly3((m[i][j] * Rational(den)).num()) *
+                  core::Poly3::variable(static_cast<int>(i)) *
+                  core::Poly3::variable(static_cast<int>(j));
   return f;
 }
 
@@ -91,10 +91,10 @@ bool conics_disjoint(const M3& ma, const M3& mb) {
     core::Integer den(1);
     for (const auto& x : l)
       fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
-    algebra::MPoly chart = algebra::MPoly(0) - algebra::MPoly(den);
+    core::Poly3 chart = core::Poly3(0) - core::Poly3(den);
     for (size_t i = 0; i < 3; ++i)
-      chart = chart + algebra::MPoly((l[i] * Rational(den)).num()) *
-                          algebra::MPoly::var(static_cast<int>(i));
+      chart = chart + core::Poly3((l[i] * Rational(den)).num()) *
+                          core::Poly3::variable(static_cast<int>(i));
     const algebra::SolutionCover c =
         algebra::cover_real_solutions({form_poly(ma), form_poly(mb), chart}, Rational(1, 16));
     return c.ok && c.boxes.empty();

@@ -19,30 +19,30 @@
 
 namespace surfcert::certify {
 
-using algebra::MPoly;
+using core::Poly3;
 using core::Rational;
 
 namespace {
 
-using V3 = algebra::MVec3;
-using algebra::cross;
-using algebra::dot;
+using V3 = std::array<core::Poly3, 3>;
+using core::cross;
+using core::dot;
 
 // The offset system for one choice of roles (source S1: f, target S2: g), over Z.
 struct Offset {
   const core::QuadricMatrix* source = nullptr;
   const core::QuadricMatrix* target = nullptr;
   bool source_is_a = true;
-  MPoly f, g, g1, g2; // g(p + mu N) = g + mu g1 + mu^2 g2 / 2
+  Poly3 f, g, g1, g2; // g(p + mu N) = g + mu g1 + mu^2 g2 / 2
   V3 N;               // grad f
   std::array<std::array<Rational, 3>, 3> hess_f;
-  std::array<MPoly, 3> system; // f, C, G
+  std::array<Poly3, 3> system; // f, C, G
 };
 
 // Two generic integer combinations of three equations (fixed, so runs are reproducible).
 constexpr std::array<std::array<long, 3>, 2> kGenericMix{{{3, -5, 7}, {2, 7, -11}}};
 
-Offset build_offset_poly(MPoly f, const core::QuadricMatrix& tgt, const std::array<long, 3>& l) {
+Offset build_offset_poly(Poly3 f, const core::QuadricMatrix& tgt, const std::array<long, 3>& l) {
   Offset o;
   o.target = &tgt;
   o.f = std::move(f);
@@ -53,27 +53,22 @@ Offset build_offset_poly(MPoly f, const core::QuadricMatrix& tgt, const std::arr
     X[static_cast<size_t>(i)] = o.g.derivative(i);
   }
   for (size_t i = 0; i < 3; ++i) {
-    Y[i] = MPoly(0);
+    Y[i] = Poly3(0);
     for (size_t j = 0; j < 3; ++j) {
-      Y[i] = Y[i] + X[i].derivative(static_cast<int>(j)) * o.N[j]; // Hess(g) N
-      MPoly h = o.N[i].derivative(static_cast<int>(j));            // constant
-      fmpz_t c;
-      fmpz_init(c);
-      fmpz_mpoly_get_coeff_fmpz_ui(c, h.raw(), std::array<ulong, 3>{0, 0, 0}.data(), MPoly::ctx());
-      fmpq_set_fmpz_frac(o.hess_f[i][j].raw_mut(), c, core::Integer(1).raw());
-      fmpz_clear(c);
+      Y[i] = Y[i] + X[i].derivative(static_cast<int>(j)) * o.N[j];            // Hess(g) N
+      o.hess_f[i][j] = o.N[i].derivative(static_cast<int>(j)).coeff(0, 0, 0); // constant
     }
   }
-  const MPoly C = dot(o.N, cross(X, Y));
+  const Poly3 C = dot(o.N, cross(X, Y));
   const V3 nx = cross(o.N, X), ny = cross(o.N, Y);
-  MPoly P, Q;
+  Poly3 P, Q;
   for (size_t i = 0; i < 3; ++i) {
-    P = P + MPoly(l[i]) * nx[i];
-    Q = Q + MPoly(l[i]) * ny[i];
+    P = P + Poly3(l[i]) * nx[i];
+    Q = Q + Poly3(l[i]) * ny[i];
   }
   o.g1 = dot(X, o.N);
   o.g2 = dot(o.N, Y);
-  const MPoly G = MPoly(2) * o.g * Q * Q - MPoly(2) * o.g1 * P * Q + o.g2 * P * P;
+  const Poly3 G = Poly3(2) * o.g * Q * Q - Poly3(2) * o.g1 * P * Q + o.g2 * P * P;
   o.system = {o.f, C, G};
   return o;
 }
@@ -545,9 +540,9 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
   core::Integer den(1);
   for (const auto& x : *d)
     fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
-  MPoly plane;
+  Poly3 plane;
   for (size_t i = 0; i < 3; ++i)
-    plane = plane + MPoly(((*d)[i] * Rational(den)).num()) * MPoly::var(static_cast<int>(i));
+    plane = plane + Poly3(((*d)[i] * Rational(den)).num()) * Poly3::variable(static_cast<int>(i));
   // Contact: the pencil of two parallel cylinders is degenerate (their rulings meet in a
   // common singular point at infinity), so the projective classification says nothing and it
   // is decided here. No real common point of the two sections (an exact solution cover with no
@@ -826,25 +821,6 @@ bool leading_form_definite(const core::Poly3& f) {
   return live.empty() && sign != 0;
 }
 
-} // namespace
-
-MPoly poly3_to_mpoly(const core::Poly3& p) {
-  core::Integer den(1);
-  for (const auto& [e, c] : p.terms())
-    fmpz_lcm(den.raw_mut(), den.raw(), c.den().raw());
-  MPoly r;
-  for (const auto& [e, c] : p.terms()) {
-    MPoly t((c * Rational(den)).num());
-    for (int v = 0; v < 3; ++v)
-      for (int k = 0; k < e[static_cast<size_t>(v)]; ++k)
-        t = t * MPoly::var(v);
-    r = r + t;
-  }
-  return r;
-}
-
-namespace {
-
 // A bounded implicit surface f = 0 (definite leading form) against any quadric g = 0 (planes
 // included). Contact: the extreme values of g on each compact component of {f = 0} are
 // critical values (f = 0, grad f x grad g = 0; singular points of f satisfy it too), so
@@ -852,18 +828,17 @@ namespace {
 // means g never vanishes there. Disjoint: the offset system with f as the source (a plane: the
 // points of f = 0 whose normal is parallel to the plane's) over the exact solution cover; the
 // minimum is attained since f = 0 is bounded.
-DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::QuadricMatrix& q,
+DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::QuadricMatrix& q,
                                         long digits, bool implicit_first) {
   DistanceResult out;
-  if (!leading_form_definite(fp)) {
+  if (!leading_form_definite(f)) {
     out.status = Status::Undecided;
     out.note = "not supported yet: an implicit surface of degree > 2 against a quadric other "
                "than an ellipsoid, unless the implicit surface is proven bounded (definite "
                "leading form)";
     return out;
   }
-  const MPoly f = poly3_to_mpoly(fp);
-  const MPoly g = algebra::quadric_poly(q.matrix());
+  const Poly3 g = algebra::quadric_poly(q.matrix());
   const auto& ls = kGenericMix;
   SourceQuadric src(f);
   const CriticalSigns cs = critical_signs(src, g);
@@ -897,12 +872,12 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
     for (const auto& x : n)
       fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
     for (size_t i = 0; i < 3; ++i)
-      nv[i] = MPoly((n[i] * Rational(den)).num());
+      nv[i] = Poly3((n[i] * Rational(den)).num());
     const V3 w = cross(src.N, nv);
-    MPoly s1, s2;
+    Poly3 s1, s2;
     for (size_t i = 0; i < 3; ++i) {
-      s1 = s1 + MPoly(ls[0][i]) * w[i];
-      s2 = s2 + MPoly(ls[1][i]) * w[i];
+      s1 = s1 + Poly3(ls[0][i]) * w[i];
+      s2 = s2 + Poly3(ls[1][i]) * w[i];
     }
     algebra::SolutionCover cover = algebra::cover_real_solutions({f, s1, s2}, Rational(1, 16));
     if (!cover.ok) {
@@ -931,13 +906,12 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& fp, const core::Quadr
 
 } // namespace
 
-DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::QuadricMatrix& q,
+DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::QuadricMatrix& q,
                                          long digits, bool implicit_first) {
   DistanceResult out;
-  if (refuse_beyond_offset_degree(fp, out)) return out;
+  if (refuse_beyond_offset_degree(f, out)) return out;
   if (q.kind() != core::QuadricKind::Ellipsoid)
-    return bounded_implicit_quadric(fp, q, digits, implicit_first);
-  const MPoly f = poly3_to_mpoly(fp);
+    return bounded_implicit_quadric(f, q, digits, implicit_first);
   // Contact: the sign of f at the critical points of f on the ellipsoid (connected, bounded:
   // f takes its extreme values there). Both signs at certified points: they cross.
   const auto& ls = kGenericMix;
@@ -978,13 +952,14 @@ DistanceResult implicit_quadric_distance(const core::Poly3& fp, const core::Quad
     const Rational r2 = c2 - q(3, 3) / k;
     V3 w;
     for (size_t i = 0; i < 3; ++i)
-      w[i] = MPoly(den) * MPoly::var(static_cast<int>(i)) - MPoly((c[i] * Rational(den)).num());
+      w[i] =
+          Poly3(den) * Poly3::variable(static_cast<int>(i)) - Poly3((c[i] * Rational(den)).num());
     const V3 gfv{f.derivative(0), f.derivative(1), f.derivative(2)};
     const V3 wx = cross(w, gfv);
-    MPoly s1, s2;
+    Poly3 s1, s2;
     for (size_t i = 0; i < 3; ++i) {
-      s1 = s1 + MPoly(ls[0][i]) * wx[i];
-      s2 = s2 + MPoly(ls[1][i]) * wx[i];
+      s1 = s1 + Poly3(ls[0][i]) * wx[i];
+      s2 = s2 + Poly3(ls[1][i]) * wx[i];
     }
     algebra::SolutionCover cover = algebra::cover_real_solutions({f, s1, s2}, Rational(1, 16));
     if (!cover.ok) {

@@ -362,7 +362,8 @@ DistanceResult parametric_distance(const core::ParametricSurface& p, const core:
   if (!Wd.is_zero()) {
     point = true;
     const Poly3* comps[3] = {&p.X, &p.Y, &p.Z};
-    const auto& [e0, w0] = *Wd.terms().begin();
+    const Poly3::Terms wt = Wd.terms();
+    const auto& [e0, w0] = *wt.begin();
     for (size_t i = 0; i < 3; ++i) {
       const Poly3 t = top(*comps[i], deg);
       m[i] = t.coeff(e0[0], e0[1], e0[2]) / w0;

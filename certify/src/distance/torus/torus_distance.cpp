@@ -16,15 +16,15 @@
 
 namespace surfcert::certify {
 
-using algebra::MPoly;
 using core::Integer;
+using core::Poly3;
 using core::Rational;
 
 namespace {
 
-using V3 = algebra::MVec3;
-using algebra::cross;
-using algebra::dot;
+using V3 = std::array<core::Poly3, 3>;
+using core::cross;
+using core::dot;
 
 Integer lcm(const Integer& a, const Integer& b) {
   Integer r;
@@ -38,7 +38,7 @@ struct TorusPolys {
   const core::Torus* torus = nullptr;
   Integer D;
   V3 W, A;
-  MPoly T;
+  Poly3 T;
   Integer DR2; ///< (D R)^2
 };
 
@@ -53,14 +53,14 @@ TorusPolys torus_polys(const core::Torus& t) {
   }
   const Rational Dq(o.D), adq(ad);
   for (size_t i = 0; i < 3; ++i) {
-    o.W[i] = MPoly(o.D) * MPoly::var(static_cast<int>(i)) - MPoly((t.centre[i] * Dq).num());
-    o.A[i] = MPoly((t.axis[i] * adq).num());
+    o.W[i] = Poly3(o.D) * Poly3::variable(static_cast<int>(i)) - Poly3((t.centre[i] * Dq).num());
+    o.A[i] = Poly3((t.axis[i] * adq).num());
   }
   const Rational DR = t.R * Dq, Dr = t.r * Dq;
   o.DR2 = (DR * DR).num();
-  const MPoly u = dot(o.W, o.W), s = dot(o.W, o.A), A2 = dot(o.A, o.A);
-  const MPoly K((DR * DR - Dr * Dr).num());
-  o.T = A2 * (u + K) * (u + K) - MPoly(4) * MPoly(o.DR2) * (A2 * u - s * s);
+  const Poly3 u = dot(o.W, o.W), s = dot(o.W, o.A), A2 = dot(o.A, o.A);
+  const Poly3 K((DR * DR - Dr * Dr).num());
+  o.T = A2 * (u + K) * (u + K) - Poly3(4) * Poly3(o.DR2) * (A2 * u - s * s);
   return o;
 }
 
@@ -514,12 +514,12 @@ namespace {
 // meeting the core circle), minimised over its exact solution cover.
 void offset_to_torus(const SourceQuadric& src, const core::Torus& t, const TorusPolys& tp,
                      long digits, bool source_first, DistanceResult& out) {
-  const MPoly na = dot(src.N, tp.A), s = dot(tp.W, tp.A);
-  const MPoly F2 = dot(src.N, cross(tp.W, tp.A));
+  const Poly3 na = dot(src.N, tp.A), s = dot(tp.W, tp.A);
+  const Poly3 F2 = dot(src.N, cross(tp.W, tp.A));
   V3 u;
   for (size_t i = 0; i < 3; ++i)
     u[i] = na * tp.W[i] - s * src.N[i];
-  const MPoly F3 = dot(u, u) - MPoly(tp.DR2) * na * na;
+  const Poly3 F3 = dot(u, u) - Poly3(tp.DR2) * na * na;
   algebra::SolutionCover cover = algebra::cover_real_solutions({src.f, F2, F3}, Rational(1, 16));
   if (!cover.ok) {
     out.status = Status::Undecided;
@@ -581,7 +581,7 @@ DistanceResult implicit_torus_distance(const core::Poly3& f, const core::Torus& 
   DistanceResult out;
   if (refuse_beyond_offset_degree(f, out)) return out;
   const TorusPolys tp = torus_polys(t);
-  SourceQuadric src(poly3_to_mpoly(f));
+  SourceQuadric src(f);
   // Contact: T's least value on each component of f = 0 is a critical value (T grows at
   // infinity), so T > 0 at every critical point of T on f = 0 (singular points of f included:
   // the cross product vanishes there) proves the surface outside the solid torus. Anything else

@@ -15,7 +15,7 @@
 // side (Arb balls around an exact point of S), their coordinates rounded to double.
 #pragma once
 
-#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/algebra/poly_ops.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 
 #include <array>
@@ -39,7 +39,7 @@ using CriticalStop = std::function<bool(const CriticalSigns&)>;
 
 /// Refines the critical points of h on S (2^-16 ... 2^-512 boxes) until `enough` holds or the
 /// refinement budget is spent; returns the last state.
-CriticalSigns critical_signs(const SourceQuadric& src, const algebra::MPoly& h,
+CriticalSigns critical_signs(const SourceQuadric& src, const core::Poly3& h,
                              const CriticalStop& enough = nullptr);
 
 } // namespace surfcert::certify

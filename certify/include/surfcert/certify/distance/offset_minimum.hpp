@@ -1,6 +1,7 @@
 // surfcert::certify offset-minimum machinery shared by every "quadric source vs target"
 // distance (quadric pairs, quadric vs torus):
-// - SourceQuadric: the source surface S1 (f = 0, integer coefficients) with its gradient, and
+// - SourceQuadric: the source surface S1 (f = 0, exact rational coefficients) with its gradient,
+// and
 //   a certified point of S1 near any rational point (on the gradient line, Arb);
 // - MinimumTarget: what a target S2 contributes: a certified LOWER bound of the distance of
 //   any closest pair whose S1 point lies in a box, and the distance of a GENUINE pair from a
@@ -15,7 +16,7 @@
 // minimum is attained and the cover is complete.
 #pragma once
 
-#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/algebra/poly_ops.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/distance.hpp"
@@ -42,12 +43,12 @@ bool ball_quadratic_roots(const arb_t a2, const arb_t a1, const arb_t a0, Ball (
 
 struct SourceQuadric {
   explicit SourceQuadric(const core::QuadricMatrix& q);
-  /// Any implicit source f = 0 (integer coefficients); degree > 2 projects through the exact
+  /// Any implicit source f = 0 (exact coefficients); degree > 2 projects through the exact
   /// real roots of the univariate f(c + t grad f(c)).
-  explicit SourceQuadric(algebra::MPoly f_any);
+  explicit SourceQuadric(core::Poly3 f_any);
   const core::QuadricMatrix* quadric = nullptr; ///< null for a non-quadric source
-  algebra::MPoly f;
-  std::array<algebra::MPoly, 3> N; ///< grad f
+  core::Poly3 f;
+  std::array<core::Poly3, 3> N; ///< grad f
   std::array<std::array<core::Rational, 3>, 3> hess;
   /// A point of S1 on the gradient line through c (the root nearest c): balls that contain
   /// an exact point of S1. False when no real root is certain.
@@ -57,7 +58,7 @@ struct SourceQuadric {
 /// The sign of h (+1 or -1; 0 when not certain) at a certified point of the source near the
 /// centre of a cover box (the contact tests: a point of S1 inside / outside the other
 /// surface); the point, approximately, in `at`.
-int certified_sign_near(const SourceQuadric& src, const algebra::MPoly& h,
+int certified_sign_near(const SourceQuadric& src, const core::Poly3& h,
                         const algebra::SolutionCover& c, const std::array<size_t, 3>& box,
                         long prec, std::array<double, 3>* at = nullptr);
 

@@ -21,7 +21,7 @@
 // enclosure [0, upper].
 #pragma once
 
-#include "surfcert/algebra/mpoly.hpp"
+#include "surfcert/algebra/poly_ops.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/core/poly3.hpp"
 
@@ -34,9 +34,6 @@ DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::Q
 /// f at its critical points on the ellipsoid (certified points of both signs: they cross;
 /// one sign everywhere: disjoint), then the same offset system with f as the source
 /// (degrees n, 2n - 1, 4n - 2: practical for cubics, slow beyond). Other quadrics: undecided.
-/// f with its denominators cleared (a positive integer multiple: the same zero set).
-algebra::MPoly poly3_to_mpoly(const core::Poly3& p);
-
 DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::QuadricMatrix& q,
                                          long digits, bool implicit_first);
 
