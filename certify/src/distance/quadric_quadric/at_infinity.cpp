@@ -59,18 +59,12 @@ bool disjoint_from(const M3& m, const M3& other) {
   return false;
 }
 
-// The form x^T m x as an integer polynomial (denominators cleared: the zero set is all that
-// counts).
+// The form x^T m x (exact: Poly3 takes the rational entries as they are).
 core::Poly3 form_poly(const M3& m) {
-  core::Integer den(1);
-  for (const auto& row : m)
-    for (const auto& x : row)
-      fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
   core::Poly3 f;
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
-      f = f + core::Poly3((m[i][j] * Rational(den)).num()) *
-                  core::Poly3::variable(static_cast<int>(i)) *
+      f = f + core::Poly3(m[i][j]) * core::Poly3::variable(static_cast<int>(i)) *
                   core::Poly3::variable(static_cast<int>(j));
   return f;
 }
@@ -88,13 +82,9 @@ bool conics_disjoint(const M3& ma, const M3& mb) {
     const auto fr = core::plane_frame(l);
     const Rational res = restricted_resultant(ma, mb, fr[0], fr[1]);
     if (res.is_zero()) continue;
-    core::Integer den(1);
-    for (const auto& x : l)
-      fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
-    core::Poly3 chart = core::Poly3(0) - core::Poly3(den);
+    core::Poly3 chart(-1);
     for (size_t i = 0; i < 3; ++i)
-      chart = chart + core::Poly3((l[i] * Rational(den)).num()) *
-                          core::Poly3::variable(static_cast<int>(i));
+      chart = chart + core::Poly3(l[i]) * core::Poly3::variable(static_cast<int>(i));
     const algebra::SolutionCover c =
         algebra::cover_real_solutions({form_poly(ma), form_poly(mb), chart}, Rational(1, 16));
     return c.ok && c.boxes.empty();

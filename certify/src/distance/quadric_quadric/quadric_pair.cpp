@@ -537,12 +537,9 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
     }
   }
   const bool attained = bounded_section || !res.is_zero() || opposite || widths_differ;
-  core::Integer den(1);
-  for (const auto& x : *d)
-    fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
   Poly3 plane;
   for (size_t i = 0; i < 3; ++i)
-    plane = plane + Poly3(((*d)[i] * Rational(den)).num()) * Poly3::variable(static_cast<int>(i));
+    plane = plane + Poly3((*d)[i]) * Poly3::variable(static_cast<int>(i));
   // Contact: the pencil of two parallel cylinders is degenerate (their rulings meet in a
   // common singular point at infinity), so the projective classification says nothing and it
   // is decided here. No real common point of the two sections (an exact solution cover with no
@@ -867,12 +864,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::Quadri
   if (q.is_plane()) {
     const std::array<Rational, 3> n{q(0, 3), q(1, 3), q(2, 3)};
     const Rational delta = -q(3, 3) * Rational(1, 2);
-    V3 nv;
-    core::Integer den(1);
-    for (const auto& x : n)
-      fmpz_lcm(den.raw_mut(), den.raw(), x.den().raw());
-    for (size_t i = 0; i < 3; ++i)
-      nv[i] = Poly3((n[i] * Rational(den)).num());
+    const V3 nv{Poly3(n[0]), Poly3(n[1]), Poly3(n[2])};
     const V3 w = cross(src.N, nv);
     Poly3 s1, s2;
     for (size_t i = 0; i < 3; ++i) {
@@ -943,17 +935,14 @@ DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::Quadr
     std::array<Rational, 3> c;
     const Rational k = q(0, 0);
     Rational c2;
-    core::Integer den(1);
     for (size_t i = 0; i < 3; ++i) {
       c[i] = -q(static_cast<int>(i), 3) / k;
       c2 += c[i] * c[i];
-      fmpz_lcm(den.raw_mut(), den.raw(), c[i].den().raw());
     }
     const Rational r2 = c2 - q(3, 3) / k;
-    V3 w;
+    V3 w; // p - c
     for (size_t i = 0; i < 3; ++i)
-      w[i] =
-          Poly3(den) * Poly3::variable(static_cast<int>(i)) - Poly3((c[i] * Rational(den)).num());
+      w[i] = Poly3::variable(static_cast<int>(i)) - Poly3(c[i]);
     const V3 gfv{f.derivative(0), f.derivative(1), f.derivative(2)};
     const V3 wx = cross(w, gfv);
     Poly3 s1, s2;

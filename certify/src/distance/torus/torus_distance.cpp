@@ -16,7 +16,6 @@
 
 namespace surfcert::certify {
 
-using core::Integer;
 using core::Poly3;
 using core::Rational;
 
@@ -26,41 +25,26 @@ using V3 = std::array<core::Poly3, 3>;
 using core::cross;
 using core::dot;
 
-Integer lcm(const Integer& a, const Integer& b) {
-  Integer r;
-  fmpz_lcm(r.raw_mut(), a.raw(), b.raw());
-  return r;
-}
-
-// The torus over Z: W = D (p - c) and an integer axis A (same direction), with D chosen so
-// that D c, D R and D r are integers; T > 0 outside the solid torus, < 0 inside the tube.
+// The torus as polynomials: W = p - c, the axis A; T > 0 outside the solid torus, < 0 inside
+// the tube.
 struct TorusPolys {
   const core::Torus* torus = nullptr;
-  Integer D;
   V3 W, A;
   Poly3 T;
-  Integer DR2; ///< (D R)^2
+  Rational R2; ///< R^2
 };
 
 TorusPolys torus_polys(const core::Torus& t) {
   TorusPolys o;
   o.torus = &t;
-  o.D = lcm(t.R.den(), t.r.den());
-  Integer ad(1);
   for (size_t i = 0; i < 3; ++i) {
-    o.D = lcm(o.D, t.centre[i].den());
-    ad = lcm(ad, t.axis[i].den());
+    o.W[i] = Poly3::variable(static_cast<int>(i)) - Poly3(t.centre[i]);
+    o.A[i] = Poly3(t.axis[i]);
   }
-  const Rational Dq(o.D), adq(ad);
-  for (size_t i = 0; i < 3; ++i) {
-    o.W[i] = Poly3(o.D) * Poly3::variable(static_cast<int>(i)) - Poly3((t.centre[i] * Dq).num());
-    o.A[i] = Poly3((t.axis[i] * adq).num());
-  }
-  const Rational DR = t.R * Dq, Dr = t.r * Dq;
-  o.DR2 = (DR * DR).num();
+  o.R2 = t.R * t.R;
   const Poly3 u = dot(o.W, o.W), s = dot(o.W, o.A), A2 = dot(o.A, o.A);
-  const Poly3 K((DR * DR - Dr * Dr).num());
-  o.T = A2 * (u + K) * (u + K) - Poly3(4) * Poly3(o.DR2) * (A2 * u - s * s);
+  const Poly3 K(o.R2 - t.r * t.r);
+  o.T = A2 * (u + K) * (u + K) - Poly3(Rational(4) * o.R2) * (A2 * u - s * s);
   return o;
 }
 
@@ -519,7 +503,7 @@ void offset_to_torus(const SourceQuadric& src, const core::Torus& t, const Torus
   V3 u;
   for (size_t i = 0; i < 3; ++i)
     u[i] = na * tp.W[i] - s * src.N[i];
-  const Poly3 F3 = dot(u, u) - Poly3(tp.DR2) * na * na;
+  const Poly3 F3 = dot(u, u) - Poly3(tp.R2) * na * na;
   algebra::SolutionCover cover = algebra::cover_real_solutions({src.f, F2, F3}, Rational(1, 16));
   if (!cover.ok) {
     out.status = Status::Undecided;
