@@ -11,11 +11,10 @@
 // evaluation encloses the exact value of the rational polynomial.
 #pragma once
 
+#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/upoly.hpp"
 #include "surfcert/core/poly3.hpp"
 #include "surfcert/core/rational.hpp"
-
-#include "surfcert/algebra/arb.hpp"
 
 #include <array>
 
