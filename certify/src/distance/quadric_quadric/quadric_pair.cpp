@@ -856,7 +856,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::Quadri
   if (meet) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     out.note = "the surfaces meet (the quadric's equation takes both signs at certified points "
                "of the bounded implicit surface)";
     return out;
@@ -926,7 +926,7 @@ DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::Quadr
   if (meet) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     out.note = "the surfaces meet (f takes both signs at certified points of the ellipsoid)";
     return out;
   }

@@ -178,7 +178,7 @@ DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, 
     } else if (arb_lt(dmin.v, rs.v) && arb_gt(dmax.v, rs.v)) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
-      out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
       out.note = "the sphere meets the torus (its radius lies strictly between the smallest and "
                  "largest distances from its centre to the torus)";
       return out;
@@ -351,7 +351,7 @@ DistanceResult coaxial_torus(const core::QuadricMatrix& meridian, const core::To
   if (arb_lt(m.v, r.v)) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     out.note = "the coaxial surface of revolution enters the tube: it meets the torus";
     return out;
   }
@@ -550,7 +550,7 @@ DistanceResult quadric_torus_distance_exact(const core::QuadricMatrix& q, const 
   if (c == Contact::Meet) {
     out.status = Status::Certified;
     out.distance = Enclosure::zero();
-    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     out.note = "the quadric meets the torus (certified points of the quadric inside and outside "
                "the solid torus); the pair is an approximate common point (float bisection)";
     out.pairs.push_back({witness, witness});
