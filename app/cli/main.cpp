@@ -1,8 +1,10 @@
-// The `surfcert` command line (CLI11): classify, intersect, distance, run, batch. Exit codes:
+// The `surfcert` command line (CLI11): classify, intersect, distance, verify, run, batch. Exit
+// codes:
 // 0 success, 2 bad input or bad command line (message with location or option on stderr,
 // nothing written), 3 finished with undecided results, 1 internal error (for batch: some line
 // was answered with an "internal" error line, e.g. FLINT/Arb aborted on it).
 #include "surfcert/app/scene.hpp"
+#include "surfcert/app/verify.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/core/io/expression.hpp"
@@ -44,6 +46,8 @@ const std::string kUsage =
     "  surfcert distance 'SURF_A' 'SURF_B' [--digits N] [--solid] [--mode M] [--json]   "
     "(equations, or JSON "
     "surfaces incl. {\"type\":\"torus\",...})\n"
+    "  surfcert verify 'SURF_A' 'SURF_B' --claim JSON [--claim JSON ...] [--mode M] [--json]\n"
+    "                                              (verdicts on another program's claims)\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N] [--budget-ms MS] [--unordered]\n"
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
@@ -118,6 +122,7 @@ struct Opts {
   bool mode_given = false;
   bool json = false, solid = false;
   std::string tol, export_path, svg_path, out_path, scene_path;
+  std::vector<std::string> claims; ///< verify: each a JSON claim or array of claims
   long digits = 15;
   int threads = 1;
   double budget_ms = 0;   ///< batch: default per-line time budget (0 = none)
@@ -250,27 +255,33 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   return c.status == certify::Status::Undecided ? 3 : 0;
 }
 
+// A surface argument of distance / verify: a JSON surface when it starts with '{' (shapes,
+// matrices, a torus, ...), else an equation (of degree 3..kMaxImplicitDegree: an implicit
+// surface); readings receives how float data in it was read exactly.
+core::Surface surface_arg(const std::string& text, const std::string& src,
+                          core::io::Readings& readings) {
+  if (!text.empty() && text[0] == '{')
+    return core::io::read_surface(core::io::parse_json(text, src), src, "$", &readings);
+  core::Poly3 p = core::io::parse_polynomial(text, Location{src, 1, 1, ""});
+  if (p.total_degree() >= 3) {
+    if (p.total_degree() > core::kMaxImplicitDegree)
+      throw InputError(Location{src, 1, 1, ""},
+                       "a surface of total degree at most " +
+                           std::to_string(core::kMaxImplicitDegree),
+                       "total degree " + std::to_string(p.total_degree()));
+    return core::ImplicitSurface{std::move(p)};
+  }
+  return core::io::quadric_from_equation(text, Location{src, 1, 1, ""});
+}
+
 int cmd_distance(const std::vector<std::string>& eq, const Opts& o) {
   long digits = o.digits;
   bool json = o.json, solid = o.solid;
   certify::Mode mode = mode_arg(o.mode);
   if (eq.size() != 2) throw UsageError("distance needs exactly two surfaces");
-  // An argument starting with '{' is a JSON surface (shapes, matrices, a torus), else an
-  // equation.
   core::io::Readings readings;
-  auto surface = [&readings](const std::string& text, const std::string& src) -> core::Surface {
-    if (!text.empty() && text[0] == '{')
-      return core::io::read_surface(core::io::parse_json(text, src), src, "$", &readings);
-    core::Poly3 p = core::io::parse_polynomial(text, Location{src, 1, 1, ""});
-    if (p.total_degree() >= 3) { // an implicit surface of degree 3..kMaxImplicitDegree
-      if (p.total_degree() > core::kMaxImplicitDegree)
-        throw InputError(Location{src, 1, 1, ""},
-                         "a surface of total degree at most " +
-                             std::to_string(core::kMaxImplicitDegree),
-                         "total degree " + std::to_string(p.total_degree()));
-      return core::ImplicitSurface{std::move(p)};
-    }
-    return core::io::quadric_from_equation(text, Location{src, 1, 1, ""});
+  auto surface = [&readings](const std::string& text, const std::string& src) {
+    return surface_arg(text, src, readings);
   };
   certify::DistanceResult d = certify::surface_distance(
       surface(eq[0], "<argument 1>"), surface(eq[1], "<argument 2>"), digits, solid, mode);
@@ -295,6 +306,46 @@ int cmd_distance(const std::vector<std::string>& eq, const Opts& o) {
     if (d.method != certify::Method::None) std::cout << "method: " << to_string(d.method) << "\n";
   }
   return d.status == certify::Status::Undecided ? 3 : 0;
+}
+
+// verify: the claims of every --claim (an object, or an array of objects) in order, as the
+// "claims" of a verify line (app/verify.hpp); the answer is the batch line's status and result.
+int cmd_verify(const std::vector<std::string>& eq, const Opts& o) {
+  certify::Mode mode = mode_arg(o.mode);
+  if (eq.size() != 2) throw UsageError("verify needs exactly two surfaces");
+  if (o.claims.empty()) throw UsageError("verify needs at least one --claim JSON");
+  core::io::Readings readings;
+  core::Surface a = surface_arg(eq[0], "<argument 1>", readings);
+  core::Surface b = surface_arg(eq[1], "<argument 2>", readings);
+  Json claims = Json::array();
+  for (const auto& text : o.claims) {
+    Json c = core::io::parse_json(text, "<--claim>");
+    if (c.is_array())
+      for (const auto& item : c.items())
+        claims.push_back(item);
+    else
+      claims.push_back(c);
+  }
+  Json line = Json::object();
+  line.set("claims", claims);
+  Json env = app::verify_claims(a, b, line, "<--claim>", mode);
+  if (o.json) {
+    report_readings(readings, &env);
+    std::cout << core::io::dump(env, 2) << "\n";
+  } else {
+    report_readings(readings, nullptr);
+    const Json& verdicts = *env.find("result")->find("verdicts");
+    for (size_t i = 0; i < verdicts.size(); ++i) {
+      const Json& v = verdicts.items()[i];
+      std::cout << "claim " << i + 1 << " (" << v.find("kind")->text()
+                << "): " << v.find("verdict")->text() << "\n";
+      for (const char* key : {"counterexample", "established"})
+        if (const Json* e = v.find(key))
+          std::cout << "  " << key << ": " << core::io::dump(*e) << "\n";
+      if (const Json* n = v.find("note")) std::cout << "  note: " << n->text() << "\n";
+    }
+  }
+  return env.find("status")->text() == "undecided" ? 3 : 0;
 }
 
 int cmd_run(const Opts& o) {
@@ -425,6 +476,17 @@ int main(int argc, char** argv) {
   distance->add_option("--digits", o.digits, "requested relative precision 10^-N, 1 to 1000")
       ->check(CLI::Range(1L, 1000L));
 
+  CLI::App* verify = cli.add_subcommand(
+      "verify", "verify 'SURF_A' 'SURF_B' --claim JSON: verdicts on another program's claims");
+  verify->allow_extras();
+  add_mode(verify, o);
+  verify->add_flag("--json", o.json,
+                   "JSON answer {\"status\", \"result\": {\"verdicts\"}} on stdout");
+  verify
+      ->add_option("--claim", o.claims,
+                   "a claim {\"kind\", \"value\", ...} or an array of claims (repeatable)")
+      ->allow_extra_args(false);
+
   CLI::App* run = cli.add_subcommand("run", "run SCENE.json: every query of a scene");
   run->add_option("scene", o.scene_path, "the scene file")->required();
   run->add_option("-o", o.out_path, "also write the JSON report to this file (atomically)");
@@ -451,7 +513,7 @@ int main(int argc, char** argv) {
     } else {
       const std::string first = argv[1];
       if (!first.empty() && first[0] != '-' && first != "classify" && first != "intersect" &&
-          first != "distance" && first != "run" && first != "batch")
+          first != "distance" && first != "verify" && first != "run" && first != "batch")
         throw UsageError("unknown command " + first);
       try {
         cli.parse(argc, argv);
@@ -480,6 +542,8 @@ int main(int argc, char** argv) {
         rc = cmd_intersect(equations(*intersect), o);
       else if (distance->parsed())
         rc = cmd_distance(equations(*distance), o);
+      else if (verify->parsed())
+        rc = cmd_verify(equations(*verify), o);
       else if (run->parsed())
         rc = cmd_run(o);
       else if (batch->parsed())

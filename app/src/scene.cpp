@@ -1,5 +1,7 @@
 #include "surfcert/app/scene.hpp"
 
+#include "surfcert/app/verify.hpp"
+
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/core/budget.hpp"
@@ -60,11 +62,14 @@ Mode read_mode(const Json& v, const std::string& source, const std::string& path
   return *m;
 }
 
-const char* kSupportedOps = "\"classify\", \"intersect\" or \"distance\"";
+const char* kSupportedOps = "\"classify\", \"intersect\", \"distance\" or \"verify\"";
+const char* kSceneOps = "\"classify\", \"intersect\" or \"distance\"";
 
-bool known_op(const Json* op) {
+// verify (verify.hpp) is a batch line and a CLI command; a scene query cannot carry claims.
+bool known_op(const Json* op, bool batch) {
   return op && op->is_string() &&
-         (op->text() == "classify" || op->text() == "intersect" || op->text() == "distance");
+         (op->text() == "classify" || op->text() == "intersect" || op->text() == "distance" ||
+          (batch && op->text() == "verify"));
 }
 
 long read_digits(const Json& v, const std::string& source, const std::string& path) {
@@ -150,10 +155,9 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
     query.mode = default_mode;
     if (const Json* id = q.find("id")) query.id = *id;
     const Json* op = q.find("op");
-    if (!known_op(op))
+    if (!known_op(op, false))
       throw InputError(
-          at(op ? *op : q, source, json_path_child(path, "op")),
-          std::string("an op: ") + kSupportedOps,
+          at(op ? *op : q, source, json_path_child(path, "op")), std::string("an op: ") + kSceneOps,
           op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))
              : "none");
     query.op = op->text();
@@ -264,10 +268,12 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       if (!doc.is_object())
         throw InputError(at(doc, source, "$"), "a JSON object {\"id\", \"op\", \"a\", \"b\"}",
                          core::io::type_name(doc.type()));
-      check_fields(doc, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms"},
-                   source, "$");
+      check_fields(
+          doc,
+          {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms", "claims"},
+          source, "$");
       const Json* op = doc.find("op");
-      if (!known_op(op))
+      if (!known_op(op, true))
         throw InputError(
             at(op ? *op : doc, source, "$.op"), std::string("an op: ") + kSupportedOps,
             op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))
@@ -283,7 +289,8 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       const core::Surface sb = core::io::read_surface(*jb, source, "$.b", &readings);
       const core::QuadricMatrix* a = std::get_if<core::QuadricMatrix>(&sa);
       const core::QuadricMatrix* b = std::get_if<core::QuadricMatrix>(&sb);
-      if (op->text() != "distance")
+      // distance and verify take any two surfaces (verify refuses a quadric-only claim).
+      if (op->text() != "distance" && op->text() != "verify")
         for (const auto& [q, j, key] :
              {std::make_tuple(a, ja, "$.a"), std::make_tuple(b, jb, "$.b")})
           if (!q)
@@ -297,7 +304,9 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       core::BudgetScope budget(budget_ms);
       Json env;
       try {
-        if (op->text() == "distance") {
+        if (op->text() == "verify") {
+          env = verify_claims(sa, sb, doc, source, mode);
+        } else if (op->text() == "distance") {
           long digits = 15;
           bool solid = false;
           if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");

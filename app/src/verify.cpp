@@ -1,0 +1,511 @@
+#include "surfcert/app/verify.hpp"
+
+#include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/certify/morphology.hpp"
+#include "surfcert/core/budget.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace surfcert::app {
+
+using certify::DistanceResult;
+using certify::Mode;
+using certify::QsicResult;
+using certify::Status;
+using core::InputError;
+using core::Rational;
+using core::io::Json;
+using core::io::json_path_child;
+using core::io::json_path_index;
+
+namespace {
+
+const std::vector<std::string> kRelations = {"separated", "touching", "overlapping", "nested",
+                                             "coincident"};
+const std::vector<std::string> kComponentKeys = {"loops",
+                                                 "isolated_points",
+                                                 "lines",
+                                                 "conics",
+                                                 "cubics",
+                                                 "double_components",
+                                                 "connected_components"};
+
+struct Claim {
+  std::string kind, path;
+  std::string relation, inside;  // relation (inside: "", "a", "b")
+  bool collide = false;          // solids_collide
+  bool touching_collides = true; // solids_collide: does a touching contact count
+  std::string morphology;        // morphology
+  long tu_case = 0;              // tu_case
+  std::vector<std::pair<std::string, long>> components; // components (only the keys given)
+  Rational value, abs_tol, rel_tol;                     // distance
+  bool solid = false;
+};
+
+std::string found(const Json& v) {
+  return v.is_string() ? "\"" + v.text() + "\"" : core::io::type_name(v.type());
+}
+
+InputError bad(const Json& v, const std::string& source, const std::string& path,
+               const std::string& expected) {
+  return InputError(core::io::json_location(v, source, path), expected, found(v));
+}
+
+// A JSON value that must be a non-negative integer (component counts, tu_case).
+long read_count(const Json& v, const std::string& source, const std::string& path, long max) {
+  Rational r = core::io::read_number(v, source, path);
+  if (!r.is_integer() || r < Rational(0) || r > Rational(max))
+    throw InputError(core::io::json_location(v, source, path),
+                     "an integer from 0 to " + std::to_string(max), r.to_string());
+  return static_cast<long>(r.to_double_approx());
+}
+
+Claim read_claim(const Json& c, const std::string& source, const std::string& path,
+                 bool two_quadrics) {
+  if (!c.is_object()) throw bad(c, source, path, "a claim object {\"kind\", \"value\", ...}");
+  Claim out;
+  out.path = path;
+  const Json* kind = c.find("kind");
+  const std::string kpath = json_path_child(path, "kind");
+  const char* kinds =
+      "a claim kind: \"relation\", \"solids_collide\", \"morphology\", \"tu_case\", "
+      "\"components\" or \"distance\"";
+  if (!kind) throw InputError(core::io::json_location(c, source, kpath), kinds, "none");
+  if (!kind->is_string()) throw bad(*kind, source, kpath, kinds);
+  out.kind = kind->text();
+  std::set<std::string> fields = {"kind", "value"};
+  if (out.kind == "relation")
+    fields.insert("inside");
+  else if (out.kind == "solids_collide")
+    fields.insert("touching_collides");
+  else if (out.kind == "distance")
+    fields.insert({"abs_tol", "rel_tol", "solid"});
+  else if (out.kind != "morphology" && out.kind != "tu_case" && out.kind != "components")
+    throw bad(*kind, source, kpath, kinds);
+  core::io::check_fields(c, fields, source, path);
+  const Json* v = c.find("value");
+  const std::string vpath = json_path_child(path, "value");
+  if (!v) throw InputError(core::io::json_location(c, source, vpath), "a claimed value", "none");
+  // The classification claims are about the intersection curve of two quadrics.
+  if (!two_quadrics &&
+      (out.kind == "morphology" || out.kind == "tu_case" || out.kind == "components"))
+    throw bad(*kind, source, kpath, "a claim on two quadrics (\"a\" or \"b\" is not a quadric)");
+  auto read_bool = [&](const Json& j, const std::string& p) {
+    if (!j.is_bool()) throw bad(j, source, p, "true or false");
+    return j.as_bool();
+  };
+  if (out.kind == "relation") {
+    const char* rels = "a relation: \"separated\", \"touching\", \"overlapping\", \"nested\" or "
+                       "\"coincident\"";
+    if (!v->is_string() ||
+        std::find(kRelations.begin(), kRelations.end(), v->text()) == kRelations.end())
+      throw bad(*v, source, vpath, rels);
+    out.relation = v->text();
+    if (const Json* in = c.find("inside")) {
+      const std::string ipath = json_path_child(path, "inside");
+      if (!in->is_string() || (in->text() != "a" && in->text() != "b"))
+        throw bad(*in, source, ipath, "\"a\" or \"b\" (the surface inside the other)");
+      if (out.relation != "nested" && out.relation != "touching")
+        throw bad(*in, source, ipath, "no \"inside\" (only nested or touching has one)");
+      out.inside = in->text();
+    }
+  } else if (out.kind == "solids_collide") {
+    out.collide = read_bool(*v, vpath);
+    if (const Json* t = c.find("touching_collides"))
+      out.touching_collides = read_bool(*t, json_path_child(path, "touching_collides"));
+  } else if (out.kind == "morphology") {
+    if (!v->is_string() || (!certify::morphology_by_id(v->text()) &&
+                            v->text() != "degenerate_pencil" && v->text() != "coincident_quadrics"))
+      throw bad(*v, source, vpath,
+                "a morphology id (README, the 35 cases), \"degenerate_pencil\" or "
+                "\"coincident_quadrics\"");
+    out.morphology = v->text();
+  } else if (out.kind == "tu_case") {
+    out.tu_case = read_count(*v, source, vpath, 35);
+    if (out.tu_case < 1)
+      throw InputError(core::io::json_location(*v, source, vpath), "a Tu case from 1 to 35", "0");
+  } else if (out.kind == "components") {
+    if (!v->is_object() || v->size() == 0)
+      throw bad(*v, source, vpath, "an object of component counts, e.g. {\"loops\": 2}");
+    for (const auto& [key, n] : v->members()) {
+      const std::string p = json_path_child(vpath, key);
+      if (std::find(kComponentKeys.begin(), kComponentKeys.end(), key) == kComponentKeys.end())
+        throw InputError(core::io::json_location(n, source, p),
+                         "a component count: loops, isolated_points, lines, conics, cubics, "
+                         "double_components or connected_components",
+                         "\"" + key + "\"");
+      out.components.emplace_back(key, read_count(n, source, p, 1000));
+    }
+  } else { // distance
+    out.value = core::io::read_number(*v, source, vpath);
+    for (const char* key : {"abs_tol", "rel_tol"})
+      if (const Json* t = c.find(key)) {
+        const std::string p = json_path_child(path, key);
+        Rational r = core::io::read_number(*t, source, p);
+        if (r.sign() < 0)
+          throw InputError(core::io::json_location(*t, source, p), "a non-negative tolerance",
+                           r.to_decimal_approx(6));
+        (std::string(key) == "abs_tol" ? out.abs_tol : out.rel_tol) = r;
+      }
+    if (const Json* s = c.find("solid")) out.solid = read_bool(*s, json_path_child(path, "solid"));
+  }
+  return out;
+}
+
+Json str(const std::string& s) {
+  return Json::string(s);
+}
+
+Json enclosure_json(const certify::Enclosure& e) {
+  Json o = Json::object();
+  o.set("lower", str(e.lower()));
+  o.set("upper", str(e.upper()));
+  return o;
+}
+
+Json pairs_json(const DistanceResult& d) {
+  auto num = [](double x) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return Json::number_text(buf);
+  };
+  Json ps = Json::array();
+  for (const auto& pq : d.pairs) {
+    Json pair = Json::array();
+    for (const auto& p : pq) {
+      Json pt = Json::array();
+      for (double x : p)
+        pt.push_back(num(x));
+      pair.push_back(pt);
+    }
+    ps.push_back(pair);
+  }
+  return ps;
+}
+
+// What the certified machinery says about how the two surfaces lie: the relations still
+// possible (one when decided) and, for nested or internal touching, which surface is inside
+// ("a", "b"; "none" for an external touching; "" when not established).
+struct RelationFacts {
+  std::set<std::string> possible;
+  std::string inside;
+  Json established = Json::object();
+};
+
+// The engine's answers, computed once per verify line and shared by its claims.
+class Oracle {
+public:
+  Oracle(const core::Surface& a, const core::Surface& b, Mode mode) : a_(a), b_(b), mode_(mode) {}
+
+  const core::QuadricMatrix* qa() const { return std::get_if<core::QuadricMatrix>(&a_); }
+  const core::QuadricMatrix* qb() const { return std::get_if<core::QuadricMatrix>(&b_); }
+
+  // The certified classification (nullptr unless both are quadrics and it is certified).
+  const QsicResult* qsic() {
+    if (!qsic_done_ && qa() && qb()) {
+      QsicResult r = certify::classify_qsic(*qa(), *qb(), mode_);
+      if (r.status == Status::Certified) {
+        certify::complete_report_data(r, *qa(), *qb());
+        qsic_ = std::move(r);
+      }
+      qsic_done_ = true;
+    }
+    return qsic_ ? &*qsic_ : nullptr;
+  }
+
+  const DistanceResult& distance(bool solid, long digits) {
+    auto key = std::make_pair(solid, digits);
+    auto it = dist_.find(key);
+    if (it == dist_.end())
+      it = dist_.emplace(key, certify::surface_distance(a_, b_, digits, solid, mode_)).first;
+    return it->second;
+  }
+
+  // A certified enclosure that is exactly 0 (true), proven positive (false), or nullopt.
+  std::optional<bool> is_zero(bool solid) {
+    const DistanceResult& d = distance(solid, 15);
+    if (d.status != Status::Certified || !d.distance) return std::nullopt;
+    if (d.distance->is_zero()) return true;
+    if (arf_sgn(d.distance->lower_arf()) > 0) return false;
+    return std::nullopt;
+  }
+
+  const RelationFacts& relation() {
+    if (relation_) return *relation_;
+    RelationFacts f;
+    if (const QsicResult* r = qsic()) {
+      // Two quadrics: a coincident pencil is certified; two ellipsoids have their relation
+      // decided from the exact pencil roots (qsic.cpp).
+      const std::string& er = r->ellipsoid_relation;
+      if (r->pencil == algebra::PencilKind::Coincident)
+        f.possible = {"coincident"};
+      else if (er == "externally_touching")
+        f.possible = {"touching"}, f.inside = "none";
+      else if (er == "internally_touching" || er == "nested")
+        f.possible = {er == "nested" ? "nested" : "touching"},
+        f.inside = r->containment == "a_inside_b" ? "a" : "b";
+      else if (er == "separated" || er == "overlapping")
+        f.possible = {er};
+      if (!er.empty()) f.established.set("ellipsoid_relation", str(er));
+    }
+    if (f.possible.empty()) {
+      // Otherwise from the certified distances: the surfaces meet iff their distance is
+      // exactly 0; apart, the solids are nested iff the solid distance is exactly 0.
+      f.possible.insert(kRelations.begin(), kRelations.end());
+      std::optional<bool> meet = is_zero(false);
+      if (meet) f.established.set("surfaces_meet", Json::boolean(*meet));
+      if (meet && *meet) f.possible = {"touching", "overlapping", "coincident"};
+      if (meet && !*meet) {
+        f.possible = {"separated", "nested"};
+        std::optional<bool> solids_meet = is_zero(true);
+        if (solids_meet) {
+          f.established.set("solids_meet", Json::boolean(*solids_meet));
+          f.possible = {*solids_meet ? "nested" : "separated"};
+        }
+      }
+    }
+    if (f.possible.size() == 1) {
+      f.established.set("relation", str(*f.possible.begin()));
+      if (f.inside == "a" || f.inside == "b") f.established.set("inside", str(f.inside));
+    } else {
+      Json p = Json::array();
+      for (const auto& s : f.possible)
+        p.push_back(str(s));
+      f.established.set("possible_relations", p);
+    }
+    relation_ = std::move(f);
+    return *relation_;
+  }
+
+private:
+  const core::Surface& a_;
+  const core::Surface& b_;
+  Mode mode_;
+  bool qsic_done_ = false;
+  std::optional<QsicResult> qsic_;
+  std::map<std::pair<bool, long>, DistanceResult> dist_;
+  std::optional<RelationFacts> relation_;
+};
+
+struct Verdict {
+  std::string verdict = "undecided";
+  std::optional<Json> counterexample, established;
+  std::string note;
+};
+
+Verdict decide_relation(const Claim& c, Oracle& o) {
+  const RelationFacts& f = o.relation();
+  Verdict v;
+  if (!f.possible.count(c.relation)) {
+    v.verdict = "refuted";
+    v.counterexample = f.established;
+  } else if (f.possible.size() > 1) {
+    v.established = f.established;
+  } else if (c.inside.empty() || c.inside == f.inside) {
+    v.verdict = "confirmed";
+  } else if (f.inside.empty()) {
+    v.established = f.established;
+    v.note = "which surface is inside the other is not established";
+  } else {
+    v.verdict = "refuted";
+    v.counterexample = f.established;
+  }
+  return v;
+}
+
+Verdict decide_collide(const Claim& c, Oracle& o) {
+  const RelationFacts& f = o.relation();
+  // The collide answers every still-possible relation gives; decided when they agree.
+  std::set<bool> answers;
+  for (const auto& r : f.possible) {
+    if (r == "separated")
+      answers.insert(false);
+    else if (r != "touching" || f.inside == "a" || f.inside == "b")
+      answers.insert(true);
+    else if (f.inside == "none")
+      answers.insert(c.touching_collides);
+    else
+      answers.insert({c.touching_collides, true}); // external or internal: not known
+  }
+  Verdict v;
+  Json facts = f.established;
+  if (answers.size() != 1) {
+    v.established = facts;
+    return v;
+  }
+  facts.set("solids_collide", Json::boolean(*answers.begin()));
+  if (*answers.begin() == c.collide)
+    v.verdict = "confirmed";
+  else
+    v.verdict = "refuted", v.counterexample = facts;
+  return v;
+}
+
+Verdict decide_classification(const Claim& c, Oracle& o) {
+  Verdict v;
+  const QsicResult* r = o.qsic();
+  if (!r) {
+    v.note = "the classification of the intersection is not certified";
+    return v;
+  }
+  const certify::Morphology* m =
+      r->pencil == algebra::PencilKind::Regular ? r->morphology : nullptr;
+  Json facts = Json::object();
+  facts.set("morphology",
+            str(m                                              ? m->id
+                : r->pencil == algebra::PencilKind::Coincident ? "coincident_quadrics"
+                                                               : "degenerate_pencil"));
+  facts.set("tu_case", m ? Json::number(m->tu_case) : Json::null());
+  bool holds = true;
+  if (m) {
+    const std::map<std::string, int> counts = {{"loops", m->loops},
+                                               {"isolated_points", m->isolated_points},
+                                               {"lines", m->lines},
+                                               {"conics", m->conics},
+                                               {"cubics", m->cubics},
+                                               {"double_components", m->double_components},
+                                               {"connected_components", m->connected_components}};
+    Json comps = Json::object();
+    for (const auto& key : kComponentKeys)
+      comps.set(key, Json::number(counts.at(key)));
+    facts.set("components", comps);
+    for (const auto& [key, n] : c.components)
+      holds = holds && counts.at(key) == n;
+  } else if (c.kind == "components") {
+    // A degenerate or coincident pencil lies outside the 35 cases: no counts to compare.
+    v.established = facts;
+    v.note = "the pencil is outside the 35-case classification: no component counts";
+    return v;
+  }
+  if (c.kind == "morphology") holds = facts.find("morphology")->text() == c.morphology;
+  if (c.kind == "tu_case") holds = m && m->tu_case == c.tu_case;
+  if (holds)
+    v.verdict = "confirmed";
+  else
+    v.verdict = "refuted", v.counterexample = facts;
+  return v;
+}
+
+// Working digits that resolve a tolerance tol around v: about log10(max(|v|, tol) / tol) + 3,
+// between 15 and kMaxVerifyDigits (the cap for an exact claim).
+long digits_for(const Rational& v, const Rational& tol) {
+  if (tol.is_zero()) return kMaxVerifyDigits;
+  Rational ratio = std::max(core::abs(v), tol) / tol, ten(1);
+  long k = 0;
+  while (ten < ratio && k < kMaxVerifyDigits)
+    ten *= Rational(10), ++k;
+  return std::clamp(k + 3, 15L, kMaxVerifyDigits);
+}
+
+Verdict decide_distance(const Claim& c, Oracle& o) {
+  const Rational tol = std::max(c.abs_tol, c.rel_tol * core::abs(c.value));
+  const Rational lo = c.value - tol, hi = c.value + tol;
+  Json claimed = Json::object();
+  claimed.set("lower", str(lo.to_string()));
+  claimed.set("upper", str(hi.to_string()));
+  Verdict v;
+  std::vector<long> schedule = {15, digits_for(c.value, tol), kMaxVerifyDigits};
+  long last = 0;
+  for (long digits : schedule) {
+    if (digits <= last) continue;
+    last = digits;
+    const DistanceResult& d = o.distance(c.solid, digits);
+    if (d.budget_exhausted) v.note = "the time budget ran out";
+    // Any enclosure is proven (enclosure.hpp), certified or not; its printed bounds are
+    // rounded outward, so comparing them exactly is sound and is what the caller can check.
+    if (!d.distance) {
+      if (!d.note.empty() && v.note.empty()) v.note = d.note;
+      break;
+    }
+    const certify::Enclosure& e = *d.distance;
+    Json evidence = Json::object();
+    evidence.set("distance", enclosure_json(e));
+    evidence.set("solid", Json::boolean(c.solid));
+    evidence.set("digits", Json::number(digits));
+    evidence.set("claimed_interval", claimed);
+    const Rational L = *Rational::from_string(e.lower());
+    const std::optional<Rational> U =
+        e.upper_finite() ? Rational::from_string(e.upper()) : std::nullopt;
+    if (U && lo <= L && *U <= hi) {
+      v.verdict = "confirmed";
+      v.established.reset();
+      return v;
+    }
+    if ((U && *U < lo) || L > hi) {
+      v.verdict = "refuted";
+      evidence.set("pairs", pairs_json(d));
+      evidence.set("pairs_approximate", Json::boolean(true));
+      v.counterexample = evidence;
+      v.established.reset();
+      return v;
+    }
+    v.established = evidence;
+    if (d.budget_exhausted) break;
+  }
+  if (v.note.empty() && v.established)
+    v.note = "the certified enclosure straddles the claimed interval at " + std::to_string(last) +
+             " digits";
+  return v;
+}
+
+} // namespace
+
+Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& line,
+                   const std::string& source, Mode mode) {
+  const Json* claims = line.find("claims");
+  if (!claims)
+    throw InputError(core::io::json_location(line, source, "$.claims"), "an array of claims",
+                     "none");
+  if (!claims->is_array() || claims->size() == 0)
+    throw InputError(core::io::json_location(*claims, source, "$.claims"),
+                     "a non-empty array of claims",
+                     claims->is_array() ? "[]" : core::io::type_name(claims->type()));
+  const bool two_quadrics = std::holds_alternative<core::QuadricMatrix>(a) &&
+                            std::holds_alternative<core::QuadricMatrix>(b);
+  std::vector<Claim> parsed; // every claim is read before anything is computed
+  for (size_t i = 0; i < claims->size(); ++i)
+    parsed.push_back(
+        read_claim(claims->items()[i], source, json_path_index("$.claims", i), two_quadrics));
+  Oracle oracle(a, b, mode);
+  Json verdicts = Json::array();
+  bool all_decided = true;
+  for (const Claim& c : parsed) {
+    Verdict v;
+    try {
+      if (c.kind == "relation")
+        v = decide_relation(c, oracle);
+      else if (c.kind == "solids_collide")
+        v = decide_collide(c, oracle);
+      else if (c.kind == "distance")
+        v = decide_distance(c, oracle);
+      else
+        v = decide_classification(c, oracle);
+    } catch (const core::BudgetExceeded&) {
+      v = Verdict{};
+      v.note = "the time budget ran out";
+    }
+    all_decided = all_decided && v.verdict != "undecided";
+    Json j = Json::object();
+    j.set("kind", str(c.kind));
+    j.set("verdict", str(v.verdict));
+    if (v.counterexample) j.set("counterexample", *v.counterexample);
+    if (v.established && v.verdict == "undecided") j.set("established", *v.established);
+    if (!v.note.empty()) j.set("note", str(v.note));
+    verdicts.push_back(j);
+  }
+  Json result = Json::object();
+  result.set("verdicts", verdicts);
+  Json out = Json::object();
+  out.set("status", str(all_decided ? "certified" : "undecided"));
+  out.set("result", result);
+  return out;
+}
+
+} // namespace surfcert::app
