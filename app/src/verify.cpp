@@ -274,6 +274,7 @@ public:
     if (f.possible.size() == 1) {
       f.established.set("relation", str(*f.possible.begin()));
       if (f.inside == "a" || f.inside == "b") f.established.set("inside", str(f.inside));
+      if (f.inside == "none") f.established.set("inside", Json::null()); // external touching
     } else {
       Json p = Json::array();
       for (const auto& s : f.possible)
@@ -293,6 +294,8 @@ private:
   std::map<std::pair<bool, long>, DistanceResult> dist_;
   std::optional<RelationFacts> relation_;
 };
+
+const char* const kBudgetNote = "the time budget ran out";
 
 struct Verdict {
   std::string verdict = "undecided";
@@ -417,7 +420,7 @@ Verdict decide_distance(const Claim& c, Oracle& o) {
     if (digits <= last) continue;
     last = digits;
     const DistanceResult& d = o.distance(c.solid, digits);
-    if (d.budget_exhausted) v.note = "the time budget ran out";
+    if (d.budget_exhausted) v.note = kBudgetNote;
     // Any enclosure is proven (enclosure.hpp), certified or not; its printed bounds are
     // rounded outward, so comparing them exactly is sound and is what the caller can check.
     if (!d.distance) {
@@ -475,7 +478,7 @@ Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& l
         read_claim(claims->items()[i], source, json_path_index("$.claims", i), two_quadrics));
   Oracle oracle(a, b, mode);
   Json verdicts = Json::array();
-  bool all_decided = true;
+  bool all_decided = true, budget_out = false;
   for (const Claim& c : parsed) {
     Verdict v;
     try {
@@ -489,9 +492,14 @@ Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& l
         v = decide_classification(c, oracle);
     } catch (const core::BudgetExceeded&) {
       v = Verdict{};
-      v.note = "the time budget ran out";
+      v.note = kBudgetNote;
     }
+    // A verdict left undecided after the budget ran out says so (a distance computed past it
+    // returns what it had, without throwing).
+    if (v.verdict == "undecided" && v.note.empty() && core::budget_exhausted())
+      v.note = kBudgetNote;
     all_decided = all_decided && v.verdict != "undecided";
+    budget_out = budget_out || v.note == kBudgetNote;
     Json j = Json::object();
     j.set("kind", str(c.kind));
     j.set("verdict", str(v.verdict));
@@ -504,6 +512,7 @@ Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& l
   result.set("verdicts", verdicts);
   Json out = Json::object();
   out.set("status", str(all_decided ? "certified" : "undecided"));
+  if (budget_out) out.set("reason", str("budget")); // as the other ops past their budget
   out.set("result", result);
   return out;
 }

@@ -264,6 +264,27 @@ TEST(Verify, FloatModeNeverGuesses) {
   EXPECT_EQ(verdicts(r), (std::vector<std::string>{"undecided", "undecided"}));
 }
 
+TEST(Verify, BudgetRunsOutToUndecided) {
+  // Two tori overlapping by 1e-20 (seconds without a budget, budget_test.cpp): past the 50 ms
+  // budget every verdict that needs the distance is undecided, with reason "budget".
+  const std::string a =
+      R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})";
+  const std::string b =
+      R"({"type":"torus","center":["799999999999999999999/100000000000000000000",)"
+      R"(0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})";
+  Json r = answer(a, b,
+                  R"([{"kind":"distance","value":0,"abs_tol":"1e-30"},
+                      {"kind":"relation","value":"separated"}])",
+                  ",\"budget_ms\":50");
+  EXPECT_EQ(status(r), "undecided");
+  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"undecided", "undecided"}));
+  ASSERT_NE(r.find("reason"), nullptr);
+  EXPECT_EQ(r.find("reason")->text(), "budget");
+  for (size_t i = 0; i < 2; ++i)
+    EXPECT_EQ(verdict(r, i).find("note")->text(), "the time budget ran out");
+  EXPECT_LT(exact(r.find("time_ms")->text()), Rational(3000));
+}
+
 TEST(Verify, BudgetAndTimeFieldsKeepWorking) {
   Json r = answer(kUnit, "\"(x-3)^2+y^2+z^2=1\"", R"([{"kind":"distance","value":1}])",
                   ",\"budget_ms\":60000");
