@@ -354,7 +354,7 @@ Verdict decide_collide(const Claim& c, Oracle& o) {
 Verdict decide_classification(const Claim& c, Oracle& o) {
   Verdict v;
   const QsicResult* r = o.qsic();
-  if (!r) {
+  if (!r || (r->pencil == algebra::PencilKind::Regular && !r->morphology)) {
     v.note = "the classification of the intersection is not certified";
     return v;
   }
