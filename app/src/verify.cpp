@@ -301,6 +301,7 @@ struct Verdict {
   std::string verdict = "undecided";
   std::optional<Json> counterexample, established;
   std::string note;
+  bool out_of_time = false; ///< undecided because the budget ran out (a flag, not the note)
 };
 
 Verdict decide_relation(const Claim& c, Oracle& o) {
@@ -420,7 +421,10 @@ Verdict decide_distance(const Claim& c, Oracle& o) {
     if (digits <= last) continue;
     last = digits;
     const DistanceResult& d = o.distance(c.solid, digits);
-    if (d.budget_exhausted) v.note = kBudgetNote;
+    if (d.budget_exhausted) {
+      v.note = kBudgetNote;
+      v.out_of_time = true;
+    }
     // Any enclosure is proven (enclosure.hpp), certified or not; its printed bounds are
     // rounded outward, so comparing them exactly is sound and is what the caller can check.
     if (!d.distance) {
@@ -493,13 +497,16 @@ Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& l
     } catch (const core::BudgetExceeded&) {
       v = Verdict{};
       v.note = kBudgetNote;
+      v.out_of_time = true;
     }
     // A verdict left undecided after the budget ran out says so (a distance computed past it
     // returns what it had, without throwing).
-    if (v.verdict == "undecided" && v.note.empty() && core::budget_exhausted())
+    if (v.verdict == "undecided" && v.note.empty() && core::budget_exhausted()) {
       v.note = kBudgetNote;
+      v.out_of_time = true;
+    }
     all_decided = all_decided && v.verdict != "undecided";
-    budget_out = budget_out || v.note == kBudgetNote;
+    budget_out = budget_out || v.out_of_time;
     Json j = Json::object();
     j.set("kind", str(c.kind));
     j.set("verdict", str(v.verdict));
