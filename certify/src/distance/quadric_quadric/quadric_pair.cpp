@@ -818,6 +818,33 @@ bool leading_form_definite(const core::Poly3& f) {
   return live.empty() && sign != 0;
 }
 
+// Contact from the signs of h at its critical points on a connected bounded surface S
+// (critical_signs): h takes its extreme values there, so both signs at certified points prove
+// the surfaces meet, one sign everywhere proves h never vanishes on S. True when `out` holds
+// the answer (they meet, or undecided); false when they are proven apart.
+bool contact_answered(const CriticalSigns& cs, const std::string& h, const std::string& S,
+                      DistanceResult& out) {
+  if (!cs.finite) {
+    out.status = Status::Undecided;
+    out.note = "contact not decided: the critical points of " + h + " on " + S + " form a curve";
+    return true;
+  }
+  const bool meet = cs.pos_point && cs.neg_point;
+  const bool decided = meet || (cs.all_signed && !(cs.any_pos && cs.any_neg) && cs.boxes > 0);
+  if (!decided) {
+    out.status = Status::Undecided;
+    out.note = "contact not decided: a critical value of " + h + " on " + S +
+               " is not separated from 0 (touching?)";
+    return true;
+  }
+  if (!meet) return false;
+  out.status = Status::Certified;
+  out.distance = Enclosure::zero();
+  out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
+  out.note = "the surfaces meet (" + h + " takes both signs at certified points of " + S + ")";
+  return true;
+}
+
 // A bounded implicit surface f = 0 (definite leading form) against any quadric g = 0 (planes
 // included). Contact: the extreme values of g on each compact component of {f = 0} are
 // critical values (f = 0, grad f x grad g = 0; singular points of f satisfy it too), so
@@ -838,29 +865,9 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::Quadri
   const Poly3 g = algebra::quadric_poly(q.matrix());
   const auto& ls = kGenericMix;
   SourceQuadric src(f);
-  const CriticalSigns cs = critical_signs(src, g);
-  if (!cs.finite) {
-    out.status = Status::Undecided;
-    out.note = "contact not decided: the critical points of the quadric's equation on the "
-               "implicit surface form a curve";
+  if (contact_answered(critical_signs(src, g), "the quadric's equation",
+                       "the bounded implicit surface", out))
     return out;
-  }
-  const bool meet = cs.pos_point && cs.neg_point;
-  const bool decided = meet || (cs.all_signed && !(cs.any_pos && cs.any_neg) && cs.boxes > 0);
-  if (!decided) {
-    out.status = Status::Undecided;
-    out.note = "contact not decided: a critical value of the quadric's equation on the implicit "
-               "surface is not separated from 0 (touching?)";
-    return out;
-  }
-  if (meet) {
-    out.status = Status::Certified;
-    out.distance = Enclosure::zero();
-    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
-    out.note = "the surfaces meet (the quadric's equation takes both signs at certified points "
-               "of the bounded implicit surface)";
-    return out;
-  }
   if (q.is_plane()) {
     const std::array<Rational, 3> n{q(0, 3), q(1, 3), q(2, 3)};
     const Rational delta = -q(3, 3) * Rational(1, 2);
@@ -908,28 +915,7 @@ DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::Quadr
   // f takes its extreme values there). Both signs at certified points: they cross.
   const auto& ls = kGenericMix;
   SourceQuadric ell(q);
-  const CriticalSigns cs = critical_signs(ell, f);
-  if (!cs.finite) {
-    out.status = Status::Undecided;
-    out.note = "contact not decided: the critical points of f on the ellipsoid form a curve";
-    return out;
-  }
-  // One sign at every critical point: f never vanishes on the ellipsoid.
-  const bool meet = cs.pos_point && cs.neg_point;
-  const bool decided = meet || (cs.all_signed && !(cs.any_pos && cs.any_neg) && cs.boxes > 0);
-  if (!decided) {
-    out.status = Status::Undecided;
-    out.note = "contact not decided: a critical value of f on the ellipsoid is not separated "
-               "from 0 (touching?)";
-    return out;
-  }
-  if (meet) {
-    out.status = Status::Certified;
-    out.distance = Enclosure::zero();
-    out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
-    out.note = "the surfaces meet (f takes both signs at certified points of the ellipsoid)";
-    return out;
-  }
+  if (contact_answered(critical_signs(ell, f), "f", "the ellipsoid", out)) return out;
   if (q.is_sphere()) {
     // Normal lines of S1 through the centre: f = 0, l.((p - c) x grad f) = 0 for two l.
     std::array<Rational, 3> c;

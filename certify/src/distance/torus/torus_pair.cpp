@@ -111,6 +111,21 @@ void circle_circle(Dual& f, Ball (*point)[3], const Circle& c1, const Circle& c2
   arb_mul_2exp_si(f.d.v, f.d.v, -1);
 }
 
+// Tie regions (symmetry.hpp): the points K1(t) over each group of survivors, which hold every
+// minimizing t (outward double boxes).
+void add_core_regions(DistanceResult& res, const PeriodicMinimum& pm, const Circle& c1,
+                      const Circle& c2, long prec) {
+  for (const auto& T : pm.group_hulls) {
+    Ball p[3];
+    Dual f;
+    circle_circle(f, &p, c1, c2, T.v, prec);
+    std::vector<std::array<double, 2>> reg;
+    for (const Ball& x : p)
+      reg.push_back(outward_interval(x.v));
+    res.tie_regions.push_back(std::move(reg));
+  }
+}
+
 // One tube nested in the other: d = min_t (r_out - r_in - dist(K_in(t), K_out)) when positive.
 // (Every point q within r_in of K_in(t) has dist(q, K_out) <= dist(K_in(t), K_out) + r_in
 // < r_out, so the inner tube lies inside the outer one; the farthest inner surface point from
@@ -162,15 +177,7 @@ std::optional<DistanceResult> nested_tubes(const core::Torus& in, const core::To
              " torus lies inside the other's tube; d = r_out - r_in - max dist(K_in, K_out), by "
              "branch and bound over the inner circle (Arb)";
   note_unproven_ties(res, groups);
-  for (const auto& T : pm.group_hulls) {
-    Ball p[3];
-    Dual f;
-    circle_circle(f, &p, ci, co, T.v, prec);
-    std::vector<std::array<double, 2>> reg;
-    for (const Ball& x : p)
-      reg.push_back(outward_interval(x.v));
-    res.tie_regions.push_back(std::move(reg));
-  }
+  add_core_regions(res, pm, ci, co, prec);
   return res;
 }
 
@@ -348,15 +355,7 @@ std::optional<DistanceResult> circle_pair_distance(const core::Torus& a, const c
   note_unproven_ties(res, groups);
   // Tie regions (symmetry.hpp): the points K1(t) over each group of survivors, which hold
   // every minimizing t; an isometry keeping both tori maps each core circle onto itself.
-  for (const auto& T : pm.group_hulls) {
-    Ball p[3];
-    Dual f;
-    circle_circle(f, &p, c1, c2, T.v, prec);
-    std::vector<std::array<double, 2>> reg;
-    for (const Ball& x : p)
-      reg.push_back(outward_interval(x.v));
-    res.tie_regions.push_back(std::move(reg));
-  }
+  add_core_regions(res, pm, c1, c2, prec);
   return res;
 }
 
