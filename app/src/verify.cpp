@@ -1,11 +1,15 @@
 #include "surfcert/app/verify.hpp"
 
+#include "surfcert/app/claim_geometry.hpp"
+#include "surfcert/trace/intersect_curve.hpp"
+
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/morphology.hpp"
 #include "surfcert/core/budget.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -45,8 +49,9 @@ struct Claim {
   std::string morphology;        // morphology
   long tu_case = 0;              // tu_case
   std::vector<std::pair<std::string, long>> components; // components (only the keys given)
-  Rational value, abs_tol, rel_tol;                     // distance
+  Rational value, abs_tol, rel_tol;                     // distance (abs_tol: also the others)
   bool solid = false;
+  std::vector<std::vector<RPoint>> polylines; // closest_points: one of two points; curve
 };
 
 std::string found(const Json& v) {
@@ -56,6 +61,14 @@ std::string found(const Json& v) {
 InputError bad(const Json& v, const std::string& source, const std::string& path,
                const std::string& expected) {
   return InputError(core::io::json_location(v, source, path), expected, found(v));
+}
+
+// A point [x, y, z] of three numbers (read exactly).
+RPoint read_point(const Json& v, const std::string& source, const std::string& path) {
+  if (!v.is_array() || v.size() != 3) throw bad(v, source, path, "a point [x, y, z]");
+  return {core::io::read_number(v.items()[0], source, json_path_index(path, 0)),
+          core::io::read_number(v.items()[1], source, json_path_index(path, 1)),
+          core::io::read_number(v.items()[2], source, json_path_index(path, 2))};
 }
 
 // A JSON value that must be a non-negative integer (component counts, tu_case).
@@ -76,7 +89,7 @@ Claim read_claim(const Json& c, const std::string& source, const std::string& pa
   const std::string kpath = json_path_child(path, "kind");
   const char* kinds =
       "a claim kind: \"relation\", \"solids_collide\", \"morphology\", \"tu_case\", "
-      "\"components\" or \"distance\"";
+      "\"components\", \"distance\", \"closest_points\" or \"curve\"";
   if (!kind) throw InputError(core::io::json_location(c, source, kpath), kinds, "none");
   if (!kind->is_string()) throw bad(*kind, source, kpath, kinds);
   out.kind = kind->text();
@@ -87,6 +100,8 @@ Claim read_claim(const Json& c, const std::string& source, const std::string& pa
     fields.insert("touching_collides");
   else if (out.kind == "distance")
     fields.insert({"abs_tol", "rel_tol", "solid"});
+  else if (out.kind == "closest_points" || out.kind == "curve")
+    fields.insert("abs_tol");
   else if (out.kind != "morphology" && out.kind != "tu_case" && out.kind != "components")
     throw bad(*kind, source, kpath, kinds);
   core::io::check_fields(c, fields, source, path);
@@ -94,8 +109,8 @@ Claim read_claim(const Json& c, const std::string& source, const std::string& pa
   const std::string vpath = json_path_child(path, "value");
   if (!v) throw InputError(core::io::json_location(c, source, vpath), "a claimed value", "none");
   // The classification claims are about the intersection curve of two quadrics.
-  if (!two_quadrics &&
-      (out.kind == "morphology" || out.kind == "tu_case" || out.kind == "components"))
+  if (!two_quadrics && (out.kind == "morphology" || out.kind == "tu_case" ||
+                        out.kind == "components" || out.kind == "curve"))
     throw bad(*kind, source, kpath, "a claim on two quadrics (\"a\" or \"b\" is not a quadric)");
   auto read_bool = [&](const Json& j, const std::string& p) {
     if (!j.is_bool()) throw bad(j, source, p, "true or false");
@@ -143,8 +158,27 @@ Claim read_claim(const Json& c, const std::string& source, const std::string& pa
                          "\"" + key + "\"");
       out.components.emplace_back(key, read_count(n, source, p, 1000));
     }
-  } else { // distance
-    out.value = core::io::read_number(*v, source, vpath);
+  } else if (out.kind == "closest_points") {
+    if (!v->is_array() || v->size() != 2)
+      throw bad(*v, source, vpath, "two points [[x, y, z], [x, y, z]] (on a, on b)");
+    out.polylines.push_back({read_point(v->items()[0], source, json_path_index(vpath, 0)),
+                             read_point(v->items()[1], source, json_path_index(vpath, 1))});
+  } else if (out.kind == "curve") {
+    if (!v->is_array() || v->size() == 0)
+      throw bad(*v, source, vpath, "a non-empty array of polylines [[[x, y, z], ...], ...]");
+    for (size_t i = 0; i < v->size(); ++i) {
+      const Json& line = v->items()[i];
+      const std::string lpath = json_path_index(vpath, i);
+      if (!line.is_array() || line.size() == 0)
+        throw bad(line, source, lpath, "a polyline: a non-empty array of points [x, y, z]");
+      out.polylines.emplace_back();
+      for (size_t j = 0; j < line.size(); ++j)
+        out.polylines.back().push_back(
+            read_point(line.items()[j], source, json_path_index(lpath, j)));
+    }
+  }
+  if (out.kind == "distance" || out.kind == "closest_points" || out.kind == "curve") {
+    if (out.kind == "distance") out.value = core::io::read_number(*v, source, vpath);
     for (const char* key : {"abs_tol", "rel_tol"})
       if (const Json* t = c.find(key)) {
         const std::string p = json_path_child(path, key);
@@ -204,6 +238,8 @@ class Oracle {
 public:
   Oracle(const core::Surface& a, const core::Surface& b, Mode mode) : a_(a), b_(b), mode_(mode) {}
 
+  const core::Surface& a() const { return a_; }
+  const core::Surface& b() const { return b_; }
   const core::QuadricMatrix* qa() const { return std::get_if<core::QuadricMatrix>(&a_); }
   const core::QuadricMatrix* qb() const { return std::get_if<core::QuadricMatrix>(&b_); }
 
@@ -462,6 +498,298 @@ Verdict decide_distance(const Claim& c, Oracle& o) {
   return v;
 }
 
+Json rpoint_json(const RPoint& p) {
+  Json o = Json::array();
+  for (const auto& x : p)
+    o.push_back(str(x.to_string()));
+  return o;
+}
+
+Json bounds_json(const DistanceBounds& d) {
+  Json o = Json::object();
+  o.set("lower", str(d.lower));
+  o.set("upper", str(d.upper));
+  return o;
+}
+
+Json witness_json(const SurfaceWitness& w) {
+  Json o = Json::array();
+  o.push_back(rpoint_json(w.from));
+  o.push_back(rpoint_json(w.to));
+  return o;
+}
+
+RPoint rpoint(const std::array<double, 3>& p) {
+  return {Rational::exact_from_double(p[0]), Rational::exact_from_double(p[1]),
+          Rational::exact_from_double(p[2])};
+}
+
+std::array<double, 3> dpoint(const RPoint& p) {
+  return {p[0].to_double_approx(), p[1].to_double_approx(), p[2].to_double_approx()};
+}
+
+// Is x within tol of the surface? true: a witness segment within tol (printed under
+// `facts`); false: a certified lower bound above tol (the counterexample `off`); nullopt.
+std::optional<bool> point_near_surface(const core::Surface& s, const RPoint& x, const Rational& tol,
+                                       const std::string& name, Json& facts,
+                                       std::optional<Json>& off) {
+  if (auto w = surface_witness(s, x, tol * tol)) {
+    facts.set(name + "_surface_witness", witness_json(*w));
+    return true;
+  }
+  for (long digits : {15L, 40L}) {
+    const std::optional<DistanceBounds> d = point_surface_distance(s, x, digits);
+    if (!d) return std::nullopt;
+    facts.set(name + "_distance_to_surface", bounds_json(*d));
+    if (d->hi <= tol) return true;
+    if (tol < d->lo) {
+      Json ce = Json::object();
+      ce.set("surface", str(name));
+      ce.set("claimed", rpoint_json(x));
+      ce.set("distance_to_surface", bounds_json(*d));
+      ce.set("abs_tol", str(tol.to_string()));
+      off = ce;
+      return false;
+    }
+  }
+  return std::nullopt;
+}
+
+// closest_points: p on a and q on b each within tol of their surface, and |p - q| within tol
+// of the certified minimum distance (README, JSON contract).
+Verdict decide_closest_points(const Claim& c, Oracle& o) {
+  const Rational& t = c.abs_tol;
+  const RPoint& p = c.polylines[0][0];
+  const RPoint& q = c.polylines[0][1];
+  Verdict v;
+  Json facts = Json::object();
+  std::optional<Json> off;
+  const std::optional<bool> pa = point_near_surface(o.a(), p, t, "a", facts, off);
+  if (pa && !*pa) return v.verdict = "refuted", v.counterexample = off, v;
+  const std::optional<bool> qb = point_near_surface(o.b(), q, t, "b", facts, off);
+  if (qb && !*qb) return v.verdict = "refuted", v.counterexample = off, v;
+  const Rational d2 = dist2(p, q);
+  facts.set("claimed_distance_squared", str(d2.to_string()));
+  std::optional<bool> distance_ok;
+  long last = 0;
+  for (long digits :
+       {15L, digits_for(Rational::exact_from_double(std::sqrt(d2.to_double_approx())), t),
+        kMaxVerifyDigits}) {
+    if (digits <= last) continue;
+    last = digits;
+    const DistanceResult& d = o.distance(false, digits);
+    if (d.budget_exhausted) v.note = kBudgetNote, v.out_of_time = true;
+    if (!d.distance || !d.distance->upper_finite()) break;
+    const Rational L = *Rational::from_string(d.distance->lower());
+    const Rational U = *Rational::from_string(d.distance->upper());
+    facts.set("distance", enclosure_json(*d.distance));
+    facts.set("digits", Json::number(digits));
+    if (!d.minimizers.empty()) facts.set("minimizers", str(d.minimizers.str()));
+    if (sqrt_plus_less(U * U, t, d2)) { // U + t < |p - q|: a closer pair exists
+      Json ce = facts;
+      ce.set("pairs", pairs_json(d));
+      ce.set("pairs_approximate", Json::boolean(true));
+      // A checkable closer pair: witness segments on a and b (sign changes of their
+      // equations) every point pair of which is closer than |p - q| - tol.
+      for (const auto& pair : d.pairs) {
+        auto wa = surface_witness(o.a(), rpoint(pair[0]), Rational(1));
+        auto wb = surface_witness(o.b(), rpoint(pair[1]), Rational(1));
+        if (!wa || !wb) continue;
+        Rational ub2;
+        for (const RPoint* x : {&wa->from, &wa->to})
+          for (const RPoint* y : {&wb->from, &wb->to})
+            ub2 = std::max(ub2, dist2(*x, *y));
+        if (!sqrt_plus_less(ub2, t, d2)) continue;
+        Json closer = Json::object();
+        closer.set("a_segment", witness_json(*wa));
+        closer.set("b_segment", witness_json(*wb));
+        closer.set("distance_squared_upper", str(ub2.to_string()));
+        ce.set("closer_pair", closer);
+        break;
+      }
+      v.verdict = "refuted", v.counterexample = ce;
+      return v;
+    }
+    if (sqrt_plus_less(d2, t, L * L)) { // |p - q| + tol < L: closer than the minimum
+      v.verdict = "refuted", v.counterexample = facts;
+      return v;
+    }
+    if (!sqrt_plus_less(L * L, t, d2) && !sqrt_plus_less(d2, t, U * U)) {
+      distance_ok = true;
+      break;
+    }
+    if (d.budget_exhausted) break;
+  }
+  if (pa && qb && distance_ok) {
+    v.verdict = "confirmed";
+    return v;
+  }
+  v.established = facts;
+  if (v.note.empty())
+    v.note = !pa || !qb ? "a claimed point is not proven within tol of its surface, nor farther"
+                        : "the certified distance does not decide |p - q| within tol";
+  return v;
+}
+
+using DPoint = std::array<double, 3>;
+
+double dnorm2(const DPoint& a, const DPoint& b) {
+  const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+  return x * x + y * y + z * z;
+}
+
+// Approximate distance (doubles) from x to the claimed polylines (their segments, or the
+// point of a one-point polyline): only to choose which traced point to certify.
+double approx_dist_to_claim(const DPoint& x, const std::vector<std::vector<DPoint>>& lines) {
+  double best = HUGE_VAL;
+  for (const auto& l : lines)
+    for (size_t k = 0; k < l.size(); ++k) {
+      const DPoint& s = l[k];
+      const DPoint& e = l[k + 1 < l.size() ? k + 1 : k];
+      const DPoint u = {e[0] - s[0], e[1] - s[1], e[2] - s[2]};
+      const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+      double lam =
+          uu > 0 ? ((x[0] - s[0]) * u[0] + (x[1] - s[1]) * u[1] + (x[2] - s[2]) * u[2]) / uu : 0;
+      lam = std::clamp(lam, 0.0, 1.0);
+      best = std::min(best, dnorm2(x, {s[0] + lam * u[0], s[1] + lam * u[1], s[2] + lam * u[2]}));
+    }
+  return std::sqrt(best);
+}
+
+// First-order estimate |f(x)| / |grad f(x)| of the distance from x to a quadric (doubles).
+double approx_residual_distance(const core::QuadricMatrix& q, const DPoint& x) {
+  double f = q(3, 3).to_double_approx(), g2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    double r = q(i, 3).to_double_approx();
+    for (int j = 0; j < 3; ++j)
+      r += q(i, j).to_double_approx() * x[static_cast<size_t>(j)];
+    f += x[static_cast<size_t>(i)] * (r + q(i, 3).to_double_approx());
+    g2 += 4 * r * r;
+  }
+  return g2 > 0 ? std::abs(f) / std::sqrt(g2) : HUGE_VAL;
+}
+
+Json curve_witness_json(const CurveWitness& w) {
+  Json o = Json::object();
+  o.set("centre", rpoint_json(w.centre));
+  o.set("half_width", str(w.half_width.to_string()));
+  o.set("fixed_axis", Json::number(w.fixed_axis));
+  return o;
+}
+
+// Is the certified curve point w (within rho = 2 half_width of its centre) farther than tol
+// from every claimed segment? Decided exactly: every segment is farther than tol + rho from
+// the centre.
+bool witness_far_from_claim(const CurveWitness& w, const Claim& c, const Rational& tol) {
+  const Rational reach = tol + Rational(2) * w.half_width, reach2 = reach * reach;
+  for (const auto& l : c.polylines)
+    for (size_t k = 0; k < l.size(); ++k)
+      if (segment_dist2(w.centre, l[k], l[k + 1 < l.size() ? k + 1 : k]) <= reach2) return false;
+  return true;
+}
+
+// curve: the claimed polylines against the certified intersection curve (README, JSON
+// contract). Refuted by a claimed point certified farther than tol from a or b, or by a
+// certified point of the curve farther than tol from every claimed segment (a missed branch);
+// confirmation would need a proof that the claim covers the whole curve, which the float
+// tracer cannot give: otherwise undecided with what was established.
+Verdict decide_curve(const Claim& c, Oracle& o) {
+  const core::QuadricMatrix& A = *o.qa();
+  const core::QuadricMatrix& B = *o.qb();
+  const Rational& t = c.abs_tol;
+  const double td = t.to_double_approx();
+  Verdict v;
+  Json facts = Json::object();
+  std::vector<std::vector<DPoint>> lines;
+  struct Far {
+    double est;
+    size_t line, index;
+  };
+  std::vector<Far> far;
+  size_t points = 0;
+  for (size_t i = 0; i < c.polylines.size(); ++i) {
+    lines.emplace_back();
+    for (size_t j = 0; j < c.polylines[i].size(); ++j) {
+      lines.back().push_back(dpoint(c.polylines[i][j]));
+      const double e = std::max(approx_residual_distance(A, lines.back().back()),
+                                approx_residual_distance(B, lines.back().back()));
+      if (e > 0.5 * td) far.push_back({e, i, j});
+      ++points;
+    }
+  }
+  // A claimed point off a surface (the farthest by the float estimate are certified first).
+  std::sort(far.begin(), far.end(), [](const Far& x, const Far& y) { return x.est > y.est; });
+  for (size_t k = 0; k < far.size() && k < 8; ++k) {
+    const RPoint& x = c.polylines[far[k].line][far[k].index];
+    for (const auto& [name, s] :
+         {std::pair<std::string, const core::Surface*>{"a", &o.a()}, {"b", &o.b()}}) {
+      core::check_budget();
+      Json scratch = Json::object();
+      std::optional<Json> off;
+      if (auto near = point_near_surface(*s, x, t, name, scratch, off); near && !*near) {
+        off->set("polyline", Json::number(static_cast<long>(far[k].line)));
+        off->set("index", Json::number(static_cast<long>(far[k].index)));
+        v.verdict = "refuted", v.counterexample = off;
+        return v;
+      }
+    }
+  }
+  // Claimed points proven within tol of the curve (a certified curve point nearby).
+  long proven = 0;
+  for (const auto& l : c.polylines)
+    for (const RPoint& x : l) {
+      core::check_budget();
+      const auto w = curve_witness(A, B, dpoint(x));
+      if (!w) continue;
+      const Rational rho = Rational(2) * w->half_width;
+      if (rho <= t && dist2(x, w->centre) <= (t - rho) * (t - rho)) ++proven;
+    }
+  facts.set("claimed_polylines", Json::number(static_cast<long>(c.polylines.size())));
+  facts.set("claimed_points", Json::number(static_cast<long>(points)));
+  facts.set("points_proven_near_curve", Json::number(proven));
+  // A missed branch: the traced point of each branch farthest from the claim, certified on
+  // the curve and proven farther than tol from every claimed segment.
+  const QsicResult* top = o.qsic();
+  if (top) {
+    if (top->morphology) facts.set("morphology", str(top->morphology->id));
+    const trace::CurveResult cr = trace::trace_curve(A, B, *top, trace::TraceOptions{});
+    facts.set("traced_branches", Json::number(static_cast<long>(cr.branches.size())));
+    facts.set("traced_branches_match_topology", Json::boolean(cr.matches_topology));
+    long near_branches = 0;
+    for (size_t bi = 0; bi < cr.branches.size(); ++bi) {
+      core::check_budget();
+      const trace::Branch& br = cr.branches[bi];
+      std::vector<std::pair<double, size_t>> order;
+      for (size_t k = 0; k < br.points.size(); ++k)
+        order.emplace_back(approx_dist_to_claim(br.points[k], lines), k);
+      std::sort(order.rbegin(), order.rend());
+      if (order.empty() || order.front().first <= td) {
+        ++near_branches;
+        continue;
+      }
+      // The farthest few (a singular point may defeat the certificate).
+      for (size_t k = 0; k < order.size() && k < 4 && order[k].first > td; ++k) {
+        const auto w = curve_witness(A, B, br.points[order[k].second]);
+        if (!w || !witness_far_from_claim(*w, c, t)) continue;
+        Json ce = Json::object();
+        ce.set("missed_branch", Json::number(static_cast<long>(bi)));
+        ce.set("branch_kind", str(br.kind));
+        ce.set("point_on_curve", curve_witness_json(*w));
+        ce.set("abs_tol", str(t.to_string()));
+        v.verdict = "refuted", v.counterexample = ce;
+        return v;
+      }
+    }
+    facts.set("traced_branches_within_tol", Json::number(near_branches));
+  } else {
+    facts.set("morphology", Json::null());
+  }
+  v.established = facts;
+  v.note = "coverage of the whole certified curve by the claim is not proven (the traced "
+           "branches are approximate)";
+  return v;
+}
+
 } // namespace
 
 Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& line,
@@ -492,6 +820,10 @@ Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& l
         v = decide_collide(c, oracle);
       else if (c.kind == "distance")
         v = decide_distance(c, oracle);
+      else if (c.kind == "closest_points")
+        v = decide_closest_points(c, oracle);
+      else if (c.kind == "curve")
+        v = decide_curve(c, oracle);
       else
         v = decide_classification(c, oracle);
     } catch (const core::BudgetExceeded&) {

@@ -13,6 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <tuple>
@@ -363,4 +365,341 @@ TEST(Verify, CommandLine) {
   EXPECT_NE(text.find("$.claims[0].abs_tol"), std::string::npos) << text;
   std::tie(code, text) = run("verify 'x^2+y^2+z^2=1' 'z=0'");
   EXPECT_EQ(code, 2) << text;
+}
+
+namespace {
+
+using P3 = std::array<Rational, 3>;
+
+P3 point_of(const Json& j) {
+  return {exact(j.items().at(0).text()), exact(j.items().at(1).text()),
+          exact(j.items().at(2).text())};
+}
+
+Rational d2_of(const P3& p, const P3& q) {
+  Rational s;
+  for (size_t i = 0; i < 3; ++i)
+    s += (p[i] - q[i]) * (p[i] - q[i]);
+  return s;
+}
+
+// sqrt(u) + t < sqrt(v), exactly (the test's own reading).
+bool root_plus_less(const Rational& u, const Rational& t, const Rational& v) {
+  const Rational rhs = v - u - t * t;
+  return rhs.sign() > 0 && Rational(4) * t * t * u < rhs * rhs;
+}
+
+// Sphere |x - c|^2 = r^2 as a function (the test's own equations).
+struct Sphere {
+  P3 c;
+  Rational r;
+  Rational f(const P3& x) const { return d2_of(x, c) - r * r; }
+};
+
+// A refuted closest_points claim's closer pair, re-checked: each segment has ends of opposite
+// signs (or a zero) on its sphere, every pair of segment points is within the printed bound,
+// and that bound plus tol is below the claimed |p - q|.
+void expect_closer_pair(const Json& v, const Sphere& a, const Sphere& b, const P3& p, const P3& q,
+                        const Rational& tol) {
+  ASSERT_EQ(v.find("verdict")->text(), "refuted") << core::io::dump(v);
+  const Json* cp = v.find("counterexample")->find("closer_pair");
+  ASSERT_TRUE(cp) << core::io::dump(v);
+  const Json& sa = *cp->find("a_segment");
+  const Json& sb = *cp->find("b_segment");
+  EXPECT_LE(a.f(point_of(sa.items()[0])).sign() * a.f(point_of(sa.items()[1])).sign(), 0);
+  EXPECT_LE(b.f(point_of(sb.items()[0])).sign() * b.f(point_of(sb.items()[1])).sign(), 0);
+  const Rational ub2 = exact(cp->find("distance_squared_upper")->text());
+  for (const auto& x : sa.items())
+    for (const auto& y : sb.items())
+      EXPECT_TRUE(d2_of(point_of(x), point_of(y)) <= ub2);
+  EXPECT_TRUE(root_plus_less(ub2, tol, d2_of(p, q)));
+}
+
+// A claimed point refuted as off the unit-radius sphere s: its exact distance | |x-c| - r |
+// exceeds tol, and so does the printed lower bound.
+void expect_off_sphere(const Json& v, const Sphere& s, const P3& x, const Rational& tol) {
+  ASSERT_EQ(v.find("verdict")->text(), "refuted") << core::io::dump(v);
+  const Json& ce = *v.find("counterexample");
+  EXPECT_TRUE(tol < exact(ce.find("distance_to_surface")->find("lower")->text()));
+  const Rational n2 = d2_of(x, s.c);
+  EXPECT_TRUE(root_plus_less(s.r * s.r, tol, n2) || root_plus_less(n2, tol, s.r * s.r));
+}
+
+std::string pt(const P3& p) {
+  return "[\"" + p[0].to_string() + "\",\"" + p[1].to_string() + "\",\"" + p[2].to_string() + "\"]";
+}
+
+std::string cp_claim(const P3& p, const P3& q, const Rational& tol) {
+  return R"({"kind":"closest_points","value":[)" + pt(p) + "," + pt(q) + R"(],"abs_tol":")" +
+         tol.to_string() + "\"}";
+}
+
+// The answer and the answer with a and b swapped (the claims given for each order).
+Json answer_swapped(const std::string& a, const std::string& b, const std::string& claims,
+                    const std::string& swapped_claims) {
+  Json r = answer(a, b, claims);
+  EXPECT_EQ(verdicts(r), verdicts(answer(b, a, swapped_claims))) << claims;
+  return r;
+}
+
+} // namespace
+
+TEST(Verify, ClosestPointsOfTwoSpheres) {
+  const Sphere sa{{0, 0, 0}, 1}, sb{{3, 0, 0}, 1};
+  const std::string b = "\"(x-3)^2+y^2+z^2=1\"";
+  const Rational tol = core::pow2(-30), zero(0);
+  const Rational u = Rational::exact_from_double(std::nextafter(1.0, 2.0)) - Rational(1);
+  struct Case {
+    P3 p, q;
+    Rational tol;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {{1, 0, 0}, {2, 0, 0}, zero, "confirmed"}, // exact
+      // a few ulps off, tolerance 2^-30
+      {{Rational(1) + Rational(3) * u, 0, 0},
+       {Rational(2) - Rational(2) * u, u, 0},
+       tol,
+       "confirmed"},
+      // both points tol/2 inside: |p - q| = 1 + tol, at the edge of the tolerance
+      {{Rational(1) - tol / Rational(2), 0, 0},
+       {Rational(2) + tol / Rational(2), 0, 0},
+       tol,
+       "confirmed"},
+      // 0.6 tol each: each point within tol, but |p - q| = 1 + 1.2 tol
+      {{Rational(1) - tol * Rational(3, 5), 0, 0},
+       {Rational(2) + tol * Rational(3, 5), 0, 0},
+       tol,
+       "refuted"},
+      // p 2 tol outside a
+      {{Rational(1) + Rational(2) * tol, 0, 0}, {2, 0, 0}, tol, "refuted"},
+      // q 2 tol inside b
+      {{1, 0, 0}, {Rational(2) + Rational(2) * tol, 0, 0}, tol, "refuted"},
+      // p on a (0.6, 0.8, 0) but not closest: a closer pair exists
+      {{Rational(3, 5), Rational(4, 5), 0}, {2, 0, 0}, tol, "refuted"},
+      // the same midpoint for both, within 0.6 of each surface: closer than the minimum 1
+      {{Rational(3, 2), 0, 0}, {Rational(3, 2), 0, 0}, Rational(3, 5), "refuted"},
+  };
+  std::string claims = "[", swapped = "[";
+  for (const auto& c : cases) {
+    claims += (claims.size() > 1 ? "," : "") + cp_claim(c.p, c.q, c.tol);
+    swapped += (swapped.size() > 1 ? "," : "") + cp_claim(c.q, c.p, c.tol);
+  }
+  Json r = answer_swapped(kUnit, b, claims + "]", swapped + "]");
+  std::vector<std::string> expected;
+  for (const auto& c : cases)
+    expected.push_back(c.expected);
+  EXPECT_EQ(verdicts(r), expected);
+  expect_closer_pair(verdict(r, 3), sa, sb, cases[3].p, cases[3].q, tol);
+  expect_off_sphere(verdict(r, 4), sa, cases[4].p, tol);
+  expect_off_sphere(verdict(r, 5), sb, cases[5].q, tol);
+  expect_closer_pair(verdict(r, 6), sa, sb, cases[6].p, cases[6].q, tol);
+  // Closer than the minimum: the printed lower bound of the minimum exceeds |p - q| + tol.
+  EXPECT_TRUE(Rational(3, 5) <
+              exact(verdict(r, 7).find("counterexample")->find("distance")->find("lower")->text()));
+}
+
+TEST(Verify, ClosestPointsOnAContinuumAndATorus) {
+  // The unit sphere inside the cylinder x^2 + y^2 = 4: distance 1 along a circle of
+  // minimizers; any pair on it is a closest pair.
+  Json r = answer(kUnit, "\"x^2+y^2=4\"",
+                  R"([{"kind":"closest_points","value":[[1,0,0],[2,0,0]],"abs_tol":1e-12},
+                      {"kind":"closest_points","value":[["0.6","0.8",0],["1.2","1.6",0]]},
+                      {"kind":"closest_points","value":[[0,0,1],[2,0,1]],"abs_tol":1e-12}])");
+  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"confirmed", "confirmed", "refuted"}));
+  // A ring torus (R = 2, r = 1 about z) and the plane z = 10: distance 9 from the top circle.
+  const std::string torus =
+      R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":2,"minor_radius":1})";
+  r = answer(torus, "\"z=10\"",
+             R"([{"kind":"closest_points","value":[[2,0,1],[2,0,10]],"abs_tol":1e-12},
+                 {"kind":"closest_points","value":[[3.5,0,0],[3.5,0,10]],"abs_tol":0.1}])");
+  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"confirmed", "refuted"}));
+  // (3.5, 0, 0) is 0.5 from the tube.
+  const Json& ce = *verdict(r, 1).find("counterexample");
+  EXPECT_EQ(ce.find("surface")->text(), "a");
+  EXPECT_TRUE(exact(ce.find("distance_to_surface")->find("lower")->text()) <= Rational(1, 2));
+  EXPECT_TRUE(Rational(1, 2) <= exact(ce.find("distance_to_surface")->find("upper")->text()));
+}
+
+namespace {
+
+using M3 = std::array<P3, 3>;
+
+P3 apply(const M3& m, const P3& x, const P3& t) {
+  P3 y;
+  for (size_t i = 0; i < 3; ++i)
+    y[i] = m[i][0] * x[0] + m[i][1] * x[1] + m[i][2] * x[2] + t[i];
+  return y;
+}
+
+// The rotation of the quaternion (a, b, c, d), rational: entries over a^2 + b^2 + c^2 + d^2.
+M3 quaternion_rotation(long a, long b, long c, long d) {
+  const Rational n(a * a + b * b + c * c + d * d);
+  auto e = [&](long v) { return Rational(v) / n; };
+  return {P3{e(a * a + b * b - c * c - d * d), e(2 * (b * c - a * d)), e(2 * (b * d + a * c))},
+          P3{e(2 * (b * c + a * d)), e(a * a - b * b + c * c - d * d), e(2 * (c * d - a * b))},
+          P3{e(2 * (b * d - a * c)), e(2 * (c * d + a * b)), e(a * a - b * b - c * c + d * d)}};
+}
+
+std::string mat(const M3& m) {
+  return "[" + pt(m[0]) + "," + pt(m[1]) + "," + pt(m[2]) + "]";
+}
+
+// The unit circle of the spheres |x|^2 = 1 and |x - (1,0,0)|^2 = 1: x = 1/2, y^2 + z^2 = 3/4,
+// as n + 1 double points (closed).
+std::vector<P3> circle(int n) {
+  std::vector<P3> out;
+  const double r = std::sqrt(3.0) / 2;
+  for (int k = 0; k <= n; ++k) {
+    const double t = 2 * M_PI * (k % n) / n;
+    out.push_back({Rational(1, 2), Rational::exact_from_double(r * std::cos(t)),
+                   Rational::exact_from_double(r * std::sin(t))});
+  }
+  return out;
+}
+
+std::string polyline(const std::vector<P3>& l, const M3& m, const P3& t) {
+  std::string s = "[";
+  for (const auto& p : l)
+    s += (s.size() > 1 ? "," : "") + pt(apply(m, p, t));
+  return s + "]";
+}
+
+std::string curve_claim(const std::vector<std::vector<P3>>& lines, const std::string& tol,
+                        const M3& m, const P3& t) {
+  std::string s = R"({"kind":"curve","value":[)";
+  for (size_t i = 0; i < lines.size(); ++i)
+    s += (i ? "," : "") + polyline(lines[i], m, t);
+  return s + R"(],"abs_tol":")" + tol + "\"}";
+}
+
+// The curve claims of the two-sphere circle, moved by x -> m x + t: the full circle (tol
+// 1e-2), half of it (a missed half), one point moved 1% off, and a phantom branch added.
+std::string circle_claims(const M3& m, const P3& t) {
+  const std::vector<P3> full = circle(64);
+  const std::vector<P3> half(full.begin(), full.begin() + 33);
+  std::vector<P3> moved = full;
+  moved[5][1] *= Rational(101, 100), moved[5][2] *= Rational(101, 100);
+  const std::vector<P3> phantom = {{Rational(1, 2), 0, 0}, {Rational(1, 2), Rational(1, 10), 0}};
+  return "[" + curve_claim({full}, "0.01", m, t) + "," + curve_claim({half}, "0.01", m, t) + "," +
+         curve_claim({moved}, "0.001", m, t) + "," + curve_claim({full, phantom}, "0.01", m, t) +
+         "]";
+}
+
+const M3 kIdentity = {P3{1, 0, 0}, P3{0, 1, 0}, P3{0, 0, 1}};
+
+} // namespace
+
+TEST(Verify, CurveOfTwoSpheres) {
+  const std::string b = "\"(x-1)^2+y^2+z^2=1\"";
+  Json r = answer_both_ways(kUnit, b, circle_claims(kIdentity, {0, 0, 0}));
+  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"undecided", "refuted", "refuted", "refuted"}));
+  // The whole circle: every claimed point proven within tol; coverage is not proven.
+  const Json& est = *verdict(r, 0).find("established");
+  EXPECT_EQ(est.find("points_proven_near_curve")->text(), "65");
+  // The missed half: a certified point of the circle (box centre within 2 half_width of it,
+  // checked here from the closed form) farther than tol from every claimed segment.
+  const Json& ce = *verdict(r, 1).find("counterexample");
+  const Json& pc = *ce.find("point_on_curve");
+  const P3 c = point_of(*pc.find("centre"));
+  const double hw = exact(pc.find("half_width")->text()).to_double_approx();
+  EXPECT_LT(hw, 1e-6);
+  EXPECT_LE(std::abs(c[0].to_double_approx() - 0.5), 2 * hw + 1e-15);
+  const double rho = std::hypot(c[1].to_double_approx(), c[2].to_double_approx());
+  EXPECT_LE(std::abs(rho - std::sqrt(3.0) / 2), 2 * hw + 1e-15);
+  // Its distance to the half circle's chords, in doubles with margin: the missed half's
+  // points are about sqrt(3)/2 * angle away.
+  const std::vector<P3> full = circle(64);
+  double best = HUGE_VAL;
+  for (size_t k = 0; k + 1 < 33; ++k)
+    for (int s = 0; s <= 100; ++s) {
+      double d2 = 0;
+      for (size_t i = 0; i < 3; ++i) {
+        const double x =
+            full[k][i].to_double_approx() +
+            (full[k + 1][i].to_double_approx() - full[k][i].to_double_approx()) * s / 100.0;
+        d2 += (x - c[i].to_double_approx()) * (x - c[i].to_double_approx());
+      }
+      best = std::min(best, std::sqrt(d2));
+    }
+  EXPECT_GT(best, 0.01 + 2 * hw);
+  // The moved point: 1% farther from the axis, so about 0.0075 from each sphere.
+  expect_off_sphere(verdict(r, 2), Sphere{{0, 0, 0}, 1},
+                    point_of(*verdict(r, 2).find("counterexample")->find("claimed")),
+                    Rational(1, 1000));
+  // The phantom branch's point (1/2, 0, 0) is 1/2 from each sphere.
+  expect_off_sphere(verdict(r, 3), Sphere{{0, 0, 0}, 1}, {Rational(1, 2), 0, 0}, Rational(1, 100));
+}
+
+TEST(Verify, VerdictsInvariantUnderRationalRigidMotions) {
+  // Closest points: an ellipsoid with semi-axes 1, 2, 3 and the unit sphere centred at
+  // (4, 0, 0): closest pair (1,0,0)-(3,0,0), distance 2. Curve: the two-sphere circle.
+  const std::vector<std::pair<M3, P3>> motions = {
+      {kIdentity, {0, 0, 0}},
+      {{P3{0, -1, 0}, P3{0, 0, 1}, P3{-1, 0, 0}}, {Rational(1, 3), -2, Rational(5, 7)}},
+      {{P3{0, 1, 0}, P3{1, 0, 0}, P3{0, 0, 1}}, {0, 0, 1}}, // a reflection
+      {quaternion_rotation(1, 2, 2, 4), {Rational(-3, 2), Rational(1, 8), 2}},
+      {quaternion_rotation(1, 1, 1, 1), {0, 0, 0}},
+  };
+  std::vector<std::string> first_cp, first_curve;
+  for (const auto& [m, t] : motions) {
+    const std::string ell = R"({"type":"ellipsoid","center":)" + pt(t) +
+                            R"(,"radii":[1,2,3],"rotation":{"matrix":)" + mat(m) + "}}";
+    const std::string sph =
+        R"({"type":"sphere","center":)" + pt(apply(m, {4, 0, 0}, t)) + R"(,"radius":1})";
+    auto at = [&](const P3& x) { return apply(m, x, t); };
+    const Rational tol = core::pow2(-30);
+    const std::vector<std::pair<P3, P3>> pairs = {{{1, 0, 0}, {3, 0, 0}},
+                                                  {{0, 2, 0}, {3, 0, 0}},
+                                                  {{1, 0, 0}, {Rational(31, 10), 0, 0}},
+                                                  {{1, 0, 0}, {3, Rational(1, 1000), 0}}};
+    std::string claims = "[", swapped = "[";
+    for (const auto& [p, q] : pairs) {
+      claims += (claims.size() > 1 ? "," : "") + cp_claim(at(p), at(q), tol);
+      swapped += (swapped.size() > 1 ? "," : "") + cp_claim(at(q), at(p), tol);
+    }
+    Json r = answer_swapped(ell, sph, claims + "]", swapped + "]");
+    EXPECT_EQ(verdicts(r),
+              (std::vector<std::string>{"confirmed", "refuted", "refuted", "refuted"}));
+    if (first_cp.empty()) first_cp = verdicts(r);
+    EXPECT_EQ(verdicts(r), first_cp);
+    const std::string s1 = R"({"type":"sphere","center":)" + pt(t) + R"(,"radius":1})";
+    const std::string s2 =
+        R"({"type":"sphere","center":)" + pt(apply(m, {1, 0, 0}, t)) + R"(,"radius":1})";
+    r = answer_both_ways(s1, s2, circle_claims(m, t));
+    if (first_curve.empty()) first_curve = verdicts(r);
+    EXPECT_EQ(verdicts(r), first_curve);
+  }
+  EXPECT_EQ(first_curve, (std::vector<std::string>{"undecided", "refuted", "refuted", "refuted"}));
+}
+
+TEST(Verify, BadGeometricClaimsAreInputErrors) {
+  auto path_of = [](const std::string& a, const std::string& claims) {
+    Json r = answer(kUnit, a, claims);
+    EXPECT_EQ(status(r), "error") << core::io::dump(r);
+    const Json* e = r.find("error");
+    return e && e->find("json_path") ? e->find("json_path")->text() : std::string("(none)");
+  };
+  const std::string b = "\"(x-3)^2+y^2+z^2=1\"";
+  EXPECT_EQ(path_of(b, R"([{"kind":"closest_points","value":[[1,0,0]]}])"), "$.claims[0].value");
+  EXPECT_EQ(path_of(b, R"([{"kind":"closest_points","value":[[1,0,0],[2,0]]}])"),
+            "$.claims[0].value[1]");
+  EXPECT_EQ(path_of(b, R"([{"kind":"closest_points","value":[[1,0,0],[2,"x",0]]}])"),
+            "$.claims[0].value[1][1]");
+  EXPECT_EQ(path_of(b, R"([{"kind":"closest_points","value":[[1,0,0],[2,0,0]],"abs_tol":-1}])"),
+            "$.claims[0].abs_tol");
+  EXPECT_EQ(path_of(b, R"([{"kind":"closest_points","value":[[1,0,0],[2,0,0]],"rel_tol":1}])"),
+            "$.claims[0].rel_tol");
+  EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":[]}])"), "$.claims[0].value");
+  EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":[[[1,0,0]],[]]}])"), "$.claims[0].value[1]");
+  EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":[[[1,0,0],[1,0]]]}])"),
+            "$.claims[0].value[0][1]");
+  EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":[[[1,0,0]]],"abs_tol":"-1e-3"}])"),
+            "$.claims[0].abs_tol");
+  // A curve claim is about two quadrics.
+  EXPECT_EQ(
+      path_of(
+          R"({"type":"torus","center":[5,0,0],"axis":[0,0,1],"major_radius":2,"minor_radius":1})",
+          R"([{"kind":"curve","value":[[[1,0,0]]]}])"),
+      "$.claims[0].kind");
 }

@@ -1,6 +1,6 @@
 // surfcert::app::verify_claims: certified verdicts on another program's claims about a pair of
-// surfaces (issue 13, first slice: relation, solids_collide, morphology, tu_case, components,
-// distance).
+// surfaces (issue 13: relation, solids_collide, morphology, tu_case, components, distance,
+// closest_points, curve).
 //
 // What it represents: for each claim, in claim order, a verdict
 //   "confirmed"  the claim is proven true (within its stated tolerance),
@@ -9,8 +9,11 @@
 //   "undecided"  neither could be proven; "established" says what was proven instead.
 // A verdict is never a guess: every decision reads a certified answer of the engine
 // (classify_qsic with status Certified, complete_report_data's ellipsoid relation, or a
-// certified Enclosure of surface_distance), and distances are compared as exact rationals on
-// the printed (outward-rounded) bounds, so the counterexample the caller sees proves it.
+// certified Enclosure of surface_distance) or a checkable certificate on claimed points
+// (claim_geometry.hpp: sign-change segments, point-surface distance bounds, Krawczyk boxes of
+// curve points), and distances are compared as exact rationals on the printed
+// (outward-rounded) bounds, so the counterexample the caller sees proves it. A curve claim is
+// never confirmed today (coverage of the whole curve is not provable from the float tracer).
 //
 // Contract: verify_claims validates every claim before computing anything; a bad claim
 // (unknown kind, wrong value type, negative tolerance, a quadric-only claim on a torus, no
