@@ -125,3 +125,34 @@ TEST(Extremes, SpheresAtExtremeMagnitudes) {
             EXPECT_TRUE(std::isfinite(x)) << what;
     }
 }
+
+// Shapes given as doubles at extreme magnitudes, through the reader (as users send them):
+// classify must certify the closed-form relation, and the nested distance must contain its
+// closed-form bounds. The pencil of a sphere of radius 1e-150 at 1e150 against the unit sphere
+// has roots spanning ~600 decimal orders (minutes in Arb's complex root finder before).
+TEST(Extremes, ShapesAtExtremeMagnitudesThroughTheReader) {
+  auto read = [](const std::string& text) {
+    return core::io::read_quadric(core::io::parse_json(text, "test"), "test", "$");
+  };
+  const auto unit = read(R"({"type": "sphere", "radius": 1})");
+  const auto far_tiny = read(R"({"type": "sphere", "center": [1e150, 0, 0], "radius": 1e-150})");
+  const auto tiny = read(R"({"type": "ellipsoid", "center": [1e-300, 2e-300, 0],
+      "radii": [1e-300, 2e-300, 3e-300], "rotation": {"quaternion": [0.5, 0.5, 0.5, 0.5]}})");
+  for (Mode m : {Mode::Exact, Mode::Filtered}) {
+    auto r = certify::classify_qsic(far_tiny, unit, m);
+    certify::complete_report_data(r, far_tiny, unit);
+    EXPECT_EQ(r.status, certify::Status::Certified);
+    EXPECT_EQ(r.ellipsoid_relation, "separated");
+    auto n = certify::classify_qsic(tiny, unit, m);
+    certify::complete_report_data(n, tiny, unit);
+    EXPECT_EQ(n.status, certify::Status::Certified);
+    EXPECT_EQ(n.ellipsoid_relation, "nested");
+    EXPECT_EQ(n.containment, "a_inside_b");
+  }
+  // The tiny ellipsoid lies within 1e-299 of the origin: 1 - 1e-299 <= d <= 1.
+  const auto d = certify::surface_distance(tiny, unit, 15, false, Mode::Filtered);
+  ASSERT_EQ(d.status, certify::Status::Certified) << d.note;
+  EXPECT_LE(std::stod(d.lower()), 1.0);
+  EXPECT_GE(std::stod(d.upper()), 1.0 - 1e-15);
+  EXPECT_TRUE(d.distance->meets_width(15));
+}
