@@ -3,8 +3,11 @@
 #include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/enclosure.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/core/budget.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace surfcert::app {
 
@@ -265,6 +268,164 @@ bool sqrt_plus_less(const Rational& u, const Rational& t, const Rational& v) {
   // sqrt(u) + t < sqrt(v)  <=>  2 t sqrt(u) < v - u - t^2  <=>  rhs > 0 and 4 t^2 u < rhs^2.
   const Rational rhs = v - u - t * t;
   return rhs.sign() > 0 && Rational(4) * t * t * u < rhs * rhs;
+}
+
+} // namespace surfcert::app
+
+namespace surfcert::app {
+
+namespace {
+
+// A double d with d <= x - sqrt(e2) (down) or d >= x + sqrt(e2) (up), checked exactly.
+double outward(const Rational& x, const Rational& e2, bool up) {
+  const double s = std::sqrt(e2.to_double_approx()), xd = x.to_double_approx();
+  double slack = 1e-12 * (1 + std::abs(xd) + s);
+  for (int it = 0; it < 60; ++it, slack *= 4) {
+    const double d = up ? xd + s + slack : xd - s - slack;
+    const Rational gap =
+        up ? Rational::exact_from_double(d) - x : x - Rational::exact_from_double(d);
+    if (gap.sign() >= 0 && e2 <= gap * gap) return d;
+  }
+  return up ? HUGE_VAL : -HUGE_VAL;
+}
+
+// sqrt(a) + sqrt(b) <= t for a, b, t >= 0, exactly.
+bool sqrt_sum_within(const Rational& a, const Rational& b, const Rational& t) {
+  // <=> t^2 >= b and t^2 + b - a >= 2 t sqrt(b).
+  if (t * t < b) return false;
+  const Rational lhs = t * t + b - a;
+  return lhs.sign() >= 0 && Rational(4) * t * t * b <= lhs * lhs;
+}
+
+// Centred-form enclosure of the quadric's equation over the box (centre c, half-widths h)
+// does not contain 0.
+bool excludes(const core::QuadricMatrix& q, const std::array<double, 3>& c,
+              const std::array<double, 3>& h) {
+  std::array<Ball, 3> cb = {Ball(c[0]), Ball(c[1]), Ball(c[2])}, xb;
+  for (size_t i = 0; i < 3; ++i) {
+    xb[i] = cb[i];
+    Ball r(h[i]);
+    arb_add_error(xb[i].v, r.v);
+  }
+  Ball f = ball(q(3, 3));
+  for (int i = 0; i < 3; ++i)
+    f += cb[static_cast<size_t>(i)] * (row(q, i, cb) + ball(q(i, 3)));
+  for (int i = 0; i < 3; ++i) {
+    Ball d = xb[static_cast<size_t>(i)] - cb[static_cast<size_t>(i)];
+    f += ball(Rational(2)) * row(q, i, xb) * d;
+  }
+  return !arb_contains_zero(f.v);
+}
+
+} // namespace
+
+std::optional<DBox> ellipsoid_bounding_box(const core::QuadricMatrix& q) {
+  if (q.kind() != core::QuadricKind::Ellipsoid) return std::nullopt;
+  // Q^-1 by the adjugate; centre x0 = -Q^-1 b; (x - x0)^T Q (x - x0) = k = b^T Q^-1 b - c, so
+  // (x_i - x0_i)^2 <= k (Q^-1)_ii.
+  auto m = [&](int i, int j) { return q(i, j); };
+  std::array<std::array<Rational, 3>, 3> adj;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      adj[static_cast<size_t>(i)][static_cast<size_t>(j)] =
+          m(r0, c0) * m(r1, c1) - m(r0, c1) * m(r1, c0);
+    }
+  Rational det;
+  for (int j = 0; j < 3; ++j)
+    det += m(0, j) * adj[static_cast<size_t>(j)][0];
+  if (det.is_zero()) return std::nullopt;
+  std::array<Rational, 3> x0;
+  Rational k = -q(3, 3);
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j)
+      x0[i] -= adj[i][j] / det * q(static_cast<int>(j), 3);
+  }
+  for (size_t i = 0; i < 3; ++i)
+    k -= x0[i] * q(static_cast<int>(i), 3); // b^T Q^-1 b = -b . x0
+  DBox box{};
+  for (size_t i = 0; i < 3; ++i) {
+    const Rational e2 = k * adj[i][i] / det;
+    if (e2.sign() < 0) return std::nullopt;
+    box[i] = {outward(x0[i], e2, false), outward(x0[i], e2, true)};
+    if (!std::isfinite(box[i][0]) || !std::isfinite(box[i][1])) return std::nullopt;
+  }
+  return box;
+}
+
+Coverage prove_coverage(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                        const std::vector<std::vector<RPoint>>& lines, const Rational& tol,
+                        const DBox& box, long max_boxes) {
+  algebra::PrecisionScope scope(128);
+  struct Seg {
+    std::array<double, 3> s, e;
+    const RPoint *rs, *re;
+  };
+  std::vector<Seg> segs;
+  for (const auto& l : lines)
+    for (size_t k = 0; k < l.size(); ++k) {
+      const RPoint& s = l[k];
+      const RPoint& e = l[k + 1 < l.size() ? k + 1 : k];
+      segs.push_back({{approx(s[0]), approx(s[1]), approx(s[2])},
+                      {approx(e[0]), approx(e[1]), approx(e[2])},
+                      &s,
+                      &e});
+    }
+  auto nearest = [&](const std::array<double, 3>& c) {
+    size_t best = 0;
+    double bd = HUGE_VAL;
+    for (size_t k = 0; k < segs.size(); ++k) {
+      const auto& sg = segs[k];
+      double u[3], w[3], uu = 0, wu = 0;
+      for (size_t i = 0; i < 3; ++i)
+        u[i] = sg.e[i] - sg.s[i], w[i] = c[i] - sg.s[i], uu += u[i] * u[i], wu += w[i] * u[i];
+      const double lam = uu > 0 ? std::clamp(wu / uu, 0.0, 1.0) : 0.0;
+      double d2 = 0;
+      for (size_t i = 0; i < 3; ++i)
+        d2 += (w[i] - lam * u[i]) * (w[i] - lam * u[i]);
+      if (d2 < bd) bd = d2, best = k;
+    }
+    return std::make_pair(best, std::sqrt(bd));
+  };
+  const double td = approx(tol);
+  Coverage out;
+  std::vector<DBox> stack = {box};
+  while (!stack.empty()) {
+    if (++out.boxes > max_boxes) return out;
+    if (out.boxes % 1024 == 0) core::check_budget();
+    const DBox bx = stack.back();
+    stack.pop_back();
+    std::array<double, 3> c{}, h{};
+    for (size_t i = 0; i < 3; ++i)
+      // h is rounded up one ulp: the box [c - h, c + h] holds bx whatever the rounding.
+      c[i] = 0.5 * (bx[i][0] + bx[i][1]),
+      h[i] = std::nextafter(std::max(bx[i][1] - c[i], c[i] - bx[i][0]), HUGE_VAL);
+    const double hd = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    const auto [k, dist] = nearest(c);
+    if (dist + hd <= td) {
+      // Exactly: |c - segment| + |h| <= tol (c and h dyadic: exact rationals).
+      const RPoint rc = {Rational::exact_from_double(c[0]), Rational::exact_from_double(c[1]),
+                         Rational::exact_from_double(c[2])};
+      Rational h2;
+      for (double x : h)
+        h2 += Rational::exact_from_double(x) * Rational::exact_from_double(x);
+      if (sqrt_sum_within(segment_dist2(rc, *segs[k].rs, *segs[k].re), h2, tol)) continue;
+    }
+    if (excludes(a, c, h) || excludes(b, c, h)) continue;
+    size_t axis = 0;
+    for (size_t i = 1; i < 3; ++i)
+      if (h[i] > h[axis]) axis = i;
+    if (!(h[axis] > 0) || c[axis] <= bx[axis][0] || c[axis] >= bx[axis][1]) {
+      out.stuck = c; // a box that neither excludes nor fits: near the curve, off the claim
+      return out;
+    }
+    DBox lo = bx, hi = bx;
+    lo[axis][1] = c[axis], hi[axis][0] = c[axis];
+    stack.push_back(lo);
+    stack.push_back(hi);
+  }
+  out.proven = true;
+  return out;
 }
 
 } // namespace surfcert::app

@@ -333,6 +333,9 @@ private:
 
 const char* const kBudgetNote = "the time budget ran out";
 
+// The most boxes a curve claim's coverage proof examines before answering undecided.
+constexpr long kMaxCoverageBoxes = 2000000;
+
 struct Verdict {
   std::string verdict = "undecided";
   std::optional<Json> counterexample, established;
@@ -784,9 +787,40 @@ Verdict decide_curve(const Claim& c, Oracle& o) {
   } else {
     facts.set("morphology", Json::null());
   }
+  // Coverage: a subdivision of a box holding the curve (one surface is an ellipsoid) proves
+  // every curve point within tol of a claimed segment.
+  std::optional<DBox> box = ellipsoid_bounding_box(A);
+  if (std::optional<DBox> bb = ellipsoid_bounding_box(B)) {
+    if (box)
+      for (size_t i = 0; i < 3; ++i)
+        (*box)[i] = {std::max((*box)[i][0], (*bb)[i][0]), std::min((*box)[i][1], (*bb)[i][1])};
+    else
+      box = bb;
+  }
+  if (box && (*box)[0][0] <= (*box)[0][1] && (*box)[1][0] <= (*box)[1][1] &&
+      (*box)[2][0] <= (*box)[2][1]) {
+    const Coverage cov = prove_coverage(A, B, c.polylines, t, *box, kMaxCoverageBoxes);
+    facts.set("coverage_proven", Json::boolean(cov.proven));
+    facts.set("coverage_boxes", Json::number(cov.boxes));
+    if (cov.stuck)
+      if (const auto w = curve_witness(A, B, *cov.stuck); w && witness_far_from_claim(*w, c, t)) {
+        Json ce = Json::object();
+        ce.set("point_on_curve", curve_witness_json(*w));
+        ce.set("abs_tol", str(t.to_string()));
+        v.verdict = "refuted", v.counterexample = ce;
+        return v;
+      }
+    if (cov.proven && proven == static_cast<long>(points)) {
+      v.verdict = "confirmed";
+      return v;
+    }
+  } else if (!box) {
+    facts.set("coverage_proven", Json::boolean(false));
+  }
   v.established = facts;
-  v.note = "coverage of the whole certified curve by the claim is not proven (the traced "
-           "branches are approximate)";
+  v.note = facts.find("coverage_boxes")
+               ? "coverage of the curve by the claim, or every claimed point, is not proven"
+               : "coverage of the whole curve is only proven when a or b is an ellipsoid";
   return v;
 }
 

@@ -588,41 +588,57 @@ std::string circle_claims(const M3& m, const P3& t) {
 
 const M3 kIdentity = {P3{1, 0, 0}, P3{0, 1, 0}, P3{0, 0, 1}};
 
+// Distance (doubles, sampled finely) from x to the polyline's segments.
+double sampled_distance(const std::vector<std::array<double, 3>>& line,
+                        const std::array<double, 3>& x) {
+  double best = HUGE_VAL;
+  for (size_t k = 0; k + 1 < line.size(); ++k)
+    for (int s = 0; s <= 1000; ++s) {
+      double d2 = 0;
+      for (size_t i = 0; i < 3; ++i) {
+        const double y = line[k][i] + (line[k + 1][i] - line[k][i]) * s / 1000.0;
+        d2 += (y - x[i]) * (y - x[i]);
+      }
+      best = std::min(best, std::sqrt(d2));
+    }
+  return best;
+}
+
+std::array<double, 3> dbl(const P3& p) {
+  return {p[0].to_double_approx(), p[1].to_double_approx(), p[2].to_double_approx()};
+}
+
+// A refuted curve claim on the two-sphere circle: its point_on_curve box centre is within
+// 2 half_width of the circle x = 1/2, y^2 + z^2 = 3/4 (closed form) and farther than
+// tol + 2 half_width from the claimed polyline (re-measured here in doubles).
+void expect_missed_circle_point(const Json& v, const std::vector<P3>& claimed, double tol) {
+  ASSERT_EQ(v.find("verdict")->text(), "refuted") << core::io::dump(v);
+  const Json& pc = *v.find("counterexample")->find("point_on_curve");
+  const auto c = dbl(point_of(*pc.find("centre")));
+  const double hw = exact(pc.find("half_width")->text()).to_double_approx();
+  EXPECT_LT(hw, 1e-7);
+  EXPECT_LE(std::abs(c[0] - 0.5), 2 * hw + 1e-15);
+  EXPECT_LE(std::abs(std::hypot(c[1], c[2]) - std::sqrt(3.0) / 2), 2 * hw + 1e-15);
+  std::vector<std::array<double, 3>> line;
+  for (const auto& p : claimed)
+    line.push_back(dbl(p));
+  EXPECT_GT(sampled_distance(line, c), tol + 2 * hw);
+}
+
 } // namespace
 
 TEST(Verify, CurveOfTwoSpheres) {
   const std::string b = "\"(x-1)^2+y^2+z^2=1\"";
   Json r = answer_both_ways(kUnit, b, circle_claims(kIdentity, {0, 0, 0}));
-  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"undecided", "refuted", "refuted", "refuted"}));
-  // The whole circle: every claimed point proven within tol; coverage is not proven.
-  const Json& est = *verdict(r, 0).find("established");
-  EXPECT_EQ(est.find("points_proven_near_curve")->text(), "65");
-  // The missed half: a certified point of the circle (box centre within 2 half_width of it,
-  // checked here from the closed form) farther than tol from every claimed segment.
-  const Json& ce = *verdict(r, 1).find("counterexample");
-  const Json& pc = *ce.find("point_on_curve");
-  const P3 c = point_of(*pc.find("centre"));
-  const double hw = exact(pc.find("half_width")->text()).to_double_approx();
-  EXPECT_LT(hw, 1e-6);
-  EXPECT_LE(std::abs(c[0].to_double_approx() - 0.5), 2 * hw + 1e-15);
-  const double rho = std::hypot(c[1].to_double_approx(), c[2].to_double_approx());
-  EXPECT_LE(std::abs(rho - std::sqrt(3.0) / 2), 2 * hw + 1e-15);
-  // Its distance to the half circle's chords, in doubles with margin: the missed half's
-  // points are about sqrt(3)/2 * angle away.
+  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"confirmed", "refuted", "refuted", "refuted"}));
+  // The missed half: a certified point of the circle farther than tol from every segment.
   const std::vector<P3> full = circle(64);
-  double best = HUGE_VAL;
-  for (size_t k = 0; k + 1 < 33; ++k)
-    for (int s = 0; s <= 100; ++s) {
-      double d2 = 0;
-      for (size_t i = 0; i < 3; ++i) {
-        const double x =
-            full[k][i].to_double_approx() +
-            (full[k + 1][i].to_double_approx() - full[k][i].to_double_approx()) * s / 100.0;
-        d2 += (x - c[i].to_double_approx()) * (x - c[i].to_double_approx());
-      }
-      best = std::min(best, std::sqrt(d2));
-    }
-  EXPECT_GT(best, 0.01 + 2 * hw);
+  expect_missed_circle_point(verdict(r, 1), std::vector<P3>(full.begin(), full.begin() + 33), 0.01);
+  // The whole 64-gon within 1e-6: its vertices are on the circle (to rounding) but its chords
+  // are up to 1.1e-3 inside: refuted with a circle point off the chords.
+  const Json polygon =
+      answer(kUnit, b, "[" + curve_claim({full}, "1e-6", kIdentity, {0, 0, 0}) + "]");
+  expect_missed_circle_point(verdict(polygon, 0), full, 1e-6);
   // The moved point: 1% farther from the axis, so about 0.0075 from each sphere.
   expect_off_sphere(verdict(r, 2), Sphere{{0, 0, 0}, 1},
                     point_of(*verdict(r, 2).find("counterexample")->find("claimed")),
@@ -670,7 +686,7 @@ TEST(Verify, VerdictsInvariantUnderRationalRigidMotions) {
     if (first_curve.empty()) first_curve = verdicts(r);
     EXPECT_EQ(verdicts(r), first_curve);
   }
-  EXPECT_EQ(first_curve, (std::vector<std::string>{"undecided", "refuted", "refuted", "refuted"}));
+  EXPECT_EQ(first_curve, (std::vector<std::string>{"confirmed", "refuted", "refuted", "refuted"}));
 }
 
 TEST(Verify, BadGeometricClaimsAreInputErrors) {
@@ -702,4 +718,45 @@ TEST(Verify, BadGeometricClaimsAreInputErrors) {
           R"({"type":"torus","center":[5,0,0],"axis":[0,0,1],"major_radius":2,"minor_radius":1})",
           R"([{"kind":"curve","value":[[[1,0,0]]]}])"),
       "$.claims[0].kind");
+}
+
+TEST(Verify, CurveOfTwoEllipsoidsTwoOvals) {
+  // x^2 + y^2/4 + z^2/9 = 1 and x^2/4 + y^2 + z^2/2 = 1 meet in two ovals, in closed form:
+  // x^2 = X(z^2) = (4/15)(3 + z^2/18), y^2 = Y(z^2) = (68/135)(27/17 - z^2); each oval
+  // (x = +-sqrt(X)) is z = zmax cos t, y = sqrt(68/135) zmax sin t, zmax^2 = 27/17.
+  const std::string a = "\"x^2+y^2/4+z^2/9=1\"", b = "\"x^2/4+y^2+z^2/2=1\"";
+  auto X = [](double z2) { return 4.0 / 15 * (3 + z2 / 18); };
+  auto Y = [](double z2) { return 68.0 / 135 * (27.0 / 17 - z2); };
+  const double zmax = std::sqrt(27.0 / 17), ry = std::sqrt(68.0 / 135) * zmax;
+  std::vector<std::vector<P3>> ovals(2);
+  std::vector<std::vector<std::array<double, 3>>> dovals(2);
+  const int n = 200;
+  for (int s = 0; s < 2; ++s)
+    for (int k = 0; k <= n; ++k) {
+      const double t = 2 * M_PI * (k % n) / n, z = zmax * std::cos(t);
+      const std::array<double, 3> p = {(s ? -1 : 1) * std::sqrt(X(z * z)), ry * std::sin(t), z};
+      dovals[static_cast<size_t>(s)].push_back(p);
+      ovals[static_cast<size_t>(s)].push_back({Rational::exact_from_double(p[0]),
+                                               Rational::exact_from_double(p[1]),
+                                               Rational::exact_from_double(p[2])});
+    }
+  Json r = answer(a, b,
+                  "[" + curve_claim(ovals, "0.02", kIdentity, {0, 0, 0}) + "," +
+                      curve_claim({ovals[0]}, "0.02", kIdentity, {0, 0, 0}) + "," +
+                      curve_claim(ovals, "1e-7", kIdentity, {0, 0, 0}) + "]");
+  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"confirmed", "refuted", "refuted"}));
+  // Each counterexample: a point of the closed-form curve, farther than tol from the claim.
+  for (auto [i, tol] : {std::pair<size_t, double>{1, 0.02}, {2, 1e-7}}) {
+    const Json* ce = verdict(r, i).find("counterexample");
+    ASSERT_TRUE(ce && ce->find("point_on_curve")) << core::io::dump(verdict(r, i));
+    const auto c = dbl(point_of(*ce->find("point_on_curve")->find("centre")));
+    const double hw =
+        exact(ce->find("point_on_curve")->find("half_width")->text()).to_double_approx();
+    EXPECT_LT(std::abs(c[0] * c[0] - X(c[2] * c[2])), 1e-6);
+    EXPECT_LT(std::abs(c[1] * c[1] - Y(c[2] * c[2])), 1e-6);
+    double d = HUGE_VAL;
+    for (size_t s = 0; s < (i == 1 ? 1u : 2u); ++s)
+      d = std::min(d, sampled_distance(dovals[s], c));
+    EXPECT_GT(d, tol + 2 * hw);
+  }
 }

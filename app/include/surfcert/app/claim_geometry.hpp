@@ -13,6 +13,8 @@
 //     Krawczyk test to hold exactly one point of the intersection of two quadrics in the
 //     plane x_k = centre_k (k = fixed_axis), so it holds a point of the curve.
 //   - segment distances: exact squared distance from a rational point to a segment.
+//   - prove_coverage: a subdivision proving every point of a ∩ b in a box within tol of
+//     claimed segments (the "confirmed" side of a curve claim).
 // Floats only propose (Newton steps, gradients); every returned fact is decided exactly or in
 // ball arithmetic. A nullopt means "not found", never "false".
 #pragma once
@@ -77,5 +79,34 @@ core::Rational segment_dist2(const RPoint& p, const RPoint& s, const RPoint& t);
 
 /// sqrt(u) + t < sqrt(v) for u, v, t >= 0, decided exactly.
 bool sqrt_plus_less(const core::Rational& u, const core::Rational& t, const core::Rational& v);
+
+} // namespace surfcert::app
+
+namespace surfcert::app {
+
+/// An axis-aligned box [lo_i, hi_i] with double (exact dyadic) bounds.
+using DBox = std::array<std::array<double, 2>, 3>;
+
+/// A box holding every real point of the quadric when it is a real ellipsoid (its exact
+/// extents, rounded outward to doubles); nullopt otherwise.
+std::optional<DBox> ellipsoid_bounding_box(const core::QuadricMatrix& q);
+
+struct Coverage {
+  bool proven = false; ///< every real point of a ∩ b in the box is within tol of a segment
+  long boxes = 0;      ///< boxes examined
+  /// When it stopped at a box too small to split: its centre, a float point close to both
+  /// surfaces and farther than about tol from the claim (a candidate for a certified missed
+  /// point); nullopt otherwise.
+  std::optional<std::array<double, 3>> stuck;
+};
+
+/// Subdivision of `box`: each piece either has an enclosure of a's or b's equation (centred
+/// form, Arb) without 0, or lies within tol of one segment of the polylines (decided exactly
+/// from its centre and half-diagonal); gives up (proven = false) after max_boxes pieces or at
+/// a piece too small to split (depth first: a point the claim misses is reached quickly).
+/// Calls core::check_budget() as it goes.
+Coverage prove_coverage(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                        const std::vector<std::vector<RPoint>>& lines, const core::Rational& tol,
+                        const DBox& box, long max_boxes);
 
 } // namespace surfcert::app

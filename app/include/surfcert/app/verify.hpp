@@ -13,7 +13,8 @@
 // (claim_geometry.hpp: sign-change segments, point-surface distance bounds, Krawczyk boxes of
 // curve points), and distances are compared as exact rationals on the printed
 // (outward-rounded) bounds, so the counterexample the caller sees proves it. A curve claim is
-// never confirmed today (coverage of the whole curve is not provable from the float tracer).
+// confirmed only through a coverage subdivision (claim_geometry.hpp), when a or b is an
+// ellipsoid; the float tracer's branches only propose points to certify.
 //
 // Contract: verify_claims validates every claim before computing anything; a bad claim
 // (unknown kind, wrong value type, negative tolerance, a quadric-only claim on a torus, no
