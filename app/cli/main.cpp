@@ -41,15 +41,17 @@ const std::string kUsage =
     "\n"
     "usage:\n"
     "  surfcert classify 'EQ_A' 'EQ_B' [--mode exact|filtered|float] [--json]\n"
+    "                   [--detail topology|certificate|full]\n"
     "  surfcert intersect 'EQ_A' 'EQ_B' [--mode M] [--tol T] [--json] [--export F.obj|F.ply] "
     "[--svg F.svg]\n"
-    "  surfcert distance 'SURF_A' 'SURF_B' [--digits N] [--solid] [--mode M] [--json]   "
+    "  surfcert distance 'SURF_A' 'SURF_B' [--digits N] [--solid] [--mode M] [--json]\n"
+    "                   [--detail value|full]   "
     "(equations, or JSON "
     "surfaces incl. {\"type\":\"torus\",...})\n"
     "  surfcert verify 'SURF_A' 'SURF_B' --claim JSON [--claim JSON ...] [--mode M] [--json]\n"
     "                                              (verdicts on another program's claims)\n"
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
-    "  surfcert batch [--mode M] [--threads N] [--budget-ms MS] [--unordered]\n"
+    "  surfcert batch [--mode M] [--threads N] [--budget-ms MS] [--unordered] [--detail D]\n"
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
     "  surfcert --help | --version | COMMAND --help\n"
     "\n"
@@ -125,9 +127,18 @@ struct Opts {
   std::vector<std::string> claims; ///< verify: each a JSON claim or array of claims
   long digits = 15;
   int threads = 1;
-  double budget_ms = 0;   ///< batch: default per-line time budget (0 = none)
-  bool unordered = false; ///< batch: write answers as they complete
+  double budget_ms = 0;        ///< batch: default per-line time budget (0 = none)
+  bool unordered = false;      ///< batch: write answers as they complete
+  std::string detail = "full"; ///< --detail (certify/detail.hpp; checked by CLI11 per command)
 };
+
+certify::Detail detail_arg(const std::string& v) {
+  auto d = certify::parse_detail(v);
+  if (!d)
+    throw InputError(Location{"<command line>", 0, 0, ""},
+                     "--detail value, topology, certificate or full", "\"" + v + "\"");
+  return *d;
+}
 
 // The equations of classify / intersect / distance: the arguments CLI11 left over, of which
 // any `--name` is an unknown option.
@@ -172,10 +183,11 @@ int cmd_classify(const std::vector<std::string>& eq, const Opts& o) {
   core::io::Readings readings;
   auto a = quadric_arg(eq[0], "<argument 1>", readings);
   auto b = quadric_arg(eq[1], "<argument 2>", readings);
+  const certify::Detail detail = detail_arg(o.detail);
   certify::QsicResult r = certify::classify_qsic(a, b, mode);
-  certify::complete_report_data(r, a, b);
+  certify::complete_report_data(r, a, b, json ? detail : certify::Detail::Full);
   if (json) {
-    core::io::Json env = certify::qsic_envelope_json(r, a, b);
+    core::io::Json env = certify::qsic_envelope_json(r, a, b, detail);
     report_readings(readings, &env);
     std::cout << core::io::dump(env, 2) << "\n";
   } else {
@@ -216,7 +228,8 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   auto a = quadric_arg(eq[0], "<argument 1>", readings);
   auto b = quadric_arg(eq[1], "<argument 2>", readings);
   if (!json) report_readings(readings, nullptr);
-  trace::CurveResult c = trace::intersect_curve(a, b, mode, opt);
+  const certify::Detail detail = json ? detail_arg(o.detail) : certify::Detail::Full;
+  trace::CurveResult c = trace::intersect_curve(a, b, mode, opt, detail);
   std::vector<trace::Point3> special;
   for (const auto& p : c.topology.special_points)
     if (!p.at_infinity) special.push_back(p.approx);
@@ -239,7 +252,7 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
     write_atomically(svg_path, trace::to_svg(a, b, pic));
   }
   if (json) {
-    core::io::Json env = trace::curve_envelope_json(c, a, b);
+    core::io::Json env = trace::curve_envelope_json(c, a, b, detail);
     report_readings(readings, &env);
     std::cout << core::io::dump(env, 2) << "\n";
   } else {
@@ -286,7 +299,7 @@ int cmd_distance(const std::vector<std::string>& eq, const Opts& o) {
   certify::DistanceResult d = certify::surface_distance(
       surface(eq[0], "<argument 1>"), surface(eq[1], "<argument 2>"), digits, solid, mode);
   if (json) {
-    core::io::Json env = certify::distance_envelope_json(d, digits);
+    core::io::Json env = certify::distance_envelope_json(d, digits, detail_arg(o.detail));
     report_readings(readings, &env);
     std::cout << core::io::dump(env, 2) << "\n";
   } else {
@@ -396,6 +409,7 @@ int cmd_batch(const Opts& o) {
   {
     std::ostream out(&answers.buf);
     const double budget = o.budget_ms;
+    const certify::Detail detail = detail_arg(o.detail);
     // A progress line on a terminal (stderr): lines/s and the outcomes so far, twice a second.
     const auto t0 = std::chrono::steady_clock::now();
     auto last = t0;
@@ -413,8 +427,8 @@ int cmd_batch(const Opts& o) {
       };
     st = app::process_batch(
         std::cin, out, mode, o.threads,
-        [budget](const std::string& line, long no, certify::Mode m, bool* fb) {
-          return app::process_batch_line(line, no, m, fb, budget);
+        [budget, detail](const std::string& line, long no, certify::Mode m, bool* fb) {
+          return app::process_batch_line(line, no, m, fb, budget, detail);
         },
         progress, !o.unordered);
     if (progress) std::fputs("\n", stderr);
@@ -435,6 +449,20 @@ CLI::Option* add_mode(CLI::App* sub, Opts& o) {
       ->type_name("exact|filtered|float");
 }
 
+// --detail: the levels `levels` (certify/detail.hpp) of the command's answers (JSON only; the
+// text output is the same at every level).
+void add_detail(CLI::App* sub, Opts& o, const std::vector<std::string>& levels,
+                const std::string& help) {
+  std::string type;
+  for (const auto& l : levels)
+    type += (type.empty() ? "" : "|") + l;
+  sub->add_option("--detail", o.detail, help)->check(CLI::IsMember(levels))->type_name(type);
+}
+
+const char* kQsicDetailHelp =
+    "how much the JSON answer carries: topology (the decision), certificate (+ what re-checks "
+    "it: matrices, f, invariants, roots, separators), full (default: + special points)";
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -451,12 +479,14 @@ int main(int argc, char** argv) {
   classify->allow_extras();
   add_mode(classify, o);
   classify->add_flag("--json", o.json, "JSON envelope on stdout");
+  add_detail(classify, o, {"topology", "certificate", "full"}, kQsicDetailHelp);
 
   CLI::App* intersect =
       cli.add_subcommand("intersect", "intersect 'EQ_A' 'EQ_B': topology and traced branches");
   intersect->allow_extras();
   add_mode(intersect, o);
   intersect->add_flag("--json", o.json, "JSON envelope on stdout");
+  add_detail(intersect, o, {"topology", "certificate", "full"}, kQsicDetailHelp);
   intersect->add_option("--tol", o.tol, "geometric tolerance of the traced branches, 1e-12 to 1")
       ->check(CLI::Validator(
           [](std::string& v) {
@@ -473,6 +503,9 @@ int main(int argc, char** argv) {
   add_mode(distance, o);
   distance->add_flag("--json", o.json, "JSON envelope on stdout");
   distance->add_flag("--solid", o.solid, "distance between solids (0 when they overlap)");
+  add_detail(distance, o, {"value", "full"},
+             "how much the JSON answer carries: value (enclosure, minimizers, pairs, method) or "
+             "full (default: + candidate counts and the eliminated system's degrees)");
   distance->add_option("--digits", o.digits, "requested relative precision 10^-N, 1 to 1000")
       ->check(CLI::Range(1L, 1000L));
 
@@ -503,6 +536,9 @@ int main(int argc, char** argv) {
                    "default time budget per line in ms (a line's \"budget_ms\" overrides; past "
                    "it the line answers undecided, reason \"budget\"); 0 = none")
       ->check(CLI::Range(0.0, 1e9));
+  add_detail(batch, o, {"value", "topology", "certificate", "full"},
+             "default detail of the lines (a line's \"detail\" overrides): classify and "
+             "intersect read value as topology, distance reads topology and certificate as value");
   batch->add_flag("--unordered", o.unordered,
                   "write each answer as soon as it is done (not in input order; key by \"id\")");
 

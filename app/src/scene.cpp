@@ -62,6 +62,17 @@ Mode read_mode(const Json& v, const std::string& source, const std::string& path
   return *m;
 }
 
+// "detail" of a line or query whose op is `op` (certify/detail.hpp): a level that op has.
+certify::Detail read_detail(const Json& v, const std::string& source, const std::string& path,
+                            const std::string& op) {
+  auto d = v.is_string() ? certify::parse_detail(v.text()) : std::nullopt;
+  if (!d || !certify::detail_accepted(op, *d))
+    throw InputError(at(v, source, path),
+                     std::string("a detail for ") + op + ": " + certify::detail_spellings(op),
+                     v.is_string() ? "\"" + v.text() + "\"" : core::io::type_name(v.type()));
+  return *d;
+}
+
 const char* kSupportedOps = "\"classify\", \"intersect\", \"distance\" or \"verify\"";
 const char* kSceneOps = "\"classify\", \"intersect\" or \"distance\"";
 
@@ -150,7 +161,8 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
     std::string path = json_path_index("$.queries", i);
     if (!q.is_object())
       throw InputError(at(q, source, path), "a query object", core::io::type_name(q.type()));
-    check_fields(q, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid"}, source, path);
+    check_fields(q, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "detail"},
+                 source, path);
     Query query;
     query.mode = default_mode;
     if (const Json* id = q.find("id")) query.id = *id;
@@ -186,6 +198,8 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
       query.digits = read_digits(*d, source, json_path_child(path, "digits"));
     if (const Json* sd = q.find("solid"))
       query.solid = read_bool(*sd, source, json_path_child(path, "solid"));
+    if (const Json* dj = q.find("detail"))
+      query.detail = read_detail(*dj, source, json_path_child(path, "detail"), query.op);
     s.queries.push_back(std::move(query));
   }
   return s;
@@ -195,7 +209,7 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   Json env;
   if (q.op == "distance") {
     DistanceResult d = surface_distance(s.surface(q.a), s.surface(q.b), q.digits, q.solid, q.mode);
-    env = distance_envelope_json(d, q.digits);
+    env = distance_envelope_json(d, q.digits, certify::detail_for_op(q.op, q.detail));
     if (text_summary)
       *text_summary =
           "distance: " + std::string(to_string(d.status)) +
@@ -213,15 +227,15 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
     const auto& b = std::get<core::QuadricMatrix>(s.surface(q.b));
     trace::TraceOptions opt;
     opt.tolerance = q.tolerance;
-    CurveResult c = intersect_curve(a, b, q.mode, opt);
-    env = curve_envelope_json(c, a, b);
+    CurveResult c = intersect_curve(a, b, q.mode, opt, q.detail);
+    env = curve_envelope_json(c, a, b, q.detail);
     if (text_summary) *text_summary = qsic_result_text(c.topology, a, b) + curve_summary(c);
   } else {
     const auto& a = std::get<core::QuadricMatrix>(s.surface(q.a));
     const auto& b = std::get<core::QuadricMatrix>(s.surface(q.b));
     QsicResult r = classify_qsic(a, b, q.mode);
-    complete_report_data(r, a, b);
-    env = qsic_envelope_json(r, a, b);
+    complete_report_data(r, a, b, q.detail);
+    env = qsic_envelope_json(r, a, b, q.detail);
     if (text_summary) *text_summary = qsic_result_text(r, a, b);
   }
   Json o = Json::object();
@@ -235,7 +249,7 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
 }
 
 Json process_batch_line(const std::string& line, long line_no, Mode default_mode, bool* fallback,
-                        double default_budget_ms) {
+                        double default_budget_ms, certify::Detail default_detail) {
   const auto t0 = std::chrono::steady_clock::now();
   // Every answer reports its own wall time (parse, decide, build the answer).
   auto timed = [t0](Json o) {
@@ -268,10 +282,10 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       if (!doc.is_object())
         throw InputError(at(doc, source, "$"), "a JSON object {\"id\", \"op\", \"a\", \"b\"}",
                          core::io::type_name(doc.type()));
-      check_fields(
-          doc,
-          {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms", "claims"},
-          source, "$");
+      check_fields(doc,
+                   {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms",
+                    "claims", "detail"},
+                   source, "$");
       const Json* op = doc.find("op");
       if (!known_op(op, true))
         throw InputError(
@@ -280,6 +294,10 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
                : "none");
       Mode mode = default_mode;
       if (const Json* m = doc.find("mode")) mode = read_mode(*m, source, "$.mode");
+      // The batch default maps onto the nearest level the op has; a line's own must be one.
+      certify::Detail detail = certify::detail_for_op(op->text(), default_detail);
+      if (const Json* dj = doc.find("detail"))
+        detail = read_detail(*dj, source, "$.detail", op->text());
       const Json* ja = doc.find("a");
       const Json* jb = doc.find("b");
       if (!ja) throw InputError(at(doc, source, "$.a"), "a surface \"a\"", "none");
@@ -311,19 +329,20 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
           bool solid = false;
           if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");
           if (const Json* sd = doc.find("solid")) solid = read_bool(*sd, source, "$.solid");
-          env = distance_envelope_json(surface_distance(sa, sb, digits, solid, mode), digits);
+          env =
+              distance_envelope_json(surface_distance(sa, sb, digits, solid, mode), digits, detail);
         } else if (op->text() == "intersect") {
           trace::TraceOptions opt;
           if (const Json* t = doc.find("tolerance"))
             opt.tolerance = read_tolerance(*t, source, "$.tolerance");
-          CurveResult c = intersect_curve(*a, *b, mode, opt);
+          CurveResult c = intersect_curve(*a, *b, mode, opt, detail);
           if (fallback) *fallback = c.topology.exact_fallback;
-          env = curve_envelope_json(c, *a, *b);
+          env = curve_envelope_json(c, *a, *b, detail);
         } else {
           QsicResult r = classify_qsic(*a, *b, mode);
-          complete_report_data(r, *a, *b);
+          complete_report_data(r, *a, *b, detail);
           if (fallback) *fallback = r.exact_fallback;
-          env = qsic_envelope_json(r, *a, *b);
+          env = qsic_envelope_json(r, *a, *b, detail);
         }
       } catch (const core::BudgetExceeded&) {
         env = Json::object();

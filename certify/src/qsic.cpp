@@ -2,6 +2,7 @@
 
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/segre.hpp"
+#include "surfcert/certify/ellipsoid_relation.hpp"
 #include "surfcert/certify/qsic_rules.hpp"
 #include "surfcert/certify/special_points.hpp"
 
@@ -85,88 +86,35 @@ QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix
   return r;
 }
 
-namespace {
-
-// Sign of the real root in (lo, hi) of the square-free g (g(lo) g(hi) < 0).
-int root_sign(const algebra::UPolyZ& g, const Rational& lo, const Rational& hi) {
-  if (lo.sign() >= 0) return 1;
-  if (hi.sign() <= 0) return -1;
-  int s0 = g.sign_at(Rational(0));
-  if (s0 == 0) return 0;
-  return s0 == g.sign_at(lo) ? 1 : -1;
-}
-
-// (-det M)^3 / det(Q)^4 is proportional to the squared volume of the ellipsoid X^T M X <= 0
-// (Q = upper 3x3 block, normalised positive definite).
-Rational squared_volume_measure(const core::Mat4& m) {
-  Rational d = core::det(m), q = core::leading_minor(m, 3);
-  Rational nd = -d;
-  return nd * nd * nd / (q * q * q * q);
-}
-
-void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
-  if (a.kind() != core::QuadricKind::Ellipsoid || b.kind() != core::QuadricKind::Ellipsoid) return;
-  if (r.pencil == PencilKind::Coincident) {
-    r.ellipsoid_relation = "coincident";
+void complete_special_points(QsicResult& r, const core::QuadricMatrix& a,
+                             const core::QuadricMatrix& b) {
+  if (r.special_points_done || r.pencil != PencilKind::Regular || r.mode == Mode::Float ||
+      r.status != Status::Certified)
     return;
-  }
-  // Normalise each matrix so that its quadratic block is positive definite (interior < 0);
-  // the roots of the normalised det(lA - B) are eps * (roots of f), eps = sa * sb.
-  int sa = a(0, 0).sign(), sb = b(0, 0).sign();
-  int eps = sa * sb;
-  // Two ellipsoids: det A != 0, so the facts are in the given basis (never re-based).
-  algebra::UPolyZ fz = algebra::pencil_char_poly(a.matrix(), b.matrix()).primitive_integer();
-  algebra::UPolyZ g, fd, h;
-  fmpz_poly_derivative(fd.raw_mut(), fz.raw());
-  fmpz_poly_gcd(h.raw_mut(), fz.raw(), fd.raw());
-  fmpz_poly_div(g.raw_mut(), fz.raw(), h.raw());
-  int negative_distinct = 0;
-  bool negative_double = false;
-  for (const auto& root : r.facts.real_roots) {
-    int s = eps * root_sign(g, root.lo, root.hi);
-    if (s < 0) {
-      ++negative_distinct;
-      if (root.multiplicity >= 2) negative_double = true;
-    }
-  }
-  int c = r.tu_case;
-  bool nested_possible = false;
-  if (negative_distinct >= 2) {
-    r.ellipsoid_relation = "separated";
-  } else if (negative_double) {
-    r.ellipsoid_relation = "externally_touching";
-  } else if (c == 2 || c == 16 || c == 22) {
-    r.ellipsoid_relation = "nested";
-    nested_possible = true;
-  } else if (c == 7 || c == 15 || c == 20 || c == 21 || c == 25 || c == 30 || c == 33) {
-    r.ellipsoid_relation = "internally_touching";
-    nested_possible = true;
-  } else {
-    r.ellipsoid_relation = "overlapping";
-  }
-  if (nested_possible) {
-    core::Mat4 ma = sa < 0 ? core::scaled(a.matrix(), Rational(-1)) : a.matrix();
-    core::Mat4 mb = sb < 0 ? core::scaled(b.matrix(), Rational(-1)) : b.matrix();
-    r.containment =
-        squared_volume_measure(ma) < squared_volume_measure(mb) ? "a_inside_b" : "b_inside_a";
-  }
-}
-
-} // namespace
-
-void complete_report_data(QsicResult& r, const core::QuadricMatrix& a,
-                          const core::QuadricMatrix& b) {
-  if (r.pencil != PencilKind::Regular) return;
-  if (r.mode == Mode::Filtered && !r.exact_fallback) {
+  if (r.mode == Mode::Filtered && !r.exact_fallback && !r.matrices_filled) {
     r.facts.a = a.matrix(); // the filter does not copy the matrices
     r.facts.b = b.matrix();
+    r.matrices_filled = true;
   }
-  if (r.mode != Mode::Float && !r.facts.invariants_filled) complete_exact_invariants(r.facts);
-  if (r.mode != Mode::Float && r.status == Status::Certified) {
-    ellipsoid_relation(r, a, b);
-    r.special_points = special_points(r.facts, r.tu_case, r.special_points_complete);
-    r.special_points_done = true;
+  r.special_points = special_points(r.facts, r.tu_case, r.special_points_complete);
+  r.special_points_done = true;
+}
+
+void complete_report_data(QsicResult& r, const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                          Detail detail) {
+  if (r.pencil != PencilKind::Regular) return;
+  // The relation of two ellipsoids is part of every level (cheap: ellipsoid_relation.hpp);
+  // from float facts it is an estimate, like the rest of a float answer.
+  if (r.status == Status::Certified || (r.mode == Mode::Float && r.status == Status::Uncertified))
+    if (r.ellipsoid_relation.empty()) ellipsoid_relation(r, a, b);
+  if (detail < Detail::Certificate || r.mode == Mode::Float) return;
+  if (r.mode == Mode::Filtered && !r.exact_fallback && !r.matrices_filled) {
+    r.facts.a = a.matrix(); // the filter does not copy the matrices
+    r.facts.b = b.matrix();
+    r.matrices_filled = true;
   }
+  if (!r.facts.invariants_filled) complete_exact_invariants(r.facts);
+  if (detail == Detail::Full) complete_special_points(r, a, b);
 }
 
 } // namespace surfcert::certify

@@ -70,6 +70,20 @@ std::string root_approx(const algebra::RootFacts& r, const algebra::PencilFacts&
   return ((lo + hi) * Rational(1, 2)).to_decimal_approx(17);
 }
 
+Json components_json(const Morphology& m) {
+  Json c = Json::object();
+  c.set("loops", Json::number(m.loops));
+  c.set("isolated_points", Json::number(m.isolated_points));
+  c.set("lines", Json::number(m.lines));
+  c.set("conics", Json::number(m.conics));
+  c.set("cubics", Json::number(m.cubics));
+  c.set("double_components", Json::number(m.double_components));
+  c.set("connected_components", Json::number(m.connected_components));
+  c.set("space",
+        str("real projective; equal to the affine count when one quadric is an ellipsoid"));
+  return c;
+}
+
 } // namespace
 
 std::string signature_sequence(const algebra::PencilFacts& f) {
@@ -89,13 +103,17 @@ std::string signature_sequence(const algebra::PencilFacts& f) {
 }
 
 Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
-                      const core::QuadricMatrix& b) {
+                      const core::QuadricMatrix& b, Detail detail) {
+  // Levels (detail.hpp): fields are left out below their level, in the order of Full.
+  const bool certificate = detail >= Detail::Certificate, full = detail == Detail::Full;
   Json res = Json::object();
   res.set("pencil", str(pencil_name(r.pencil)));
-  Json mats = Json::object();
-  mats.set("a", matrix_json(a.matrix()));
-  mats.set("b", matrix_json(b.matrix()));
-  res.set("matrices", mats);
+  if (certificate) {
+    Json mats = Json::object();
+    mats.set("a", matrix_json(a.matrix()));
+    mats.set("b", matrix_json(b.matrix()));
+    res.set("matrices", mats);
+  }
   if (r.pencil != algebra::PencilKind::Regular) {
     res.set("tu_case", Json::null());
     res.set("morphology", str(r.pencil == algebra::PencilKind::Degenerate ? "degenerate_pencil"
@@ -120,6 +138,12 @@ Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
   }
   res.set("segre", str(r.segre));
   res.set("root_pattern", str(f.root_pattern));
+  if (!certificate) {
+    if (r.morphology) res.set("components", components_json(*r.morphology));
+    if (!r.ellipsoid_relation.empty()) res.set("ellipsoid_relation", str(r.ellipsoid_relation));
+    if (!r.containment.empty()) res.set("containment", str(r.containment));
+    return res;
+  }
   Json basis = Json::object();
   basis.set("rebased", Json::boolean(f.rebased));
   if (f.rebased) {
@@ -188,21 +212,8 @@ Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
   for (int i : f.indices)
     idx.push_back(Json::number(i));
   res.set("definite_member", Json::boolean(f.definite_member));
-  if (r.morphology) {
-    const Morphology& m = *r.morphology;
-    Json c = Json::object();
-    c.set("loops", Json::number(m.loops));
-    c.set("isolated_points", Json::number(m.isolated_points));
-    c.set("lines", Json::number(m.lines));
-    c.set("conics", Json::number(m.conics));
-    c.set("cubics", Json::number(m.cubics));
-    c.set("double_components", Json::number(m.double_components));
-    c.set("connected_components", Json::number(m.connected_components));
-    c.set("space",
-          str("real projective; equal to the affine count when one quadric is an ellipsoid"));
-    res.set("components", c);
-  }
-  if (r.mode != Mode::Float && r.status == Status::Certified) {
+  if (r.morphology) res.set("components", components_json(*r.morphology));
+  if (full && r.mode != Mode::Float && r.status == Status::Certified) {
     Json sp = Json::array();
     for (const auto& p : r.special_points) {
       Json o = Json::object();
@@ -237,13 +248,15 @@ Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
 }
 
 Json qsic_envelope_json(const QsicResult& r, const core::QuadricMatrix& a,
-                        const core::QuadricMatrix& b) {
+                        const core::QuadricMatrix& b, Detail detail) {
   Json o = Json::object();
   o.set("status", str(to_string(r.status)));
   o.set("mode", str(to_string(r.mode)));
   if (r.mode == Mode::Filtered) o.set("exact_fallback", Json::boolean(r.exact_fallback));
   if (!r.note.empty()) o.set("note", str(r.note));
-  o.set("result", qsic_result_json(r, a, b));
+  // A lean answer says so (Full, the default, adds nothing: the contract's bytes).
+  if (detail != Detail::Full) o.set("detail", str(to_string(detail)));
+  o.set("result", qsic_result_json(r, a, b, detail));
   return o;
 }
 

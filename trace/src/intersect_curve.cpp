@@ -17,7 +17,6 @@ using certify::complete_report_data;
 using certify::Mode;
 using certify::qsic_envelope_json;
 using certify::QsicResult;
-using certify::special_points;
 using certify::Status;
 using certify::to_string;
 using core::io::Json;
@@ -118,9 +117,9 @@ void drop_point_sections(CurveResult& out, int expected_conics, double tol) {
 } // namespace
 
 CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode,
-                            const TraceOptions& opt) {
+                            const TraceOptions& opt, certify::Detail detail) {
   QsicResult t = classify_qsic(a, b, mode == Mode::Float ? Mode::Filtered : mode);
-  complete_report_data(t, a, b);
+  complete_report_data(t, a, b, detail);
   return trace_curve(a, b, std::move(t), opt);
 }
 
@@ -130,11 +129,8 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   out.tolerance = opt.tolerance;
   out.topology = std::move(topology);
   QsicResult& t = out.topology;
-  if (t.status == Status::Certified && t.pencil == algebra::PencilKind::Regular && t.morphology &&
-      !t.special_points_done) {
-    t.special_points = special_points(t.facts, t.tu_case, t.special_points_complete);
-    t.special_points_done = true;
-  }
+  // The branches need the special points (isolated points, singular points), at every detail.
+  if (t.morphology) certify::complete_special_points(t, a, b);
   if (t.status != Status::Certified || t.pencil != algebra::PencilKind::Regular || !t.morphology) {
     out.status = t.status == Status::Certified ? Status::Undecided : t.status;
     out.note = t.pencil == algebra::PencilKind::Coincident
@@ -205,8 +201,8 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
 }
 
 Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
-                         const core::QuadricMatrix& b) {
-  Json env = qsic_envelope_json(r.topology, a, b);
+                         const core::QuadricMatrix& b, certify::Detail detail) {
+  Json env = qsic_envelope_json(r.topology, a, b, detail);
   env.set("status", Json::string(to_string(r.status)));
   if (!r.note.empty()) env.set("note", Json::string(r.note));
   Json res = *env.find("result");

@@ -113,11 +113,14 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
                              digits);
 }
 
-Json distance_envelope_json(const DistanceResult& r, long digits) {
+Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail) {
   Json o = Json::object();
   o.set("status", Json::string(to_string(r.status)));
   if (r.budget_exhausted) o.set("reason", Json::string("budget"));
   if (!r.note.empty()) o.set("note", Json::string(r.note));
+  // A lean answer says so (Full, the default, adds nothing: the contract's bytes).
+  const bool full = detail == Detail::Full;
+  if (!full) o.set("detail", Json::string(to_string(Detail::Value)));
   Json res = Json::object();
   if (r.distance) { // a proven enclosure (certified, or what an undecided answer established)
     Json d = Json::object();
@@ -165,9 +168,11 @@ Json distance_envelope_json(const DistanceResult& r, long digits) {
   }
   res.set("pairs", pairs);
   res.set("pair_points_approximate", Json::boolean(true));
-  res.set("critical_candidates", Json::number(r.critical_candidates));
-  res.set("eliminated_degree", Json::number(r.eliminated_degree));
-  if (!r.system_degrees.empty()) {
+  if (full) { // the certificate data: how many critical points, the eliminated system's degrees
+    res.set("critical_candidates", Json::number(r.critical_candidates));
+    res.set("eliminated_degree", Json::number(r.eliminated_degree));
+  }
+  if (full && !r.system_degrees.empty()) {
     Json deg = Json::object();
     auto arr = [](const std::vector<long>& v) {
       Json a = Json::array();

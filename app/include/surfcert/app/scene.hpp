@@ -37,6 +37,8 @@ struct Query {
   bool solid = false;      ///< distance: between solids (0 when the volumes overlap)
   std::string a, b;        ///< surface names
   certify::Mode mode = certify::Mode::Filtered;
+  /// How much the answer carries (certify/detail.hpp; a level the op has, checked on reading).
+  certify::Detail detail = certify::Detail::Full;
 };
 
 struct Scene {
@@ -88,7 +90,10 @@ core::io::Json internal_error_line(const core::io::Json& id, const std::string& 
 /// One batch line -> one result line (exposed for tests). line_no is 1-based. The line's
 /// "budget_ms" (else default_budget_ms; 0 = none) limits its wall time: past it the answer is
 /// undecided with "reason": "budget" (core/budget.hpp). Every answer carries "time_ms".
+/// The line's "detail" (a level its op has, certify/detail.hpp) else default_detail mapped
+/// onto the op (detail_for_op) sets how much the answer carries and so computes.
 core::io::Json process_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
-                                  bool* fallback = nullptr, double default_budget_ms = 0);
+                                  bool* fallback = nullptr, double default_budget_ms = 0,
+                                  certify::Detail default_detail = certify::Detail::Full);
 
 } // namespace surfcert::app

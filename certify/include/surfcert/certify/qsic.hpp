@@ -10,6 +10,7 @@
 #pragma once
 
 #include "surfcert/algebra/pencil.hpp"
+#include "surfcert/certify/detail.hpp"
 #include "surfcert/certify/morphology.hpp"
 #include "surfcert/certify/pencil_filter.hpp"
 #include "surfcert/core/quadric.hpp"
@@ -53,14 +54,24 @@ struct QsicResult {
   std::vector<SpecialPoint> special_points;
   bool special_points_complete = true; ///< false when some were not computed exactly
   bool special_points_done = false;    ///< special_points has been filled
+  bool matrices_filled = false;        ///< facts.a, facts.b copied (filtered facts lack them)
 };
 
 /// Decision only (what the benchmark times): pencil facts, Tu case, Segre characteristic.
 QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode);
 
-/// Everything a report shows beyond the decision: exact invariants (filtered mode), special
-/// points, the ellipsoid relation. Idempotent.
-void complete_report_data(QsicResult& r, const core::QuadricMatrix& a,
-                          const core::QuadricMatrix& b);
+/// What a report at `detail` shows beyond the decision (detail.hpp), and nothing more:
+/// - every level: the ellipsoid relation and containment (certified from certified facts, an
+///   estimate from float facts; ellipsoid_relation.hpp);
+/// - Certificate: the exact f and invariants (filtered facts carry neither);
+/// - Full: the special points.
+/// Idempotent; a later call at a higher level adds what the lower one left out.
+void complete_report_data(QsicResult& r, const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                          Detail detail = Detail::Full);
+
+/// The special points alone (certified regular pencils; what the tracer needs), without the
+/// exact invariants. Idempotent.
+void complete_special_points(QsicResult& r, const core::QuadricMatrix& a,
+                             const core::QuadricMatrix& b);
 
 } // namespace surfcert::certify

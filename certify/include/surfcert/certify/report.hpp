@@ -13,13 +13,20 @@
 
 namespace surfcert::certify {
 
-/// The "result" object (status and id are added by the caller's envelope).
+/// The "result" object (status and id are added by the caller's envelope), with the fields of
+/// `detail` (detail.hpp; r completed by complete_report_data at that level or higher):
+/// Topology: pencil, tu_case, morphology, description, tu_label_reconstructed, segre,
+/// root_pattern, components, ellipsoid_relation, containment; Certificate adds matrices,
+/// pencil_basis, the characteristic polynomial and its coefficients, invariants, real_roots,
+/// complex_roots, signature_sequence, definite_member, certificate; Full adds special_points
+/// and special_points_complete.
 core::io::Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
-                                const core::QuadricMatrix& b);
+                                const core::QuadricMatrix& b, Detail detail = Detail::Full);
 
-/// {"status": ..., "mode": ..., "result": ...} plus "note" / "exact_fallback" when relevant.
+/// {"status": ..., "mode": ..., "result": ...} plus "note" / "exact_fallback" when relevant,
+/// and "detail" below Full.
 core::io::Json qsic_envelope_json(const QsicResult& r, const core::QuadricMatrix& a,
-                                  const core::QuadricMatrix& b);
+                                  const core::QuadricMatrix& b, Detail detail = Detail::Full);
 
 /// The signature sequence <I0, s1, I1, ...>, multiple roots wrapped in m parentheses.
 std::string signature_sequence(const algebra::PencilFacts& f);

@@ -36,9 +36,11 @@ struct CurveResult {
 
 /// Topology (in `mode`), special points, and branches (tracing only what the topology needs:
 /// conics from the factored singular members, quartic branches by marching from exact extreme
-/// points, isolated points from the exact special points).
+/// points, isolated points from the exact special points). `detail` (certify/detail.hpp): the
+/// report data computed besides (the branches and special points are computed at every level).
 CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                            certify::Mode mode, const TraceOptions& opt);
+                            certify::Mode mode, const TraceOptions& opt,
+                            certify::Detail detail = certify::Detail::Full);
 
 /// The same from a topology already computed by certify::classify_qsic
 /// (certify::complete_report_data is not needed: the special points are computed here when
@@ -47,9 +49,11 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
                         certify::QsicResult topology, const TraceOptions& opt);
 
 /// {"status", "mode", ..., "result": {classification fields..., "branches": [...],
-/// "isolated_points": [...], "max_residual", "tolerance", "branches_match_topology"}}.
+/// "isolated_points": [...], "max_residual", "tolerance", "branches_match_topology"}}; the
+/// classification fields those of `detail` (certify/report.hpp), the branch fields always.
 core::io::Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
-                                   const core::QuadricMatrix& b);
+                                   const core::QuadricMatrix& b,
+                                   certify::Detail detail = certify::Detail::Full);
 
 /// Expected branch kinds for a Tu case (ellipsoid cases), e.g. {"loop", "loop"} for case 1.
 std::vector<std::string> expected_branch_kinds(int tu_case);

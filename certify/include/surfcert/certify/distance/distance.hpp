@@ -132,7 +132,11 @@ void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
 /// {"status", "note"?, "result": {"distance"?: {"lower", "upper", "approx"}, "estimate"?:
 /// {"value", "certified": false}, "minimizers"?, "minimizers_proof"?, "minimizer_candidates"?,
 /// "pairs", "pair_points_approximate", "critical_candidates", "eliminated_degree",
-/// "degrees"?, "digits", "solid", "mode", "method"?, "reduced_by"?, "ties"?}}
-core::io::Json distance_envelope_json(const DistanceResult& r, long digits);
+/// "degrees"?, "digits", "solid", "mode", "method"?, "reduced_by"?, "ties"?}}.
+/// detail (certify/detail.hpp) Full, the default: all of it; any lower level is Value:
+/// "detail": "value" in the envelope, and without the certificate data "critical_candidates",
+/// "eliminated_degree", "degrees".
+core::io::Json distance_envelope_json(const DistanceResult& r, long digits,
+                                      Detail detail = Detail::Full);
 
 } // namespace surfcert::certify
