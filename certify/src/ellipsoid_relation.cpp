@@ -72,6 +72,25 @@ struct Enclosed {
   }
 };
 
+// Whether X^T M X = 0 is a real ellipsoid: its quadratic block Q definite and, with Q
+// normalised positive definite, det M = det Q (c - b^T Q^-1 b) < 0 (the centre inside).
+// Intervals first (leading minors of sa Q: sa m1, m2, sa m3 > 0; det M < 0); when they do not
+// decide, the exact classification of the quadric.
+bool real_ellipsoid(const core::QuadricMatrix& q, const Enclosed& e) {
+  const int sa = q(0, 0).sign();
+  if (sa == 0) return false; // a zero diagonal entry: Q is not definite
+  const auto& m = e.m;
+  const I m2 = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+  const int s[] = {certain_sign(m2), sa * certain_sign(det3(m)), -certain_sign(det4(m))};
+  bool all = true;
+  for (int x : s) {
+    if (x < 0) return false;
+    all = all && x > 0;
+  }
+  if (all) return true;
+  return q.kind() == core::QuadricKind::Ellipsoid;
+}
+
 // Sign of det m: intervals first, exact when they hold 0.
 int det_sign(const Mat4& m, const Enclosed& e) {
   if (int s = certain_sign(det4(e.m))) return s;
@@ -173,19 +192,20 @@ std::vector<int> float_root_signs(const QsicResult& r) {
 } // namespace
 
 void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
-  if (a.kind() != core::QuadricKind::Ellipsoid || b.kind() != core::QuadricKind::Ellipsoid) return;
+  if (r.pencil == PencilKind::Degenerate) return;
+  if (r.pencil == PencilKind::Regular && r.facts.real_roots.size() > 4) return;
+  CGAL::Protect_FPU_rounding<true> guard; // interval arithmetic needs rounding upwards
+  const Enclosed ea(a.matrix()), eb(b.matrix());
+  if (!real_ellipsoid(a, ea) || !real_ellipsoid(b, eb)) return;
   if (r.pencil == PencilKind::Coincident) {
     r.ellipsoid_relation = "coincident";
     return;
   }
-  if (r.pencil != PencilKind::Regular || r.facts.real_roots.size() > 4) return;
-  CGAL::Protect_FPU_rounding<true> guard; // interval arithmetic needs rounding upwards
   // Normalise each matrix so that its quadratic block is positive definite (interior < 0);
   // the roots of the normalised det(lA - B) are eps * (roots of f), eps = sa * sb.
   // Two ellipsoids: det A != 0, so the facts are in the given basis (never re-based).
   const int sa = a(0, 0).sign(), sb = b(0, 0).sign();
   const int eps = sa * sb;
-  const Enclosed ea(a.matrix()), eb(b.matrix());
   std::vector<int> signs;
   if (r.mode == Mode::Float) {
     if (!r.float_invariants) return;
