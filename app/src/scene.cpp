@@ -74,13 +74,11 @@ certify::Detail read_detail(const Json& v, const std::string& source, const std:
 }
 
 const char* kSupportedOps = "\"classify\", \"intersect\", \"distance\" or \"verify\"";
-const char* kSceneOps = "\"classify\", \"intersect\" or \"distance\"";
 
-// verify (verify.hpp) is a batch line and a CLI command; a scene query cannot carry claims.
-bool known_op(const Json* op, bool batch) {
+bool known_op(const Json* op) {
   return op && op->is_string() &&
          (op->text() == "classify" || op->text() == "intersect" || op->text() == "distance" ||
-          (batch && op->text() == "verify"));
+          op->text() == "verify");
 }
 
 long read_digits(const Json& v, const std::string& source, const std::string& path) {
@@ -161,15 +159,17 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
     std::string path = json_path_index("$.queries", i);
     if (!q.is_object())
       throw InputError(at(q, source, path), "a query object", core::io::type_name(q.type()));
-    check_fields(q, {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "detail"},
+    check_fields(q,
+                 {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "detail", "claims"},
                  source, path);
     Query query;
     query.mode = default_mode;
     if (const Json* id = q.find("id")) query.id = *id;
     const Json* op = q.find("op");
-    if (!known_op(op, false))
+    if (!known_op(op))
       throw InputError(
-          at(op ? *op : q, source, json_path_child(path, "op")), std::string("an op: ") + kSceneOps,
+          at(op ? *op : q, source, json_path_child(path, "op")),
+          std::string("an op: ") + kSupportedOps,
           op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))
              : "none");
     query.op = op->text();
@@ -185,7 +185,8 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
       if (!found)
         throw InputError(at(*n, source, kp), "the name of a surface of $.surfaces",
                          "\"" + n->text() + "\"");
-      if (query.op != "distance" && !std::holds_alternative<core::QuadricMatrix>(*found))
+      if (query.op != "distance" && query.op != "verify" &&
+          !std::holds_alternative<core::QuadricMatrix>(*found))
         throw InputError(at(*n, source, kp), "a quadric (\"" + query.op + "\" needs two quadrics)",
                          "\"" + n->text() + "\" (a " + core::surface_kind(*found) + ")");
       (std::string(key) == "a" ? query.a : query.b) = n->text();
@@ -200,6 +201,14 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
       query.solid = read_bool(*sd, source, json_path_child(path, "solid"));
     if (const Json* dj = q.find("detail"))
       query.detail = read_detail(*dj, source, json_path_child(path, "detail"), query.op);
+    if (query.op == "verify") {
+      check_claims(s.surface(query.a), s.surface(query.b), q, source, path);
+      query.claims = q;
+    } else if (const Json* c = q.find("claims")) {
+      throw InputError(at(*c, source, json_path_child(path, "claims")),
+                       "no \"claims\" (only a verify query has them)", "claims");
+    }
+    query.path = path;
     s.queries.push_back(std::move(query));
   }
   return s;
@@ -222,6 +231,16 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
                                              : "\nmethod: " + std::string(to_string(d.method)) +
                                                    " (mode " + to_string(d.mode) + ")") +
           "\n";
+  } else if (q.op == "verify") {
+    env = verify_claims(s.surface(q.a), s.surface(q.b), q.claims, "", q.mode, q.path);
+    if (text_summary) {
+      *text_summary = "verify: " + env.find("status")->text() + "\n";
+      const Json& vs = *env.find("result")->find("verdicts");
+      for (size_t i = 0; i < vs.size(); ++i)
+        *text_summary += "  claim " + std::to_string(i + 1) + " (" +
+                         vs.items()[i].find("kind")->text() +
+                         "): " + vs.items()[i].find("verdict")->text() + "\n";
+    }
   } else if (q.op == "intersect") {
     const auto& a = std::get<core::QuadricMatrix>(s.surface(q.a));
     const auto& b = std::get<core::QuadricMatrix>(s.surface(q.b));
@@ -287,7 +306,7 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
                     "claims", "detail"},
                    source, "$");
       const Json* op = doc.find("op");
-      if (!known_op(op, true))
+      if (!known_op(op))
         throw InputError(
             at(op ? *op : doc, source, "$.op"), std::string("an op: ") + kSupportedOps,
             op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))

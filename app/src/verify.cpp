@@ -826,22 +826,38 @@ Verdict decide_curve(const Claim& c, Oracle& o) {
 
 } // namespace
 
-Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& line,
-                   const std::string& source, Mode mode) {
-  const Json* claims = line.find("claims");
+namespace {
+
+// Every claim of `query` ("claims" at `path`), read and validated.
+std::vector<Claim> read_claims(const core::Surface& a, const core::Surface& b, const Json& query,
+                               const std::string& source, const std::string& path) {
+  const std::string cpath = json_path_child(path, "claims");
+  const Json* claims = query.find("claims");
   if (!claims)
-    throw InputError(core::io::json_location(line, source, "$.claims"), "an array of claims",
-                     "none");
+    throw InputError(core::io::json_location(query, source, cpath), "an array of claims", "none");
   if (!claims->is_array() || claims->size() == 0)
-    throw InputError(core::io::json_location(*claims, source, "$.claims"),
-                     "a non-empty array of claims",
+    throw InputError(core::io::json_location(*claims, source, cpath), "a non-empty array of claims",
                      claims->is_array() ? "[]" : core::io::type_name(claims->type()));
   const bool two_quadrics = std::holds_alternative<core::QuadricMatrix>(a) &&
                             std::holds_alternative<core::QuadricMatrix>(b);
-  std::vector<Claim> parsed; // every claim is read before anything is computed
+  std::vector<Claim> parsed;
   for (size_t i = 0; i < claims->size(); ++i)
     parsed.push_back(
-        read_claim(claims->items()[i], source, json_path_index("$.claims", i), two_quadrics));
+        read_claim(claims->items()[i], source, json_path_index(cpath, i), two_quadrics));
+  return parsed;
+}
+
+} // namespace
+
+void check_claims(const core::Surface& a, const core::Surface& b, const Json& query,
+                  const std::string& source, const std::string& path) {
+  read_claims(a, b, query, source, path);
+}
+
+Json verify_claims(const core::Surface& a, const core::Surface& b, const Json& line,
+                   const std::string& source, Mode mode, const std::string& path) {
+  // Every claim is read before anything is computed.
+  const std::vector<Claim> parsed = read_claims(a, b, line, source, path);
   Oracle oracle(a, b, mode);
   Json verdicts = Json::array();
   bool all_decided = true, budget_out = false;

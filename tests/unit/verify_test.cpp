@@ -760,3 +760,48 @@ TEST(Verify, CurveOfTwoEllipsoidsTwoOvals) {
     EXPECT_GT(d, tol + 2 * hw);
   }
 }
+
+TEST(Verify, SceneQuery) {
+  const std::string scene = R"({"surfaces": {"u": "x^2+y^2+z^2=1", "v": "(x-3)^2+y^2+z^2=1",
+    "t": {"type": "torus", "center": [0, 0, 0], "axis": [0, 0, 1], "major_radius": 2,
+          "minor_radius": 1}, "p": "z=10"},
+    "queries": [
+      {"id": "q1", "op": "verify", "a": "u", "b": "v", "claims": [
+        {"kind": "distance", "value": 1}, {"kind": "closest_points",
+        "value": [[1, 0, 0], [2, 0, 0]]}, {"kind": "relation", "value": "touching"}]},
+      {"id": "q2", "op": "verify", "a": "t", "b": "p", "claims": [
+        {"kind": "closest_points", "value": [[2, 0, 1], [2, 0, 10]], "abs_tol": 1e-12}]}]})";
+  const app::Scene s =
+      app::read_scene(core::io::parse_json(scene, "scene"), "scene", certify::Mode::Filtered);
+  ASSERT_EQ(s.queries.size(), 2u);
+  Json r1 = app::run_query(s, s.queries[0]), r2 = app::run_query(s, s.queries[1]);
+  EXPECT_EQ(verdicts(r1), (std::vector<std::string>{"confirmed", "confirmed", "refuted"}));
+  EXPECT_EQ(verdicts(r2), std::vector<std::string>{"confirmed"});
+  EXPECT_EQ(r1.find("op")->text(), "verify");
+  // The same claims on a batch line get the same verdicts.
+  EXPECT_EQ(verdicts(r1),
+            verdicts(answer(kUnit, "\"(x-3)^2+y^2+z^2=1\"",
+                            R"([{"kind": "distance", "value": 1}, {"kind": "closest_points",
+        "value": [[1, 0, 0], [2, 0, 0]]}, {"kind": "relation", "value": "touching"}])")));
+  // A bad claim is an error of the whole scene, located in it; claims on another op too.
+  auto error_path = [](const std::string& text) {
+    try {
+      app::read_scene(core::io::parse_json(text, "scene"), "scene", certify::Mode::Filtered);
+    } catch (const core::InputError& e) {
+      return e.where().json_path;
+    }
+    return std::string("(none)");
+  };
+  const std::string head = R"({"surfaces": {"u": "x^2+y^2+z^2=1", "t": {"type": "torus",
+    "center": [0, 0, 0], "axis": [0, 0, 1], "major_radius": 2, "minor_radius": 1}},
+    "queries": [{"op": "classify", "a": "u", "b": "u"}, )";
+  EXPECT_EQ(error_path(head + R"({"op": "verify", "a": "u", "b": "u", "claims": [
+    {"kind": "distance", "value": 0}, {"kind": "curve", "value": [[[1, 0]]]}]}]})"),
+            "$.queries[1].claims[1].value[0][0]");
+  EXPECT_EQ(error_path(head + R"({"op": "verify", "a": "t", "b": "u", "claims": [
+    {"kind": "tu_case", "value": 1}]}]})"),
+            "$.queries[1].claims[0].kind");
+  EXPECT_EQ(error_path(head + R"({"op": "verify", "a": "u", "b": "u"}]})"), "$.queries[1].claims");
+  EXPECT_EQ(error_path(head + R"({"op": "distance", "a": "u", "b": "u", "claims": []}]})"),
+            "$.queries[1].claims");
+}

@@ -6,7 +6,9 @@
 // only what its op needs: "classify" builds the pencil and decides the topology, nothing else;
 // "intersect" adds the branches of the curve (traced or produced as conics); "distance" takes
 // any two surfaces (quadrics, tori, canal, implicit and parametric surfaces: the distance
-// registry's pair kinds), the other ops need two quadrics (checked on reading). Surfaces are
+// registry's pair kinds), as does "verify" (its claims, verify.hpp, are validated on reading:
+// a quadric-only claim needs two quadrics); the other ops need two quadrics (checked on
+// reading). Surfaces are
 // read exactly (surface_reader.hpp); how float data was read is reported ("readings").
 // process_batch reads JSON lines and writes one JSON line per input line, in input order,
 // through a TBB pipeline (serial in-order read -> parallel answer -> serial in-order write and
@@ -31,11 +33,13 @@ namespace surfcert::app {
 
 struct Query {
   core::io::Json id;       ///< as given (null when absent)
-  std::string op;          ///< "classify", "intersect" or "distance"
+  std::string op;          ///< "classify", "intersect", "distance" or "verify"
   double tolerance = 2e-4; ///< intersect: geometric tolerance of the traced branches
   long digits = 15;        ///< distance: requested relative precision 10^-digits
   bool solid = false;      ///< distance: between solids (0 when the volumes overlap)
   std::string a, b;        ///< surface names
+  core::io::Json claims;   ///< verify: the query object holding "claims" (validated)
+  std::string path;        ///< the query's JSON path ("$.queries[i]")
   certify::Mode mode = certify::Mode::Filtered;
   /// How much the answer carries (certify/detail.hpp; a level the op has, checked on reading).
   certify::Detail detail = certify::Detail::Full;

@@ -18,7 +18,8 @@
 //
 // Contract: verify_claims validates every claim before computing anything; a bad claim
 // (unknown kind, wrong value type, negative tolerance, a quadric-only claim on a torus, no
-// claims) throws core::InputError with its JSON path ($.claims[i]...). It returns
+// claims) throws core::InputError with its JSON path ($.claims[i]..., or
+// $.queries[q].claims[i]... in a scene). It returns
 // {"status": "certified" | "undecided", "result": {"verdicts": [...]}}: "certified" when
 // every verdict is decided. Work is shared between claims (one classification, one distance
 // per kind and precision) and a distance claim refines only until it is decided (digits from
@@ -37,10 +38,16 @@ namespace surfcert::app {
 /// The most working digits a distance claim refines to before answering undecided.
 constexpr long kMaxVerifyDigits = 100;
 
-/// Verdicts on the claims of `line` (its "claims" array, JSON path "$.claims") about surfaces
-/// a and b. Throws core::InputError on a bad or missing claim.
+/// Verdicts on the claims of `line` (its "claims" array, JSON path path + ".claims": a batch
+/// line is "$", a scene query "$.queries[i]") about surfaces a and b. Throws
+/// core::InputError on a bad or missing claim.
 core::io::Json verify_claims(const core::Surface& a, const core::Surface& b,
                              const core::io::Json& line, const std::string& source,
-                             certify::Mode mode);
+                             certify::Mode mode, const std::string& path = "$");
+
+/// Validates the claims of `query` as verify_claims does, computing nothing (a scene is
+/// checked whole before any query runs). Throws core::InputError.
+void check_claims(const core::Surface& a, const core::Surface& b, const core::io::Json& query,
+                  const std::string& source, const std::string& path);
 
 } // namespace surfcert::app
