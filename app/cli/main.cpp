@@ -65,7 +65,7 @@ const std::string kUsage =
     "Equations are polynomials in x, y, z (e.g. 'x^2 + y^2/4 + z^2 = 1'); numbers are read\n"
     "exactly (0.1 = 1/10). Mode filtered (default) answers from interval arithmetic when it is\n"
     "provably right and falls back to exact arithmetic otherwise; float is uncertified.\n"
-    "See README.md for the JSON contract.\n";
+    "See docs/json-contract.md for the JSON contract (README.md for an overview).\n";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -472,7 +472,7 @@ int main(int argc, char** argv) {
   CLI::App cli{"surfcert: certified topology of the intersection of two quadrics", "surfcert"};
   cli.set_version_flag("--version", "surfcert " SURFCERT_VERSION);
   cli.require_subcommand(1);
-  cli.footer("See README.md for the JSON contract.");
+  cli.footer("See docs/json-contract.md for the JSON contract (README.md for an overview).");
 
   CLI::App* classify =
       cli.add_subcommand("classify", "classify 'EQ_A' 'EQ_B': topology of the curve");

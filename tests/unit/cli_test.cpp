@@ -1,6 +1,6 @@
 // The surfcert executable end to end: every bad-input class gives exit code 2, a message with
 // its location, and no output file; batch keeps going after a bad line, answers in input order
-// with any thread count, and follows the JSON contract documented in README.md.
+// with any thread count, and follows the JSON contract documented in docs/json-contract.md.
 #include "surfcert/core/io/json.hpp"
 
 #include <gtest/gtest.h>
