@@ -291,6 +291,24 @@ public:
         f.possible = {er};
       if (!er.empty()) f.established.set("ellipsoid_relation", str(er));
     }
+    if (const QsicResult* r = qsic(); f.possible.empty() && r && r->morphology &&
+                                      r->pencil == algebra::PencilKind::Regular &&
+                                      (qa()->kind() == core::QuadricKind::Ellipsoid ||
+                                       qb()->kind() == core::QuadricKind::Ellipsoid)) {
+      // An ellipsoid and another quadric: the certified morphology counts the affine real
+      // components (morphology.hpp). A simple curve component (multiplicity 1) is met
+      // transversally at its generic points, so the surfaces cross: overlapping. When every
+      // real component is an isolated point or a double component, the surfaces meet without
+      // crossing (along a double conic B = l A + m P^2, so B keeps one sign on A): touching.
+      // No real component: the surfaces do not meet (the distances below decide).
+      const certify::Morphology& m = *r->morphology;
+      const int simple = m.loops + m.lines + m.conics + m.cubics - m.double_components;
+      if (simple + m.double_components + m.isolated_points > 0) {
+        f.possible = {simple > 0 ? "overlapping" : "touching"};
+        f.established.set("morphology", str(m.id));
+        f.established.set("surfaces_cross", Json::boolean(simple > 0));
+      }
+    }
     if (f.possible.empty()) {
       // Otherwise from the certified distances: the surfaces meet iff their distance is
       // exactly 0; apart, the solids are nested iff the solid distance is exactly 0.

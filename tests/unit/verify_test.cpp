@@ -203,18 +203,53 @@ TEST(Verify, NestedEllipsoids) {
   EXPECT_EQ(verdicts(r), (std::vector<std::string>{"confirmed", "confirmed"}));
 }
 
-TEST(Verify, MeetingNonEllipsoidsAreUndecidedBetweenTouchingAndOverlapping) {
-  // A sphere and a cylinder through it: the surfaces meet (distance 0), which rules out
-  // separated and nested; whether they only touch is not established from the distance.
-  Json r = answer_both_ways(kUnit, "\"x^2+y^2=1/4\"",
-                            R"([{"kind":"relation","value":"overlapping"},
-                                {"kind":"relation","value":"separated"},
-                                {"kind":"solids_collide","value":true}])");
-  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"undecided", "refuted", "confirmed"}));
-  EXPECT_EQ(status(r), "undecided");
-  EXPECT_TRUE(verdict(r, 0).find("established")->find("surfaces_meet")->as_bool());
-  // A torus 1 away from the unit sphere (the plane-free pair goes through the distance).
+TEST(Verify, TouchingOrOverlappingForAnEllipsoidAndAnotherQuadric) {
+  // The unit sphere and: a cylinder of radius 1/2 through it (two circles crossed:
+  // overlapping); the tangent plane x = 1 (one point: touching), the plane 2^-40 inside
+  // (a circle: overlapping) and 2^-40 outside (separated); the cylinder of radius 1 (tangent
+  // along the equator: touching); a paraboloid whose vertex touches the south pole and which
+  // crosses along z = 0 (overlapping); a cone tangent along a circle (touching).
+  const std::string claims = R"([{"kind":"relation","value":"overlapping"},
+                                  {"kind":"relation","value":"touching"},
+                                  {"kind":"relation","value":"separated"},
+                                  {"kind":"solids_collide","value":true}])";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"\"x^2+y^2=1/4\"", {"confirmed", "refuted", "refuted", "confirmed"}},
+      {"\"x=1\"", {"refuted", "confirmed", "refuted", "confirmed"}},
+      {"\"x=1-" + pow2_text(-40) + "\"", {"confirmed", "refuted", "refuted", "confirmed"}},
+      {"\"x=1+" + pow2_text(-40) + "\"", {"refuted", "refuted", "confirmed", "refuted"}},
+      {"\"x^2+y^2=1\"", {"refuted", "confirmed", "refuted", "confirmed"}},
+      {"\"z=x^2+y^2-1\"", {"confirmed", "refuted", "refuted", "confirmed"}},
+      {"\"x^2+y^2=(z-2)^2/3\"", {"refuted", "confirmed", "refuted", "confirmed"}},
+  };
+  for (const auto& [b, expected] : cases) {
+    Json r = answer_both_ways(kUnit, b, claims);
+    EXPECT_EQ(verdicts(r), expected) << b;
+    EXPECT_EQ(status(r), "certified") << b;
+  }
+  // A crossing is shown by the certified morphology (a simple conic component).
+  Json r = answer(kUnit, "\"x^2+y^2=1/4\"", claims);
+  const Json& ce = *verdict(r, 1).find("counterexample");
+  EXPECT_TRUE(ce.find("surfaces_cross")->as_bool());
+  EXPECT_EQ(ce.find("morphology")->text(), "two_disjoint_conics");
+  // Which solid holds the other at a touching is not established: an external-only claim
+  // (touching does not collide) stays undecided.
+  r = answer(kUnit, "\"x^2+y^2=1\"",
+             R"([{"kind":"solids_collide","value":true,"touching_collides":false}])");
+  EXPECT_EQ(verdicts(r), std::vector<std::string>{"undecided"});
+  // No ellipsoid (a torus crossing the unit sphere): surfaces meet, touching or overlapping
+  // is not established.
   r = answer_both_ways(
+      kUnit,
+      R"({"type":"torus","center":[2,0,0],"axis":[0,0,1],"major_radius":2,"minor_radius":"1/2"})",
+      R"([{"kind":"relation","value":"overlapping"},{"kind":"relation","value":"separated"}])");
+  EXPECT_EQ(verdicts(r), (std::vector<std::string>{"undecided", "refuted"}));
+  EXPECT_TRUE(verdict(r, 0).find("established")->find("surfaces_meet")->as_bool());
+}
+
+TEST(Verify, TorusAwayFromASphere) {
+  // A torus 1 away from the unit sphere (the plane-free pair goes through the distance).
+  Json r = answer_both_ways(
       kUnit,
       R"({"type":"torus","center":[5,0,0],"axis":[0,0,1],"major_radius":2,"minor_radius":1})",
       R"([{"kind":"relation","value":"separated"},
@@ -355,8 +390,10 @@ TEST(Verify, CommandLine) {
   Json j = core::io::parse_json(text, "<stdout>");
   EXPECT_EQ(status(j), "certified");
   EXPECT_EQ(verdicts(j), (std::vector<std::string>{"confirmed", "refuted", "confirmed"}));
-  std::tie(code, text) = run("verify 'x^2+y^2+z^2=1' 'x^2+y^2=1/4' --claim "
-                             "'{\"kind\":\"relation\",\"value\":\"touching\"}'");
+  std::tie(code, text) =
+      run("verify 'x^2+y^2+z^2=1' '{\"type\":\"torus\",\"center\":[2,0,0],\"axis\":[0,0,1],"
+          "\"major_radius\":2,\"minor_radius\":\"1/2\"}' --claim "
+          "'{\"kind\":\"relation\",\"value\":\"touching\"}'");
   EXPECT_EQ(code, 3) << text; // undecided
   EXPECT_NE(text.find("claim 1 (relation): undecided"), std::string::npos) << text;
   std::tie(code, text) = run("verify 'x^2+y^2+z^2=1' 'z=0' --claim "
