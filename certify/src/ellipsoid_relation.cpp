@@ -2,8 +2,8 @@
 // -ffp-contract=off (top-level CMakeLists): CGAL::Interval_nt relies on them.
 #include "surfcert/certify/ellipsoid_relation.hpp"
 
-#include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/real_roots.hpp"
+#include "surfcert/certify/enclosure.hpp"
 
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
@@ -21,24 +21,6 @@ using core::Rational;
 namespace {
 
 using I = CGAL::Interval_nt<false>; // requires rounding towards +infinity (Protect_FPU_rounding)
-
-// An interval holding q (Arb rounds correctly, also past the double range: a bound is then
-// infinite and the decision below falls to exact arithmetic).
-I enclose(const Rational& q) {
-  arb_t x;
-  arb_init(x);
-  arb_set_fmpq(x, q.raw(), 64);
-  arf_t lo, hi;
-  arf_init(lo);
-  arf_init(hi);
-  arb_get_lbound_arf(lo, x, 64);
-  arb_get_ubound_arf(hi, x, 64);
-  const double l = arf_get_d(lo, ARF_RND_FLOOR), h = arf_get_d(hi, ARF_RND_CEIL);
-  arf_clear(lo);
-  arf_clear(hi);
-  arb_clear(x);
-  return I(l, h);
-}
 
 // -1 or +1 when certain, 0 when the interval may hold 0 or is not finite.
 int certain_sign(const I& x) {
@@ -63,21 +45,31 @@ template <class T> T det4(const T m[4][4]) {
          s(0, 1, 2) * s(2, 0, 3) - s(0, 1, 3) * s(2, 0, 2) + s(0, 2, 3) * s(2, 0, 1);
 }
 
+// The enclosure of a quadric's exact matrix (enclosure.hpp: from the doubles of a posed
+// shape without forming its rationals).
 struct Enclosed {
   I m[4][4];
-  explicit Enclosed(const Mat4& x) {
+  explicit Enclosed(const core::QuadricMatrix& q) {
+    const IMat4 e = enclose(q);
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j)
-        m[i][j] = enclose(x[i][j]);
+        m[i][j] = e[i][j];
   }
 };
+
+// Sign of the (0, 0) entry: from the enclosure, exact when it holds 0.
+int corner_sign(const core::QuadricMatrix& q, const Enclosed& e) {
+  if (int s = certain_sign(e.m[0][0])) return s;
+  return q(0, 0).sign();
+}
 
 // Whether X^T M X = 0 is a real ellipsoid: its quadratic block Q definite and, with Q
 // normalised positive definite, det M = det Q (c - b^T Q^-1 b) < 0 (the centre inside).
 // Intervals first (leading minors of sa Q: sa m1, m2, sa m3 > 0; det M < 0); when they do not
 // decide, the exact classification of the quadric.
 bool real_ellipsoid(const core::QuadricMatrix& q, const Enclosed& e) {
-  const int sa = q(0, 0).sign();
+  if (q.shape()) return q.kind() == core::QuadricKind::Ellipsoid; // known from the shape type
+  const int sa = corner_sign(q, e);
   if (sa == 0) return false; // a zero diagonal entry: Q is not definite
   const auto& m = e.m;
   const I m2 = m[0][0] * m[1][1] - m[0][1] * m[1][0];
@@ -91,10 +83,10 @@ bool real_ellipsoid(const core::QuadricMatrix& q, const Enclosed& e) {
   return q.kind() == core::QuadricKind::Ellipsoid;
 }
 
-// Sign of det m: intervals first, exact when they hold 0.
-int det_sign(const Mat4& m, const Enclosed& e) {
+// Sign of det q: intervals first, exact when they hold 0.
+int det_sign(const core::QuadricMatrix& q, const Enclosed& e) {
   if (int s = certain_sign(det4(e.m))) return s;
-  return core::det(m).sign();
+  return core::det(q.matrix()).sign();
 }
 
 // Sign of the real root i of f from the facts alone; 0 when they do not decide it.
@@ -145,13 +137,15 @@ algebra::UPolyZ squarefree_char_poly(const Mat4& a, const Mat4& b) {
 // proportional to the squared volume of the ellipsoid X^T M X <= 0. True when a's is smaller:
 // (-dA)^3 qB^4 < (-dB)^3 qA^4 (both sides multiplied by qA^4 qB^4 > 0); det and q^4 do not
 // depend on the sign normalisation (4x4 determinant, even power).
-bool a_smaller(const Mat4& a, const Enclosed& ea, const Mat4& b, const Enclosed& eb) {
+bool a_smaller(const core::QuadricMatrix& qa_, const Enclosed& ea, const core::QuadricMatrix& qb_,
+               const Enclosed& eb) {
   {
     const I da = -det4(ea.m), db = -det4(eb.m), qa = det3(ea.m), qb = det3(eb.m);
     const I qa2 = qa * qa, qb2 = qb * qb;
     const I lhs = da * da * da * (qb2 * qb2), rhs = db * db * db * (qa2 * qa2);
     if (int s = certain_sign(rhs - lhs)) return s > 0;
   }
+  const Mat4 &a = qa_.matrix(), &b = qb_.matrix();
   const Rational da = -core::det(a), db = -core::det(b);
   const Rational qa = core::leading_minor(a, 3), qb = core::leading_minor(b, 3);
   const Rational qa2 = qa * qa, qb2 = qb * qb;
@@ -195,7 +189,7 @@ void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core:
   if (r.pencil == PencilKind::Degenerate) return;
   if (r.pencil == PencilKind::Regular && r.facts.real_roots.size() > 4) return;
   CGAL::Protect_FPU_rounding<true> guard; // interval arithmetic needs rounding upwards
-  const Enclosed ea(a.matrix()), eb(b.matrix());
+  const Enclosed ea(a), eb(b);
   if (!real_ellipsoid(a, ea) || !real_ellipsoid(b, eb)) return;
   if (r.pencil == PencilKind::Coincident) {
     r.ellipsoid_relation = "coincident";
@@ -204,7 +198,7 @@ void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core:
   // Normalise each matrix so that its quadratic block is positive definite (interior < 0);
   // the roots of the normalised det(lA - B) are eps * (roots of f), eps = sa * sb.
   // Two ellipsoids: det A != 0, so the facts are in the given basis (never re-based).
-  const int sa = a(0, 0).sign(), sb = b(0, 0).sign();
+  const int sa = corner_sign(a, ea), sb = corner_sign(b, eb);
   const int eps = sa * sb;
   std::vector<int> signs;
   if (r.mode == Mode::Float) {
@@ -214,7 +208,7 @@ void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core:
   } else {
     // Exact facts of two ellipsoids are never re-based (det A != 0).
     if (r.facts.rebased) return;
-    const int sd_a = det_sign(a.matrix(), ea), sf0 = det_sign(b.matrix(), eb);
+    const int sd_a = det_sign(a, ea), sf0 = det_sign(b, eb);
     bool need_exact = false;
     for (size_t i = 0; i < r.facts.real_roots.size(); ++i) {
       int s = root_sign_from_facts(r.facts, i, sd_a, sf0);
@@ -251,8 +245,7 @@ void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core:
   } else {
     r.ellipsoid_relation = "overlapping";
   }
-  if (nested_possible)
-    r.containment = a_smaller(a.matrix(), ea, b.matrix(), eb) ? "a_inside_b" : "b_inside_a";
+  if (nested_possible) r.containment = a_smaller(a, ea, b, eb) ? "a_inside_b" : "b_inside_a";
 }
 
 } // namespace surfcert::certify

@@ -6,6 +6,7 @@
 #include "surfcert/algebra/eigen4.hpp"
 #include "surfcert/algebra/pencil_poly.hpp"
 #include "surfcert/algebra/real_roots.hpp"
+#include "surfcert/certify/enclosure.hpp"
 
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
@@ -25,25 +26,6 @@ using core::Rational;
 namespace {
 
 using I = CGAL::Interval_nt<false>; // requires rounding towards +infinity (Protect_FPU_rounding)
-
-// Interval enclosing an integer: exact when it has at most 53 bits, else its two directed
-// roundings (Arb rounds correctly, also past the double range: then a bound is infinite and
-// the filter simply fails, handing the decision to the exact path).
-I enclose(const fmpz* z) {
-  if (fmpz_bits(z) <= 53) return I(fmpz_get_d(z));
-  arf_t a;
-  arf_init(a);
-  arf_set_fmpz(a, z);
-  const double lo = arf_get_d(a, ARF_RND_FLOOR), hi = arf_get_d(a, ARF_RND_CEIL);
-  arf_clear(a);
-  return I(lo, hi);
-}
-
-I enclose(const Rational& q) {
-  I n = enclose(fmpq_numref(q.raw()));
-  if (fmpz_is_one(fmpq_denref(q.raw()))) return n;
-  return n / enclose(fmpq_denref(q.raw()));
-}
 
 // -1, 0, +1 when certain, 2 when the interval straddles zero without being {0}.
 int isign(const I& x) {
@@ -84,14 +66,12 @@ I horner(const std::array<I, 5>& f, double x) {
 
 } // namespace
 
-std::optional<PencilFacts> analyze_pencil_filtered(const Mat4& a0, const Mat4& b0) {
+std::optional<PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& qa,
+                                                   const core::QuadricMatrix& qb) {
   CGAL::Protect_FPU_rounding<true> guard; // interval arithmetic needs rounding upwards
-  Mat4T<I> a, b;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = i; j < 4; ++j) {
-      a[i][j] = a[j][i] = enclose(a0[i][j]);
-      b[i][j] = b[j][i] = enclose(b0[i][j]);
-    }
+  // Enclosures of the exact matrices; for shapes posed in doubles, straight from the doubles
+  // (the exact rationals are not formed unless this filter fails).
+  const Mat4T<I> a = enclose(qa), b = enclose(qb);
   auto f = algebra::pencil_char_coeffs(a, b);
   if (isign(f[4]) == 2 || isign(f[4]) == 0) return std::nullopt; // det A ~ 0: exact path re-bases
   auto q = algebra::quartic_invariants(f);
@@ -190,9 +170,6 @@ void complete_exact_invariants(PencilFacts& facts) {
 namespace {
 
 // num/den in double (cheap; the float mode is uncertified anyway).
-double approx(const Rational& q) {
-  return fmpz_get_d(fmpq_numref(q.raw())) / fmpz_get_d(fmpq_denref(q.raw()));
-}
 
 // Eigenvalues of a symmetric 4x4 matrix (cyclic Jacobi, algebra/eigen4.hpp).
 std::array<double, 4> eigenvalues(const Mat4T<double>& m) {
@@ -267,18 +244,13 @@ double max_abs(const Mat4T<double>& x) {
 
 } // namespace
 
-PencilFacts analyze_pencil_float(const Mat4& a0, const Mat4& b0, FloatInvariants& inv, double tol) {
+PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb,
+                                 FloatInvariants& inv, double tol) {
   // Like seed 002: plain doubles of the given matrices, the root pattern from D2, D3, D4, E
-  // with an absolute zero tolerance, then float indices. Nothing here is certified.
+  // with an absolute zero tolerance, then float indices. Nothing here is certified. The facts
+  // do not copy the exact matrices (a float answer never needs them).
   PencilFacts out;
-  out.a = a0;
-  out.b = b0;
-  Mat4T<double> a, b;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      a[i][j] = approx(a0[i][j]);
-      b[i][j] = approx(b0[i][j]);
-    }
+  Mat4T<double> a = approx(qa), b = approx(qb);
   auto f = algebra::pencil_char_coeffs(a, b);
   double fs = 0;
   for (double c : f)

@@ -53,7 +53,7 @@ QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix
   if (mode == Mode::Float) {
     FloatInvariants inv{};
     try {
-      r.facts = analyze_pencil_float(a.matrix(), b.matrix(), inv);
+      r.facts = analyze_pencil_float(a, b, inv);
     } catch (const std::domain_error& e) { // overflow to inf/nan in plain doubles
       r.status = Status::Undecided;
       r.note = std::string("float analysis failed: ") + e.what();
@@ -63,7 +63,7 @@ QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix
     r.status = Status::Uncertified;
   } else {
     std::optional<PencilFacts> fast;
-    if (mode == Mode::Filtered) fast = analyze_pencil_filtered(a.matrix(), b.matrix());
+    if (mode == Mode::Filtered) fast = analyze_pencil_filtered(a, b);
     if (fast) {
       r.facts = std::move(*fast);
     } else {

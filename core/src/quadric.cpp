@@ -79,9 +79,20 @@ Rational det(const Mat4& m) {
   return leading_minor(m, 4);
 }
 
-QuadricMatrix::QuadricMatrix(const Mat4& m) : m_(m) {
+QuadricMatrix::QuadricMatrix(const Mat4& m) : state_(std::make_shared<State>()) {
   if (!is_symmetric(m)) throw std::invalid_argument("quadric matrix is not symmetric");
   if (is_zero(m)) throw std::invalid_argument("quadric matrix is zero");
+  state_->m = m;
+  std::call_once(state_->formed, [] {});
+}
+
+QuadricMatrix::QuadricMatrix(const ShapeSpec& s) : state_(std::make_shared<State>()) {
+  state_->shape = s;
+}
+
+const Mat4& QuadricMatrix::matrix() const {
+  std::call_once(state_->formed, [this] { state_->m = exact_matrix(*state_->shape); });
+  return state_->m;
 }
 
 QuadricMatrix QuadricMatrix::from_poly(const Poly3& p) {
@@ -116,32 +127,37 @@ Poly3 QuadricMatrix::to_poly() const {
       Poly3::Exponent e{0, 0, 0};
       if (i < 3) ++e[i];
       if (j < 3) ++e[j];
-      p.add_term(e, m_[i][j]);
+      p.add_term(e, matrix()[i][j]);
     }
   return p;
 }
 
 QuadricMatrix QuadricMatrix::congruent(const Mat4& p) const {
-  return QuadricMatrix(transpose(p) * m_ * p);
+  return QuadricMatrix(transpose(p) * matrix() * p);
 }
 
 bool QuadricMatrix::is_plane() const {
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
-      if (!m_[i][j].is_zero()) return false;
+      if (!matrix()[i][j].is_zero()) return false;
   return true;
 }
 
 QuadricKind QuadricMatrix::kind() const {
   // Upper 3x3 block definite (up to sign) <=> ellipsoid-like; then real iff det has the
   // opposite sign of the definite block's sign (e.g. diag(1,1,1,-1): det < 0).
-  Rational d1 = leading_minor(m_, 1), d2 = leading_minor(m_, 2), d3 = leading_minor(m_, 3);
+  if (const ShapeSpec* sp = shape()) // by construction (radii > 0, R invertible)
+    return sp->type == ShapeType::Sphere || sp->type == ShapeType::Ellipsoid
+               ? QuadricKind::Ellipsoid
+               : QuadricKind::Other;
+  const Mat4& mm = matrix();
+  Rational d1 = leading_minor(mm, 1), d2 = leading_minor(mm, 2), d3 = leading_minor(mm, 3);
   int s = d1.sign();
   bool definite = s != 0 && d2.sign() > 0 && d3.sign() == s;
   if (!definite) return QuadricKind::Other;
   // Normalise to a positive definite block: det scales by s^4 = 1, so the real-point test is
   // det(A) < 0 for both signs.
-  int sd = det(m_).sign();
+  int sd = det(mm).sign();
   if (sd < 0) return QuadricKind::Ellipsoid;
   if (sd > 0) return QuadricKind::ImaginaryEllipsoid;
   return QuadricKind::Other; // a single point (imaginary cone with real vertex)
@@ -149,8 +165,9 @@ QuadricKind QuadricMatrix::kind() const {
 
 bool QuadricMatrix::is_sphere() const {
   if (kind() != QuadricKind::Ellipsoid) return false;
-  return m_[0][1].is_zero() && m_[0][2].is_zero() && m_[1][2].is_zero() && m_[0][0] == m_[1][1] &&
-         m_[1][1] == m_[2][2];
+  const Mat4& mm = matrix();
+  return mm[0][1].is_zero() && mm[0][2].is_zero() && mm[1][2].is_zero() && mm[0][0] == mm[1][1] &&
+         mm[1][1] == mm[2][2];
 }
 
 } // namespace surfcert::core

@@ -125,7 +125,8 @@ TEST(CertifiedContract, FilterEnclosesHugeIntegers) {
     for (long i = 0; i < k; ++i)
       s = s * core::Rational(2);
     const core::Mat4 as = core::scaled(a, s), bs = core::scaled(b, s * s);
-    const auto filt = certify::analyze_pencil_filtered(as, bs);
+    const auto filt =
+        certify::analyze_pencil_filtered(core::QuadricMatrix(as), core::QuadricMatrix(bs));
     const auto exact = certify::classify_qsic(core::QuadricMatrix(as), core::QuadricMatrix(bs),
                                               certify::Mode::Exact);
     ASSERT_EQ(exact.status, certify::Status::Certified);

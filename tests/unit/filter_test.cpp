@@ -29,7 +29,7 @@ TEST(Filter, AgreesWithExactArithmeticWheneverItAnswers) {
         b[i][j] = b[j][i] = Rational(e(rng), static_cast<unsigned long>(den(rng)));
       }
     if (it % 2 == 0) a[0][0] = b[0][0] = Rational(0); // d1 = 0 at every sample
-    auto fast = certify::analyze_pencil_filtered(a, b);
+    auto fast = certify::analyze_pencil_filtered(core::QuadricMatrix(a), core::QuadricMatrix(b));
     if (!fast) continue;
     ++answered;
     descartes_branch += it % 2 == 0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <set>
 
 namespace surfcert::core::io {
@@ -64,8 +65,8 @@ Rational read_positive(const Json& v, const std::string& source, const std::stri
 }
 
 // The exact inverse of an invertible 3x3 matrix (adjugate / determinant).
-std::array<std::array<Rational, 3>, 3> inverse3(const std::array<std::array<Rational, 3>, 3>& r) {
-  std::array<std::array<Rational, 3>, 3> inv;
+Mat3 inverse3(const Mat3& r) {
+  Mat3 inv;
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j) {
       // cofactor of r[j][i]
@@ -93,27 +94,19 @@ std::string max_abs_text(const std::vector<Rational>& entries) {
 // read exactly as given: any invertible R (a double matrix is never exactly orthogonal) poses
 // the shape as c + R S, with a Reading saying how far R^T R is from I (and det R when it is
 // not 1).
-std::array<std::array<Rational, 3>, 3> read_rotation(const Json& v, const std::string& source,
-                                                     const std::string& path, Readings* readings) {
-  std::array<std::array<Rational, 3>, 3> r;
+Mat3 read_rotation(const Json& v, const std::string& source, const std::string& path,
+                   Readings* readings) {
+  Mat3 r;
   if (!v.is_object())
     throw InputError(at(v, source, path),
                      "an object {\"quaternion\": [w,x,y,z]} or {\"matrix\": 3x3}", describe(v));
   check_fields(v, {"quaternion", "matrix"}, source, path);
   if (const Json* q = v.find("quaternion")) {
     auto c = read_vector(*q, 4, source, json_path_child(path, "quaternion"));
-    const Rational &w = c[0], &x = c[1], &y = c[2], &z = c[3];
-    Rational n = w * w + x * x + y * y + z * z;
-    if (n.is_zero())
+    if (std::all_of(c.begin(), c.end(), [](const Rational& e) { return e.is_zero(); }))
       throw InputError(at(*q, source, json_path_child(path, "quaternion")), "a nonzero quaternion",
                        "[0,0,0,0]");
-    const Rational two(2);
-    r = {{{w * w + x * x - y * y - z * z, two * (x * y - w * z), two * (x * z + w * y)},
-          {two * (x * y + w * z), w * w - x * x + y * y - z * z, two * (y * z - w * x)},
-          {two * (x * z - w * y), two * (y * z + w * x), w * w - x * x - y * y + z * z}}};
-    for (auto& row : r)
-      for (auto& e : row)
-        e = e / n;
+    r = quaternion_rotation({c[0], c[1], c[2], c[3]});
     return r;
   }
   if (const Json* m = v.find("matrix")) {
@@ -148,94 +141,109 @@ std::array<std::array<Rational, 3>, 3> read_rotation(const Json& v, const std::s
   throw InputError(at(v, source, path), "a field \"quaternion\" or \"matrix\"", "neither");
 }
 
+// The double value of a JSON number literal when it is exactly a binary64 (a non-integer
+// literal is one by definition; an integer literal when it has at most 15 digits).
+bool literal_double(const Json& v, double& out) {
+  if (!v.is_number()) return false;
+  const std::string& s = v.text();
+  if (s.find_first_of(".eE") == std::string::npos && s.size() > 15 + (s[0] == '-')) return false;
+  out = std::strtod(s.c_str(), nullptr);
+  return std::isfinite(out);
+}
+
+bool literal_doubles(const Json* v, size_t n, double* out) {
+  if (!v || !v->is_array() || v->size() != n) return false;
+  for (size_t i = 0; i < n; ++i)
+    if (!literal_double(v->items()[i], out[i])) return false;
+  return true;
+}
+
+// The shape as a ShapeSpec when every number in it is a finite double, the radii positive and
+// the rotation absent or a nonzero quaternion; otherwise nullopt (the exact reader then
+// handles it, errors included).
+std::optional<ShapeSpec> double_shape(const Json& v, ShapeType type, size_t nradii) {
+  ShapeSpec s;
+  s.type = type;
+  if (const Json* r = v.find("radius")) {
+    double x;
+    if (!literal_double(*r, x)) return std::nullopt;
+    s.radii = {x, x, x};
+  } else if (!literal_doubles(v.find("radii"), nradii, s.radii.data())) {
+    return std::nullopt;
+  }
+  for (size_t i = 0; i < nradii; ++i)
+    if (!(s.radii[i] > 0)) return std::nullopt;
+  if (const Json* c = v.find("center"))
+    if (!literal_doubles(c, 3, s.center.data())) return std::nullopt;
+  if (const Json* rj = v.find("rotation")) {
+    if (!rj->is_object() || rj->members().size() != 1) return std::nullopt;
+    if (!literal_doubles(rj->find("quaternion"), 4, s.quaternion.data())) return std::nullopt;
+    if (s.quaternion == std::array<double, 4>{0, 0, 0, 0}) return std::nullopt;
+    s.rotated = true;
+  }
+  return s;
+}
+
 QuadricMatrix read_shape(const Json& v, const std::string& source, const std::string& path,
                          Readings* readings) {
   const Json& tj = require(v, "type", source, path);
   std::string tpath = json_path_child(path, "type");
   if (!tj.is_string()) throw InputError(at(tj, source, tpath), "a shape name string", describe(tj));
-  const std::string& type = tj.text();
-  // Local quadratic form diag(q0, q1, q2) + linear term lz*z + constant k, in local coordinates.
-  Rational q[3], lz, k;
-  bool takes_radius = type == "sphere";
-  size_t nradii = 0;
-  if (type == "ellipsoid" || type == "hyperboloid_one_sheet" || type == "hyperboloid_two_sheets" ||
-      type == "cone")
-    nradii = 3;
-  else if (type == "cylinder" || type == "elliptic_paraboloid" || type == "hyperbolic_paraboloid")
-    nradii = 2;
-  else if (!takes_radius)
+  static const std::pair<const char*, ShapeType> kTypes[] = {
+      {"sphere", ShapeType::Sphere},
+      {"ellipsoid", ShapeType::Ellipsoid},
+      {"cylinder", ShapeType::Cylinder},
+      {"cone", ShapeType::Cone},
+      {"elliptic_paraboloid", ShapeType::EllipticParaboloid},
+      {"hyperbolic_paraboloid", ShapeType::HyperbolicParaboloid},
+      {"hyperboloid_one_sheet", ShapeType::HyperboloidOneSheet},
+      {"hyperboloid_two_sheets", ShapeType::HyperboloidTwoSheets}};
+  const std::string& name = tj.text();
+  const auto* it = std::find_if(std::begin(kTypes), std::end(kTypes),
+                                [&](const auto& t) { return name == t.first; });
+  if (it == std::end(kTypes))
     throw InputError(at(tj, source, tpath),
                      "one of sphere, ellipsoid, cylinder, cone, elliptic_paraboloid, "
                      "hyperbolic_paraboloid, hyperboloid_one_sheet, hyperboloid_two_sheets",
-                     "\"" + type + "\"");
+                     "\"" + name + "\"");
+  const ShapeType type = it->second;
+  const bool takes_radius = type == ShapeType::Sphere;
+  const LocalForm form = local_form(type);
+  const size_t nradii = takes_radius ? 3 : (form.q_sign[2] != 0 ? 3 : 2);
   std::set<std::string> allowed{"type", "center", "rotation"};
   allowed.insert(takes_radius ? "radius" : "radii");
-  if (type == "cylinder") allowed.insert("radius");
+  if (type == ShapeType::Cylinder) allowed.insert("radius");
   check_fields(v, allowed, source, path);
-  std::vector<Rational> radii;
-  if (takes_radius || (type == "cylinder" && v.find("radius"))) {
+  // Doubles throughout (what users send): the exact matrix is formed lazily (shape.hpp).
+  if (auto spec = double_shape(v, type, nradii)) return QuadricMatrix(*spec);
+  std::array<Rational, 3> radii;
+  if (takes_radius || (type == ShapeType::Cylinder && v.find("radius"))) {
     std::string rp = json_path_child(path, "radius");
     Rational r = read_positive(require(v, "radius", source, path), source, rp);
-    radii.assign(takes_radius ? 3 : 2, r);
+    radii = {r, r, r};
   } else {
     std::string rp = json_path_child(path, "radii");
     const Json& rj = require(v, "radii", source, path);
-    radii = read_vector(rj, nradii, source, rp);
-    for (size_t i = 0; i < nradii; ++i)
-      if (radii[i].sign() <= 0)
+    auto rv = read_vector(rj, nradii, source, rp);
+    for (size_t i = 0; i < nradii; ++i) {
+      if (rv[i].sign() <= 0)
         throw InputError(at(rj.items()[i], source, json_path_index(rp, i)), "a positive length",
-                         radii[i].to_string());
+                         rv[i].to_string());
+      radii[i] = rv[i];
+    }
   }
-  auto inv2 = [](const Rational& r) { return Rational(1) / (r * r); };
-  if (type == "sphere" || type == "ellipsoid") {
-    for (size_t i = 0; i < 3; ++i)
-      q[i] = inv2(radii[i]);
-    k = Rational(-1);
-  } else if (type == "cylinder") {
-    q[0] = inv2(radii[0]);
-    q[1] = inv2(radii[1]);
-    k = Rational(-1);
-  } else if (type == "cone") {
-    q[0] = inv2(radii[0]);
-    q[1] = inv2(radii[1]);
-    q[2] = -inv2(radii[2]);
-  } else if (type == "elliptic_paraboloid" || type == "hyperbolic_paraboloid") {
-    q[0] = inv2(radii[0]);
-    q[1] = type == "elliptic_paraboloid" ? inv2(radii[1]) : -inv2(radii[1]);
-    lz = Rational(-1);
-  } else { // hyperboloids
-    q[0] = inv2(radii[0]);
-    q[1] = inv2(radii[1]);
-    q[2] = -inv2(radii[2]);
-    k = type == "hyperboloid_one_sheet" ? Rational(-1) : Rational(1);
+  std::array<Rational, 3> c;
+  if (const Json* cj = v.find("center")) {
+    auto cv = read_vector(*cj, 3, source, json_path_child(path, "center"));
+    std::copy(cv.begin(), cv.end(), c.begin());
   }
-  Mat4 local;
-  for (size_t i = 0; i < 3; ++i)
-    local[i][i] = q[i];
-  local[2][3] = local[3][2] = lz * Rational(1, 2);
-  local[3][3] = k;
-  std::vector<Rational> c(3);
-  if (const Json* cj = v.find("center"))
-    c = read_vector(*cj, 3, source, json_path_child(path, "center"));
-  std::array<std::array<Rational, 3>, 3> rot{};
+  Mat3 rot{};
   for (size_t i = 0; i < 3; ++i)
     rot[i][i] = Rational(1);
   if (const Json* rj = v.find("rotation"))
     rot = read_rotation(*rj, source, json_path_child(path, "rotation"), readings);
-  // World point x = R u + c, so u = R^-1 (x - c): T = [[R^-1, -R^-1 c], [0, 1]], M = T^T L T
-  // (R^-1 = R^T for a rotation; the exact inverse otherwise).
-  const auto inv = inverse3(rot);
-  Mat4 t;
-  for (size_t i = 0; i < 3; ++i) {
-    Rational s;
-    for (size_t j = 0; j < 3; ++j) {
-      t[i][j] = inv[i][j];
-      s += inv[i][j] * c[j];
-    }
-    t[i][3] = -s;
-  }
-  t[3][3] = Rational(1);
-  return QuadricMatrix(transpose(t) * local * t);
+  // R^-1 = R^T for a rotation; the exact inverse otherwise.
+  return QuadricMatrix(posed_quadric_matrix(type, radii, c, inverse3(rot)));
 }
 
 } // namespace

@@ -2,26 +2,29 @@
 // and a plain floating-point analysis (uncertified, for the `float` mode).
 //
 // analyze_pencil_filtered: the exact algorithm of analyze_pencil_exact, evaluated in interval
-// arithmetic (CGAL::Interval_nt, rounding mode switched inside). It answers only when every
+// arithmetic (CGAL::Interval_nt, rounding mode switched inside) on enclosures of the exact
+// matrices (enclosure.hpp: for shapes posed in doubles, computed from the doubles, so the
+// exact rationals are never formed when the filter answers). It answers only when every
 // sign it needs is certain: the discriminant D4 != 0 (all roots simple), the root count from
 // D2, D3, D4, separators whose f-signs alternate (k exact roots, k+1 alternating signs: one
 // root per gap), and nonzero charpoly coefficients or a certain determinant for the indices.
 // Otherwise it returns nullopt and the caller falls back to exact arithmetic. Its facts carry
 // exact dyadic separators but no exact f/D values (fill them with complete_exact_invariants).
 //
-// analyze_pencil_float: doubles throughout, zeros decided with the seed's tolerance 1e-8 on a
-// normalised scale; multiple roots by clustering, ranks and inertias from eigenvalues.
-// Nothing it returns is certified.
+// analyze_pencil_float: doubles throughout (facts.a / facts.b left empty), zeros decided with the
+// seed's tolerance 1e-8 on a normalised scale; multiple roots by clustering, ranks and inertias
+// from eigenvalues. Nothing it returns is certified.
 #pragma once
 
 #include "surfcert/algebra/pencil.hpp"
+#include "surfcert/core/quadric.hpp"
 
 #include <optional>
 
 namespace surfcert::certify {
 
-std::optional<algebra::PencilFacts> analyze_pencil_filtered(const core::Mat4& a,
-                                                            const core::Mat4& b);
+std::optional<algebra::PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& a,
+                                                            const core::QuadricMatrix& b);
 
 struct FloatInvariants {
   double f[5];
@@ -29,8 +32,9 @@ struct FloatInvariants {
 };
 
 /// Float analysis; facts.f / d2.. are left empty, the float values go to `inv`.
-algebra::PencilFacts analyze_pencil_float(const core::Mat4& a, const core::Mat4& b,
-                                          FloatInvariants& inv, double tol = 1e-8);
+algebra::PencilFacts analyze_pencil_float(const core::QuadricMatrix& a,
+                                          const core::QuadricMatrix& b, FloatInvariants& inv,
+                                          double tol = 1e-8);
 
 /// Fills f, d2, d3, d4, e and root_pattern of facts exactly from facts.a, facts.b.
 void complete_exact_invariants(algebra::PencilFacts& facts);

@@ -4,17 +4,22 @@
 // quadratic part, the last row/column half the linear coefficients, A[3][3] the constant.
 // Invariants: symmetric, not identically zero. The matrix is exactly the one of the given
 // equation (no rescaling), so a caller can compare it with its own reading of the input.
+// A quadric built from a ShapeSpec (a shape posed in doubles, shape.hpp) is the same exact
+// quadric, but its rational matrix is formed on first use of matrix() (thread-safe, once):
+// the interval filter works from shape() without it. Copies share the matrix.
 #pragma once
 
 #include "surfcert/core/poly3.hpp"
 #include "surfcert/core/rational.hpp"
+#include "surfcert/core/shape.hpp"
 
 #include <array>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 
 namespace surfcert::core {
-
-using Mat4 = std::array<std::array<Rational, 4>, 4>;
 
 /// Affine kind of a real quadric, decided exactly (used for labels and for the ellipsoid
 /// relation; the QSIC classification itself works on the projective pencil).
@@ -29,14 +34,19 @@ public:
   /// From a symmetric, nonzero matrix; throws std::invalid_argument otherwise (callers that
   /// read user input check first and report an InputError with a location).
   explicit QuadricMatrix(const Mat4& m);
+  /// The quadric of a posed shape (lazy: the exact matrix is formed on first use).
+  explicit QuadricMatrix(const ShapeSpec& s);
   /// From a polynomial of total degree 1 or 2 (a plane counts as a degenerate quadric).
   /// Throws std::invalid_argument if the degree is not 1 or 2.
   static QuadricMatrix from_poly(const Poly3& p);
 
-  const Mat4& matrix() const { return m_; }
+  /// The exact matrix (formed here on first use when built from a ShapeSpec).
+  const Mat4& matrix() const;
   const Rational& operator()(int i, int j) const {
-    return m_[static_cast<size_t>(i)][static_cast<size_t>(j)];
+    return matrix()[static_cast<size_t>(i)][static_cast<size_t>(j)];
   }
+  /// The shape in doubles this quadric was built from, or nullptr.
+  const ShapeSpec* shape() const { return state_->shape ? &*state_->shape : nullptr; }
   Poly3 to_poly() const;
   /// P^T A P (a change of homogeneous coordinates X = P X').
   QuadricMatrix congruent(const Mat4& p) const;
@@ -48,7 +58,12 @@ public:
   bool is_sphere() const;
 
 private:
-  Mat4 m_;
+  struct State {
+    Mat4 m;
+    std::optional<ShapeSpec> shape;
+    std::once_flag formed;
+  };
+  std::shared_ptr<State> state_;
 };
 
 bool is_symmetric(const Mat4& m);

@@ -1,0 +1,132 @@
+// Compiled with -frounding-math -ffp-contract=off (see the top-level CMakeLists):
+// CGAL::Interval_nt relies on them.
+#include "surfcert/certify/enclosure.hpp"
+
+#include "surfcert/algebra/arb.hpp"
+
+#include <CGAL/FPU.h>
+
+#include <cmath>
+
+namespace surfcert::certify {
+
+namespace {
+
+using I = Interval;
+
+// Interval enclosing an integer: exact when it has at most 53 bits, else its two directed
+// roundings (Arb rounds correctly, also past the double range: then a bound is infinite and
+// the filter simply fails, handing the decision to the exact path).
+I enclose_integer(const fmpz* z) {
+  if (fmpz_bits(z) <= 53) return I(fmpz_get_d(z));
+  algebra::Arf a;
+  arf_set_fmpz(a.v, z);
+  return I(arf_get_d(a.v, ARF_RND_FLOOR), arf_get_d(a.v, ARF_RND_CEIL));
+}
+
+// The matrix of a posed shape, in intervals, by the same formula as core::posed_quadric_matrix:
+// M = T^T L T with T = [[R^T, -R^T c], [0, 1]] and R the quaternion's rotation over |q|^2.
+IMat4 enclose_shape(const core::ShapeSpec& s) {
+  const core::LocalForm f = core::local_form(s.type);
+  IMat4 local;
+  for (auto& row : local)
+    row.fill(I(0));
+  for (size_t i = 0; i < 3; ++i)
+    if (f.q_sign[i] != 0) {
+      const I r(s.radii[i]);
+      const I q = I(1) / (r * r);
+      local[i][i] = f.q_sign[i] > 0 ? q : -q;
+    }
+  local[2][3] = local[3][2] = I(0.5 * f.linear_z);
+  local[3][3] = I(f.constant);
+  // inv = R^-1 = R^T.
+  std::array<std::array<I, 3>, 3> inv;
+  if (s.rotated) {
+    const I w(s.quaternion[0]), x(s.quaternion[1]), y(s.quaternion[2]), z(s.quaternion[3]);
+    const I n = w * w + x * x + y * y + z * z;
+    const I two(2);
+    const std::array<std::array<I, 3>, 3> r = {
+        {{w * w + x * x - y * y - z * z, two * (x * y - w * z), two * (x * z + w * y)},
+         {two * (x * y + w * z), w * w - x * x + y * y - z * z, two * (y * z - w * x)},
+         {two * (x * z - w * y), two * (y * z + w * x), w * w - x * x - y * y + z * z}}};
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        inv[i][j] = r[j][i] / n;
+  } else {
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        inv[i][j] = I(i == j ? 1 : 0);
+  }
+  IMat4 t;
+  for (auto& row : t)
+    row.fill(I(0));
+  for (size_t i = 0; i < 3; ++i) {
+    I acc(0);
+    for (size_t j = 0; j < 3; ++j) {
+      t[i][j] = inv[i][j];
+      acc += inv[i][j] * I(s.center[j]);
+    }
+    t[i][3] = -acc;
+  }
+  t[3][3] = I(1);
+  IMat4 lt, m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      I acc(0);
+      for (size_t k = 0; k < 4; ++k)
+        acc += local[i][k] * t[k][j];
+      lt[i][j] = acc;
+    }
+  // Symmetric by construction: compute the upper triangle once and mirror it, so the
+  // enclosure is exactly symmetric as the exact matrix is.
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j) {
+      I acc(0);
+      for (size_t k = 0; k < 4; ++k)
+        acc += t[k][i] * lt[k][j];
+      m[i][j] = m[j][i] = acc;
+    }
+  return m;
+}
+
+} // namespace
+
+I enclose(const core::Rational& x) {
+  I n = enclose_integer(fmpq_numref(x.raw()));
+  if (fmpz_is_one(fmpq_denref(x.raw()))) return n;
+  return n / enclose_integer(fmpq_denref(x.raw()));
+}
+
+IMat4 enclose(const core::QuadricMatrix& q) {
+  if (const core::ShapeSpec* s = q.shape()) return enclose_shape(*s);
+  IMat4 m;
+  const core::Mat4& e = q.matrix();
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j)
+      m[i][j] = m[j][i] = enclose(e[i][j]);
+  return m;
+}
+
+algebra::Mat4T<double> approx(const core::QuadricMatrix& q) {
+  algebra::Mat4T<double> out;
+  if (!q.shape()) { // the exact entries' quotients of doubles (float mode's reading so far)
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        const core::Rational& e = q.matrix()[i][j];
+        out[i][j] = fmpz_get_d(fmpq_numref(e.raw())) / fmpz_get_d(fmpq_denref(e.raw()));
+      }
+    return out;
+  }
+  CGAL::Protect_FPU_rounding<true> guard;
+  const IMat4 m = enclose(q);
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      const double lo = m[i][j].inf(), hi = m[i][j].sup();
+      out[i][j] = std::isfinite(lo) && std::isfinite(hi) ? lo + (hi - lo) / 2
+                  : std::isfinite(lo)                    ? lo
+                                                         : hi;
+    }
+  return out;
+}
+
+} // namespace surfcert::certify
