@@ -264,6 +264,13 @@ Rational segment_dist2(const RPoint& p, const RPoint& s, const RPoint& t) {
   return dist2(p, f);
 }
 
+bool sqrt_sum_within(const Rational& a, const Rational& b, const Rational& t) {
+  // <=> t >= 0, t^2 >= b and t^2 + b - a >= 2 t sqrt(b).
+  if (t.sign() < 0 || t * t < b) return false;
+  const Rational lhs = t * t + b - a;
+  return lhs.sign() >= 0 && Rational(4) * t * t * b <= lhs * lhs;
+}
+
 bool sqrt_plus_less(const Rational& u, const Rational& t, const Rational& v) {
   // sqrt(u) + t < sqrt(v)  <=>  2 t sqrt(u) < v - u - t^2  <=>  rhs > 0 and 4 t^2 u < rhs^2.
   const Rational rhs = v - u - t * t;
@@ -287,14 +294,6 @@ double outward(const Rational& x, const Rational& e2, bool up) {
     if (gap.sign() >= 0 && e2 <= gap * gap) return d;
   }
   return up ? HUGE_VAL : -HUGE_VAL;
-}
-
-// sqrt(a) + sqrt(b) <= t for a, b, t >= 0, exactly.
-bool sqrt_sum_within(const Rational& a, const Rational& b, const Rational& t) {
-  // <=> t^2 >= b and t^2 + b - a >= 2 t sqrt(b).
-  if (t * t < b) return false;
-  const Rational lhs = t * t + b - a;
-  return lhs.sign() >= 0 && Rational(4) * t * t * b <= lhs * lhs;
 }
 
 // Centred-form enclosure of the quadric's equation over the box (centre c, half-widths h)

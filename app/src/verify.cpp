@@ -354,6 +354,10 @@ const char* const kBudgetNote = "the time budget ran out";
 // The most boxes a curve claim's coverage proof examines before answering undecided.
 constexpr long kMaxCoverageBoxes = 2000000;
 
+// The most pieces the claimed segments of a curve claim are cut into (to prove each within tol
+// of the curve) before answering undecided.
+constexpr long kMaxSegmentPieces = 20000;
+
 struct Verdict {
   std::string verdict = "undecided";
   std::optional<Json> counterexample, established;
@@ -828,12 +832,60 @@ Verdict decide_curve(const Claim& c, Oracle& o) {
         v.verdict = "refuted", v.counterexample = ce;
         return v;
       }
-    if (cov.proven && proven == static_cast<long>(points)) {
-      v.verdict = "confirmed";
-      return v;
-    }
   } else if (!box) {
     facts.set("coverage_proven", Json::boolean(false));
+  }
+  // Every point of every claimed segment within tol of the curve (tried when the vertices
+  // are): each piece [s, e] has a certified curve point within tol - |e - s| / 2 of its
+  // midpoint, or is halved (at most kMaxSegmentPieces pieces in all). A segment's first
+  // unproven midpoint is also tested against the surfaces: farther than tol from a or b
+  // refutes the claim.
+  long segments = 0, segments_proven = 0, pieces = 0;
+  for (size_t li = 0; li < c.polylines.size(); ++li) {
+    const auto& l = c.polylines[li];
+    for (size_t k = 0; k + 1 < std::max<size_t>(l.size(), 2); ++k) {
+      ++segments;
+      if (proven != static_cast<long>(points)) continue;
+      std::vector<std::pair<RPoint, RPoint>> todo = {{l[k], l[k + 1 < l.size() ? k + 1 : k]}};
+      bool ok = true, tested = false;
+      while (ok && !todo.empty()) {
+        core::check_budget();
+        const auto [s0, e0] = todo.back();
+        todo.pop_back();
+        const RPoint m = {(s0[0] + e0[0]) / Rational(2), (s0[1] + e0[1]) / Rational(2),
+                          (s0[2] + e0[2]) / Rational(2)};
+        const auto w = curve_witness(A, B, dpoint(m));
+        const Rational rho = w ? Rational(2) * w->half_width : Rational(0);
+        if (w && rho <= t &&
+            sqrt_sum_within(dist2(m, w->centre), dist2(s0, e0) / Rational(4), t - rho))
+          continue;
+        for (const auto& [name, sf] :
+             {std::pair<std::string, const core::Surface*>{"a", &o.a()}, {"b", &o.b()}}) {
+          if (tested) break;
+          Json scratch = Json::object();
+          std::optional<Json> off;
+          if (auto near = point_near_surface(*sf, m, t, name, scratch, off); near && !*near) {
+            off->set("polyline", Json::number(static_cast<long>(li)));
+            off->set("segment", Json::number(static_cast<long>(k)));
+            v.verdict = "refuted", v.counterexample = off;
+            return v;
+          }
+        }
+        tested = true;
+        // Pieces shorter than tol/64 are not cut further: their midpoint is then not proven.
+        if (++pieces > kMaxSegmentPieces || Rational(4096) * dist2(s0, e0) < t * t) ok = false;
+        todo.push_back({s0, m});
+        todo.push_back({m, e0});
+      }
+      if (ok) ++segments_proven;
+    }
+  }
+  facts.set("claimed_segments", Json::number(segments));
+  facts.set("segments_proven_near_curve", Json::number(segments_proven));
+  if (facts.find("coverage_proven") && facts.find("coverage_proven")->as_bool() &&
+      proven == static_cast<long>(points) && segments_proven == segments) {
+    v.verdict = "confirmed";
+    return v;
   }
   v.established = facts;
   v.note = facts.find("coverage_boxes")

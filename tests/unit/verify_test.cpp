@@ -676,6 +676,18 @@ TEST(Verify, CurveOfTwoSpheres) {
   const Json polygon =
       answer(kUnit, b, "[" + curve_claim({full}, "1e-6", kIdentity, {0, 0, 0}) + "]");
   expect_missed_circle_point(verdict(polygon, 0), full, 1e-6);
+  // Vertices on the circle but a chord through its centre (a diameter added as a polyline):
+  // every claimed vertex is within tol and the circle is covered, but the diameter's midpoint
+  // (1/2, ~0, 0) is 1/2 from each sphere: refuted by that point of the segment.
+  const Json diameter = answer(
+      kUnit, b, "[" + curve_claim({full, {full[0], full[32]}}, "0.01", kIdentity, {0, 0, 0}) + "]");
+  const Json& dv = verdict(diameter, 0);
+  ASSERT_EQ(dv.find("verdict")->text(), "refuted") << core::io::dump(dv);
+  EXPECT_EQ(dv.find("counterexample")->find("polyline")->text(), "1");
+  const P3 mid = point_of(*dv.find("counterexample")->find("claimed"));
+  EXPECT_EQ(mid, (P3{Rational(1, 2), (full[0][1] + full[32][1]) / Rational(2),
+                     (full[0][2] + full[32][2]) / Rational(2)}));
+  expect_off_sphere(dv, Sphere{{0, 0, 0}, 1}, mid, Rational(1, 100));
   // The moved point: 1% farther from the axis, so about 0.0075 from each sphere.
   expect_off_sphere(verdict(r, 2), Sphere{{0, 0, 0}, 1},
                     point_of(*verdict(r, 2).find("counterexample")->find("claimed")),

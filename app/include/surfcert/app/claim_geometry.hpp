@@ -77,6 +77,9 @@ std::optional<CurveWitness> curve_witness(const core::QuadricMatrix& a,
 /// The exact squared distance from p to the segment [s, t] (a point when s == t).
 core::Rational segment_dist2(const RPoint& p, const RPoint& s, const RPoint& t);
 
+/// sqrt(a) + sqrt(b) <= t for a, b >= 0, decided exactly (false when t < 0).
+bool sqrt_sum_within(const core::Rational& a, const core::Rational& b, const core::Rational& t);
+
 /// sqrt(u) + t < sqrt(v) for u, v, t >= 0, decided exactly.
 bool sqrt_plus_less(const core::Rational& u, const core::Rational& t, const core::Rational& v);
 
