@@ -11,6 +11,7 @@
 //   is the tangency; gaps of 2^-10 ... 2^-52 (relative) and absolute scales down to 2^-100 on
 //   both sides are certified with the right relation.
 #include "support/canonical.hpp"
+#include "surfcert/certify/distance/convex_quadric.hpp"
 #include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
@@ -213,5 +214,25 @@ TEST(DoubleShape, TangentPairsFallBackAndGapsAreCertified) {
     ASSERT_EQ(r.status, certify::Status::Certified);
     EXPECT_EQ(r.ellipsoid_relation, "internally_touching");
     EXPECT_EQ(r.containment, "a_inside_b");
+  }
+}
+
+// The support description of an ellipsoid posed in doubles (centre, W = R D^2 R^T from the
+// quaternion) is the same exact data the general route derives from the exact matrix
+// (W = M^-1 scaled), and the certified distance of separated pairs agrees.
+TEST(DoubleShape, ConvexDescriptionOfPosedEllipsoidsIsExact) {
+  std::mt19937_64 rng(test_seed() + 3);
+  for (int it = 0; it < 40; ++it) {
+    const Shape s = random_shape(rng, it % 2 ? "ellipsoid" : "sphere", 1.0);
+    const auto lazy = read(s.json(false));
+    const auto exact = read(s.json(true));
+    const auto cl = certify::convex_quadric(lazy), ce = certify::convex_quadric(exact);
+    ASSERT_TRUE(cl && ce) << s.json(false);
+    EXPECT_TRUE(cl->is_ellipsoid());
+    for (size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(cl->c[i], ce->c[i]) << s.json(false);
+      for (size_t j = 0; j < 3; ++j)
+        EXPECT_EQ(cl->W[i][j], ce->W[i][j]) << s.json(false) << " W" << i << j;
+    }
   }
 }

@@ -65,9 +65,57 @@ ConvexQuadric paraboloid(const RMat3& Binv, const std::array<Rational, 3>& a,
   return o;
 }
 
+// An ellipsoid posed in doubles (core::ShapeSpec): c is the centre and W = R D^2 R^T with
+// R = Rq / |q|^2 the quaternion's rotation (Rq its undivided polynomial matrix) and D the
+// radii, the same exact numbers the general route derives from the matrix (there W = k M^-1
+// with k = 1), but without forming the matrix or inverting it: dyadic products and one
+// division per entry.
+ConvexQuadric posed_ellipsoid(const core::ShapeSpec& sp) {
+  ConvexQuadric out;
+  std::array<Rational, 3> r2;
+  for (size_t i = 0; i < 3; ++i) {
+    out.c[i] = Rational::exact_from_double(sp.center[i]);
+    const Rational r = Rational::exact_from_double(sp.radii[i]);
+    r2[i] = r * r;
+  }
+  RMat3 rq;
+  Rational n2(1);
+  if (sp.rotated) {
+    std::array<Rational, 4> q;
+    for (size_t i = 0; i < 4; ++i)
+      q[i] = Rational::exact_from_double(sp.quaternion[i]);
+    const Rational &w = q[0], &x = q[1], &y = q[2], &z = q[3];
+    const Rational two(2), n = w * w + x * x + y * y + z * z;
+    n2 = n * n;
+    rq = {{{w * w + x * x - y * y - z * z, two * (x * y - w * z), two * (x * z + w * y)},
+           {two * (x * y + w * z), w * w - x * x + y * y - z * z, two * (y * z - w * x)},
+           {two * (x * z - w * y), two * (y * z + w * x), w * w - x * x - y * y + z * z}}};
+  } else {
+    for (size_t i = 0; i < 3; ++i)
+      rq[i][i] = Rational(1);
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    out.cd[i] = sp.center[i];
+    for (size_t j = i; j < 3; ++j) {
+      Rational acc;
+      for (size_t k = 0; k < 3; ++k)
+        acc += rq[i][k] * rq[j][k] * r2[k];
+      out.W[i][j] = acc / n2;
+      if (j != i) out.W[j][i] = out.W[i][j];
+    }
+  }
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      out.Wd[i][j] = out.W[i][j].to_double_approx();
+  return out;
+}
+
 } // namespace
 
 std::optional<ConvexQuadric> convex_quadric(const core::QuadricMatrix& q) {
+  if (const core::ShapeSpec* sp = q.shape())
+    if (sp->type == core::ShapeType::Sphere || sp->type == core::ShapeType::Ellipsoid)
+      return posed_ellipsoid(*sp);
   RMat3 A;
   std::array<Rational, 3> b;
   Rational e = q(3, 3), trace;
