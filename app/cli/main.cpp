@@ -437,7 +437,10 @@ int cmd_batch(const Opts& o) {
   std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("
             << st.internal << " internal), " << st.undecided << " undecided, " << st.fallbacks
             << " exact fallbacks\n";
+  // Every line is answered whatever happens; the exit code summarises the worst outcome so
+  // that a caller's script notices: internal failures, then bad input lines, then undecided.
   if (st.internal > 0) return 1;
+  if (st.errors > 0) return 2;
   return st.undecided > 0 ? 3 : 0;
 }
 
