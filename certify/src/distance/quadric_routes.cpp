@@ -168,7 +168,7 @@ Outcome cylinders_run(Query& q) {
 // direction certifies the distance without elimination; anything it cannot prove falls
 // through. First, since it is the cheapest certificate.
 bool convex_apply(const Query& q) {
-  return convex_quadric(qa(q)) && convex_quadric(qb(q));
+  return convex_kind(qa(q)) && convex_kind(qb(q));
 }
 Outcome convex_float_run(Query& q) {
   auto r = separated_convex_distance_float(*convex_quadric(qa(q)), *convex_quadric(qb(q)));
@@ -196,8 +196,9 @@ Outcome nested_run(Query& q) {
 
 // An ellipsoid and a cone: the minimum over the cone's generator lines.
 bool cone_apply(const Query& q) {
-  const auto ca = convex_quadric(qa(q)), cb = convex_quadric(qb(q));
-  return (ca && ca->is_ellipsoid() && !cb) || (cb && cb->is_ellipsoid() && !ca);
+  const auto ca = convex_kind(qa(q)), cb = convex_kind(qb(q));
+  const auto ellipsoid = ConvexQuadric::Kind::Ellipsoid;
+  return (ca == ellipsoid && !cb) || (cb == ellipsoid && !ca);
 }
 Outcome cone_run(Query& q) {
   const auto ca = convex_quadric(qa(q));

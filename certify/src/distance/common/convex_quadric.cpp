@@ -65,42 +65,72 @@ ConvexQuadric paraboloid(const RMat3& Binv, const std::array<Rational, 3>& a,
   return o;
 }
 
+// Exact dyadic arithmetic on Arb's arf numbers (ARF_PREC_EXACT: no rounding ever happens).
+algebra::Arf dyadic(double x) {
+  algebra::Arf r;
+  arf_set_d(r.v, x);
+  return r;
+}
+algebra::Arf operator*(const algebra::Arf& x, const algebra::Arf& y) {
+  algebra::Arf r;
+  arf_mul(r.v, x.v, y.v, ARF_PREC_EXACT, ARF_RND_DOWN);
+  return r;
+}
+algebra::Arf operator+(const algebra::Arf& x, const algebra::Arf& y) {
+  algebra::Arf r;
+  arf_add(r.v, x.v, y.v, ARF_PREC_EXACT, ARF_RND_DOWN);
+  return r;
+}
+algebra::Arf operator-(const algebra::Arf& x, const algebra::Arf& y) {
+  algebra::Arf r;
+  arf_sub(r.v, x.v, y.v, ARF_PREC_EXACT, ARF_RND_DOWN);
+  return r;
+}
+Rational to_rational(const algebra::Arf& x) {
+  Rational r;
+  arf_get_fmpq(r.raw_mut(), x.v);
+  return r;
+}
+
 // An ellipsoid posed in doubles (core::ShapeSpec): c is the centre and W = R D^2 R^T with
 // R = Rq / |q|^2 the quaternion's rotation (Rq its undivided polynomial matrix) and D the
-// radii, the same exact numbers the general route derives from the matrix (there W = k M^-1
-// with k = 1), but without forming the matrix or inverting it: dyadic products and one
-// division per entry.
+// radii: the same exact numbers the general route derives from the matrix (there W = k M^-1
+// with k = 1), but without forming the matrix or inverting it. Every numerator is a dyadic
+// number computed exactly in arf arithmetic; one rational division per entry.
 ConvexQuadric posed_ellipsoid(const core::ShapeSpec& sp) {
+  using algebra::Arf;
   ConvexQuadric out;
-  std::array<Rational, 3> r2;
+  std::array<Arf, 3> r2;
   for (size_t i = 0; i < 3; ++i) {
     out.c[i] = Rational::exact_from_double(sp.center[i]);
-    const Rational r = Rational::exact_from_double(sp.radii[i]);
+    const Arf r = dyadic(sp.radii[i]);
     r2[i] = r * r;
   }
-  RMat3 rq;
-  Rational n2(1);
+  std::array<std::array<Arf, 3>, 3> rq;
+  Arf n2 = dyadic(1);
   if (sp.rotated) {
-    std::array<Rational, 4> q;
-    for (size_t i = 0; i < 4; ++i)
-      q[i] = Rational::exact_from_double(sp.quaternion[i]);
-    const Rational &w = q[0], &x = q[1], &y = q[2], &z = q[3];
-    const Rational two(2), n = w * w + x * x + y * y + z * z;
+    const Arf w = dyadic(sp.quaternion[0]), x = dyadic(sp.quaternion[1]),
+              y = dyadic(sp.quaternion[2]), z = dyadic(sp.quaternion[3]);
+    const Arf ww = w * w, xx = x * x, yy = y * y, zz = z * z;
+    const Arf xy = x * y, xz = x * z, yz = y * z, wx = w * x, wy = w * y, wz = w * z;
+    const Arf two = dyadic(2), n = ww + xx + yy + zz;
     n2 = n * n;
-    rq = {{{w * w + x * x - y * y - z * z, two * (x * y - w * z), two * (x * z + w * y)},
-           {two * (x * y + w * z), w * w - x * x + y * y - z * z, two * (y * z - w * x)},
-           {two * (x * z - w * y), two * (y * z + w * x), w * w - x * x - y * y + z * z}}};
+    rq = {{{ww + xx - yy - zz, two * (xy - wz), two * (xz + wy)},
+           {two * (xy + wz), ww - xx + yy - zz, two * (yz - wx)},
+           {two * (xz - wy), two * (yz + wx), ww - xx - yy + zz}}};
   } else {
     for (size_t i = 0; i < 3; ++i)
-      rq[i][i] = Rational(1);
+      for (size_t j = 0; j < 3; ++j)
+        rq[i][j] = dyadic(i == j ? 1 : 0);
   }
+  const Rational den = to_rational(n2);
   for (size_t i = 0; i < 3; ++i) {
     out.cd[i] = sp.center[i];
     for (size_t j = i; j < 3; ++j) {
-      Rational acc;
+      Arf acc = dyadic(0);
       for (size_t k = 0; k < 3; ++k)
-        acc += rq[i][k] * rq[j][k] * r2[k];
-      out.W[i][j] = acc / n2;
+        acc = acc + rq[i][k] * rq[j][k] * r2[k];
+      out.W[i][j] = to_rational(acc) / den;
       if (j != i) out.W[j][i] = out.W[i][j];
     }
   }
@@ -111,6 +141,25 @@ ConvexQuadric posed_ellipsoid(const core::ShapeSpec& sp) {
 }
 
 } // namespace
+
+std::optional<ConvexQuadric::Kind> convex_kind(const core::QuadricMatrix& q) {
+  if (const core::ShapeSpec* sp = q.shape()) {
+    // By construction (radii > 0, a rotation): the solid's kind follows from the type alone.
+    switch (sp->type) {
+    case core::ShapeType::Sphere:
+    case core::ShapeType::Ellipsoid:
+      return ConvexQuadric::Kind::Ellipsoid;
+    case core::ShapeType::Cylinder:
+      return ConvexQuadric::Kind::Cylinder;
+    case core::ShapeType::EllipticParaboloid:
+      return ConvexQuadric::Kind::Paraboloid;
+    default:
+      return std::nullopt;
+    }
+  }
+  const auto c = convex_quadric(q);
+  return c ? std::optional<ConvexQuadric::Kind>(c->kind) : std::nullopt;
+}
 
 std::optional<ConvexQuadric> convex_quadric(const core::QuadricMatrix& q) {
   if (const core::ShapeSpec* sp = q.shape())

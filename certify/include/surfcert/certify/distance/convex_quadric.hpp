@@ -50,6 +50,11 @@ struct ConvexQuadric {
 /// quadric (planes, cones, paraboloids, hyperboloids, imaginary or degenerate quadrics).
 std::optional<ConvexQuadric> convex_quadric(const core::QuadricMatrix& q);
 
+/// The kind convex_quadric(q) would give (nullopt when it gives nothing), without computing
+/// the description when q is a shape posed in doubles (decided by its type: what routes'
+/// applicability tests need).
+std::optional<ConvexQuadric::Kind> convex_kind(const core::QuadricMatrix& q);
+
 /// Float support function and support point (inexact: used only to steer searches); +inf
 /// (and a nan point) outside a paraboloid's admissible half-space.
 double support_float(const ConvexQuadric& s, const std::array<double, 3>& n);
