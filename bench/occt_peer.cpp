@@ -46,7 +46,8 @@ Handle(Geom_BSplineSurface) ellipsoid_surface(const EllipsoidParams& e) {
 
 } // namespace
 
-OcctResult occt_intersect(const EllipsoidParams& e1, const EllipsoidParams& e2, double tol) {
+OcctResult occt_intersect(const EllipsoidParams& e1, const EllipsoidParams& e2, double tol,
+                          int samples) {
   OcctResult r;
   auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&t0] {
@@ -85,6 +86,15 @@ OcctResult occt_intersect(const EllipsoidParams& e1, const EllipsoidParams& e2, 
               find(static_cast<int>(q / 2));
     for (int i = 0; i < r.branches; ++i)
       r.glued_branches += find(i) == i;
+    for (int i = 0; samples > 0 && i < r.branches; ++i) {
+      const Handle(Geom_Curve)& c = inter.Line(i + 1);
+      const double u0 = c->FirstParameter(), u1 = c->LastParameter();
+      r.polylines.emplace_back();
+      for (int k = 0; k <= samples; ++k) {
+        const gp_Pnt p = c->Value(u0 + (u1 - u0) * k / samples);
+        r.polylines.back().push_back({p.X(), p.Y(), p.Z()});
+      }
+    }
   } catch (const Standard_Failure& f) {
     r.ok = false;
     r.seconds = elapsed();

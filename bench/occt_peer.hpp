@@ -12,7 +12,9 @@
 
 #include "ellipsoid_params.hpp"
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace surfcert::bench {
 
@@ -25,9 +27,13 @@ struct OcctResult {
   int closed_branches = 0; ///< lines whose two ends coincide (within 10 * tol)
   int glued_branches = 0;  ///< connected components after joining lines whose ends coincide
   std::string error;       ///< exception text when OCCT threw
+  /// Each line sampled at `samples` + 1 equally spaced parameters (when samples > 0; outside
+  /// the timing).
+  std::vector<std::vector<std::array<double, 3>>> polylines;
 };
 
-OcctResult occt_intersect(const EllipsoidParams& e1, const EllipsoidParams& e2, double tol);
+OcctResult occt_intersect(const EllipsoidParams& e1, const EllipsoidParams& e2, double tol,
+                          int samples = 0);
 
 /// "Open CASCADE 7.6.3" (the version compiled against).
 std::string occt_version();

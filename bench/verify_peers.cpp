@@ -15,7 +15,12 @@
 //            ellipsoid B with semi-axes (2^-8, 1/2, 1/3) centred at (2^-8 + g, 0, 0): gap g =
 //            +2^-k (apart, closest pair (0,0,0)-(g,0,0), distance g) and -2^-k (crossing),
 //            k = 10..60. Every coordinate is a double, so the peers see the exact pair.
-// Usage: verify_peers [pairs=100] [seed=2026]. Prints a markdown table; progress on stderr.
+// Open CASCADE 7.6 (when built): GeomAPI_ExtremaSurfaceSurface's surface distance and nearest
+// points (claimed within 1e-7, its Precision::Confusion), and GeomAPI_IntSS's curves (tolerance
+// 1e-7, each line sampled at 401 points, claimed within 1e-3; "random, curves": the first
+// curve_pairs random pairs, each peer answering there too).
+// Usage: verify_peers [pairs=100] [seed=2026] [curve_pairs=30]. Prints a markdown table;
+// progress on stderr.
 #include "random_ellipsoids.hpp"
 
 #include "surfcert/app/verify.hpp"
@@ -24,6 +29,10 @@
 
 #ifdef SURFCERT_HAVE_FCL
 #include "fcl_peer.hpp"
+#endif
+#ifdef SURFCERT_HAVE_OCCT
+#include "occt_distance_peer.hpp"
+#include "occt_peer.hpp"
 #endif
 
 #include <algorithm>
@@ -84,6 +93,11 @@ Json point(const std::array<double, 3>& p) {
 
 // One peer's answer as claims (appended to `claims`; `owner` records the peer per claim).
 struct Answer {
+  bool collide_known = true;
+  bool solid = false;                                    ///< the distance is between solids (FCL)
+  std::vector<std::vector<std::array<double, 3>>> curve; ///< a curve claim when curve_known
+  bool curve_known = false;
+  double curve_tol = 1e-3;
   bool collide = false;
   bool apart_known = false; ///< the peer reported a distance for disjoint bodies
   double distance = 0;
@@ -93,15 +107,32 @@ struct Answer {
 
 void add_claims(const Answer& ans, const std::string& peer, Json& claims,
                 std::vector<std::string>& owner) {
-  Json c = Json::object();
-  c.set("kind", Json::string("solids_collide"));
-  c.set("value", Json::boolean(ans.collide));
-  claims.push_back(c), owner.push_back(peer);
+  if (ans.curve_known) {
+    Json c = Json::object();
+    c.set("kind", Json::string("curve"));
+    Json v = Json::array();
+    for (const auto& l : ans.curve) {
+      Json pl = Json::array();
+      for (const auto& p : l)
+        pl.push_back(point(p));
+      v.push_back(pl);
+    }
+    c.set("value", v);
+    c.set("abs_tol", num(ans.curve_tol));
+    claims.push_back(c), owner.push_back(peer);
+  }
+  if (ans.collide_known) {
+    Json c = Json::object();
+    c.set("kind", Json::string("solids_collide"));
+    c.set("value", Json::boolean(ans.collide));
+    claims.push_back(c), owner.push_back(peer);
+  }
   if (!ans.apart_known) return;
   Json d = Json::object();
   d.set("kind", Json::string("distance"));
   d.set("value", num(ans.distance));
   d.set("abs_tol", num(ans.tol));
+  if (ans.solid) d.set("solid", Json::boolean(true));
   claims.push_back(d), owner.push_back(peer);
   Json cp = Json::object();
   cp.set("kind", Json::string("closest_points"));
@@ -119,6 +150,11 @@ std::string refutation_kind(const Json& v) {
   const Json& ce = *v.find("counterexample");
   if (kind == "solids_collide" || kind == "relation") return "relation";
   if (kind == "distance") return "enclosure";
+  if (kind == "curve")
+    return ce.find("missed_branch")    ? "missed branch"
+           : ce.find("point_on_curve") ? "curve point off the claim"
+           : ce.find("surface")        ? "claimed point off a surface"
+                                       : "relation";
   if (ce.find("surface")) return "point off surface";
   if (ce.find("closer_pair")) return "closer pair";
   if (ce.find("pairs")) return "closer (enclosure)";
@@ -130,7 +166,7 @@ struct Tally {
   std::map<std::string, long> kinds;
 };
 
-std::vector<std::pair<std::string, Answer>> peer_answers(const Pair& pr) {
+std::vector<std::pair<std::string, Answer>> peer_answers(const Pair& pr, bool curves) {
   std::vector<std::pair<std::string, Answer>> out;
 #ifdef SURFCERT_HAVE_FCL
   for (auto solver : {bench::FclSolver::Libccd, bench::FclSolver::Indep})
@@ -148,9 +184,35 @@ std::vector<std::pair<std::string, Answer>> peer_answers(const Pair& pr) {
       }
       a.collide = r.distance < 0;
       a.apart_known = r.distance >= 0;
+      a.solid = true;
       a.distance = r.distance, a.p = r.p1, a.q = r.p2, a.tol = tol;
       out.emplace_back(name, a);
     }
+#endif
+#ifdef SURFCERT_HAVE_OCCT
+  {
+    // Surfaces: the distance (0 for crossing surfaces) and nearest points, within OCCT's
+    // Precision::Confusion (1e-7); and GeomAPI_IntSS's curves (tolerance 1e-7), sampled at 400
+    // chords per line, claimed within 1e-3.
+    const bench::OcctDistanceResult d = bench::occt_distance(pr.ea, pr.eb);
+    Answer a;
+    a.collide_known = false, a.tol = 1e-7;
+    if (d.ok)
+      a.apart_known = true, a.distance = d.distance, a.p = d.p1, a.q = d.p2;
+    else
+      a.tol = -1;
+    out.emplace_back("OCCT ExtremaSurfaceSurface", a);
+    if (curves) {
+      const bench::OcctResult c = bench::occt_intersect(pr.ea, pr.eb, 1e-7, 400);
+      Answer ac;
+      ac.collide_known = false, ac.tol = 0;
+      if (c.ok)
+        ac.curve_known = true, ac.curve = c.polylines;
+      else
+        ac.tol = -1;
+      out.emplace_back("OCCT IntSS curve", ac);
+    }
+  }
 #endif
   // surfcert's float mode: the solid estimate decides collision, the surface estimate and its
   // approximate pair give the distance claims.
@@ -175,14 +237,14 @@ std::vector<std::pair<std::string, Answer>> peer_answers(const Pair& pr) {
   return out;
 }
 
-void run_family(const std::string& family, const std::vector<Pair>& pairs,
+void run_family(const std::string& family, const std::vector<Pair>& pairs, bool curves,
                 std::map<std::pair<std::string, std::string>, Tally>& table,
                 std::vector<std::string>& order) {
   long done = 0;
   for (const Pair& pr : pairs) {
     Json claims = Json::array();
     std::vector<std::string> owner;
-    for (const auto& [peer, ans] : peer_answers(pr)) {
+    for (const auto& [peer, ans] : peer_answers(pr, curves)) {
       auto key = std::make_pair(family, peer);
       if (std::find(order.begin(), order.end(), peer) == order.end()) order.push_back(peer);
       Tally& t = table[key];
@@ -217,6 +279,7 @@ void run_family(const std::string& family, const std::vector<Pair>& pairs,
 int main(int argc, char** argv) {
   const int n = argc > 1 ? std::atoi(argv[1]) : 100;
   const unsigned long seed = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 2026;
+  const int curve_pairs = argc > 3 ? std::atoi(argv[3]) : 30;
   std::vector<Pair> random_pairs, tangent_apart, tangent_crossing;
   std::mt19937_64 rng(seed);
   for (int i = 0; i < n; ++i) {
@@ -233,15 +296,18 @@ int main(int argc, char** argv) {
     }
   std::map<std::pair<std::string, std::string>, Tally> table;
   std::vector<std::string> order;
-  run_family("random (seed 002 §5.1.3)", random_pairs, table, order);
-  run_family("tangent apart (gap 2^-k)", tangent_apart, table, order);
-  run_family("tangent crossing (overlap 2^-k)", tangent_crossing, table, order);
+  run_family("random (seed 002 §5.1.3)", random_pairs, false, table, order);
+  if (random_pairs.size() > static_cast<size_t>(curve_pairs))
+    random_pairs.erase(random_pairs.begin() + curve_pairs, random_pairs.end());
+  run_family("random, curves", random_pairs, true, table, order);
+  run_family("tangent apart (gap 2^-k)", tangent_apart, false, table, order);
+  run_family("tangent crossing (overlap 2^-k)", tangent_crossing, false, table, order);
   std::printf("verify_peers: %d random pairs (seed %lu); tangency k = 10..60 each side\n\n", n,
               seed);
   std::printf("| family | peer | claims | confirmed | refuted | undecided | no answer | "
               "refuted by |\n|---|---|---:|---:|---:|---:|---:|---|\n");
-  for (const std::string family :
-       {"random (seed 002 §5.1.3)", "tangent apart (gap 2^-k)", "tangent crossing (overlap 2^-k)"})
+  for (const std::string family : {"random (seed 002 §5.1.3)", "random, curves",
+                                   "tangent apart (gap 2^-k)", "tangent crossing (overlap 2^-k)"})
     for (size_t i = 0; i < order.size(); ++i) {
       auto it = table.find({family, order[i]});
       if (it == table.end()) continue;

@@ -401,7 +401,7 @@ Coverage prove_coverage(const core::QuadricMatrix& a, const core::QuadricMatrix&
       h[i] = std::nextafter(std::max(bx[i][1] - c[i], c[i] - bx[i][0]), HUGE_VAL);
     const double hd = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
     const auto [k, dist] = nearest(c);
-    if (dist + hd <= td) {
+    if (!segs.empty() && dist + hd <= td) {
       // Exactly: |c - segment| + |h| <= tol (c and h dyadic: exact rationals).
       const RPoint rc = {Rational::exact_from_double(c[0]), Rational::exact_from_double(c[1]),
                          Rational::exact_from_double(c[2])};

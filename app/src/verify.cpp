@@ -164,8 +164,8 @@ Claim read_claim(const Json& c, const std::string& source, const std::string& pa
     out.polylines.push_back({read_point(v->items()[0], source, json_path_index(vpath, 0)),
                              read_point(v->items()[1], source, json_path_index(vpath, 1))});
   } else if (out.kind == "curve") {
-    if (!v->is_array() || v->size() == 0)
-      throw bad(*v, source, vpath, "a non-empty array of polylines [[[x, y, z], ...], ...]");
+    if (!v->is_array())
+      throw bad(*v, source, vpath, "an array of polylines [[[x, y, z], ...], ...] ([]: empty)");
     for (size_t i = 0; i < v->size(); ++i) {
       const Json& line = v->items()[i];
       const std::string lpath = json_path_index(vpath, i);
@@ -725,6 +725,16 @@ Verdict decide_curve(const Claim& c, Oracle& o) {
   const double td = t.to_double_approx();
   Verdict v;
   Json facts = Json::object();
+  if (c.polylines.empty()) {
+    // An empty curve: decided by the certified relation when it is (the surfaces meet or not).
+    const RelationFacts& f = o.relation();
+    const bool apart = std::all_of(f.possible.begin(), f.possible.end(),
+                                   [](const auto& r) { return r == "separated" || r == "nested"; });
+    const bool meet = std::none_of(f.possible.begin(), f.possible.end(),
+                                   [](const auto& r) { return r == "separated" || r == "nested"; });
+    if (apart) return v.verdict = "confirmed", v;
+    if (meet) return v.verdict = "refuted", v.counterexample = f.established, v;
+  }
   std::vector<std::vector<DPoint>> lines;
   struct Far {
     double est;

@@ -688,6 +688,14 @@ TEST(Verify, CurveOfTwoSpheres) {
   EXPECT_EQ(mid, (P3{Rational(1, 2), (full[0][1] + full[32][1]) / Rational(2),
                      (full[0][2] + full[32][2]) / Rational(2)}));
   expect_off_sphere(dv, Sphere{{0, 0, 0}, 1}, mid, Rational(1, 100));
+  // An empty curve: refuted by the certified relation (the spheres overlap); the empty claim
+  // on spheres 2^-40 apart is confirmed (separated).
+  const Json empty = answer(kUnit, b, R"([{"kind":"curve","value":[],"abs_tol":0.01}])");
+  EXPECT_EQ(verdicts(empty), std::vector<std::string>{"refuted"});
+  EXPECT_EQ(verdict(empty, 0).find("counterexample")->find("relation")->text(), "overlapping");
+  EXPECT_EQ(verdicts(answer(kUnit, "\"(x-2-" + pow2_text(-40) + ")^2+y^2+z^2=1\"",
+                            R"([{"kind":"curve","value":[],"abs_tol":0.01}])")),
+            std::vector<std::string>{"confirmed"});
   // The moved point: 1% farther from the axis, so about 0.0075 from each sphere.
   expect_off_sphere(verdict(r, 2), Sphere{{0, 0, 0}, 1},
                     point_of(*verdict(r, 2).find("counterexample")->find("claimed")),
@@ -755,7 +763,7 @@ TEST(Verify, BadGeometricClaimsAreInputErrors) {
             "$.claims[0].abs_tol");
   EXPECT_EQ(path_of(b, R"([{"kind":"closest_points","value":[[1,0,0],[2,0,0]],"rel_tol":1}])"),
             "$.claims[0].rel_tol");
-  EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":[]}])"), "$.claims[0].value");
+  EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":{}}])"), "$.claims[0].value");
   EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":[[[1,0,0]],[]]}])"), "$.claims[0].value[1]");
   EXPECT_EQ(path_of(b, R"([{"kind":"curve","value":[[[1,0,0],[1,0]]]}])"),
             "$.claims[0].value[0][1]");
