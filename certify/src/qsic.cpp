@@ -6,6 +6,7 @@
 #include "surfcert/certify/qsic_rules.hpp"
 #include "surfcert/certify/special_points.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace surfcert::certify {
@@ -91,6 +92,17 @@ void complete_special_points(QsicResult& r, const core::QuadricMatrix& a,
   if (r.special_points_done || r.pencil != PencilKind::Regular || r.mode == Mode::Float ||
       r.status != Status::Certified)
     return;
+  // Special points sit on the singular members at multiple real roots: with only simple real
+  // roots there are none, and a curve without conics needs no exact matrices at all (for
+  // shapes posed in doubles they are never formed then).
+  const bool multiple = std::any_of(r.facts.real_roots.begin(), r.facts.real_roots.end(),
+                                    [](const auto& rt) { return rt.multiplicity >= 2; });
+  if (!multiple && (!r.morphology || r.morphology->conics == 0)) {
+    r.special_points.clear();
+    r.special_points_complete = true;
+    r.special_points_done = true;
+    return;
+  }
   if (r.mode == Mode::Filtered && !r.exact_fallback && !r.matrices_filled) {
     r.facts.a = a.matrix(); // the filter does not copy the matrices
     r.facts.b = b.matrix();

@@ -2,6 +2,8 @@
 // Gauss-Newton onto f = g = 0). Approximate, like all of surfcert::trace.
 #include "surfcert/trace/curve.hpp"
 
+#include "surfcert/certify/enclosure.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,18 +13,16 @@ namespace {
 
 using M4 = std::array<std::array<double, 4>, 4>;
 
-// A / max|A| entrywise in double: each entry rounded once (num/den), then divided by the
-// rounded maximum; a relative error of a few ulps, far below the tracer's tolerances.
+// A / max|A| entrywise in double: each entry rounded once (certify::approx: num/den, or for a
+// shape posed in doubles the midpoint of its enclosure, without forming the rationals), then
+// divided by the rounded maximum; a relative error of a few ulps, far below the tracer's
+// tolerances.
 M4 normalised(const core::QuadricMatrix& q) {
-  M4 out{};
+  M4 out = certify::approx(q);
   double mx = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const fmpq* v = q(i, j).raw();
-      double d = fmpz_get_d(fmpq_numref(v)) / fmpz_get_d(fmpq_denref(v));
-      out[static_cast<size_t>(i)][static_cast<size_t>(j)] = d;
+  for (const auto& row : out)
+    for (double d : row)
       mx = std::max(mx, std::fabs(d));
-    }
   if (std::isfinite(mx) && mx > 0) {
     for (auto& row : out)
       for (auto& x : row)
