@@ -166,7 +166,8 @@ struct Tally {
   std::map<std::string, long> kinds;
 };
 
-std::vector<std::pair<std::string, Answer>> peer_answers(const Pair& pr, bool curves) {
+std::vector<std::pair<std::string, Answer>> peer_answers(const Pair& pr,
+                                                         [[maybe_unused]] bool curves) {
   std::vector<std::pair<std::string, Answer>> out;
 #ifdef SURFCERT_HAVE_FCL
   for (auto solver : {bench::FclSolver::Libccd, bench::FclSolver::Indep})
