@@ -20,33 +20,28 @@ struct RandomEllipsoid {
   EllipsoidParams params;      ///< the same ellipsoid as doubles
 };
 
-inline RandomEllipsoid random_ellipsoid(std::mt19937_64& rng) {
+// The ellipsoid with semi-axes radii[i] / 100, rotation from the integer quaternion (w, x, y,
+// z) (not all zero) and centre centre[i] / 1000, exactly and as doubles.
+inline RandomEllipsoid ellipsoid_from(const long (&radii)[3], long w, long x, long y, long z,
+                                      const long (&centre)[3]) {
   using core::Mat4;
   using core::Rational;
-  std::uniform_int_distribution<long> c(-500, 500), r(10, 100), q(-9, 9);
   EllipsoidParams p;
   Mat4 local;
   for (size_t i = 0; i < 3; ++i) {
-    long ri = r(rng);
-    Rational rad(ri, 100);
+    Rational rad(radii[i], 100);
     local[i][i] = Rational(1) / (rad * rad);
-    p.radii[i] = static_cast<double>(ri) / 100.0;
+    p.radii[i] = static_cast<double>(radii[i]) / 100.0;
   }
   local[3][3] = Rational(-1);
-  long w, x, y, z;
-  do {
-    w = q(rng), x = q(rng), y = q(rng), z = q(rng);
-  } while (w == 0 && x == 0 && y == 0 && z == 0);
   long n = w * w + x * x + y * y + z * z;
   long R[3][3] = {{w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
                   {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
                   {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
-  long ci[3];
-  for (long& v : ci) // in order: x, y, z
-    v = c(rng);
-  Rational cen[3] = {Rational(ci[0], 1000), Rational(ci[1], 1000), Rational(ci[2], 1000)};
+  Rational cen[3] = {Rational(centre[0], 1000), Rational(centre[1], 1000),
+                     Rational(centre[2], 1000)};
   for (size_t i = 0; i < 3; ++i) {
-    p.centre[i] = static_cast<double>(ci[i]) / 1000.0;
+    p.centre[i] = static_cast<double>(centre[i]) / 1000.0;
     for (size_t j = 0; j < 3; ++j)
       p.rotation[i][j] = static_cast<double>(R[i][j]) / static_cast<double>(n);
   }
@@ -62,6 +57,21 @@ inline RandomEllipsoid random_ellipsoid(std::mt19937_64& rng) {
   }
   t[3][3] = Rational(1);
   return RandomEllipsoid{core::QuadricMatrix(core::transpose(t) * local * t), p};
+}
+
+inline RandomEllipsoid random_ellipsoid(std::mt19937_64& rng) {
+  std::uniform_int_distribution<long> c(-500, 500), r(10, 100), q(-9, 9);
+  long radii[3];
+  for (long& v : radii)
+    v = r(rng);
+  long w, x, y, z;
+  do {
+    w = q(rng), x = q(rng), y = q(rng), z = q(rng);
+  } while (w == 0 && x == 0 && y == 0 && z == 0);
+  long ci[3];
+  for (long& v : ci) // in order: x, y, z
+    v = c(rng);
+  return ellipsoid_from(radii, w, x, y, z, ci);
 }
 
 } // namespace surfcert::bench
