@@ -19,8 +19,13 @@
 // points (claimed within 1e-7, its Precision::Confusion), and GeomAPI_IntSS's curves (tolerance
 // 1e-7, each line sampled at 401 points, claimed within 1e-3; "random, curves": the first
 // curve_pairs random pairs, each peer answering there too).
-// Usage: verify_peers [pairs=100] [seed=2026] [curve_pairs=30]. Prints a markdown table;
-// progress on stderr.
+// Degenerate families (every coordinate a double; labels kept only when the exact classifier
+// confirms them): nested (random poses, seed + 1), isolated point (exact external and internal
+// tangencies), internal tangency at 2^-k both sides, double conic (tangent along a circle)
+// exact and at 2^-k both sides; their claims include `relation` where an answer asserts one.
+// Usage: verify_peers [pairs=100] [seed=2026] [curve_pairs=30] [nested_pairs=50]. Prints a
+// markdown table; progress on stderr (VERIFY_PEERS_SHOW=text: the verdicts other than
+// confirmed in the families whose name contains text).
 #include "random_ellipsoids.hpp"
 
 #include "surfcert/app/verify.hpp"
@@ -42,6 +47,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <random>
@@ -302,6 +308,7 @@ void run_family(const std::string& family, const std::vector<Pair>& pairs, Famil
                 std::map<std::pair<std::string, std::string>, Tally>& table,
                 std::vector<std::string>& order) {
   long done = 0;
+  const char* show = std::getenv("VERIFY_PEERS_SHOW");
   for (const Pair& pr : pairs) {
     Json claims = Json::array();
     std::vector<std::string> owner;
@@ -331,6 +338,12 @@ void run_family(const std::string& family, const std::vector<Pair>& pairs, Famil
       if (verdict == "undecided") ++t.undecided;
       if (verdict == "refuted")
         ++t.refuted, ++t.kinds[v.find("kind")->text() + ": " + refutation_kind(v)];
+      // VERIFY_PEERS_SHOW=text: every verdict other than confirmed in the families whose
+      // name contains the text, with the pair (index in the family) and the claim, on stderr.
+      if (show && verdict != "confirmed" && family.find(show) != std::string::npos)
+        std::fprintf(stderr, "[%s #%ld] %s: claim %s\n  -> %s\n", family.c_str(), done,
+                     owner[i].c_str(), core::io::dump(claims.items()[i]).c_str(),
+                     core::io::dump(v).c_str());
     }
     if (++done % 10 == 0) std::fprintf(stderr, "%s: %ld/%zu\n", family.c_str(), done, pairs.size());
   }
