@@ -35,6 +35,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -176,6 +177,7 @@ struct Answer {
 
 struct Run {
   double wall_s = 0;
+  double cpu_s = 0; ///< user + system time of the surfcert process
   size_t bytes = 0;
   std::vector<Answer> answers; ///< by id
   int exit_code = -1;
@@ -255,9 +257,12 @@ Run run_batch(const std::string& input_path, const std::vector<std::string>& arg
     std::exit(2);
   }
   int st = 0;
-  waitpid(pid, &st, 0);
+  struct rusage ru {};
+  wait4(pid, &st, 0, &ru);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   posix_spawn_file_actions_destroy(&fa);
+  r.cpu_s = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+            static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) * 1e-6;
   r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   std::ifstream in(out_path);
   std::string l;
@@ -307,6 +312,13 @@ long count_status(const Run& r, const char* s) {
                        [&](const Answer& a) { return a.status == s; });
 }
 
+std::string loadavg() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return a + " " + b + " " + c;
+}
+
 void progress(const char* what) {
   std::fprintf(stderr, "double_path_bench: %s\n", what);
 }
@@ -323,7 +335,7 @@ std::string machine() {
   std::time_t now = std::time(nullptr);
   std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
   return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
-         " cores (shared with other work); " + date;
+         " cores (shared with other work; load average " + loadavg() + " at the start); " + date;
 }
 
 // ---------------------------------------------------------------- the figures
@@ -400,6 +412,7 @@ void thread_figures(const std::vector<Pair>& pairs) {
     text += line(i, "classify", shape_json(pairs[i].a), shape_json(pairs[i].b),
                  R"(,"detail":"topology")");
   std::string path = write_file("threads.jsonl", text);
+  const std::string load = loadavg();
   progress("threads 1");
   Run one = run_batch(path, {"--threads", "1"}, n);
   progress("threads 2");
@@ -407,12 +420,16 @@ void thread_figures(const std::vector<Pair>& pairs) {
   std::remove(path.c_str());
   std::printf("## 2. two threads vs one (classify, filtered, topology)\n\n");
   std::printf("%zu lines (shapes with quaternions). The machine has %u cores, shared with "
-              "other work: the ratio is a lower bound of what an idle 2-core machine gives.\n\n",
-              n, std::thread::hardware_concurrency());
-  std::printf("| threads | whole process s | µs/pair | certified |\n|---|---|---|---|\n");
+              "other work (load average %s before the runs, %s after): the ratio is a lower "
+              "bound of what an idle machine gives. CPU s: user + system time of the process; "
+              "CPU / wall near the thread count means the threads ran in parallel.\n\n",
+              n, std::thread::hardware_concurrency(), load.c_str(), loadavg().c_str());
+  std::printf("| threads | whole process s | µs/pair | CPU s | CPU / wall | certified |\n"
+              "|---|---|---|---|---|---|\n");
   for (auto* r : {&one, &two})
-    std::printf("| %d | %.3f | %.2f | %ld |\n", r == &one ? 1 : 2, r->wall_s,
-                r->wall_s / static_cast<double>(n) * 1e6, count_status(*r, "certified"));
+    std::printf("| %d | %.3f | %.2f | %.3f | %.2f | %ld |\n", r == &one ? 1 : 2, r->wall_s,
+                r->wall_s / static_cast<double>(n) * 1e6, r->cpu_s, r->cpu_s / r->wall_s,
+                count_status(*r, "certified"));
   std::printf("\nSpeed-up two threads / one: %.2f×\n\n", one.wall_s / two.wall_s);
 }
 
@@ -510,6 +527,9 @@ void distance_figures(const std::vector<Pair>& separated, const std::vector<Pair
     std::string path = write_file("distance.jsonl", text);
     progress(family == 0 ? "distance separated" : "distance nested");
     Run r = run_batch(path, {"--threads", "1"}, n);
+    size_t slowest = 0;
+    for (size_t i = 0; i < n; ++i)
+      if (r.answers[i].time_ms > r.answers[slowest].time_ms) slowest = i;
     std::remove(path.c_str());
     std::map<std::string, long> methods;
     for (const auto& a : r.answers)
@@ -532,6 +552,12 @@ void distance_figures(const std::vector<Pair>& separated, const std::vector<Pair
                 n, us, median(times_ms(r)) * 1e3, mean(times_ms(r)) * 1e3, max_ms,
                 static_cast<double>(r.bytes) / static_cast<double>(n), count_status(r, "certified"),
                 count_status(r, "undecided"), m.c_str());
+    if (n)
+      std::printf("Slowest line (%.1f ms, %s):\n\n```\n%s```\n\n", r.answers[slowest].time_ms,
+                  r.answers[slowest].method.c_str(),
+                  line(slowest, "distance", shape_json(pairs[slowest].a),
+                       shape_json(pairs[slowest].b), R"(,"detail":"value","digits":15)")
+                      .c_str());
     if (family == 1) break;
 #ifdef SURFCERT_HAVE_FCL
     using surfcert::bench::FclOptions;
