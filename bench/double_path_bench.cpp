@@ -18,10 +18,10 @@
 //  4. distance, 15 digits, "detail": "value", separated pairs vs FCL (libccd, indep), FCL's
 //     error against our enclosure (exact rational comparison); nested pairs;
 //  5. extremes: spheres of radius 1e-200, 1e-320 and (1e-150 at 1e150) against the unit sphere.
-// Usage: double_path_bench [--pairs N=20000] [--thread-lines N=100000] [--intersect N=1000]
+// Usage: double_path_bench [--pairs N=100000] [--thread-lines N=100000] [--intersect N=1000]
 //        [--occt N=100] [--distance N=2000] [--nested N=500] [--seed S=2026]
 //        [--surfcert PATH (default: the build's app/surfcert)] [--tmp DIR=/tmp]
-// (about two minutes on 2 shared cores; the JSONL files are written to DIR and removed).
+// (about two minutes on 2 cores; the JSONL files are written to DIR and removed).
 #include "ellipsoid_params.hpp"
 
 #include "surfcert/core/rational.hpp"
@@ -647,7 +647,7 @@ void extreme_figures() {
 } // namespace
 
 int main(int argc, char** argv) {
-  size_t pairs = 20000, thread_lines = 100000, inter = 1000, occt = 100, dist = 2000, nested = 500;
+  size_t pairs = 100000, thread_lines = 100000, inter = 1000, occt = 100, dist = 2000, nested = 500;
   unsigned long seed = 2026;
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string k = argv[i];
