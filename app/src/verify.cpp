@@ -815,7 +815,7 @@ Verdict decide_curve(const Claim& c, Oracle& o) {
         return v;
       }
     }
-    facts.set("traced_branches_within_tol", Json::number(near_branches));
+    facts.set("traced_branches_within_tol_approx", Json::number(near_branches)); // float distances
   } else {
     facts.set("morphology", Json::null());
   }
