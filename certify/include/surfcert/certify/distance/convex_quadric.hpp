@@ -45,9 +45,11 @@ struct ConvexQuadric {
   bool is_paraboloid() const { return kind == Kind::Paraboloid; }
 };
 
-/// The convex description of q when q is a real ellipsoid (spheres included) or a real
-/// elliptic cylinder, decided exactly from the rational matrix; nullopt for every other
-/// quadric (planes, cones, paraboloids, hyperboloids, imaginary or degenerate quadrics).
+/// The convex description of q when q is a real ellipsoid (spheres included), a real
+/// elliptic cylinder or an elliptic paraboloid, decided exactly from the rational matrix (for
+/// an ellipsoid posed in doubles, core::ShapeSpec, by its type and built from its doubles in
+/// exact dyadic arithmetic: the same exact c and W); nullopt for every other quadric (planes,
+/// cones, hyperbolic paraboloids, hyperboloids, imaginary or degenerate quadrics).
 std::optional<ConvexQuadric> convex_quadric(const core::QuadricMatrix& q);
 
 /// The kind convex_quadric(q) would give (nullopt when it gives nothing), without computing
