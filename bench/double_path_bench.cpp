@@ -21,6 +21,8 @@
 // Usage: double_path_bench [--pairs N=100000] [--thread-lines N=100000] [--intersect N=1000]
 //        [--occt N=100] [--distance N=2000] [--nested N=500] [--seed S=2026]
 //        [--surfcert PATH (default: the build's app/surfcert)] [--tmp DIR=/tmp]
+//        [--sections LIST=12345 (the figures to run, e.g. 45; the pairs stay the same)]
+//        [--keep 1 (keep the distance JSONL files in DIR, for profiling and A/B runs)]
 // (about two minutes on 2 cores; the JSONL files are written to DIR and removed).
 #include "ellipsoid_params.hpp"
 
@@ -235,6 +237,7 @@ Answer parse_answer(const std::string& l) {
 
 std::string g_surfcert = SURFCERT_CLI_PATH;
 std::string g_tmp = "/tmp";
+bool g_keep = false; // keep the distance JSONL files
 
 Run run_batch(const std::string& input_path, const std::vector<std::string>& args, size_t lines) {
   std::string out_path = input_path + ".out", err_path = input_path + ".err";
@@ -524,13 +527,17 @@ void distance_figures(const std::vector<Pair>& separated, const std::vector<Pair
     for (size_t i = 0; i < n; ++i)
       text += line(i, "distance", shape_json(pairs[i].a), shape_json(pairs[i].b),
                    R"(,"detail":"value","digits":15)");
-    std::string path = write_file("distance.jsonl", text);
+    std::string path =
+        write_file(family == 0 ? "distance_separated.jsonl" : "distance_nested.jsonl", text);
     progress(family == 0 ? "distance separated" : "distance nested");
     Run r = run_batch(path, {"--threads", "1"}, n);
     size_t slowest = 0;
     for (size_t i = 0; i < n; ++i)
       if (r.answers[i].time_ms > r.answers[slowest].time_ms) slowest = i;
-    std::remove(path.c_str());
+    if (!g_keep)
+      std::remove(path.c_str());
+    else
+      std::fprintf(stderr, "kept %s\n", path.c_str());
     std::map<std::string, long> methods;
     for (const auto& a : r.answers)
       ++methods[a.method.empty() ? "(none)" : a.method];
@@ -649,6 +656,7 @@ void extreme_figures() {
 int main(int argc, char** argv) {
   size_t pairs = 100000, thread_lines = 100000, inter = 1000, occt = 100, dist = 2000, nested = 500;
   unsigned long seed = 2026;
+  std::string sections = "12345";
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string k = argv[i];
     const char* v = argv[i + 1];
@@ -671,6 +679,10 @@ int main(int argc, char** argv) {
       g_surfcert = v;
     else if (k == "--tmp")
       g_tmp = v;
+    else if (k == "--sections")
+      sections = v;
+    else if (k == "--keep")
+      g_keep = z != 0;
     else {
       std::fprintf(stderr, "unknown option %s\n", k.c_str());
       return 2;
@@ -702,10 +714,12 @@ int main(int argc, char** argv) {
   std::printf("Pairs (seed 002 §5.1.3 as doubles): centres uniform in [-1/2, 1/2]^3, semi-axes "
               "in [1/10, 1], uniformly random rotations as double unit quaternions; the same "
               "pairs as numpy-style double 4x4 matrices.\n\n");
-  classify_figures({random.begin(), random.begin() + static_cast<long>(pairs)});
-  thread_figures({random.begin(), random.begin() + static_cast<long>(thread_lines)});
-  intersect_figures({random.begin(), random.begin() + static_cast<long>(inter)}, occt);
-  distance_figures(separated, nest);
-  extreme_figures();
+  auto run = [&](char c) { return sections.find(c) != std::string::npos; };
+  if (run('1')) classify_figures({random.begin(), random.begin() + static_cast<long>(pairs)});
+  if (run('2')) thread_figures({random.begin(), random.begin() + static_cast<long>(thread_lines)});
+  if (run('3'))
+    intersect_figures({random.begin(), random.begin() + static_cast<long>(inter)}, occt);
+  if (run('4')) distance_figures(separated, nest);
+  if (run('5')) extreme_figures();
   return 0;
 }

@@ -8,6 +8,8 @@
 // - closed forms: sphere in sphere R - |c| - r (MPFR); sphere in ellipsoid from the exact
 //   point-ellipsoid sextic (point_quadric_critical); ellipsoid in a circular cylinder;
 // - rigid motions (integer quaternions, rational translations) and swapping the surfaces;
+// - two pairs posed in doubles whose minimizing box is proven with little margin (they fell to
+//   the offset system, 10-20 s) against that system's recorded enclosures, both orders;
 // - digits 15, 100, 1000 nest; degenerate pairs (continua of minimizers) and pairs that are
 //   not strictly nested give nullopt, and surface_distance still answers them.
 #include "surfcert/certify/distance/nested_convex.hpp"
@@ -322,4 +324,35 @@ TEST(NestedDistance, AnswersOnlyWhatItProves) {
   EXPECT_EQ(solid.upper(), "0");
   EXPECT_EQ(solid.minimizers, "infinite");
   EXPECT_EQ(solid.note, "solid distance: one solid contains the other");
+}
+
+// Two pairs posed in doubles (bench/double_path_bench's nested family, seed 2026, lines 246
+// and 374) whose minimizing critical direction the branch and bound proves only on a box with
+// little margin: the first Krawczyk images barely shrink that box, and one Newton step from its
+// centre did not land close enough to prove a small box, so the route gave up and the pair
+// fell to the offset system (10-20 s). The reference enclosures are the offset system's
+// (exact resultants and root isolation; recorded, since it takes seconds per pair).
+TEST(NestedDistance, BoxesProvenWithLittleMarginStillContract) {
+  struct Case {
+    const char *a, *b;
+    surfcert::testing::Bounds offset;
+  };
+  const Case cases[] = {
+      {R"({"type":"ellipsoid","center":[-0.0044845930730584294,-0.30992100017624702,0.27179953963320369],"radii":[0.31719173087817998,0.44558984853330796,0.28172612834985672],"rotation":{"quaternion":[0.66200554326941785,0.20335460037872627,0.31337454993034847,0.6497630019024806]}})",
+       R"({"type":"ellipsoid","center":[0.083487804776407437,-0.13460087418125721,-0.17659260748710121],"radii":[3.8800611556865032,3.5895885960998539,3.1565325998817939],"rotation":{"quaternion":[0.66863301331751368,0.23792850880524544,-0.3308545460678301,-0.62197683843203022]}})",
+       {"2.329099543975238", "2.3290995439752381"}},
+      {R"({"type":"ellipsoid","center":[-0.22409189269536511,-0.20899687051664556,0.2079903990976274],"radii":[0.22370563766854196,0.35457863776096221,0.24226517847687781],"rotation":{"quaternion":[-0.60182722794489851,-0.38972405936187415,-0.59190500143398517,0.36819507674070795]}})",
+       R"({"type":"ellipsoid","center":[-0.25603887067551895,-0.021320074267783984,-0.19325014921294151],"radii":[3.9164045431883956,3.0976422370759762,3.5170667802969953],"rotation":{"quaternion":[-0.57992831037957648,-0.29980748781439526,-0.24354813887516333,-0.71727465389567124]}})",
+       {"2.4872352097576295", "2.4872352097576296"}}};
+  for (const Case& c : cases) {
+    const auto a = core::io::read_quadric(core::io::parse_json(c.a, "t"), "t", "$");
+    const auto b = core::io::read_quadric(core::io::parse_json(c.b, "t"), "t", "$");
+    for (bool swap : {false, true}) {
+      auto r = swap ? nested(b, a, 15) : nested(a, b, 15);
+      ASSERT_TRUE(r.has_value()) << c.a;
+      EXPECT_TRUE(width_ok(*r, 15)) << c.a;
+      EXPECT_TRUE(overlap(*r, c.offset)) << c.a << ": [" << r->lower() << ", " << r->upper() << "]";
+      EXPECT_EQ(r->minimizers, "1");
+    }
+  }
 }

@@ -881,6 +881,46 @@ double log2_size(const Ball* E, int k) {
   return size;
 }
 
+// A small box around the critical point of G near the box E, to be proven by the caller:
+// Newton steps from the Newton point of E's centre (K: Krawczyk's image of E, whose centre
+// is that point) until the step is tiny, then the last point with a radius of twice the last
+// step (plus a few ulps). A box proven with little margin (the first Krawczyk images barely
+// shrink it: the Hessian varies across a large box) has its centre far from the critical
+// point, where one Newton step does not get close enough. The points only choose where to
+// look (float-like); the caller's Krawczyk test on the box proves. False when a step fails
+// or leaves E.
+bool newton_box(Ball (&N)[2], const Ctx<Ball>& C, const Chart& ch, const BoxForms<Ball>& B,
+                const Ball (&K)[2], const Ball* E) {
+  const int k = C.k;
+  Ball P[2], step[2];
+  for (int j = 0; j < k; ++j) {
+    P[j] = midpoint(K[j]); // the Newton point m - Y g(m)
+    step[j] = P[j] - B.m[j];
+  }
+  for (int it = 0; it < 12; ++it) {
+    bool tiny = true; // the next step would be below the precision: P is as good as it gets
+    for (int j = 0; j < k; ++j)
+      tiny = tiny && arf_cmpabs_2exp_si(arb_midref(step[j].v), 20 - ball_precision() / 2) < 0;
+    if (tiny) break;
+    Ball KP[2];
+    BoxForms<Ball> BP;
+    if (!krawczyk_box(KP, BP, C, ch, P)) return false; // a point box: its image is the step
+    for (int j = 0; j < k; ++j) {
+      Ball next = midpoint(KP[j]);
+      step[j] = next - P[j];
+      P[j] = next;
+    }
+  }
+  for (int j = 0; j < k; ++j) {
+    N[j] = P[j];
+    arb_get_mag(arb_radref(N[j].v), step[j].v);
+    mag_mul_2exp_si(arb_radref(N[j].v), arb_radref(N[j].v), 1);
+    mag_add_ui_2exp_si(arb_radref(N[j].v), arb_radref(N[j].v), 1, 40 - ball_precision());
+    if (!contains(E[j], N[j])) return false;
+  }
+  return true;
+}
+
 // Contracts E (initially the proven box, whose critical point is unique) onto its critical
 // point until the value enclosure V has the relative width tol / 4. Each step intersects E
 // with its Krawczyk image; when that barely shrinks (a box proven with little margin), a small
@@ -908,15 +948,7 @@ bool tighten(Tight& c, const Ctx<Ball>& C, const Ball& tol) {
     if (after > before - 1) {
       Ball N[2], KN[2];
       BoxForms<Ball> BN;
-      bool ok = true;
-      for (int j = 0; j < k && ok; ++j) {
-        N[j] = midpoint(K[j]); // the Newton point m - Y g(m)
-        Ball r = N[j] - B.m[j];
-        arb_get_mag(arb_radref(N[j].v), r.v);
-        mag_mul_2exp_si(arb_radref(N[j].v), arb_radref(N[j].v), 1);
-        mag_add_ui_2exp_si(arb_radref(N[j].v), arb_radref(N[j].v), 1, 40 - ball_precision());
-        ok = contains(c.E[j], N[j]);
-      }
+      bool ok = newton_box(N, C, c.ch, B, K, c.E);
       ok = ok && krawczyk_box(KN, BN, C, c.ch, N);
       for (int j = 0; j < k && ok; ++j)
         ok = interior(N[j], KN[j]);
