@@ -53,9 +53,13 @@ const std::set<std::string> kCertificate = {"matrices",
                                             "certificate"};
 const std::set<std::string> kFull = {"special_points", "special_points_complete"};
 // intersect's own fields (the curve): at every level.
-const std::set<std::string> kCurve = {
-    "branches",     "isolated_points", "branches_match_topology", "branch_points_approximate",
-    "max_residual", "tolerance"};
+const std::set<std::string> kCurve = {"branches",
+                                      "isolated_points",
+                                      "branches_match_topology",
+                                      "branch_points_approximate",
+                                      "max_residual",
+                                      "tolerance",
+                                      "affine"};
 // distance: the certificate data only a full answer carries.
 const std::set<std::string> kDistanceFull = {"critical_candidates", "eliminated_degree", "degrees"};
 

@@ -131,6 +131,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   QsicResult& t = out.topology;
   // The branches need the special points (isolated points, singular points), at every detail.
   if (t.morphology) certify::complete_special_points(t, a, b);
+  out.affine = certify::affine_topology(t, a, b);
   if (t.status != Status::Certified || t.pencil != algebra::PencilKind::Regular || !t.morphology) {
     out.status = t.status == Status::Certified ? Status::Undecided : t.status;
     out.note = t.pencil == algebra::PencilKind::Coincident
@@ -237,6 +238,7 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
   res.set("branch_points_approximate", Json::boolean(true));
   res.set("max_residual", num(r.max_residual));
   res.set("tolerance", num(r.tolerance));
+  res.set("affine", certify::affine_json(r.affine));
   env.set("result", res);
   return env;
 }

@@ -13,6 +13,7 @@
 // and the projective topology is the affine one.
 #pragma once
 
+#include "surfcert/certify/affine.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/trace/curve.hpp"
@@ -24,6 +25,7 @@ namespace surfcert::trace {
 
 struct CurveResult {
   certify::QsicResult topology;
+  certify::AffineTopology affine; ///< the affine reading (certify/affine.hpp)
   certify::Status status = certify::Status::Error;
   std::vector<Branch> branches;
   std::vector<Point3> isolated_points;

@@ -1,0 +1,87 @@
+// surfcert::certify::affine_topology: the affine reading of a certified (projective) QSIC
+// topology: bounded loops, unbounded branches, isolated points, the curve's exact points at
+// infinity and the components lying entirely at infinity.
+//
+// What an AffineTopology represents: the real affine curve Q_A ∩ Q_B ∩ {w != 0}. The points
+// at infinity of the curve are the common points of the two conics at infinity (the quadratic
+// parts, w = 0); they are computed exactly: in a unimodular chart (u : v : s) of the plane at
+// infinity, checked exactly to put no common point on s = 0 and no two on one vertical line,
+// R(u) = Res_v(A'(u, v, 1), B'(u, v, 1)) has degree 4, each root u0 is one point with
+// v0 = -s10(u0) / s11(u0) (first subresultant), and the multiplicity of u0 in R is the
+// intersection multiplicity of the curve with the plane at infinity there. Directions are
+// rational, or algebraic: a root of an irreducible polynomial in an isolating interval.
+//
+// Counting conventions (as the morphology table's): per real component of the curve, its
+// affine part splits into connected pieces; a piece without a point at infinity is a loop,
+// every other piece an unbounded branch (a real line is one unbounded branch). Components
+// that cross, as two conics, are counted separately. A figure eight whose node is affine is
+// one piece (a loop when it misses infinity).
+//
+// Invariant: a count is set only when it is proved from exact facts: the points at infinity
+// with their multiplicities, the exact special points at infinity, and the parity of each
+// component's intersection with a plane (an oval of a bounded morphology, a conic: even; a
+// branch meeting every plane, a twisted cubic, a line: odd). Every assignment of the points at
+// infinity to the components that these facts allow is enumerated; a count is certified when
+// all of them agree, otherwise it stays unset with a reason. When one quadric is a plane
+// (written as a degenerate quadric: plane ∪ plane at infinity) the affine curve is the plane
+// section, classified exactly as a plane conic; the other quadric's conic at infinity is then
+// a component lying at infinity. Requires a certified topology, except on that plane route.
+#pragma once
+
+#include "surfcert/algebra/upoly.hpp"
+#include "surfcert/certify/qsic.hpp"
+#include "surfcert/core/io/json.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+/// A real point of the curve at infinity: a direction (x : y : z : 0).
+struct PointAtInfinity {
+  int multiplicity = 1; ///< intersection multiplicity of the curve with w = 0 there
+  bool rational = false;
+  std::array<std::string, 3> direction; ///< exact text: rational or a + b*sqrt(d) (else empty)
+  std::array<double, 3> approx{};       ///< unit vector, decimal approximation
+  /// Algebraic (degree >= 2, set when `direction` is empty): t is the unique root of
+  /// `polynomial` in (lo, hi) and the direction is (dir_in_t[0](t) : ... : dir_in_t[2](t)).
+  algebra::UPolyZ polynomial;
+  core::Rational lo, hi;
+  std::array<algebra::UPolyQ, 3> dir_in_t;
+  std::string lies_on = "curve"; ///< "curve", or the kind of the special point there
+};
+
+/// A real component lying entirely in the plane at infinity (never drawn).
+struct ComponentAtInfinity {
+  std::string kind;                     ///< "point", "conic", "line_pair", "double_line"
+  std::array<std::string, 3> direction; ///< for "point": exact direction
+  std::string equation;                 ///< the conic x^T M x = 0 of the plane w = 0, as text
+};
+
+struct AffineTopology {
+  bool computed = false; ///< false: nothing established (see reason)
+  std::string route;     ///< "pencil" or "plane_section"
+  std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
+  std::vector<PointAtInfinity> points_at_infinity;
+  bool points_at_infinity_complete = false;
+  std::vector<ComponentAtInfinity> at_infinity_only;
+  std::vector<std::pair<std::string, std::string>> undecided; ///< (field, why)
+  std::string reason;                                         ///< when !computed
+  bool certified() const {
+    return computed && loops && unbounded_branches && isolated_points && lines && conics &&
+           points_at_infinity_complete;
+  }
+};
+
+/// The affine topology from a classification (special points are computed here when needed).
+AffineTopology affine_topology(QsicResult& topology, const core::QuadricMatrix& a,
+                               const core::QuadricMatrix& b);
+
+/// {"status": "certified"|"undecided", "route", "loops", "unbounded_branches",
+/// "isolated_points", "lines", "conics" (null when undecided), "points_at_infinity": [...],
+/// "at_infinity_only": [...], "undecided": [{"field", "reason"}]}.
+core::io::Json affine_json(const AffineTopology& t);
+
+} // namespace surfcert::certify

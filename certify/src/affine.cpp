@@ -1,0 +1,957 @@
+// affine_topology: the affine reading of a certified QSIC topology (see affine.hpp).
+#include "surfcert/certify/affine.hpp"
+
+#include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/real_roots.hpp"
+
+#include <flint/fmpz_poly_factor.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+
+namespace surfcert::certify {
+
+namespace {
+
+using algebra::QuadraticNumber;
+using algebra::UPolyQ;
+using algebra::UPolyZ;
+using core::Integer;
+using core::Rational;
+using M3 = std::array<std::array<Rational, 3>, 3>;
+using V3 = std::array<Rational, 3>;
+using core::io::Json;
+
+M3 top_left(const core::Mat4& m) {
+  M3 r;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      r[i][j] = m[i][j];
+  return r;
+}
+
+M3 congruent(const M3& a, const M3& t) { // t^T a t
+  M3 r;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      Rational s;
+      for (size_t k = 0; k < 3; ++k)
+        for (size_t l = 0; l < 3; ++l)
+          s += t[k][i] * a[k][l] * t[l][j];
+      r[i][j] = s;
+    }
+  return r;
+}
+
+bool is_zero3(const M3& m) {
+  for (const auto& row : m)
+    for (const auto& x : row)
+      if (!x.is_zero()) return false;
+  return true;
+}
+
+// Direction normalised so that its first nonzero coordinate is 1 (a projective point).
+V3 normalise(V3 d) {
+  for (const auto& x : d)
+    if (!x.is_zero()) {
+      Rational c = x;
+      for (auto& y : d)
+        y = y / c;
+      break;
+    }
+  return d;
+}
+
+std::array<double, 3> unit_approx(const std::array<double, 3>& d) {
+  double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(n > 0)) return d;
+  // Sign: first nonzero coordinate positive (the same projective point either way).
+  double s = 1;
+  for (double x : d)
+    if (std::fabs(x) > 1e-300) {
+      s = x < 0 ? -1 : 1;
+      break;
+    }
+  return {s * d[0] / n, s * d[1] / n, s * d[2] / n};
+}
+
+// Polynomial in u as UPolyQ from constant, linear, quadratic coefficients.
+UPolyQ poly(const Rational& c0, const Rational& c1, const Rational& c2 = Rational(0)) {
+  return UPolyQ::from_coeffs({c0, c1, c2});
+}
+
+double eval_double(const UPolyQ& p, double x) {
+  double s = 0;
+  for (long i = p.degree(); i >= 0; --i)
+    s = s * x + p.coeff(i).to_double_approx();
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------
+// Points at infinity of the curve: common points of the conics at infinity.
+
+struct Chart {
+  M3 t;       ///< original direction = t * (u, v, s)
+  UPolyQ r;   ///< resultant in u (degree 4)
+  UPolyQ s11; ///< first subresultant: s11(u) v + s10(u)
+  UPolyQ s10;
+  /// A rational u at which s11 = s10 = 0 and the common point is one double root v.
+  std::optional<std::pair<Rational, Rational>> double_point;
+  Rational v_at(const Rational& u) const {
+    if (double_point && double_point->first == u) return double_point->second;
+    return -s10.evaluate(u) / s11.evaluate(u);
+  }
+};
+
+enum class ChartOutcome { Ok, SharedComponent, Failed };
+
+// The candidate charts: the identity, then fixed integer matrices with every entry free (a
+// chart keeping x = u could never separate two points with x = 0).
+std::vector<M3> chart_candidates() {
+  const int c[][9] = {{1, 0, 0, 0, 1, 0, 0, 0, 1},   {1, 1, 0, 0, 1, 0, 0, 0, 1},
+                      {1, 2, 1, 1, 1, 0, 0, 1, 1},   {2, 1, -1, 1, 3, 1, -1, 2, 1},
+                      {1, -3, 2, 2, 1, -1, 3, 1, 2}, {3, 5, -2, -1, 2, 4, 2, -3, 1},
+                      {1, 4, 7, -2, 1, 3, 5, -1, 2}, {4, -1, 3, 2, 5, -3, 1, 2, 7},
+                      {7, 2, -5, 3, -4, 1, 2, 6, 3}, {5, 11, -3, -7, 2, 9, 4, -1, 6}};
+  std::vector<M3> out;
+  for (const auto& k : c) {
+    M3 t;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        t[i][j] = Rational(k[3 * i + j]);
+    Rational det = t[0][0] * (t[1][1] * t[2][2] - t[1][2] * t[2][1]) -
+                   t[0][1] * (t[1][0] * t[2][2] - t[1][2] * t[2][0]) +
+                   t[0][2] * (t[1][0] * t[2][1] - t[1][1] * t[2][0]);
+    if (!det.is_zero()) out.push_back(t);
+  }
+  return out;
+}
+
+ChartOutcome find_chart(const M3& a_inf, const M3& b_inf, Chart& out) {
+  for (const M3& t : chart_candidates()) {
+    M3 a = congruent(a_inf, t), b = congruent(b_inf, t);
+    // coordinates (u, v, s): index 0 = u, 1 = v, 2 = s.
+    const Rational& a2 = a[1][1];
+    const Rational& b2 = b[1][1];
+    if (a2.is_zero() || b2.is_zero()) continue;
+    UPolyQ a1 = poly(Rational(2) * a[1][2], Rational(2) * a[0][1]);
+    UPolyQ a0 = poly(a[2][2], Rational(2) * a[0][2], a[0][0]);
+    UPolyQ b1 = poly(Rational(2) * b[1][2], Rational(2) * b[0][1]);
+    UPolyQ b0 = poly(b[2][2], Rational(2) * b[0][2], b[0][0]);
+    UPolyQ A2(a2), B2(b2);
+    UPolyQ x = A2 * b0 - a0 * B2;
+    UPolyQ r = x * x - (A2 * b1 - a1 * B2) * (a1 * b0 - a0 * b1);
+    // With a2, b2 != 0 constant, r == 0 exactly when the conics share a component.
+    if (r.is_zero()) return ChartOutcome::SharedComponent;
+    if (r.degree() != 4) continue; // a common point on s = 0
+    UPolyQ s11 = B2 * a1 - A2 * b1, s10 = B2 * a0 - A2 * b0;
+    if (s11.is_zero()) continue;
+    std::optional<std::pair<Rational, Rational>> dbl;
+    if (s11.degree() == 1) {
+      Rational root = -s11.coeff(0) / s11.coeff(1);
+      if (r.evaluate(root).is_zero()) {
+        // At u = root both restrictions are proportional (s10 vanishes there too, or the
+        // resultant would not): one common point when they are a double root, v0 = -a1/(2 a2);
+        // two on this vertical line otherwise (then another chart).
+        const Rational a1r = a1.evaluate(root), a0r = a0.evaluate(root);
+        if (!s10.evaluate(root).is_zero() || !(a1r * a1r - Rational(4) * a2 * a0r).is_zero())
+          continue;
+        dbl = std::make_pair(root, -a1r / (Rational(2) * a2));
+      }
+    }
+    out = Chart{t, r, s11, s10, dbl};
+    return ChartOutcome::Ok;
+  }
+  return ChartOutcome::Failed;
+}
+
+struct Root {
+  PointAtInfinity p;
+  UPolyZ factor;
+  Rational lo, hi; // isolating interval (lo == hi when rational)
+};
+
+std::vector<Root> roots_of(const Chart& ch) {
+  std::vector<Root> out;
+  UPolyZ rz = ch.r.primitive_integer();
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor(fac, rz.raw());
+  for (slong i = 0; i < fac->num; ++i) {
+    UPolyZ g;
+    fmpz_poly_set(g.raw_mut(), fac->p + i);
+    g = g.primitive_part();
+    const int e = static_cast<int>(fac->exp[i]);
+    if (g.degree() < 1) continue;
+    if (g.degree() == 1) {
+      Rational u0 = -Rational(g.coeff(0)) / Rational(g.coeff(1));
+      Rational v0 = ch.v_at(u0);
+      V3 w{u0, v0, Rational(1)};
+      V3 d;
+      for (size_t k = 0; k < 3; ++k)
+        for (size_t l = 0; l < 3; ++l)
+          d[k] += ch.t[k][l] * w[l];
+      d = normalise(d);
+      Root r;
+      r.p.multiplicity = e;
+      r.p.rational = true;
+      std::array<double, 3> ap{};
+      for (size_t k = 0; k < 3; ++k) {
+        r.p.direction[k] = d[k].to_string();
+        ap[k] = d[k].to_double_approx();
+      }
+      r.p.approx = unit_approx(ap);
+      r.factor = g;
+      r.lo = r.hi = u0;
+      out.push_back(std::move(r));
+      continue;
+    }
+    algebra::RootSeparation sep = algebra::isolate_real_roots(g);
+    // Direction as polynomials in t: T * (t s11(t), -s10(t), s11(t)) (s11(t) != 0 at roots).
+    UPolyQ tpoly = UPolyQ::linear(Rational(1), Rational(0));
+    std::array<UPolyQ, 3> w{tpoly * ch.s11, UPolyQ(0) - ch.s10, ch.s11};
+    std::array<UPolyQ, 3> dir;
+    for (size_t k = 0; k < 3; ++k) {
+      UPolyQ s(0);
+      for (size_t l = 0; l < 3; ++l)
+        s = s + UPolyQ(ch.t[k][l]) * w[l];
+      dir[k] = s;
+    }
+    for (size_t j = 0; j + 1 < sep.separators.size(); ++j) {
+      Root r;
+      r.p.multiplicity = e;
+      r.p.rational = false;
+      r.lo = sep.separators[j];
+      r.hi = sep.separators[j + 1];
+      Rational lo = r.lo, hi = r.hi;
+      algebra::refine_root(g, lo, hi, Rational(1, 1UL << 60));
+      const double t0 = ((lo + hi) * Rational(1, 2)).to_double_approx();
+      std::array<double, 3> ap{};
+      for (size_t k = 0; k < 3; ++k)
+        ap[k] = eval_double(dir[k], t0);
+      r.p.approx = unit_approx(ap);
+      r.p.polynomial = g;
+      r.p.lo = r.lo;
+      r.p.hi = r.hi;
+      r.p.dir_in_t = dir;
+      r.factor = g;
+      out.push_back(std::move(r));
+    }
+  }
+  fmpz_poly_factor_clear(fac);
+  return out;
+}
+
+M3 inverse(const M3& m) {
+  M3 r;
+  Rational det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                 m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      const size_t i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+      r[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / det;
+    }
+  return r;
+}
+
+// Index of the root at the rational direction d (nullopt when none).
+std::optional<size_t> match_root(const Chart& ch, const std::vector<Root>& roots, const V3& d) {
+  M3 ti = inverse(ch.t);
+  V3 w;
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t l = 0; l < 3; ++l)
+      w[k] += ti[k][l] * d[l];
+  if (w[2].is_zero()) return std::nullopt;
+  const Rational u0 = w[0] / w[2], v0 = w[1] / w[2];
+  for (size_t i = 0; i < roots.size(); ++i) {
+    const Root& r = roots[i];
+    if (r.factor.sign_at(u0) != 0) continue;
+    if (r.lo != r.hi && !(r.lo < u0 && u0 < r.hi)) continue; // (the double point is rational)
+    if (r.lo == r.hi && r.lo != u0) continue;
+    // The chart puts one point on each vertical line: v must be that point's.
+    if (ch.v_at(u0) != v0) return std::nullopt;
+    return i;
+  }
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------------------------------
+// The components of each morphology, for the enumeration of assignments.
+
+enum class CKind { Circle, Line, Lobe };
+
+struct Comp {
+  CKind kind;
+  int weight = 1;           // 2 for a double component
+  std::vector<int> allowed; // allowed sums of local multiplicities
+  int max_local = 4;
+};
+
+Comp even_oval() {
+  return {CKind::Circle, 1, {0, 2, 4}, 4};
+}
+Comp odd_branch() {
+  return {CKind::Circle, 1, {1, 3}, 3};
+}
+Comp conic(int w = 1) {
+  return {CKind::Circle, w, {0, 2}, 2};
+}
+Comp line(int w = 1) {
+  return {CKind::Line, w, {1}, 1};
+}
+
+// Real curve components by Tu case (isolated points excluded); nullopt for an unknown case.
+std::optional<std::vector<Comp>> components_of(int c) {
+  switch (c) {
+  case 1:
+    return std::vector<Comp>{even_oval(), even_oval()};
+  case 3:
+  case 6:
+    return std::vector<Comp>{even_oval()};
+  case 4:
+    return std::vector<Comp>{odd_branch(), odd_branch()};
+  case 5:
+    return std::vector<Comp>{{CKind::Lobe, 1, {0, 2, 4}, 4}, {CKind::Lobe, 1, {0, 2, 4}, 4}};
+  case 8:
+    return std::vector<Comp>{{CKind::Lobe, 1, {1, 3}, 3}, {CKind::Lobe, 1, {1, 3}, 3}};
+  case 9: // a cuspidal loop is a topological circle; the parity of a degree-4 curve is even
+    return std::vector<Comp>{even_oval()};
+  case 10:
+  case 11:
+  case 12:
+    return std::vector<Comp>{odd_branch(), line()};
+  case 13:
+  case 14:
+  case 18:
+  case 19:
+    return std::vector<Comp>{conic(), conic()};
+  case 17:
+  case 24:
+  case 27:
+    return std::vector<Comp>{conic()};
+  case 21:
+    return std::vector<Comp>{conic(2)};
+  case 23:
+  case 26:
+    return std::vector<Comp>{conic(), line(), line()};
+  case 28:
+    return std::vector<Comp>{line(), line(), line(), line()};
+  case 31:
+    return std::vector<Comp>{line(), line()};
+  case 32:
+    return std::vector<Comp>{line(2), line(2)};
+  case 34:
+    return std::vector<Comp>{line(2)};
+  case 35:
+    return std::vector<Comp>{line(2), line(), line()};
+  case 2:
+  case 7:
+  case 15:
+  case 16:
+  case 20:
+  case 22:
+  case 25:
+  case 29:
+  case 30:
+  case 33:
+    return std::vector<Comp>{};
+  default:
+    return std::nullopt;
+  }
+}
+
+// Cases whose every component is real (a real point on an imaginary component would be a
+// singular point of the curve lying on no real branch): at a special point at infinity only
+// real components can meet.
+bool all_components_real(int c) {
+  switch (c) {
+  case 5:
+  case 8:
+  case 9:
+  case 10:
+  case 11:
+  case 12:
+  case 13:
+  case 14:
+  case 18:
+  case 19:
+  case 21:
+  case 23:
+  case 26:
+  case 28:
+  case 32:
+  case 35:
+    return true;
+  default:
+    return false;
+  }
+}
+
+struct CurveRoot {
+  int mult;
+  bool special;        // a (matched) singular point of the curve: may lie on several components
+  bool on_two = false; // lies on at least two components
+};
+
+// Cases whose components are all real, smooth and simple (conics, lines, a twisted cubic): a
+// singular point of the curve lies on at least two of them.
+bool singular_means_crossing(int c) {
+  switch (c) {
+  case 10:
+  case 11:
+  case 12:
+  case 13:
+  case 14:
+  case 18:
+  case 19:
+  case 23:
+  case 26:
+  case 28:
+    return true;
+  default:
+    return false;
+  }
+}
+
+// Every assignment of the curve roots to components (local multiplicities) allowed by the
+// exact facts; the set of (loops, unbounded) it yields.
+std::set<std::pair<int, int>> enumerate(const std::vector<Comp>& comps,
+                                        const std::vector<CurveRoot>& roots) {
+  std::set<std::pair<int, int>> results;
+  const size_t nc = comps.size();
+  std::vector<std::vector<int>> local(roots.size(), std::vector<int>(nc, 0));
+  std::function<void(size_t)> rec = [&](size_t i) {
+    if (i == roots.size()) {
+      int loops = 0, unbounded = 0;
+      std::vector<int> lobe_m;
+      for (size_t c = 0; c < nc; ++c) {
+        int sum = 0, m = 0;
+        for (size_t r = 0; r < roots.size(); ++r) {
+          sum += local[r][c];
+          m += local[r][c] > 0 ? 1 : 0;
+        }
+        const auto& al = comps[c].allowed;
+        if (std::find(al.begin(), al.end(), sum) == al.end()) return;
+        if (comps[c].kind == CKind::Line) {
+          if (m != 1) return;
+          ++unbounded;
+        } else if (comps[c].kind == CKind::Circle) {
+          if (m == 0)
+            ++loops;
+          else
+            unbounded += m;
+        } else {
+          lobe_m.push_back(m);
+        }
+      }
+      if (!lobe_m.empty()) { // a figure eight with an affine node: one piece through it
+        int any = 0, extra = 0;
+        for (int m : lobe_m) {
+          any += m;
+          extra += std::max(m - 1, 0);
+        }
+        if (any == 0)
+          ++loops;
+        else
+          unbounded += 1 + extra;
+      }
+      results.insert({loops, unbounded});
+      return;
+    }
+    const CurveRoot& r = roots[i];
+    // Local multiplicity vectors: one component (smooth point) or any nonempty set (special).
+    std::function<void(size_t, int, int)> pick = [&](size_t c, int left, int used) {
+      if (c == nc) {
+        if (left == 0 && used > 0 && (r.special || used == 1) && (!r.on_two || used >= 2))
+          rec(i + 1);
+        return;
+      }
+      pick(c + 1, left, used);
+      for (int l = 1; l <= comps[c].max_local && comps[c].weight * l <= left; ++l) {
+        if (!r.special && used > 0) break;
+        local[i][c] = l;
+        pick(c + 1, left - comps[c].weight * l, used + 1);
+        local[i][c] = 0;
+      }
+    };
+    pick(0, r.mult, 0);
+  };
+  rec(0);
+  return results;
+}
+
+bool isolated_kind(const std::string& k) {
+  return k == "acnode" || k == "isolated_point";
+}
+
+std::string conic_text(const M3& m) {
+  const char* v[3] = {"x", "y", "z"};
+  std::string s;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = i; j < 3; ++j) {
+      Rational c = i == j ? m[i][j] : Rational(2) * m[i][j];
+      if (c.is_zero()) continue;
+      s += (s.empty() ? "" : " + ") + c.to_string() + "*" + v[i] + "*" + v[j];
+    }
+  return (s.empty() ? "0" : s) + " = 0 (w = 0)";
+}
+
+// Real locus of the conic x^T m x = 0 in the plane at infinity (a quadric's asymptotic cone).
+std::optional<ComponentAtInfinity> conic_at_infinity(const M3& m) {
+  core::Mat4 m4;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      m4[i][j] = m[i][j];
+  algebra::Inertia in = algebra::inertia_ldlt(m4);
+  ComponentAtInfinity c;
+  c.equation = conic_text(m);
+  if (in.rank() == 3) {
+    if (in.semidefinite()) return std::nullopt;
+    c.kind = "conic";
+  } else if (in.rank() == 2) {
+    if (in.semidefinite()) {
+      // One real point: the kernel, the cross product of two independent rows.
+      V3 k;
+      for (size_t r1 = 0; r1 < 3; ++r1)
+        for (size_t r2 = r1 + 1; r2 < 3; ++r2) {
+          V3 x{m[r1][1] * m[r2][2] - m[r1][2] * m[r2][1], m[r1][2] * m[r2][0] - m[r1][0] * m[r2][2],
+               m[r1][0] * m[r2][1] - m[r1][1] * m[r2][0]};
+          if (k[0].is_zero() && k[1].is_zero() && k[2].is_zero()) k = x;
+        }
+      k = normalise(k);
+      c.kind = "point";
+      for (size_t i = 0; i < 3; ++i)
+        c.direction[i] = k[i].to_string();
+    } else {
+      c.kind = "line_pair";
+    }
+  } else if (in.rank() == 1) {
+    c.kind = "double_line";
+  } else {
+    return std::nullopt;
+  }
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------
+// Plane route: one quadric is a plane (its matrix has a zero quadratic block).
+
+AffineTopology plane_route(const core::QuadricMatrix& plane, const core::QuadricMatrix& quad) {
+  AffineTopology out;
+  out.route = "plane_section";
+  const core::Mat4& p = plane.matrix();
+  const core::Mat4& q = quad.matrix();
+  V3 n{Rational(2) * p[0][3], Rational(2) * p[1][3], Rational(2) * p[2][3]};
+  const Rational c = p[3][3];
+  size_t k = 0;
+  while (k < 3 && n[k].is_zero())
+    ++k;
+  if (k == 3) {
+    out.reason = "the plane quadric has no affine plane";
+    return out;
+  }
+  size_t j1 = (k + 1) % 3, j2 = (k + 2) % 3;
+  if (j1 > j2) std::swap(j1, j2);
+  // Columns of M (4x3): X = M (s, t, 1).
+  std::array<std::array<Rational, 4>, 3> col;
+  col[0][j1] = Rational(1);
+  col[0][k] = -n[j1] / n[k];
+  col[1][j2] = Rational(1);
+  col[1][k] = -n[j2] / n[k];
+  col[2][3] = Rational(1);
+  col[2][k] = -c / n[k];
+  M3 cm;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      Rational s;
+      for (size_t a = 0; a < 4; ++a)
+        for (size_t b = 0; b < 4; ++b)
+          s += col[i][a] * q[a][b] * col[j][b];
+      cm[i][j] = s;
+    }
+  out.computed = true;
+  out.points_at_infinity_complete = true;
+  if (auto inf = conic_at_infinity(top_left(q))) out.at_infinity_only.push_back(*inf);
+  if (is_zero3(cm)) {
+    out.computed = false;
+    out.reason = "the plane lies on the other quadric: the intersection is a surface";
+    return out;
+  }
+  const Rational &a = cm[0][0], &b = cm[0][1], &d = cm[1][1], &e = cm[0][2], &f = cm[1][2],
+                 &g = cm[2][2];
+  const Rational delta = a * d - b * b;
+  const Rational big = a * (d * g - f * f) - b * (b * g - f * e) + e * (b * f - d * e);
+  // Directions at infinity of the section: a s^2 + 2 b s t + d t^2 = 0, as 3D vectors.
+  auto add_direction = [&](const QuadraticNumber& s, const QuadraticNumber& t, int mult) {
+    PointAtInfinity pt;
+    pt.multiplicity = mult;
+    pt.rational = s.b.is_zero() && t.b.is_zero();
+    std::array<QuadraticNumber, 3> dir;
+    for (size_t i = 0; i < 3; ++i) {
+      dir[i] = {s.a * col[0][i] + t.a * col[1][i], s.b * col[0][i] + t.b * col[1][i], s.d};
+      if (dir[i].b.is_zero()) dir[i].d = Integer(1);
+    }
+    // Normalise: divide by the first nonzero coordinate's rational part when rational.
+    std::array<double, 3> ap{};
+    if (pt.rational) {
+      V3 r{dir[0].a, dir[1].a, dir[2].a};
+      r = normalise(r);
+      for (size_t i = 0; i < 3; ++i) {
+        pt.direction[i] = r[i].to_string();
+        ap[i] = r[i].to_double_approx();
+      }
+    } else {
+      for (size_t i = 0; i < 3; ++i) {
+        pt.direction[i] = dir[i].normalized().to_string();
+        ap[i] = dir[i].to_double_approx();
+      }
+    }
+    pt.approx = unit_approx(ap);
+    out.points_at_infinity.push_back(pt);
+  };
+  auto directions = [&](int mult_each) {
+    const Integer one(1);
+    if (a.is_zero()) {
+      // t (2 b s + d t) = 0: t = 0 (s = 1) and, if b != 0, (s, t) = (-d, 2 b).
+      if (b.is_zero()) { // d t^2 = 0: the double direction t = 0
+        add_direction({Rational(1), Rational(0), one}, {Rational(0), Rational(0), one}, 2);
+        return;
+      }
+      add_direction({Rational(1), Rational(0), one}, {Rational(0), Rational(0), one}, mult_each);
+      add_direction({-d, Rational(0), one}, {Rational(2) * b, Rational(0), one}, mult_each);
+      return;
+    }
+    const Rational disc = b * b - a * d;
+    if (disc.sign() < 0) return;
+    if (disc.is_zero()) {
+      add_direction({-b, Rational(0), one}, {a, Rational(0), one}, 2);
+      return;
+    }
+    Integer dn = disc.num() * disc.den();
+    Integer root;
+    fmpz_sqrt(root.raw_mut(), dn.raw());
+    for (int sg : {1, -1}) {
+      QuadraticNumber s;
+      if (root * root == dn)
+        s = {-b + Rational(sg) * Rational(root, disc.den()), Rational(0), one};
+      else
+        s = {-b, Rational(sg) / Rational(disc.den()), dn};
+      add_direction(s, {a, Rational(0), one}, mult_each);
+    }
+  };
+  int loops = 0, unbounded = 0, isolated = 0, lines = 0, conics = 0;
+  const bool quad_zero = a.is_zero() && b.is_zero() && d.is_zero();
+  if (quad_zero) {
+    // 2 e s + 2 f t + g = 0: a line (or nothing) in the plane.
+    if (!(e.is_zero() && f.is_zero())) {
+      lines = 1;
+      unbounded = 1;
+      add_direction({-f, Rational(0), Integer(1)}, {e, Rational(0), Integer(1)}, 1);
+    }
+  } else if (!big.is_zero()) {
+    if (delta.sign() > 0) {
+      // Ellipse: real iff (a + d) and det have opposite signs.
+      if ((a + d).sign() * big.sign() < 0) {
+        loops = 1;
+        conics = 1;
+      }
+    } else if (delta.sign() < 0) {
+      conics = 1;
+      unbounded = 2;
+      directions(1);
+    } else {
+      conics = 1;
+      unbounded = 1;
+      directions(2);
+    }
+  } else {
+    if (delta.sign() < 0) {
+      lines = 2;
+      unbounded = 2;
+      directions(1);
+    } else if (delta.sign() > 0) {
+      isolated = 1;
+    } else {
+      const Rational kk = (a * g - e * e) + (d * g - f * f);
+      if (kk.sign() < 0) {
+        lines = 2;
+        unbounded = 2;
+        directions(2); // two parallel lines: one direction, each line through it
+        out.points_at_infinity.back().multiplicity = 2;
+      } else if (kk.is_zero()) {
+        lines = 1; // a double line
+        unbounded = 1;
+        directions(2);
+      }
+    }
+  }
+  out.loops = loops;
+  out.unbounded_branches = unbounded;
+  out.isolated_points = isolated;
+  out.lines = lines;
+  out.conics = conics;
+  return out;
+}
+
+} // namespace
+
+// The conic at infinity has no real point: an ellipsoid's quadratic part is definite. Read
+// from the shape when there is one (no exact matrix is formed for shapes posed in doubles).
+bool definite_at_infinity(const core::QuadricMatrix& q) {
+  const core::QuadricKind k = q.kind();
+  return k == core::QuadricKind::Ellipsoid || k == core::QuadricKind::ImaginaryEllipsoid;
+}
+
+AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
+                               const core::QuadricMatrix& b) {
+  if ((definite_at_infinity(a) || definite_at_infinity(b)) && t.status == Status::Certified &&
+      t.morphology) {
+    // No real point at infinity: the affine topology is the projective one.
+    const Morphology& m = *t.morphology;
+    AffineTopology out;
+    out.route = "pencil";
+    out.computed = true;
+    out.points_at_infinity_complete = true;
+    out.loops = m.loops + m.conics + m.cubics;
+    out.unbounded_branches = 0;
+    out.isolated_points = m.isolated_points;
+    out.lines = m.lines;
+    out.conics = m.conics;
+    return out;
+  }
+  const bool pa = a.is_plane(), pb = b.is_plane();
+  if (pa != pb) return pa ? plane_route(a, b) : plane_route(b, a);
+  AffineTopology out;
+  out.route = "pencil";
+  if (pa && pb) {
+    out.reason = "two planes: the pair of planes with the plane at infinity is not analysed";
+    return out;
+  }
+  if (t.status != Status::Certified || !t.morphology) {
+    out.reason = "no certified projective topology";
+    return out;
+  }
+  const Morphology& m = *t.morphology;
+  Chart ch;
+  const ChartOutcome co = find_chart(top_left(a.matrix()), top_left(b.matrix()), ch);
+  if (co == ChartOutcome::SharedComponent) {
+    out.reason = "the conics at infinity share a component: part of the curve lies at infinity "
+                 "(not analysed)";
+    return out;
+  }
+  if (co == ChartOutcome::Failed) {
+    out.reason = "no chart of the plane at infinity separated the points at infinity";
+    return out;
+  }
+  std::vector<Root> roots = roots_of(ch);
+  out.computed = true;
+  out.points_at_infinity_complete = true;
+  out.lines = m.lines;
+  out.conics = m.conics;
+  for (const auto& r : roots)
+    out.points_at_infinity.push_back(r.p);
+  if (roots.empty()) {
+    // No real point at infinity: every real component is bounded.
+    out.loops = m.loops + m.conics + m.cubics;
+    out.unbounded_branches = 0;
+    out.isolated_points = m.isolated_points;
+    if (m.lines > 0 || m.cubics > 0) {
+      // A real line or cubic always meets the plane at infinity: the facts contradict.
+      out.loops.reset();
+      out.unbounded_branches.reset();
+      out.undecided.push_back({"loops", "inconsistent: a line or cubic without a point at "
+                                        "infinity"});
+    }
+    return out;
+  }
+  // Special points at infinity, matched exactly to the roots.
+  if (!t.special_points_done) complete_special_points(t, a, b);
+  auto undecide_all = [&](const std::string& why) {
+    out.loops.reset();
+    out.unbounded_branches.reset();
+    out.isolated_points.reset();
+    out.undecided.push_back({"loops", why});
+    out.undecided.push_back({"unbounded_branches", why});
+    out.undecided.push_back({"isolated_points", why});
+  };
+  if (!t.special_points_complete) {
+    undecide_all("special points not all computed exactly (conjugate multiple roots)");
+    return out;
+  }
+  std::map<size_t, std::string> special; // root index -> kind
+  for (const auto& sp : t.special_points) {
+    if (!sp.at_infinity) continue;
+    V3 d;
+    bool ok = sp.exact;
+    for (size_t i = 0; i < 3 && ok; ++i) {
+      auto r = Rational::from_string(sp.coords[i]);
+      if (r)
+        d[i] = *r;
+      else
+        ok = false;
+    }
+    std::optional<size_t> idx = ok ? match_root(ch, roots, d) : std::nullopt;
+    if (!idx) {
+      undecide_all("a special point at infinity with irrational coordinates or unmatched");
+      return out;
+    }
+    auto it = special.find(*idx);
+    if (it == special.end() || isolated_kind(sp.kind)) special[*idx] = sp.kind;
+  }
+  int isolated_at_infinity = 0;
+  std::vector<CurveRoot> curve;
+  bool node_at_infinity = false, other_special = false;
+  for (size_t i = 0; i < roots.size(); ++i) {
+    auto it = special.find(i);
+    if (it != special.end()) {
+      out.points_at_infinity[i].lies_on = it->second;
+      if (isolated_kind(it->second)) {
+        ++isolated_at_infinity;
+        ComponentAtInfinity c;
+        c.kind = "point";
+        c.direction = roots[i].p.direction;
+        out.at_infinity_only.push_back(c);
+        continue;
+      }
+      if (it->second == "crunode")
+        node_at_infinity = true;
+      else if (it->second != "cusp")
+        other_special = true;
+      curve.push_back({roots[i].p.multiplicity, true, singular_means_crossing(t.tu_case)});
+    } else {
+      curve.push_back({roots[i].p.multiplicity, false});
+    }
+  }
+  if (isolated_at_infinity > m.isolated_points) {
+    undecide_all("more isolated points at infinity than the morphology has");
+    return out;
+  }
+  out.isolated_points = m.isolated_points - isolated_at_infinity;
+  const int c = t.tu_case;
+  if (node_at_infinity && (c == 5 || c == 8)) {
+    // The figure eight cut at its node: two open arcs, each cut again at its other points.
+    out.loops = 0;
+    out.unbounded_branches = static_cast<int>(curve.size()) + 1;
+    return out;
+  }
+  auto comps = components_of(c);
+  if (!comps || ((node_at_infinity || other_special) && !all_components_real(c))) {
+    out.loops.reset();
+    out.unbounded_branches.reset();
+    const std::string why = "a singular point at infinity where imaginary components may meet";
+    out.undecided.push_back({"loops", why});
+    out.undecided.push_back({"unbounded_branches", why});
+    return out;
+  }
+  auto res = enumerate(*comps, curve);
+  if (res.empty()) {
+    out.loops.reset();
+    out.unbounded_branches.reset();
+    out.isolated_points.reset();
+    const std::string why = "inconsistent: no assignment of the points at infinity to the "
+                            "components fits the exact facts";
+    out.undecided.push_back({"loops", why});
+    out.undecided.push_back({"unbounded_branches", why});
+    return out;
+  }
+  std::set<int> lv, uv;
+  for (const auto& [l, u] : res) {
+    lv.insert(l);
+    uv.insert(u);
+  }
+  const std::string amb = "the points at infinity can be shared among the components in "
+                          "several ways the exact facts allow";
+  if (lv.size() == 1)
+    out.loops = *lv.begin();
+  else
+    out.undecided.push_back({"loops", amb});
+  if (uv.size() == 1)
+    out.unbounded_branches = *uv.begin();
+  else
+    out.undecided.push_back({"unbounded_branches", amb});
+  return out;
+}
+
+Json affine_json(const AffineTopology& t) {
+  Json o = Json::object();
+  o.set("status", Json::string(t.certified() ? "certified" : "undecided"));
+  if (!t.route.empty()) o.set("route", Json::string(t.route));
+  auto count = [&](const char* k, const std::optional<int>& v) {
+    o.set(k, v ? Json::number(*v) : Json::null());
+  };
+  count("loops", t.computed ? t.loops : std::nullopt);
+  count("unbounded_branches", t.computed ? t.unbounded_branches : std::nullopt);
+  count("isolated_points", t.computed ? t.isolated_points : std::nullopt);
+  count("lines", t.computed ? t.lines : std::nullopt);
+  count("conics", t.computed ? t.conics : std::nullopt);
+  auto num = [](double x) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return Json::number_text(buf);
+  };
+  Json pts = Json::array();
+  for (const auto& p : t.points_at_infinity) {
+    Json e = Json::object();
+    if (!p.direction[0].empty()) {
+      Json d = Json::array();
+      for (const auto& s : p.direction)
+        d.push_back(Json::string(s));
+      e.set("direction", d);
+    } else {
+      Json alg = Json::object();
+      alg.set("polynomial", Json::string(p.polynomial.to_string("t")));
+      Json iv = Json::array();
+      iv.push_back(Json::string(p.lo.to_string()));
+      iv.push_back(Json::string(p.hi.to_string()));
+      alg.set("interval", iv);
+      Json d = Json::array();
+      for (const auto& s : p.dir_in_t)
+        d.push_back(Json::string(s.to_string("t")));
+      alg.set("direction_in_t", d);
+      e.set("algebraic", alg);
+    }
+    Json ap = Json::array();
+    for (double x : p.approx)
+      ap.push_back(num(x));
+    e.set("direction_approx", ap);
+    e.set("multiplicity", Json::number(p.multiplicity));
+    e.set("lies_on", Json::string(p.lies_on));
+    pts.push_back(e);
+  }
+  o.set("points_at_infinity", t.computed ? pts : Json::null());
+  Json inf = Json::array();
+  for (const auto& c : t.at_infinity_only) {
+    Json e = Json::object();
+    e.set("kind", Json::string(c.kind));
+    if (!c.direction[0].empty()) {
+      Json d = Json::array();
+      for (const auto& s : c.direction)
+        d.push_back(Json::string(s));
+      e.set("direction", d);
+    }
+    if (!c.equation.empty()) e.set("equation", Json::string(c.equation));
+    inf.push_back(e);
+  }
+  o.set("at_infinity_only", t.computed ? inf : Json::null());
+  Json und = Json::array();
+  for (const auto& [f, why] : t.undecided) {
+    Json e = Json::object();
+    e.set("field", Json::string(f));
+    e.set("reason", Json::string(why));
+    und.push_back(e);
+  }
+  if (!t.computed) {
+    Json e = Json::object();
+    e.set("field", Json::string("all"));
+    e.set("reason", Json::string(t.reason));
+    und.push_back(e);
+  }
+  o.set("undecided", und);
+  return o;
+}
+
+} // namespace surfcert::certify
