@@ -174,7 +174,21 @@ Outcome convex_float_run(Query& q) {
   auto r = separated_convex_distance_float(*convex_quadric(qa(q)), *convex_quadric(qb(q)));
   return r ? Outcome::estimate(std::move(*r)) : Outcome::not_applicable();
 }
+// An ellipsoid or sphere posed in doubles (what the fast certificate reads directly).
+const core::ShapeSpec* posed_ellipsoid(const core::QuadricMatrix& m) {
+  const core::ShapeSpec* sp = m.shape();
+  return sp != nullptr &&
+                 (sp->type == core::ShapeType::Sphere || sp->type == core::ShapeType::Ellipsoid)
+             ? sp
+             : nullptr;
+}
 Outcome convex_run(Query& q) {
+  // Two shapes posed in doubles: the certificate straight from the doubles first (no exact
+  // rationals); whatever it cannot prove goes on to the exact description below.
+  const core::ShapeSpec *sa = posed_ellipsoid(qa(q)), *sb = posed_ellipsoid(qb(q));
+  if (sa != nullptr && sb != nullptr)
+    if (auto r = separated_posed_ellipsoids(*sa, *sb, q.digits))
+      return Outcome::answer(std::move(*r));
   return answer_or_not(
       separated_convex_distance(*convex_quadric(qa(q)), *convex_quadric(qb(q)), q.digits));
 }

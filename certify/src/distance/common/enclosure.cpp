@@ -81,6 +81,26 @@ void Enclosure::to_ball(arb_t out, long prec) const {
 
 bool Enclosure::meets_width(long digits) const {
   if (!arf_is_finite(hi_.v)) return false;
+  // A sufficient test without printing: each bound is printed with digits_ + 2 significant
+  // digits rounded outward, so it moves by less than one unit of its last digit, at most
+  // eps = 10^-(digits_ + 1) times itself. If hi (1 + eps) - lo (1 - eps) <= 10^-digits
+  // lo (1 - eps), the printed decimals meet the width (Arb decides, rigorously). Otherwise
+  // the exact check on the printed text below.
+  if (arf_sgn(lo_.v) > 0 && digits >= 0 && digits_ >= 0) {
+    const long prec = 64;
+    Ball eps, l, h, w, t, tol;
+    arb_ui_pow_ui(eps.v, 10, static_cast<ulong>(digits_ + 1), prec);
+    arb_inv(eps.v, eps.v, prec);
+    arb_set_arf(l.v, lo_.v);
+    arb_set_arf(h.v, hi_.v);
+    arb_sub(w.v, h.v, l.v, prec);
+    arb_add(t.v, h.v, l.v, prec);
+    arb_addmul(w.v, eps.v, t.v, prec);
+    arb_ui_pow_ui(tol.v, 10, static_cast<ulong>(digits), prec);
+    arb_div(tol.v, l.v, tol.v, prec);
+    arb_submul(tol.v, tol.v, eps.v, prec);
+    if (arb_le(w.v, tol.v)) return true;
+  }
   const std::string l = lower(), u = upper();
   mpfr_t ml, mu, w, tol;
   const mpfr_prec_t bits = static_cast<mpfr_prec_t>(64 + 4 * (l.size() + u.size()) + 4 * digits);

@@ -2,6 +2,7 @@
 
 #include "surfcert/certify/distance/mp_float.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -13,6 +14,19 @@ using core::Rational;
 namespace {
 
 template <class T> using V3 = std::array<T, 3>;
+
+const char* const kSeparatedNote =
+    "disjoint convex solids: certified by a separating direction (support-function duality, "
+    "Arb); unique closest pair (strict convexity); no elimination needed";
+
+// What a certified separated pair reports besides its enclosure and pair.
+void set_separated_facts(DistanceResult& out) {
+  out.status = Status::Certified;
+  out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
+  out.critical_candidates = 1;
+  out.eliminated_degree = 0;
+  out.note = kSeparatedNote;
+}
 
 template <class T> using M3 = std::array<std::array<T, 3>, 3>;
 
@@ -330,12 +344,40 @@ void exact_direction(Ball (&nb)[3], const Directions& dirs, const V3<T>& n, long
   }
 }
 
+// From h_A(n), h_B(-n) and the support points (balls at the exact direction n):
+// L = -(h_A + h_B) / |n| and U = |p_B - p_A|; true when L > 0 and (U - L) <= 10^-digits L,
+// with the enclosure [L, U] and the pair (ball midpoints) written to out.
+bool enclose_at_direction(DistanceResult& out, const Ball& ha, const Ball& hb, const Ball (&pa)[3],
+                          const Ball (&pb)[3], const Ball (&n)[3], long digits, long prec) {
+  Ball len, L, U, tmp;
+  for (size_t i = 0; i < 3; ++i) {
+    arb_addmul(len.v, n[i].v, n[i].v, prec);
+    arb_sub(tmp.v, pb[i].v, pa[i].v, prec);
+    arb_addmul(U.v, tmp.v, tmp.v, prec);
+  }
+  arb_sqrt(len.v, len.v, prec);
+  arb_sqrt(U.v, U.v, prec);
+  arb_add(L.v, ha.v, hb.v, prec);
+  arb_neg(L.v, L.v);
+  arb_div(L.v, L.v, len.v, prec);
+  Ball d;
+  if (!relative_enclosure(d.v, L.v, U.v, digits, prec)) return false;
+  set_distance_enclosure(out, d.v, digits);
+  std::array<std::array<double, 3>, 2> pr{};
+  for (size_t i = 0; i < 3; ++i) {
+    pr[0][i] = arf_get_d(arb_midref(pa[i].v), ARF_RND_NEAR);
+    pr[1][i] = arf_get_d(arb_midref(pb[i].v), ARF_RND_NEAR);
+  }
+  out.pairs.push_back(pr);
+  return true;
+}
+
 // L(n), U(n) at the exact direction; true when L > 0 and (U - L) <= 10^-digits L, with the
 // enclosure [L, U] and the pair written to out.
 bool certify_direction(const ConvexQuadric& a, const ConvexQuadric& b, const Ball (&n)[3],
                        long digits, DistanceResult& out) {
   const long prec = bits_for(digits + 10);
-  Ball ha, hb, len, L, U, tmp, mn[3], pa[3], pb[3];
+  Ball ha, hb, tmp, mn[3], pa[3], pb[3];
   for (size_t i = 0; i < 3; ++i)
     arb_neg(mn[i].v, n[i].v);
   support_ball(ha.v, &pa, a, n, prec);
@@ -362,26 +404,7 @@ bool certify_direction(const ConvexQuadric& a, const ConvexQuadric& b, const Bal
         arb_sub(moved[i].v, moved[i].v, tmp.v, prec);
     }
   }
-  for (size_t i = 0; i < 3; ++i) {
-    arb_addmul(len.v, n[i].v, n[i].v, prec);
-    arb_sub(tmp.v, pb[i].v, pa[i].v, prec);
-    arb_addmul(U.v, tmp.v, tmp.v, prec);
-  }
-  arb_sqrt(len.v, len.v, prec);
-  arb_sqrt(U.v, U.v, prec);
-  arb_add(L.v, ha.v, hb.v, prec);
-  arb_neg(L.v, L.v);
-  arb_div(L.v, L.v, len.v, prec);
-  Ball d;
-  if (!relative_enclosure(d.v, L.v, U.v, digits, prec)) return false;
-  set_distance_enclosure(out, d.v, digits);
-  std::array<std::array<double, 3>, 2> pr{};
-  for (size_t i = 0; i < 3; ++i) {
-    pr[0][i] = arf_get_d(arb_midref(pa[i].v), ARF_RND_NEAR);
-    pr[1][i] = arf_get_d(arb_midref(pb[i].v), ARF_RND_NEAR);
-  }
-  out.pairs.push_back(pr);
-  return true;
+  return enclose_at_direction(out, ha, hb, pa, pb, n, digits, prec);
 }
 
 bool cross_is_zero(const V3<Rational>& x, const V3<Rational>& y) {
@@ -403,6 +426,124 @@ Directions admissible_directions(const ConvexQuadric& a, const ConvexQuadric& b)
                   V3<Rational>{Rational(0), Rational(0), Rational(1)}};
   }
   return dirs;
+}
+
+// ---- two ellipsoids posed in doubles (core::ShapeSpec: centre, radii, quaternion) ----
+//
+// The ellipsoid is c + R D S^2 with D = diag(radii) and R = Rq / s the quaternion's rotation
+// (Rq its undivided polynomial matrix, s = |q|^2, so Rq^T Rq = s^2 I exactly). With
+// m = D Rq^T n: h(n) = n.c + |m| / s and p(n) = c + Rq D m / (s |m|), the same numbers as
+// n.c + sqrt(n^T W n) and c + W n / sqrt(n^T W n) with W = R D^2 R^T (convex_quadric.hpp),
+// evaluated in Arb straight from the doubles (exact as balls) without forming rationals.
+
+// The doubles scaled by one power of two so that the largest magnitude is near 1 (the search
+// is scale-free; tiny or huge shapes would otherwise underflow or overflow W): the float
+// solid W = R D^2 R^T, and the centre.
+Solid<double> posed_solid(const core::ShapeSpec& sp, int shift) {
+  Solid<double> o;
+  o.kind = ConvexQuadric::Kind::Ellipsoid;
+  double R[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  if (sp.rotated) {
+    const double w = sp.quaternion[0], x = sp.quaternion[1], y = sp.quaternion[2],
+                 z = sp.quaternion[3], s = w * w + x * x + y * y + z * z;
+    const double q[3][3] = {
+        {w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
+        {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
+        {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        R[i][j] = q[i][j] / s;
+  }
+  double r2[3];
+  for (size_t k = 0; k < 3; ++k) {
+    // A semi-axis far below the largest magnitude (1e-300 against 1) would underflow W to 0
+    // and the support point to 0/0: the search sees it as 2^-200 instead (it moves the
+    // proposed direction by about that much; the certificate uses the exact radii).
+    const double r = std::max(std::ldexp(sp.radii[k], shift), std::ldexp(1.0, -200));
+    r2[k] = r * r;
+    o.c[k] = std::ldexp(sp.center[k], shift);
+  }
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      o.W[i][j] = 0;
+      for (size_t k = 0; k < 3; ++k)
+        o.W[i][j] += R[i][k] * R[j][k] * r2[k];
+    }
+  return o;
+}
+
+// The pose as balls at precision prec: Rq, s, the radii and the centre (the doubles exactly).
+struct PosedBalls {
+  Ball rq[3][3], s, r[3], c[3];
+};
+
+void posed_balls(PosedBalls& e, const core::ShapeSpec& sp, long prec) {
+  for (size_t k = 0; k < 3; ++k) {
+    arb_set_d(e.r[k].v, sp.radii[k]);
+    arb_set_d(e.c[k].v, sp.center[k]);
+  }
+  if (!sp.rotated) {
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        i == j ? arb_one(e.rq[i][j].v) : arb_zero(e.rq[i][j].v);
+    arb_one(e.s.v);
+    return;
+  }
+  Ball q[4], p[4][4];
+  for (size_t i = 0; i < 4; ++i)
+    arb_set_d(q[i].v, sp.quaternion[i]);
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j)
+      arb_mul(p[i][j].v, q[i].v, q[j].v, prec);
+  // p[i][j] = q_i q_j with q = (w, x, y, z): the diagonal of Rq is ww +- xx +- yy +- zz, the
+  // rest 2 (q_i q_j -+ w q_k).
+  auto diag = [&](arb_t out, int sx, int sy, int sz) {
+    arb_set(out, p[0][0].v);
+    (sx > 0 ? arb_add : arb_sub)(out, out, p[1][1].v, prec);
+    (sy > 0 ? arb_add : arb_sub)(out, out, p[2][2].v, prec);
+    (sz > 0 ? arb_add : arb_sub)(out, out, p[3][3].v, prec);
+  };
+  diag(e.s.v, 1, 1, 1);
+  diag(e.rq[0][0].v, 1, -1, -1);
+  diag(e.rq[1][1].v, -1, 1, -1);
+  diag(e.rq[2][2].v, -1, -1, 1);
+  auto off = [&](arb_t out, const Ball& a, const Ball& b, int sign) {
+    (sign > 0 ? arb_add : arb_sub)(out, a.v, b.v, prec);
+    arb_mul_2exp_si(out, out, 1);
+  };
+  off(e.rq[0][1].v, p[1][2], p[0][3], -1); // 2 (xy - wz)
+  off(e.rq[1][0].v, p[1][2], p[0][3], 1);  // 2 (xy + wz)
+  off(e.rq[0][2].v, p[1][3], p[0][2], 1);  // 2 (xz + wy)
+  off(e.rq[2][0].v, p[1][3], p[0][2], -1); // 2 (xz - wy)
+  off(e.rq[1][2].v, p[2][3], p[0][1], -1); // 2 (yz - wx)
+  off(e.rq[2][1].v, p[2][3], p[0][1], 1);  // 2 (yz + wx)
+}
+
+// h(n) and the support point p(n) of the posed ellipsoid, for the exact direction n (balls).
+void posed_support(Ball& h, Ball (&p)[3], const PosedBalls& e, const Ball (&n)[3], long prec) {
+  Ball m[3], mm, len, t;
+  for (size_t k = 0; k < 3; ++k) { // m = D Rq^T n
+    arb_mul(m[k].v, e.rq[0][k].v, n[0].v, prec);
+    arb_addmul(m[k].v, e.rq[1][k].v, n[1].v, prec);
+    arb_addmul(m[k].v, e.rq[2][k].v, n[2].v, prec);
+    arb_mul(m[k].v, m[k].v, e.r[k].v, prec);
+    arb_addmul(mm.v, m[k].v, m[k].v, prec);
+  }
+  arb_sqrt(len.v, mm.v, prec); // |m| > 0: n != 0 and Rq, D invertible (else not finite)
+  arb_div(h.v, len.v, e.s.v, prec);
+  for (size_t i = 0; i < 3; ++i) // h = n.c + |m| / s
+    arb_addmul(h.v, n[i].v, e.c[i].v, prec);
+  arb_mul(t.v, e.s.v, len.v, prec); // p = c + Rq (D m) / (s |m|)
+  arb_inv(t.v, t.v, prec);
+  for (size_t k = 0; k < 3; ++k) {
+    arb_mul(m[k].v, m[k].v, e.r[k].v, prec);
+    arb_mul(m[k].v, m[k].v, t.v, prec);
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    arb_set(p[i].v, e.c[i].v);
+    for (size_t k = 0; k < 3; ++k)
+      arb_addmul(p[i].v, e.rq[i][k].v, m[k].v, prec);
+  }
 }
 
 } // namespace
@@ -427,12 +568,7 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
   if (!search_double(sa, sb, a.cd, b.cd, basis, n)) return std::nullopt;
 
   DistanceResult out;
-  out.status = Status::Certified;
-  out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
-  out.critical_candidates = 1;
-  out.eliminated_degree = 0;
-  out.note = "disjoint convex solids: certified by a separating direction (support-function "
-             "duality, Arb); unique closest pair (strict convexity); no elimination needed";
+  set_separated_facts(out);
   const long prec = bits_for(digits + 10);
   Ball nb[3];
   if (digits <= 15) {
@@ -482,6 +618,45 @@ std::optional<DistanceResult> separated_convex_distance_float(const ConvexQuadri
   out.note = "float mode: double-precision separating-direction search, NOT certified (the "
              "distance of the float pair, in result.estimate; no ball arithmetic)";
   return out;
+}
+
+std::optional<DistanceResult> separated_posed_ellipsoids(const core::ShapeSpec& a,
+                                                         const core::ShapeSpec& b, long digits) {
+  // The float search on data scaled by 2^shift (largest magnitude near 1).
+  double big = 0;
+  for (const core::ShapeSpec* sp : {&a, &b})
+    for (size_t k = 0; k < 3; ++k)
+      big = std::max({big, std::fabs(sp->center[k]), sp->radii[k]});
+  int e = 0;
+  std::frexp(big, &e);
+  const Solid<double> sa = posed_solid(a, -e), sb = posed_solid(b, -e);
+  const std::vector<V3<double>> basis{V3<double>{1, 0, 0}, V3<double>{0, 1, 0},
+                                      V3<double>{0, 0, 1}};
+  V3<double> n{};
+  if (!search_double(sa, sb, sa.c, sb.c, basis, n)) return std::nullopt;
+  // The certificate at the exact direction n (its doubles), in Arb from the exact doubles.
+  Ball nb[3], mn[3];
+  for (size_t i = 0; i < 3; ++i) {
+    if (!std::isfinite(n[i])) return std::nullopt;
+    arb_set_d(nb[i].v, n[i]);
+    arb_neg(mn[i].v, nb[i].v);
+  }
+  DistanceResult out;
+  set_separated_facts(out);
+  // Two machine words first when they leave a wide margin (Arb keeps them inline: no
+  // allocation), then the usual working precision (a small gap against the solids' size).
+  const long full = bits_for(digits + 10);
+  for (long prec : {std::min(128L, full), full}) {
+    PosedBalls ea, eb;
+    Ball ha, hb, pa[3], pb[3];
+    posed_balls(ea, a, prec);
+    posed_balls(eb, b, prec);
+    posed_support(ha, pa, ea, nb, prec);
+    posed_support(hb, pb, eb, mn, prec);
+    if (enclose_at_direction(out, ha, hb, pa, pb, nb, digits, prec)) return out;
+    if (prec == full) break;
+  }
+  return std::nullopt;
 }
 
 } // namespace surfcert::certify

@@ -27,6 +27,16 @@ namespace surfcert::certify {
 std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
                                                         const ConvexQuadric& b, long digits);
 
+/// The same certificate for two ellipsoids (or spheres) posed in doubles (core::ShapeSpec),
+/// straight from the doubles: the float search chooses n, and h, p are evaluated in Arb from
+/// the exact doubles (the quaternion's polynomial rotation, its squared norm, the radii and
+/// the centre as balls), never forming the exact rationals. The same answer and contract as
+/// separated_convex_distance on convex_quadric() of the two shapes (the same exact solids);
+/// nullopt whenever the double direction does not certify (then the caller runs that route,
+/// which refines the direction in MPFR).
+std::optional<DistanceResult> separated_posed_ellipsoids(const core::ShapeSpec& a,
+                                                         const core::ShapeSpec& b, long digits);
+
 /// Float mode: the same search in double only, status Uncertified (lower = upper = the double
 /// distance of the float pair, not an enclosure); nullopt when no separating direction is
 /// found.
