@@ -98,16 +98,32 @@ _TEXT_FIELDS = {"minimizers", "note", "message", "expected", "found", "source", 
 
 class Record:
     """A JSON object of an answer: attribute access to its fields (r.tu_case), r["tu_case"],
-    `in`, keys(); repr lists the fields."""
+    `in`, keys(); repr lists the fields. Fields are converted when first read (a batch of many
+    answers pays only for what is looked at)."""
 
-    __slots__ = ("_fields",)
+    __slots__ = ("_raw", "_done")
 
-    def __init__(self, fields):
-        object.__setattr__(self, "_fields", fields)
+    def __init__(self, raw, done=None):
+        object.__setattr__(self, "_raw", raw)
+        object.__setattr__(self, "_done", {} if done is None else done)
+
+    def _get(self, key):
+        done = self._done
+        if key in done:
+            return done[key]
+        v = _convert(self._raw[key], key)
+        done[key] = v
+        return v
+
+    @property
+    def _fields(self):
+        return {k: self._get(k) for k in self._raw}
 
     def __getattr__(self, name):
+        if name.startswith("__"):
+            raise AttributeError(name)
         try:
-            return self._fields[name]
+            return self._get(name)
         except KeyError:
             raise AttributeError(name) from None
 
@@ -115,28 +131,30 @@ class Record:
         raise AttributeError("answers are read-only")
 
     def __getitem__(self, key):
-        return self._fields[key]
+        return self._get(key)
 
     def __contains__(self, key):
-        return key in self._fields
+        return key in self._raw
 
     def __iter__(self):
-        return iter(self._fields)
+        return iter(self._raw)
 
     def keys(self):
-        return self._fields.keys()
+        return self._raw.keys()
 
     def get(self, key, default=None):
-        return self._fields.get(key, default)
+        return self._get(key) if key in self._raw else default
 
     def __eq__(self, other):
-        return isinstance(other, Record) and _plain(self._fields) == _plain(other._fields)
+        return isinstance(other, Record) and _plain(self) == _plain(other)
+
+    __hash__ = None
 
     def __dir__(self):
-        return list(self._fields)
+        return list(self._raw)
 
     def __repr__(self):
-        inner = ", ".join(f"{k}={_short(v)}" for k, v in self._fields.items())
+        inner = ", ".join(f"{k}={_short(self._get(k))}" for k in self._raw)
         return f"{type(self).__name__}({inner})"
 
 
@@ -148,19 +166,19 @@ class Result(Record):
 
     def __init__(self, op, text, curves=None):
         raw = _json.loads(text)
-        Record.__init__(self, _convert(raw, None)._fields)
+        Record.__init__(self, raw)
         object.__setattr__(self, "op", op)
         object.__setattr__(self, "json", raw)
         object.__setattr__(self, "_text", text)
-        if curves is not None and "result" in self._fields:
-            _attach_curves(self._fields["result"], curves)
+        if curves is not None and "result" in raw:
+            _attach_curves(self._get("result"), curves)
 
     def to_json(self):
         return self._text
 
     @property
     def ok(self):
-        return self._fields.get("status") != "error"
+        return self._raw.get("status") != "error"
 
 
 class Classification(Result):
@@ -185,7 +203,7 @@ _CLASSES = {"classify": Classification, "intersect": Intersection, "distance": D
 
 def _plain(v):
     if isinstance(v, Record):
-        return {k: _plain(x) for k, x in v._fields.items()}
+        return {k: _plain(v._get(k)) for k in v._raw}
     if isinstance(v, dict):
         return {k: _plain(x) for k, x in v.items()}
     if isinstance(v, (list, tuple)):
@@ -223,13 +241,14 @@ def _number(key, s):
 def _convert(v, key):
     if isinstance(v, dict):
         if key == "readings" or key == "error":
-            return Record({k: x for k, x in v.items()})
+            return Record(v, dict(v))
         if key == "estimate":  # a float answer (mode float): a double, never exact
-            return Record({k: (float(x) if k == "value" else x) for k, x in v.items()})
-        return Record({k: _convert(x, k) for k, x in v.items()})
+            return Record(v, {k: (float(x) if k == "value" else x) for k, x in v.items()})
+        return Record(v)
     if isinstance(v, list):
         if key == "readings":
-            return [_convert_reading(x) for x in v]
+            return [Record(r, {k: (Record(x, dict(x)) if isinstance(x, dict) else x)
+                               for k, x in r.items()}) for r in v]
         if key == "pairs" and v and all(isinstance(p, list) and len(p) == 2 for p in v):
             import numpy as np
             return np.array(v, dtype=float).reshape(len(v), 2, 3)
@@ -239,19 +258,15 @@ def _convert(v, key):
     return v
 
 
-def _convert_reading(r):
-    return Record({k: (Record(dict(x)) if isinstance(x, dict) else x) for k, x in r.items()})
-
-
 def _attach_curves(result, curves):
     branches, isolated = curves
-    fields = result._fields
-    if "branches" in fields:
-        fields["branches"] = [
-            Record({"kind": kind, "closed": closed, "points": pts})
+    if "branches" in result:
+        result._done["branches"] = [
+            Record({"kind": kind, "closed": closed, "points": None},
+                   {"kind": kind, "closed": closed, "points": pts})
             for kind, closed, pts in branches]
-    if "isolated_points" in fields:
-        fields["isolated_points"] = isolated
+    if "isolated_points" in result:
+        result._done["isolated_points"] = isolated
 
 
 # --- inputs --------------------------------------------------------------------------------

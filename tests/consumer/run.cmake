@@ -2,6 +2,8 @@
 # directory, configure and build tests/consumer against it (find_package(surfcert)), run it.
 # Arguments: -DBUILD_DIR=<surfcert build> -DSOURCE_DIR=<tests/consumer> -DWORK_DIR=<scratch>
 # -DSANITIZE=<address,undefined> (the build's sanitizers, comma-separated; may be empty)
+# -DPYTHON=<interpreter> -DPYTHON_DIR=<relative install dir> when the Python module is built:
+# the installed package is imported and asked the same question.
 file(REMOVE_RECURSE ${WORK_DIR})
 function(step)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -19,3 +21,7 @@ step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -DCMAKE_BUILD_TYPE=R
      -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix ${flags})
 step(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 step(${WORK_DIR}/build/consumer)
+if(PYTHON)
+  step(${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR} ${PYTHON}
+       ${SOURCE_DIR}/consumer.py ${WORK_DIR}/prefix)
+endif()
