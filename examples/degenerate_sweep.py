@@ -68,8 +68,8 @@ bottom.semilogy([k for k, _ in pts], [e for _, e in pts], "o-", ms=3,
                 label="float distance estimate, relative error")
 bottom.axhline(1e-15, color="tab:green", ls="--", label="certified enclosure: width <= 1e-15 rel.")
 last = max(k for k, _ in pts)
-bottom.set_title(f"distance: float estimate against the exact $2^{{-k}}$ (after k = {last} "
-                 "float mode gives none: it answers certified)", fontsize=9)
+bottom.set_title(f"distance: float estimate against the exact $2^{{-k}}$ (none after k = {last})",
+                 fontsize=10)
 bottom.set_xlabel("k (gap $2^{-k}$)")
 bottom.legend(fontsize=8)
 fig.tight_layout()
