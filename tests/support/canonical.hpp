@@ -1,15 +1,14 @@
-// surfcert::testing: real canonical pencils of quadrics for the tests, and deterministic
-// random scrambling of them (research qsic-classification §1.7, §4.5, §0.2).
+// surfcert::testing: real canonical pencils of quadrics for the tests, deterministic random
+// scrambling of them (research qsic-classification §1.7, §4.5, §0.2), and the tests' own
+// route from pencil facts to a Tu case.
 //
-// What it represents: a "recipe" is a list of real canonical blocks J_k(theta, eps) (real
-// eigenvalue theta, block size k, sign eps) and C_k(a+bi) (complex pair a +- bi, size k) whose
-// sizes add up to 4 (complex blocks count 2k). build_pencil turns it into the 4x4 pair (A, B)
-// whose pencil l*A - B is the direct sum of the blocks. The 35 recipes of §4.5 are hard-coded
-// with their Tu case. Randomisation (eigenvalue redraw, integer congruence, change of pencil
-// basis) uses a seeded std::mt19937_64 so every failure can be replayed: the seed is
-// test_seed() = SURFCERT_TEST_SEED (environment) or 20261122.
+// What it represents: the recipes (lists of real canonical blocks J_k / C_k), build_pencil and
+// the seeded scrambling are the library's (algebra/canonical_pencil.hpp), named here for the
+// tests. Every failure can be replayed: the seed is test_seed() = SURFCERT_TEST_SEED
+// (environment) or 20261122.
 #pragma once
 
+#include "surfcert/algebra/canonical_pencil.hpp"
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/rational.hpp"
@@ -25,36 +24,29 @@ namespace surfcert::testing {
 using core::Mat4;
 using core::Rational;
 
-/// A square rational matrix of any small size (canonical blocks are k x k or 2k x 2k).
-using SmallMat = std::vector<std::vector<Rational>>;
-
-struct Block {
-  bool complex = false; ///< false: J_k(theta, sign); true: C_k(theta + im*i)
-  int size = 1;         ///< k (a complex block occupies 2k rows)
-  Rational theta;       ///< real eigenvalue, or real part of the complex one
-  Rational im;          ///< imaginary part (complex blocks only, nonzero)
-  int sign = 1;         ///< +1 / -1 (real blocks only)
-  int dimension() const { return complex ? 2 * size : size; }
-};
-using Recipe = std::vector<Block>;
-
-struct PencilPair {
-  Mat4 a, b;
-};
-
-/// One row of the §4.5 table.
-struct CaseRecipe {
-  int tu_case;
-  const char* recipe; ///< text accepted by parse_recipe
-  const char* segre;  ///< Segre characteristic of the case (research §2.1), canonical text
-  /// Normalised signature sequence(s) of §2.1 in ASCII ("<1,(1,2),2,((1,1)),3>"; index =
-  /// number of positive eigenvalues; a root in m pairs of parentheses); case 16 has two,
-  /// separated by a space.
-  const char* sequences;
-};
-
-/// The 35 recipes of research §4.5, in case order (index = case - 1).
-const std::vector<CaseRecipe>& case_recipes();
+// The recipes and the scrambling live in the library (algebra/canonical_pencil.hpp, also what
+// `surfcert generate` builds from); the tests name them here. What stays test-only is the
+// independent route to the case: the signature sequence's normal form looked up in the §2.1
+// table (never the classifier's rules).
+using algebra::Block;
+using algebra::build_pencil;
+using algebra::case_recipes;
+using algebra::CaseRecipe;
+using algebra::change_basis;
+using algebra::complex_block;
+using algebra::congruence;
+using algebra::direct_sum;
+using algebra::parse_recipe;
+using algebra::PencilPair;
+using algebra::random_basis_change;
+using algebra::random_invertible;
+using algebra::real_block;
+using algebra::Recipe;
+using algebra::recipe_to_string;
+using algebra::redraw_eigenvalues;
+using algebra::Rng;
+using algebra::scrambled_pencil;
+using algebra::SmallMat;
 
 /// Normal form (research §1.4) of the signature sequence read off exact pencil facts: the
 /// lexicographically smallest among all rotations, each optionally reversed and/or
@@ -66,54 +58,8 @@ std::string signature_normal_form(const algebra::PencilFacts& facts);
 /// (Segre, sequence) is unique per case. 0 when no row matches.
 int case_from_table(const std::string& segre, const std::string& sequence);
 
-/// Parses e.g. "J1(-3,+) J1(-1,+) J1(1,-) J1(3,+)", "J2(-3,+) C1(1+2i)", "C2(i)",
-/// "J1(-1/2,-) C1(-3/2-i)", "J1(-3,+)x3 J1(-1,+)" (x3 = repeat). Throws
-/// std::invalid_argument on malformed text or when the sizes do not add up to 4.
-Recipe parse_recipe(const std::string& text);
-std::string recipe_to_string(const Recipe& r);
-
-/// J_k(theta, eps): A-block eps*F_k, B-block eps*(theta*F_k + G_k).
-std::pair<SmallMat, SmallMat> real_block(int k, const Rational& theta, int eps);
-/// C_k(a+bi): A-block R(F_k), B-block R((a+bi)F_k + G_k), R(M) = [[Re M, -Im M], [-Im M, -Re M]].
-std::pair<SmallMat, SmallMat> complex_block(int k, const Rational& a, const Rational& b);
-/// Block-diagonal direct sum; the sizes must add up to 4 (throws std::invalid_argument).
-PencilPair direct_sum(const std::vector<std::pair<SmallMat, SmallMat>>& blocks);
-PencilPair build_pencil(const Recipe& r);
-
-/// Deterministic random source.
-class Rng {
-public:
-  explicit Rng(std::uint64_t seed) : gen_(seed) {}
-  /// Uniform integer in [lo, hi].
-  long uniform(long lo, long hi) { return std::uniform_int_distribution<long>(lo, hi)(gen_); }
-  /// Small random rational num/den, num in [-num_max, num_max], den in [1, den_max].
-  Rational small_rational(long num_max = 9, long den_max = 4);
-  std::mt19937_64& engine() { return gen_; }
-
-private:
-  std::mt19937_64 gen_;
-};
-
 /// SURFCERT_TEST_SEED if set (decimal), else 20261122.
 std::uint64_t test_seed();
-
-/// New eigenvalues keeping everything that determines the case: the distinct real eigenvalues
-/// keep their relative order and equalities (random small rationals), every distinct complex
-/// value gets a random a in [-4, 4], b in {1, 2, 3} (distinct complex values stay distinct,
-/// a repeated complex value stays repeated). Block sizes and signs are kept.
-Recipe redraw_eigenvalues(const Recipe& r, Rng& rng);
-
-/// Random integer matrix with entries uniform in [lo, hi] and det != 0.
-Mat4 random_invertible(Rng& rng, long lo, long hi);
-/// A -> P^T A P, B -> P^T B P.
-PencilPair congruence(const PencilPair& ab, const Mat4& p);
-/// (A, B) -> (pA + qB, rA + tB); nullopt when pt - qr == 0 or a matrix becomes zero.
-std::optional<PencilPair> change_basis(const PencilPair& ab, long p, long q, long r, long t);
-/// Random p, q, r, t in [-2, 2] with pt - qr != 0 and both matrices nonzero.
-PencilPair random_basis_change(const PencilPair& ab, Rng& rng);
-/// Recipe with redrawn eigenvalues, then a random congruence (entries in [-2, 2]), then a
-/// random change of pencil basis (research §0.2, random set).
-PencilPair scrambled_pencil(const Recipe& r, Rng& rng);
 
 /// Random symmetric integer matrix with entries in [lo, hi] (not identically zero).
 Mat4 random_symmetric(Rng& rng, long lo, long hi);
