@@ -1,8 +1,10 @@
-// The `surfcert` command line (CLI11): classify, intersect, distance, verify, run, batch. Exit
+// The `surfcert` command line (CLI11): classify, intersect, distance, verify, run, batch,
+// generate. Exit
 // codes:
 // 0 success, 2 bad input or bad command line (message with location or option on stderr,
 // nothing written), 3 finished with undecided results, 1 internal error (for batch: some line
 // was answered with an "internal" error line, e.g. FLINT/Arb aborted on it).
+#include "surfcert/app/generate.hpp"
 #include "surfcert/app/scene.hpp"
 #include "surfcert/app/verify.hpp"
 #include "surfcert/certify/distance/distance.hpp"
@@ -53,11 +55,15 @@ const std::string kUsage =
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N] [--budget-ms MS] [--unordered] [--detail D]\n"
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
+    "  surfcert generate [--case N|all|ellipsoid|distance] [--count K] [--seed S]\n"
+    "                   [--encoding exact|double|shape] [--family F --gaps 10,20,40]\n"
+    "                                              (labelled test cases as batch lines)\n"
     "  surfcert --help | --version | COMMAND --help\n"
     "\n"
     "A batch line: {\"id\": ANY, \"op\": \"classify\"|\"intersect\"|\"distance\"|\"verify\",\n"
     "  \"a\": SURFACE, \"b\": SURFACE, optional \"mode\", \"detail\", \"budget_ms\", \"digits\",\n"
-    "  \"solid\", \"tolerance\", \"claims\"}; SURFACE: an equation string, {\"matrix\": 4x4},\n"
+    "  \"solid\", \"tolerance\", \"claims\", \"label\" (echoed)}; SURFACE: an equation string, "
+    "{\"matrix\": 4x4},\n"
     "  {\"equation\": ...} or a shape {\"type\": \"ellipsoid\", \"center\": [x,y,z], \"radii\": "
     "[a,b,c],\n"
     "  \"rotation\": {\"quaternion\": [w,x,y,z]}} (doubles read exactly; see docs/input.md).\n"
@@ -137,6 +143,8 @@ struct Opts {
   double budget_ms = 0;        ///< batch: default per-line time budget (0 = none)
   bool unordered = false;      ///< batch: write answers as they complete
   std::string detail = "full"; ///< --detail (certify/detail.hpp; checked by CLI11 per command)
+  app::GenerateRequest gen;    ///< generate
+  std::string encoding = "exact", gaps = "10,20,40";
 };
 
 certify::Detail detail_arg(const std::string& v) {
@@ -451,6 +459,36 @@ int cmd_batch(const Opts& o) {
   return st.undecided > 0 ? 3 : 0;
 }
 
+// generate: the labelled lines on stdout. Exit code 3 when some label is not certified, 1
+// when labelling some line failed inside (its label says "error").
+int cmd_generate(Opts& o) {
+  app::GenerateRequest& r = o.gen;
+  r.encoding = *app::parse_encoding(o.encoding); // checked by CLI11
+  r.threads = o.threads;
+  r.gaps.clear();
+  std::stringstream in(o.gaps);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty() || item.size() > 4 ||
+        item.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(Location{"<command line>", 0, 0, ""},
+                       "--gaps: comma-separated integers k (the gaps are 2^-k)",
+                       "\"" + o.gaps + "\"");
+    r.gaps.push_back(std::stoi(item));
+  }
+  const std::vector<Json> lines = app::generate(r);
+  std::ios::sync_with_stdio(false);
+  bool undecided = false, failed = false;
+  for (const Json& line : lines) {
+    const std::string status = line.find("label")->find("status")->text();
+    undecided = undecided || status == "undecided";
+    failed = failed || status == "error";
+    std::cout << core::io::dump(line) << '\n';
+  }
+  std::cout.flush();
+  return failed ? 1 : undecided ? 3 : 0;
+}
+
 CLI::Option* add_mode(CLI::App* sub, Opts& o) {
   return sub
       ->add_option("--mode", o.mode,
@@ -552,6 +590,30 @@ int main(int argc, char** argv) {
   batch->add_flag("--unordered", o.unordered,
                   "write each answer as soon as it is done (not in input order; key by \"id\")");
 
+  CLI::App* generate = cli.add_subcommand(
+      "generate", "labelled test cases as batch lines (JSON lines on stdout; docs/cli.md)");
+  generate
+      ->add_option("--case", o.gen.what,
+                   "1..35, all (the 35 + degenerate_pencil + coincident), degenerate_pencil, "
+                   "coincident, ellipsoid or distance (default all)")
+      ->type_name("N|all|ellipsoid|distance");
+  generate->add_option("--count", o.gen.count, "random instances per case, 1 to 1000000")
+      ->check(CLI::Range(1L, 1000000L));
+  generate->add_option("--seed", o.gen.seed, "the seed (same seed, same lines)");
+  generate->add_option("--encoding", o.encoding, "exact, double (binary64-exact) or shape")
+      ->check(CLI::IsMember({"exact", "double", "shape"}))
+      ->type_name("exact|double|shape");
+  generate
+      ->add_option("--family", o.gen.family,
+                   "a path through a degeneracy instead of --case: tangency, node, acnode, cusp, "
+                   "double_conic, touching, nested or all")
+      ->check(CLI::IsMember(
+          {"tangency", "node", "acnode", "cusp", "double_conic", "touching", "nested", "all"}));
+  generate->add_option("--gaps", o.gaps, "the family's points at gap +-2^-k, 0 (default 10,20,40)")
+      ->type_name("K,K,...");
+  generate->add_option("--threads", o.threads, "labelling threads, 1 to 256")
+      ->check(CLI::Range(1, 256));
+
   try {
     if (argc < 2) {
       std::cout << kUsage;
@@ -559,7 +621,8 @@ int main(int argc, char** argv) {
     } else {
       const std::string first = argv[1];
       if (!first.empty() && first[0] != '-' && first != "classify" && first != "intersect" &&
-          first != "distance" && first != "verify" && first != "run" && first != "batch")
+          first != "distance" && first != "verify" && first != "run" && first != "batch" &&
+          first != "generate")
         throw UsageError("unknown command " + first);
       try {
         cli.parse(argc, argv);
@@ -594,6 +657,8 @@ int main(int argc, char** argv) {
         rc = cmd_run(o);
       else if (batch->parsed())
         rc = cmd_batch(o);
+      else if (generate->parsed())
+        rc = cmd_generate(o);
     }
   } catch (const InputError& e) {
     std::cerr << "surfcert: error: " << e.what() << "\n";

@@ -303,7 +303,7 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
                          core::io::type_name(doc.type()));
       check_fields(doc,
                    {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms",
-                    "claims", "detail"},
+                    "claims", "detail", "label"},
                    source, "$");
       const Json* op = doc.find("op");
       if (!known_op(op))
@@ -375,6 +375,9 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       for (const auto& [k, v] : env.members())
         out.set(k, v);
       if (!readings.empty()) out.set("readings", core::io::readings_json(readings));
+      // A line's "label" (any JSON, e.g. what `surfcert generate` wrote) is echoed untouched,
+      // so answers and expectations travel together.
+      if (const Json* label = doc.find("label")) out.set("label", *label);
     } catch (const InputError& e) {
       throw fix(e);
     }

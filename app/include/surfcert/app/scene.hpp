@@ -96,6 +96,8 @@ core::io::Json internal_error_line(const core::io::Json& id, const std::string& 
 /// undecided with "reason": "budget" (core/budget.hpp). Every answer carries "time_ms".
 /// The line's "detail" (a level its op has, certify/detail.hpp) else default_detail mapped
 /// onto the op (detail_for_op) sets how much the answer carries and so computes.
+/// The line's "label" (any JSON value; `surfcert generate` writes one) is not read, only
+/// echoed in the answer as "label".
 core::io::Json process_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
                                   bool* fallback = nullptr, double default_budget_ms = 0,
                                   certify::Detail default_detail = certify::Detail::Full);

@@ -1,0 +1,62 @@
+// surfcert::app::generate: test cases with certified labels, written as batch lines
+// (`surfcert generate`).
+//
+// What it represents: a deterministic function of a GenerateRequest (the seed included) to a
+// list of JSON objects, each a valid `batch` / `verify` input line ({"id", "op", "a", "b"})
+// plus a "label": the answer surfcert's certified classifier (op classify) or distance engine
+// (op distance) gives on exactly the surfaces written in the line (the line is read back
+// through the input reader before it is labelled, so the label is of what a reader gets,
+// never of the construction). The label's "construction" says how the case was built (the
+// recipe and the Tu case it was built for, the gap of a family point, the expected distance
+// of a closed form, the encoding and how its numbers read exactly): a certified label that
+// disagrees with its construction is a bug, of the construction or of the classifier (the
+// tests assert they agree).
+// Sets: the 35 Tu cases from their real canonical forms (algebra/canonical_pencil.hpp),
+// scrambled by random congruences and pencil bases; degenerate pencils and coincident pairs;
+// pairs of actual ellipsoids realising the ellipsoid topologies of seed 002; distance pairs
+// with closed-form answers. Families: a path B0 + g D through a degeneracy, sampled at
+// g = -2^-k, 0, +2^-k for the requested k.
+// Encodings: exact (integers and "p/q" strings), double (every number a binary64 whose
+// decimal text is its exact value: read as doubles or as exact decimals, the same surface),
+// shape (a shape with centre, radii and a quaternion of small integers, all binary64, where
+// the construction is a shape; otherwise the double matrix, and the label says so).
+// Contract: the same request gives the same lines, byte for byte, on every platform (the
+// draws are algebra::Rng's; labelling runs in parallel but lines keep their order).
+#pragma once
+
+#include "surfcert/core/io/json.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace surfcert::app {
+
+enum class Encoding { Exact, Double, Shape };
+std::optional<Encoding> parse_encoding(const std::string& s);
+const char* to_string(Encoding e);
+
+struct GenerateRequest {
+  /// "1".."35", "all" (the 35 cases, degenerate_pencil and coincident), "degenerate_pencil",
+  /// "coincident", "ellipsoid" or "distance". Ignored when `family` is set.
+  std::string what = "all";
+  /// "" (none), one of family_names(), or "all".
+  std::string family;
+  std::vector<int> gaps{10, 20, 40}; ///< family points at g = +-2^-k (and g = 0)
+  long count = 1;                    ///< random instances per case (poses per family point)
+  std::uint64_t seed = 1;
+  Encoding encoding = Encoding::Exact;
+  int threads = 1; ///< labelling threads (the output does not depend on it)
+};
+
+/// The families: pencil paths (op classify) "tangency", "node", "acnode", "cusp",
+/// "double_conic"; distance paths (op distance) "touching", "nested".
+const std::vector<std::string>& family_names();
+
+/// The lines of the request, labelled, in a fixed order. Throws core::InputError for a
+/// request that cannot be met (unknown case or family, k outside 1..1000, a family point the
+/// double encoding cannot hold exactly), before anything is labelled.
+std::vector<core::io::Json> generate(const GenerateRequest& request);
+
+} // namespace surfcert::app
