@@ -186,9 +186,12 @@ Outcome convex_run(Query& q) {
   // Two shapes posed in doubles: the certificate straight from the doubles first (no exact
   // rationals); whatever it cannot prove goes on to the exact description below.
   const core::ShapeSpec *sa = posed_ellipsoid(qa(q)), *sb = posed_ellipsoid(qb(q));
-  if (sa != nullptr && sb != nullptr)
-    if (auto r = separated_posed_ellipsoids(*sa, *sb, q.digits))
+  if (sa != nullptr && sb != nullptr) {
+    bool no_separation = false;
+    if (auto r = separated_posed_ellipsoids(*sa, *sb, q.digits, &no_separation))
       return Outcome::answer(std::move(*r));
+    if (no_separation) return Outcome::not_applicable(); // nested or overlapping: next routes
+  }
   return answer_or_not(
       separated_convex_distance(*convex_quadric(qa(q)), *convex_quadric(qb(q)), q.digits));
 }

@@ -621,7 +621,9 @@ std::optional<DistanceResult> separated_convex_distance_float(const ConvexQuadri
 }
 
 std::optional<DistanceResult> separated_posed_ellipsoids(const core::ShapeSpec& a,
-                                                         const core::ShapeSpec& b, long digits) {
+                                                         const core::ShapeSpec& b, long digits,
+                                                         bool* no_separation) {
+  if (no_separation != nullptr) *no_separation = false;
   // The float search on data scaled by 2^shift (largest magnitude near 1).
   double big = 0;
   for (const core::ShapeSpec* sp : {&a, &b})
@@ -633,7 +635,10 @@ std::optional<DistanceResult> separated_posed_ellipsoids(const core::ShapeSpec& 
   const std::vector<V3<double>> basis{V3<double>{1, 0, 0}, V3<double>{0, 1, 0},
                                       V3<double>{0, 0, 1}};
   V3<double> n{};
-  if (!search_double(sa, sb, sa.c, sb.c, basis, n)) return std::nullopt;
+  if (!search_double(sa, sb, sa.c, sb.c, basis, n)) {
+    if (no_separation != nullptr) *no_separation = true;
+    return std::nullopt;
+  }
   // The certificate at the exact direction n (its doubles), in Arb from the exact doubles.
   Ball nb[3], mn[3];
   for (size_t i = 0; i < 3; ++i) {

@@ -1079,12 +1079,12 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
 
   // The chart polynomials (Arb, then outward to double intervals), the certified upper bound
   // G(best) (any direction gives G >= min G), and the branch and bound.
-  Ctx<Ball> Cs;
-  {
-    const PrecisionScope scope(128);
-    Cs = make_ctx(inner, outer, f);
-  }
-  const Ctx<DI> Cd = to_di(Cs);
+  // Once, at the final precision (the exact rationals rounded once), and outward to double
+  // intervals for the branch and bound.
+  const long pf = bits_for(digits + 10);
+  const PrecisionScope scope(pf);
+  const Ctx<Ball> C = make_ctx(inner, outer, f);
+  const Ctx<DI> Cd = to_di(C);
   DI U;
   std::vector<Critical> crit;
   {
@@ -1098,9 +1098,6 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   }
 
   // Contract the candidates that can hold the minimum, best first, at the final precision.
-  const long pf = bits_for(digits + 10);
-  const PrecisionScope scope(pf);
-  const Ctx<Ball> C = make_ctx(inner, outer, f);
   Ball tol;
   arb_ui_pow_ui(tol.v, 10, static_cast<ulong>(digits), pf);
   arb_inv(tol.v, tol.v, pf);

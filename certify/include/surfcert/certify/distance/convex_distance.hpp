@@ -33,9 +33,13 @@ std::optional<DistanceResult> separated_convex_distance(const ConvexQuadric& a,
 /// the centre as balls), never forming the exact rationals. The same answer and contract as
 /// separated_convex_distance on convex_quadric() of the two shapes (the same exact solids);
 /// nullopt whenever the double direction does not certify (then the caller runs that route,
-/// which refines the direction in MPFR).
+/// which refines the direction in MPFR). *no_separation (when given) tells that the float
+/// search found no separating direction at all (the solids clearly overlap or nest): the
+/// exact route's search, on the same solids, would find none either. A hint for skipping
+/// that route, never a claim: other routes answer such pairs.
 std::optional<DistanceResult> separated_posed_ellipsoids(const core::ShapeSpec& a,
-                                                         const core::ShapeSpec& b, long digits);
+                                                         const core::ShapeSpec& b, long digits,
+                                                         bool* no_separation = nullptr);
 
 /// Float mode: the same search in double only, status Uncertified (lower = upper = the double
 /// distance of the float pair, not an enclosure); nullopt when no separating direction is
