@@ -5,6 +5,7 @@
 // app::process_batch_line step for step; to_json() builds the same envelope it does.
 #include "surfcert/surfcert.hpp"
 
+#include "surfcert/app/generate.hpp"
 #include "surfcert/app/verify.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/core/budget.hpp"
@@ -284,6 +285,37 @@ Verification verify(const Surface& a, const Surface& b, const Json& claims, cons
     v.budget_exhausted = true;
   }
   return v;
+}
+
+std::vector<GeneratedCase> generate(const GenerateOptions& opt) {
+  app::GenerateRequest r;
+  r.what = opt.cases;
+  r.family = opt.family;
+  r.gaps = opt.gaps;
+  r.count = opt.count;
+  r.seed = opt.seed;
+  r.threads = opt.threads;
+  const auto enc = app::parse_encoding(opt.encoding);
+  if (!enc)
+    throw InputError(option_at("encoding"), "an encoding: \"exact\", \"double\" or \"shape\"",
+                     "\"" + opt.encoding + "\"");
+  r.encoding = *enc;
+  std::vector<GeneratedCase> out;
+  for (Json& line : app::generate(r)) {
+    GeneratedCase c;
+    c.id = line.find("id")->text();
+    c.op = line.find("op")->text();
+    c.a = *line.find("a");
+    c.b = *line.find("b");
+    c.label = *line.find("label");
+    c.status = c.label.find("status")->text();
+    if (const Json* m = c.label.find("morphology")) c.morphology = m->text();
+    if (const Json* t = c.label.find("tu_case"); t && t->is_number())
+      c.tu_case = std::stol(t->text());
+    c.line = std::move(line);
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 void for_each_parallel(std::size_t n, int threads, const std::function<void(std::size_t)>& job) {

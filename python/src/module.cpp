@@ -3,7 +3,8 @@
 //
 // What it represents: the embedding API (surfcert/surfcert.hpp) reduced to two calls that
 // answer in the batch line's JSON: run (one query) and run_batch (many, on native threads
-// with the interpreter lock released). A surface arrives as a "side":
+// with the interpreter lock released), plus generate (the lines of `surfcert generate`). A surface
+// arrives as a "side":
 //   ("text", str)                       an equation or a JSON surface (Surface::parse),
 //   ("matrix", float64 array (4, 4))    doubles read exactly (Surface::from_matrix),
 //   ("shape", type, float64 array (10,)) centre xyz, semi-axes abc, quaternion wxyz;
@@ -22,6 +23,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -259,6 +261,42 @@ py::list run_batch(const std::string& op, const py::tuple& a, const py::tuple& b
   return res;
 }
 
+// The lines of `surfcert generate` as JSON text (the GIL released while they are labelled).
+// A bad request raises an InputError-carrying tuple (false, error JSON), as run does.
+py::tuple generate(const std::string& cases, const std::string& family, std::vector<int> gaps,
+                   long count, std::uint64_t seed, const std::string& encoding, int threads) {
+  surfcert::GenerateOptions o;
+  o.cases = cases;
+  o.family = family;
+  o.gaps = std::move(gaps);
+  o.count = count;
+  o.seed = seed;
+  o.encoding = encoding;
+  o.threads = threads;
+  std::vector<std::string> lines;
+  std::string error;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    try {
+      try {
+        for (const surfcert::GeneratedCase& c : surfcert::generate(o))
+          lines.push_back(surfcert::core::io::dump(c.line));
+        ok = true;
+      } catch (const surfcert::InputError& e) {
+        error = surfcert::core::io::dump(surfcert::certify::input_error_json(e));
+      }
+    } catch (const std::exception& e) {
+      error = surfcert::core::io::dump(error_json(e.what()));
+    }
+  }
+  if (!ok) return py::make_tuple(false, error);
+  py::list out;
+  for (const auto& l : lines)
+    out.append(py::str(l));
+  return py::make_tuple(true, out);
+}
+
 } // namespace
 
 PYBIND11_MODULE(_surfcert, m) {
@@ -271,4 +309,6 @@ PYBIND11_MODULE(_surfcert, m) {
   m.def("run_batch", &run_batch, py::arg("op"), py::arg("a"), py::arg("b"), py::arg("mode"),
         py::arg("detail"), py::arg("digits"), py::arg("solid"), py::arg("tolerance"),
         py::arg("budget_ms"), py::arg("claims"), py::arg("threads"));
+  m.def("generate", &generate, py::arg("cases"), py::arg("family"), py::arg("gaps"),
+        py::arg("count"), py::arg("seed"), py::arg("encoding"), py::arg("threads"));
 }

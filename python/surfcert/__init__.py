@@ -29,6 +29,11 @@ item. They run on `threads` native threads (default: os.cpu_count()) with the in
 released, and return one result per item; a bad item gives a result with status "error" and
 an `error` field (as a batch line does) instead of raising.
 
+generate(case=..., count=..., seed=..., encoding=..., family=..., gaps=[...]) returns the
+labelled test cases of `surfcert generate` (docs/cli.md) as dicts, the JSON lines parsed:
+{"id", "op", "a", "b", "label"}; c["a"] and c["b"] are JSON surfaces that classify, distance and
+the batch forms take as they are, and c["label"] is the certified answer for them.
+
 Errors of a single call raise InputError (bad input: .source, .line, .column, .json_path,
 .expected, .found, as the CLI reports them; a surface a is at JSON path "$.a...") or
 InternalError.
@@ -51,7 +56,7 @@ __version__ = _surfcert.__version__
 
 __all__ = [
     "classify", "intersect", "distance", "verify",
-    "classify_batch", "intersect_batch", "distance_batch", "verify_batch",
+    "classify_batch", "intersect_batch", "distance_batch", "verify_batch", "generate",
     "Result", "Record", "SurfcertError", "InputError", "InternalError", "SHAPE_COLUMNS",
 ]
 
@@ -449,3 +454,29 @@ def verify_batch(a, b, claims, mode="filtered", budget_ms=0, shape="ellipsoid", 
     """The same claims checked on every pair."""
     return _batch("verify", a, b, shape, threads, _opts(mode, "full", 15, False, 2e-4, budget_ms),
                   _claims_text(claims))
+
+
+def generate(case="all", count=1, seed=1, encoding="exact", family=None, gaps=(10, 20, 40),
+             threads=None):
+    """The labelled test cases of `surfcert generate` for the same options (the same lines,
+    parsed): a list of dicts {"id", "op", "a", "b", "label"}. case is "1".."35" (or an int),
+    "all", "degenerate_pencil", "coincident", "ellipsoid" or "distance"; family (instead of
+    case) a path through a degeneracy sampled at g = +-2^-k, 0 for k in gaps; encoding
+    "exact", "double" or "shape". The label is what the certified classifier (op classify:
+    status, tu_case, morphology, segre, pencil) or distance engine (op distance: distance,
+    minimizers, method) answers on exactly c["a"], c["b"]; label["construction"] says how
+    the case was built. Labelling runs on `threads` native threads (default os.cpu_count())
+    with the interpreter lock released; the lines do not depend on it."""
+    if isinstance(count, bool) or not isinstance(count, _numbers.Integral):
+        raise TypeError("count: an integer")
+    if isinstance(seed, bool) or not isinstance(seed, _numbers.Integral) or seed < 0:
+        raise TypeError("seed: a non-negative integer")
+    threads = threads or _os.cpu_count() or 1
+    ok, out = _surfcert.generate(str(case), family or "", [int(k) for k in gaps], int(count),
+                                 int(seed), str(encoding), int(threads))
+    if not ok:
+        err = _json.loads(out)
+        if err.get("kind") == "input":
+            raise InputError(err)
+        raise InternalError(err)
+    return [_json.loads(line) for line in out]

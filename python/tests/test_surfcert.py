@@ -254,3 +254,56 @@ def test_readme_python_example_runs(capsys):
     out = capsys.readouterr().out.split("\n")
     assert out[0] == "certified point_imaginary_conic_and_lines"
     assert out[1] == "Fraction(3, 2)"
+
+
+def cli_generate(*args):
+    p = subprocess.run([BINARY, "generate", *args], capture_output=True, text=True, check=False)
+    assert p.returncode in (0, 3), p.stderr
+    return [json.loads(line) for line in p.stdout.splitlines()]
+
+
+GENERATE_OPTIONS = [
+    (dict(case=5, count=3, seed=2), ["--case", "5", "--count", "3", "--seed", "2"]),
+    (dict(case="all", encoding="double"), ["--case", "all", "--encoding", "double"]),
+    (dict(case="ellipsoid", encoding="shape", seed=7),
+     ["--case", "ellipsoid", "--encoding", "shape", "--seed", "7"]),
+    (dict(case="distance", count=2), ["--case", "distance", "--count", "2"]),
+    (dict(family="all", gaps=[3, 30], encoding="double"),
+     ["--family", "all", "--gaps", "3,30", "--encoding", "double"]),
+]
+
+
+@pytest.mark.parametrize("kwargs,args", GENERATE_OPTIONS)
+def test_generate_equals_the_cli(kwargs, args):
+    py = surfcert.generate(**kwargs, threads=2)
+    assert py == cli_generate(*args)
+    assert len(py) > 0
+
+
+def test_generated_cases_feed_back_into_the_batch_forms():
+    cases = surfcert.generate(case="all", count=2, seed=5, encoding="double")
+    cases += surfcert.generate(family="all", gaps=[4, 25], encoding="exact")
+    cls = [c for c in cases if c["op"] == "classify" and c["label"]["status"] == "certified"]
+    dis = [c for c in cases if c["op"] == "distance" and c["label"]["status"] == "certified"]
+    assert len(cls) > 60 and len(dis) > 3
+    rs = surfcert.classify_batch([c["a"] for c in cls], [c["b"] for c in cls], threads=2)
+    for c, r in zip(cls, rs):
+        assert r.status == "certified", c["id"]
+        assert r.json["result"]["morphology"] == c["label"]["morphology"], c["id"]
+        assert r.json["result"].get("tu_case") == c["label"].get("tu_case"), c["id"]
+    ds = surfcert.distance_batch([c["a"] for c in dis], [c["b"] for c in dis], threads=2)
+    for c, r in zip(dis, ds):
+        assert r.json["result"]["distance"] == c["label"]["distance"], c["id"]
+    # one by one too (the single-call forms take the same dicts)
+    c = cls[0]
+    assert surfcert.classify(c["a"], c["b"]).json["result"]["morphology"] == \
+        c["label"]["morphology"]
+
+
+def test_generate_errors_are_input_errors():
+    with pytest.raises(surfcert.InputError):
+        surfcert.generate(case="36")
+    with pytest.raises(surfcert.InputError):
+        surfcert.generate(encoding="float")
+    with pytest.raises(surfcert.InputError):
+        surfcert.generate(family="tangency", gaps=[0])

@@ -186,3 +186,39 @@ TEST(Api, ForEachParallelVisitsEveryItemOnce) {
 }
 
 } // namespace
+
+// generate: each case's label is what classify / distance answer through the API on its
+// surfaces read back (a separate route: the API's readers and the engine at full detail),
+// and the case built for Tu case k is labelled k. A bad encoding is an InputError.
+TEST(Api, GeneratedCasesCarryTheApisAnswers) {
+  GenerateOptions g;
+  g.cases = "7";
+  g.count = 2;
+  g.seed = 3;
+  g.encoding = "double";
+  const std::vector<GeneratedCase> cs = generate(g);
+  ASSERT_EQ(cs.size(), 2u);
+  for (const GeneratedCase& c : cs) {
+    EXPECT_EQ(c.op, "classify");
+    ASSERT_EQ(c.status, "certified");
+    EXPECT_EQ(c.tu_case, 7);
+    const Classification r = classify(c.surface_a(), c.surface_b());
+    const Json j = r.to_json();
+    EXPECT_EQ(j.find("result")->find("morphology")->text(), c.morphology);
+    EXPECT_EQ(dump(*c.line.find("a")), dump(c.a));
+  }
+  g.cases = "distance";
+  g.encoding = "exact";
+  g.count = 1;
+  int n = 0;
+  for (const GeneratedCase& c : generate(g)) {
+    ASSERT_EQ(c.op, "distance");
+    if (c.status != "certified") continue;
+    const Distance d = distance(c.surface_a(), c.surface_b());
+    EXPECT_EQ(dump(*d.to_json().find("result")->find("distance")), dump(*c.label.find("distance")));
+    ++n;
+  }
+  EXPECT_GT(n, 0);
+  g.encoding = "float";
+  EXPECT_THROW(generate(g), InputError);
+}

@@ -1,5 +1,5 @@
 // surfcert: the embedding API (namespace surfcert), the operations of the command line —
-// classify, intersect, distance, verify — as C++ calls with typed answers.
+// classify, intersect, distance, verify, generate — as C++ calls with typed answers.
 //
 // What it represents: a thin, stable front over the engine. A Surface is read exactly from
 // text (an equation or a JSON surface, docs/input.md), from a 4x4 matrix of doubles or of
@@ -7,6 +7,7 @@
 // float data was read is kept as readings. An operation takes two surfaces and Options and
 // returns the engine's own typed result (certify::QsicResult, trace::CurveResult,
 // certify::DistanceResult; verify's verdicts as their JSON) wrapped with what its JSON needs.
+// generate returns the labelled test cases of `surfcert generate` (app/generate.hpp).
 //
 // Contract:
 // - Every status is the engine's: Certified only when proven; Undecided never guesses;
@@ -42,9 +43,11 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace surfcert {
 
@@ -165,8 +168,48 @@ Intersection intersect(const Surface& a, const Surface& b, const Options& opt = 
 /// The minimum distance: a proven enclosure to opt.digits, the minimizers, closest pairs.
 Distance distance(const Surface& a, const Surface& b, const Options& opt = {});
 /// Verdicts on claims: a JSON array of claim objects (docs/json-contract.md, op verify).
+/// verify has no detail levels (a batch line's "detail" on op verify is an input error):
+/// opt.detail is not read, the answer is always whole.
 Verification verify(const Surface& a, const Surface& b, const Json& claims,
                     const Options& opt = {});
+
+/// What to generate: the options of `surfcert generate` (docs/cli.md, app/generate.hpp).
+struct GenerateOptions {
+  /// --case: "1".."35", "all", "degenerate_pencil", "coincident", "ellipsoid" or "distance";
+  /// ignored when `family` is set.
+  std::string cases = "all";
+  std::string family;                ///< --family: "" (none), a family name or "all"
+  std::vector<int> gaps{10, 20, 40}; ///< --gaps: family points at g = +-2^-k and 0
+  long count = 1;                    ///< --count, 1..1000000
+  std::uint64_t seed = 1;            ///< --seed
+  std::string encoding = "exact";    ///< --encoding: "exact", "double" or "shape"
+  int threads = 1;                   ///< labelling threads (the cases do not depend on it)
+};
+
+/// One generated case: a batch line {"id", "op", "a", "b", "label"} and its parts.
+struct GeneratedCase {
+  std::string id;
+  std::string op; ///< "classify" or "distance"
+  Json a, b;      ///< the surfaces as written (JSON surfaces; Surface::from_json reads them)
+  /// The certified label: "status" ("certified", "undecided", or "error" when labelling
+  /// failed inside), the classifier's tu_case / morphology / segre / pencil (op classify) or
+  /// the distance engine's distance / minimizers / method (op distance), "certified_by" and
+  /// "construction".
+  Json label;
+  Json line;          ///< the whole line, as `surfcert generate` writes it
+  std::string status; ///< label.status
+  /// label.morphology and label.tu_case (op classify, when certified; else "" and 0).
+  std::string morphology;
+  long tu_case = 0;
+  /// The surfaces read as a batch line reads them (at JSON paths $.a, $.b).
+  Surface surface_a() const { return Surface::from_json(a, "<generate>", "$.a"); }
+  Surface surface_b() const { return Surface::from_json(b, "<generate>", "$.b"); }
+};
+
+/// The lines `surfcert generate` writes for the same options, in the same order, the same
+/// JSON. A request that cannot be met (unknown case, family or encoding, count or gap out of
+/// range) throws InputError before anything is labelled.
+std::vector<GeneratedCase> generate(const GenerateOptions& opt = {});
 
 /// Runs job(i) for every i in [0, n) on up to `threads` native threads (threads < 1: one),
 /// each thread freeing FLINT's caches when it ends. job must not throw (catch per item).
