@@ -1,5 +1,6 @@
 #include "surfcert/app/scene.hpp"
 
+#include "surfcert/app/generate.hpp"
 #include "surfcert/app/verify.hpp"
 
 #include "surfcert/certify/distance/distance.hpp"
@@ -301,14 +302,22 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       if (!doc.is_object())
         throw InputError(at(doc, source, "$"), "a JSON object {\"id\", \"op\", \"a\", \"b\"}",
                          core::io::type_name(doc.type()));
+      const Json* op = doc.find("op");
+      // generate (app/generate.hpp): no surfaces; the answer's result holds the generated lines.
+      if (op && op->is_string() && op->text() == "generate") {
+        const Json env = generate_envelope(read_generate_line(doc, source), doc, source);
+        for (const auto& [k, v] : env.members())
+          out.set(k, v);
+        return timed(std::move(out));
+      }
       check_fields(doc,
                    {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms",
                     "claims", "detail", "label"},
                    source, "$");
-      const Json* op = doc.find("op");
       if (!known_op(op))
         throw InputError(
-            at(op ? *op : doc, source, "$.op"), std::string("an op: ") + kSupportedOps,
+            at(op ? *op : doc, source, "$.op"),
+            std::string("an op: ") + kSupportedOps + " (or \"generate\")",
             op ? (op->is_string() ? "\"" + op->text() + "\"" : core::io::type_name(op->type()))
                : "none");
       Mode mode = default_mode;

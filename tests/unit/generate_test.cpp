@@ -374,3 +374,65 @@ TEST(Generate, CommandLineOutputIsBatchInput) {
 }
 
 } // namespace
+
+namespace {
+
+// The batch op generate: its cases are the CLI's lines for the same options, byte for byte
+// (two routes: the command line through CLI11 and the batch line through its JSON reader).
+TEST(Generate, BatchOpCasesEqualTheCommandLineLines) {
+  struct Probe {
+    std::string flags, fields;
+  };
+  const std::vector<Probe> probes = {
+      {"--case 5 --count 3 --seed 7 --encoding double",
+       R"("case": 5, "count": 3, "seed": 7, "encoding": "double")"},
+      {"--case ellipsoid --count 1 --seed 2 --encoding shape",
+       R"("case": "ellipsoid", "count": 1, "seed": 2, "encoding": "shape")"},
+      {"--family tangency --gaps 10,30 --seed 4",
+       R"("family": "tangency", "gaps": [10, 30], "seed": 4)"},
+      {"--case degenerate_pencil --count 2", R"("case": "degenerate_pencil", "count": 2)"},
+  };
+  const std::string file = ::testing::TempDir() + "/generate_op_cli.jsonl";
+  for (const Probe& p : probes) {
+    SCOPED_TRACE(p.flags);
+    ASSERT_EQ(
+        std::system((std::string(SURFCERT_BINARY) + " generate " + p.flags + " > " + file).c_str()),
+        0);
+    std::vector<std::string> cli;
+    std::ifstream in(file);
+    for (std::string l; std::getline(in, l);)
+      cli.push_back(l);
+    const Json answer = app::process_batch_line(
+        R"({"id": "g", "op": "generate", )" + p.fields + "}", 1, certify::Mode::Filtered);
+    ASSERT_EQ(answer.find("status")->text(), "certified") << core::io::dump(answer);
+    EXPECT_EQ(answer.find("id")->text(), "g");
+    const Json& result = *answer.find("result");
+    const Json& cases = *result.find("cases");
+    ASSERT_EQ(cases.size(), cli.size());
+    EXPECT_EQ(core::io::dump(*result.find("count")), std::to_string(cli.size()));
+    ASSERT_GT(cli.size(), 0u);
+    for (size_t i = 0; i < cli.size(); ++i)
+      EXPECT_EQ(core::io::dump(cases.items()[i]), cli[i]);
+  }
+}
+
+// A generate line's bad field is an input error at that field's JSON path.
+TEST(Generate, BatchOpRefusesBadFieldsAtTheirPaths) {
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {R"("case": 36)", "$.case"},         {R"("case": "nope")", "$.case"},
+      {R"("count": 0)", "$.count"},        {R"("count": 1001)", "$.count"},
+      {R"("seed": -1)", "$.seed"},         {R"("encoding": "hex")", "$.encoding"},
+      {R"("family": "knot")", "$.family"}, {R"("gaps": [])", "$.gaps"},
+      {R"("gaps": [10, 0])", "$.gaps[1]"}, {R"("a": "x^2+y^2+z^2-1")", "$.a"},
+  };
+  for (const auto& [fields, path] : bad) {
+    SCOPED_TRACE(fields);
+    const Json answer = app::process_batch_line(R"({"id": 1, "op": "generate", )" + fields + "}", 1,
+                                                certify::Mode::Filtered);
+    ASSERT_EQ(answer.find("status")->text(), "error");
+    EXPECT_EQ(answer.find("error")->find("kind")->text(), "input");
+    EXPECT_EQ(answer.find("error")->find("json_path")->text(), path);
+  }
+}
+
+} // namespace

@@ -59,4 +59,20 @@ const std::vector<std::string>& family_names();
 /// double encoding cannot hold exactly), before anything is labelled.
 std::vector<core::io::Json> generate(const GenerateRequest& request);
 
+/// The batch op "generate": the request of a batch line {"id", "op": "generate", "case",
+/// "count", "seed", "encoding", "family", "gaps"} (every field but "op" optional, defaults as
+/// GenerateRequest's; "count" at most kBatchGenerateMaxCount, labelling on the line's own
+/// thread). Throws core::InputError located at the offending field's JSON path ($.case,
+/// $.count, ...) for an unknown field or a value generate() would refuse.
+GenerateRequest read_generate_line(const core::io::Json& line, const std::string& source);
+constexpr long kBatchGenerateMaxCount = 1000;
+
+/// The fields of the answer to a generate line: "status" (certified when every label is,
+/// undecided when some is, error with an "internal" error when labelling some case failed) and
+/// "result": {"count": n, "cases": [the n objects generate() gives, in its order]}; the cases
+/// are exactly the lines `surfcert generate` prints for the same options. A request the
+/// encoding cannot hold throws core::InputError at `source` $.encoding.
+core::io::Json generate_envelope(const GenerateRequest& request, const core::io::Json& line,
+                                 const std::string& source);
+
 } // namespace surfcert::app
