@@ -55,7 +55,7 @@ const std::string kUsage =
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N] [--budget-ms MS] [--unordered] [--detail D]\n"
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
-    "  surfcert generate [--case N|all|ellipsoid|distance] [--count K] [--seed S]\n"
+    "  surfcert generate [--case N|all|ellipsoid|natural|distance] [--count K] [--seed S]\n"
     "                   [--encoding exact|double|shape] [--family F --gaps 10,20,40]\n"
     "                                              (labelled test cases as batch lines)\n"
     "  surfcert --help | --version | COMMAND --help\n"
@@ -593,10 +593,12 @@ int main(int argc, char** argv) {
   CLI::App* generate = cli.add_subcommand(
       "generate", "labelled test cases as batch lines (JSON lines on stdout; docs/cli.md)");
   generate
-      ->add_option("--case", o.gen.what,
-                   "1..35, all (the 35 + degenerate_pencil + coincident), degenerate_pencil, "
-                   "coincident, ellipsoid or distance (default all)")
-      ->type_name("N|all|ellipsoid|distance");
+      ->add_option(
+          "--case", o.gen.what,
+          "1..35, all (the 35 + degenerate_pencil + coincident), degenerate_pencil, "
+          "coincident, ellipsoid, natural (cylinders, cones, paraboloids, hyperboloids) or "
+          "distance (default all)")
+      ->type_name("N|all|ellipsoid|natural|distance");
   generate->add_option("--count", o.gen.count, "random instances per case, 1 to 1000000")
       ->check(CLI::Range(1L, 1000000L));
   generate->add_option("--seed", o.gen.seed, "the seed (same seed, same lines)");

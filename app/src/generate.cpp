@@ -499,6 +499,100 @@ void ellipsoid_jobs(const GenerateRequest& r, std::vector<Job>& out) {
     }
 }
 
+// ---- natural quadrics (seed 002 Table 7 and beyond) ------------------------------------------
+
+struct NaturalConfig {
+  std::string name; ///< the id stem, e.g. "t7-cylinder-empty"
+  std::string pair; ///< "ellipsoid-cylinder", "cylinder-cylinder", ...
+  std::string a, b; ///< the two equations (local coordinates)
+  int tu_case;      ///< the Tu case the construction aims at; 0: a degenerate pencil
+  std::string how;  ///< the construction, in words
+};
+
+// Seed 002 Table 7 (an ellipsoid against a cylinder and against a cone: no intersection, one
+// branch, two branches; the paper gives pictures, not coefficients) and natural-quadric pairs
+// (circular cylinders and cones, paraboloids, hyperboloids, spheres) for the Tu cases they
+// reach; E is x^2 + 2y^2 + 4z^2 = 1 (semi-axes 1, 1/sqrt 2, 1/2), P = (1, 0, 0) its vertex.
+const std::vector<NaturalConfig>& natural_configs() {
+  static const std::vector<NaturalConfig> c = {
+      {"t7-cylinder-empty", "ellipsoid-cylinder", "x^2 + 2y^2 + 4z^2 - 1", "(x-3)^2 + y^2 - 1", 2,
+       "Table 7: a cylinder (axis parallel to z) beside E, no intersection"},
+      {"t7-cylinder-one-branch", "ellipsoid-cylinder", "x^2 + 2y^2 + 4z^2 - 1",
+       "(x-1)^2 + y^2 - 1/4", 3,
+       "Table 7: a cylinder (axis parallel to z) through P clipping E: one loop"},
+      {"t7-cylinder-two-branches", "ellipsoid-cylinder", "x^2 + 2y^2 + 4z^2 - 1",
+       "y^2 + z^2 - 1/16", 1,
+       "Table 7: a thin cylinder along E's long axis, piercing E: two loops"},
+      {"t7-cone-empty", "ellipsoid-cone", "x^2 + 2y^2 + 4z^2 - 1", "(x-3)^2 + y^2 - z^2", 2,
+       "Table 7: a cone (axis parallel to z, vertex (3, 0, 0)) beside E, no intersection"},
+      {"t7-cone-one-branch", "ellipsoid-cone", "x^2 + 2y^2 + 4z^2 - 1", "(x-1)^2 + y^2 - (z-1)^2",
+       3,
+       "Table 7: a right cone with vertex (1, 0, 1) above P, its lower nappe cutting E: one loop"},
+      {"t7-cone-two-branches", "ellipsoid-cone", "x^2 + 2y^2 + 4z^2 - 1",
+       "y^2 + z^2 - (1/64)(x-3)^2", 1,
+       "Table 7: a narrow cone along E's long axis (vertex (3, 0, 0)) piercing E: two loops"},
+      {"cone-vertex-on-e-crunode", "ellipsoid-cone", "x^2 + 2y^2 + 4z^2 - 1",
+       "(x-1)^2 + y^2 - 2z^2", 5,
+       "a cone with its vertex at P whose tangent-plane section is two real lines: figure eight"},
+      {"cone-vertex-on-e-acnode", "ellipsoid-cone", "x^2 + 2y^2 + 4z^2 - 1",
+       "-3(x-1)^2 + y^2 + 3z^2", 6,
+       "a cone with its vertex at P meeting the tangent plane only at P: a loop and P isolated"},
+      {"cone-vertex-on-e-cusp", "ellipsoid-cone", "x^2 + 2y^2 + 4z^2 - 1", "y^2 + (x-1)z", 9,
+       "a cone with its vertex at P and a generator tangent to E: a loop with a cusp at P"},
+      {"cylinder-touching-outside", "ellipsoid-cylinder", "x^2 + 2y^2 + 4z^2 - 1",
+       "(x-3/2)^2 + y^2 - 1/4", 7, "a cylinder touching E from outside at P: one point"},
+      {"cylinder-touching-inside", "ellipsoid-cylinder", "x^2 + 2y^2 + 4z^2 - 1",
+       "(x-3/4)^2 + y^2 - 1/16", 5,
+       "a thin cylinder touching E from inside at P, leaving through the top and bottom: figure "
+       "eight"},
+      {"cylinder-around-two-points", "ellipsoid-cylinder", "x^2 + 2y^2 + 4z^2 - 1", "x^2 + y^2 - 1",
+       15, "the cylinder around E touching it at (+-1, 0, 0): two points"},
+      {"cylinders-crossing-equal", "cylinder-cylinder", "x^2 + y^2 - 1", "x^2 + z^2 - 1", 13,
+       "two unit cylinders, axes crossing at right angles (Steinmetz): two ellipses crossing at "
+       "two points"},
+      {"cylinders-crossing-unequal", "cylinder-cylinder", "x^2 + y^2 - 1", "x^2 + z^2 - 1/4", 1,
+       "a thin cylinder through a thick one, axes crossing at right angles: two loops"},
+      {"cylinders-offset", "cylinder-cylinder", "x^2 + y^2 - 1", "(x-1)^2 + z^2 - 1/4", 3,
+       "a thin cylinder clipping the side of a thick one, axes skew at right angles: one loop"},
+      {"cylinders-parallel", "cylinder-cylinder", "x^2 + y^2 - 1", "(x-1)^2 + y^2 - 1", 0,
+       "two parallel cylinders: a common vertex at infinity, degenerate pencil"},
+      {"cone-cylinder-coaxial", "cone-cylinder", "x^2 + y^2 - z^2", "x^2 + y^2 - 1", 14,
+       "a cone and a cylinder on one axis: two circles"},
+      {"hyperboloid1-cylinder-coaxial", "hyperboloid-cylinder", "x^2 + y^2 - z^2 - 1",
+       "x^2 + y^2 - 2", 14,
+       "a one-sheet hyperboloid and a wider cylinder on one axis: two circles"},
+      {"hyperboloid1-sphere-waist", "hyperboloid-sphere", "x^2 + y^2 - z^2 - 1",
+       "x^2 + y^2 + z^2 - 1", 21,
+       "a one-sheet hyperboloid and the sphere on its waist: tangent along a circle"},
+      {"hyperboloid2-sphere", "hyperboloid-sphere", "z^2 - x^2 - y^2 - 1", "x^2 + y^2 + z^2 - 4",
+       14, "a two-sheet hyperboloid and a concentric sphere: a circle on each sheet"},
+      {"paraboloid-sphere", "paraboloid-sphere", "z - x^2 - y^2", "x^2 + y^2 + z^2 - 2z", 24,
+       "a paraboloid and the sphere resting in it at its vertex: a circle and the vertex"},
+  };
+  return c;
+}
+
+void natural_jobs(const GenerateRequest& r, std::vector<Job>& out) {
+  for (const NaturalConfig& cfg : natural_configs())
+    for (long i = 0; i < r.count; ++i) {
+      Rng rng(stream_seed(r.seed, "natural-" + cfg.name, i));
+      const Pose pose = random_pose(rng, r.encoding == Encoding::Exact, true);
+      Json c = base_construction("natural", r, i);
+      c.set("config", Json::string(cfg.name));
+      c.set("pair", Json::string(cfg.pair));
+      if (cfg.tu_case > 0)
+        c.set("tu_case", Json::number(cfg.tu_case));
+      else
+        c.set("pencil", Json::string("degenerate"));
+      c.set("how", Json::string(cfg.how));
+      c.set("equations",
+            Json::string("a: " + cfg.a + " = 0; b: " + cfg.b + " = 0 (before the pose)"));
+      out.push_back(make_job("natural-" + cfg.name + "-" + index_text(i), "classify",
+                             Surf{equation(cfg.a), std::nullopt},
+                             Surf{equation(cfg.b), std::nullopt}, pose, r.encoding, std::move(c)));
+    }
+}
+
 // ---- families ------------------------------------------------------------------------------
 
 struct PencilFamily {
@@ -730,6 +824,8 @@ std::vector<Json> generate(const GenerateRequest& r) {
     special_pencil_jobs(r.what, r, jobs);
   } else if (r.what == "ellipsoid") {
     ellipsoid_jobs(r, jobs);
+  } else if (r.what == "natural") {
+    natural_jobs(r, jobs);
   } else if (r.what == "distance") {
     distance_jobs(r, jobs);
   } else {
@@ -738,7 +834,7 @@ std::vector<Json> generate(const GenerateRequest& r) {
         !r.what.empty())
       c = std::stoi(r.what);
     if (c < 1 || c > 35)
-      refuse("--case 1..35, all, degenerate_pencil, coincident, ellipsoid or distance",
+      refuse("--case 1..35, all, degenerate_pencil, coincident, ellipsoid, natural or distance",
              "\"" + r.what + "\"");
     pencil_case_jobs(c, r, jobs);
   }

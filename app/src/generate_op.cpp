@@ -43,13 +43,13 @@ GenerateRequest read_generate_line(const Json& doc, const std::string& source) {
   r.threads = 1; // batch lines already run in parallel
   if (const Json* c = doc.find("case")) {
     const char* expected = "a case: 1..35, \"all\", \"degenerate_pencil\", \"coincident\", "
-                           "\"ellipsoid\" or \"distance\"";
+                           "\"ellipsoid\", \"natural\" or \"distance\"";
     if (c->is_number()) {
       r.what = std::to_string(read_int(*c, source, "$.case", 1, 35, expected));
     } else if (c->is_string()) {
       r.what = c->text();
       bool known = r.what == "all" || r.what == "degenerate_pencil" || r.what == "coincident" ||
-                   r.what == "ellipsoid" || r.what == "distance";
+                   r.what == "ellipsoid" || r.what == "natural" || r.what == "distance";
       if (!known && !r.what.empty() && r.what.size() <= 2 &&
           r.what.find_first_not_of("0123456789") == std::string::npos) {
         const int n = std::stoi(r.what);

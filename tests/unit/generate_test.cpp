@@ -181,7 +181,7 @@ void expect_double_exact(const Json& surface, const std::string& where) {
 
 TEST(Generate, DoubleEncodingReadsBackAsTheIdenticalExactInput) {
   std::vector<Json> lines = run("all", 1, surfcert::testing::test_seed(), Encoding::Double);
-  for (const char* what : {"ellipsoid", "distance"})
+  for (const char* what : {"ellipsoid", "natural", "distance"})
     for (Json& l : run(what, 2, surfcert::testing::test_seed(), Encoding::Double))
       lines.push_back(std::move(l));
   for (Json& l : run("", 1, surfcert::testing::test_seed(), Encoding::Double, "all", {3, 30, 51}))
@@ -391,6 +391,8 @@ TEST(Generate, BatchOpCasesEqualTheCommandLineLines) {
       {"--family tangency --gaps 10,30 --seed 4",
        R"("family": "tangency", "gaps": [10, 30], "seed": 4)"},
       {"--case degenerate_pencil --count 2", R"("case": "degenerate_pencil", "count": 2)"},
+      {"--case natural --count 1 --seed 9 --encoding double",
+       R"("case": "natural", "count": 1, "seed": 9, "encoding": "double")"},
   };
   const std::string file = ::testing::TempDir() + "/generate_op_cli.jsonl";
   for (const Probe& p : probes) {
@@ -432,6 +434,65 @@ TEST(Generate, BatchOpRefusesBadFieldsAtTheirPaths) {
     ASSERT_EQ(answer.find("status")->text(), "error");
     EXPECT_EQ(answer.find("error")->find("kind")->text(), "input");
     EXPECT_EQ(answer.find("error")->find("json_path")->text(), path);
+  }
+}
+
+} // namespace
+
+namespace {
+
+// --case natural: every pair's certified label is the type its construction aims at, by the
+// classifier and by the tests' own table route; the surfaces are of the kinds the pair names
+// (ellipsoids and spheres: real ellipsoids; cylinders and cones: singular; paraboloids and
+// hyperboloids: nonsingular and no ellipsoid); Table 7's ellipsoid-cylinder and
+// ellipsoid-cone rows reach no intersection (2), one branch (3) and two branches (1); the set
+// of types reached is the one docs/cli.md claims.
+TEST(Generate, NaturalPairsReachTheTypesTheyAimAt) {
+  const std::set<int> claimed = {0, 1,  2,  3,  5,  6, 7,
+                                 9, 13, 14, 15, 21, 24}; // 0: degenerate pencil
+  for (Encoding enc : {Encoding::Exact, Encoding::Double}) {
+    std::set<int> seen;
+    std::map<std::string, std::set<int>> table7;
+    for (const Json& line : run("natural", 2, surfcert::testing::test_seed(), enc)) {
+      SCOPED_TRACE(core::io::dump(line));
+      ASSERT_EQ(label(line).find("status")->text(), "certified");
+      const auto a = std::get<core::QuadricMatrix>(read(line, "a"));
+      const auto b = std::get<core::QuadricMatrix>(read(line, "b"));
+      const std::string pair = construction(line).find("pair")->text();
+      const std::string first = pair.substr(0, pair.find('-'));
+      const std::string second = pair.substr(pair.find('-') + 1);
+      for (const auto& [q, kind] : {std::make_pair(&a, first), std::make_pair(&b, second)}) {
+        SCOPED_TRACE(kind);
+        const bool singular = core::det(q->matrix()).is_zero();
+        if (kind == "ellipsoid" || kind == "sphere") {
+          EXPECT_EQ(q->kind(), core::QuadricKind::Ellipsoid);
+        } else if (kind == "cylinder" || kind == "cone") {
+          EXPECT_TRUE(singular);
+        } else {
+          EXPECT_FALSE(singular);
+          EXPECT_EQ(q->kind(), core::QuadricKind::Other);
+        }
+      }
+      std::string pencil;
+      const int by_table = case_by_table(a, b, &pencil);
+      int want = 0;
+      if (const Json* t = construction(line).find("tu_case")) {
+        want = std::stoi(t->text());
+        EXPECT_EQ(label(line).find("tu_case")->text(), t->text());
+        EXPECT_EQ(pencil, "regular");
+      } else {
+        EXPECT_EQ(construction(line).find("pencil")->text(), "degenerate");
+        EXPECT_EQ(label(line).find("pencil")->text(), "degenerate");
+        EXPECT_TRUE(label(line).find("tu_case")->is_null());
+      }
+      EXPECT_EQ(by_table, want);
+      seen.insert(want);
+      const std::string config = construction(line).find("config")->text();
+      if (config.rfind("t7-", 0) == 0) table7[pair].insert(want);
+    }
+    EXPECT_EQ(seen, claimed);
+    EXPECT_EQ(table7["ellipsoid-cylinder"], (std::set<int>{1, 2, 3}));
+    EXPECT_EQ(table7["ellipsoid-cone"], (std::set<int>{1, 2, 3}));
   }
 }
 

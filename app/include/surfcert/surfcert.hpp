@@ -175,8 +175,8 @@ Verification verify(const Surface& a, const Surface& b, const Json& claims,
 
 /// What to generate: the options of `surfcert generate` (docs/cli.md, app/generate.hpp).
 struct GenerateOptions {
-  /// --case: "1".."35", "all", "degenerate_pencil", "coincident", "ellipsoid" or "distance";
-  /// ignored when `family` is set.
+  /// --case: "1".."35", "all", "degenerate_pencil", "coincident", "ellipsoid", "natural" or
+  /// "distance"; ignored when `family` is set.
   std::string cases = "all";
   std::string family;                ///< --family: "" (none), a family name or "all"
   std::vector<int> gaps{10, 20, 40}; ///< --gaps: family points at g = +-2^-k and 0

@@ -13,9 +13,12 @@
 // tests assert they agree).
 // Sets: the 35 Tu cases from their real canonical forms (algebra/canonical_pencil.hpp),
 // scrambled by random congruences and pencil bases; degenerate pencils and coincident pairs;
-// pairs of actual ellipsoids realising the ellipsoid topologies of seed 002; distance pairs
-// with closed-form answers. Families: a path B0 + g D through a degeneracy, sampled at
-// g = -2^-k, 0, +2^-k for the requested k.
+// pairs of actual ellipsoids realising the ellipsoid topologies of seed 002; natural-quadric
+// pairs (seed 002 Table 7's ellipsoid-cylinder and ellipsoid-cone configurations; cylinders,
+// cones, paraboloids, hyperboloids and spheres against each other), each aimed at a Tu case or
+// a degenerate pencil; distance pairs with closed-form answers.
+// Families: a path B0 + g D through a degeneracy, sampled at g = -2^-k, 0, +2^-k for the
+// requested k.
 // Encodings: exact (integers and "p/q" strings), double (every number a binary64 whose
 // decimal text is its exact value: read as doubles or as exact decimals, the same surface),
 // shape (a shape with centre, radii and a quaternion of small integers, all binary64, where
@@ -39,7 +42,7 @@ const char* to_string(Encoding e);
 
 struct GenerateRequest {
   /// "1".."35", "all" (the 35 cases, degenerate_pencil and coincident), "degenerate_pencil",
-  /// "coincident", "ellipsoid" or "distance". Ignored when `family` is set.
+  /// "coincident", "ellipsoid", "natural" or "distance". Ignored when `family` is set.
   std::string what = "all";
   /// "" (none), one of family_names(), or "all".
   std::string family;
