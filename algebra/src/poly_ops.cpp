@@ -1,4 +1,5 @@
 #include "surfcert/algebra/poly_ops.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly.h>
@@ -48,8 +49,11 @@ long zdegree(const fmpz_mpoly_struct* a, int var) {
 // interpolation. A point where a leading coefficient in `var` vanishes is skipped (the
 // specialisation would not commute with the resultant there). The degree bound is the Bezout
 // bound tdeg(a) tdeg(b); one extra point checks the interpolant. False when it does not apply.
+// The points are the steps of a long resultant (a degree-72 eliminant: ~10 ms each): past the
+// thread's time budget it stops between two of them and sets `out_of_time` (no throw here, so
+// the FLINT objects are cleared on the way out).
 bool resultant_by_interpolation(fmpz_mpoly_t out, const fmpz_mpoly_struct* a,
-                                const fmpz_mpoly_struct* b, int var, int keep) {
+                                const fmpz_mpoly_struct* b, int var, int keep, bool& out_of_time) {
   const long bound = fmpz_mpoly_total_degree_si(a, zctx()) * fmpz_mpoly_total_degree_si(b, zctx());
   const long da = zdegree(a, var), db = zdegree(b, var);
   if (bound <= 0 || da <= 0 || db <= 0) return false;
@@ -65,6 +69,11 @@ bool resultant_by_interpolation(fmpz_mpoly_t out, const fmpz_mpoly_struct* a,
   fmpz_poly_init(pb);
   bool ok = true;
   for (long x = 0; static_cast<long>(xs.size()) < bound + 2 && x < 4 * bound + 100; ++x) {
+    if (core::budget_exhausted()) {
+      out_of_time = true;
+      ok = false;
+      break;
+    }
     const long pt = (x % 2 == 0) ? x / 2 : -(x + 1) / 2; // 0, -1, 1, -2, 2, ...
     fmpz_set_si(k, pt);
     if (!fmpz_mpoly_evaluate_one_fmpz(sa, a, keep, k, zctx()) ||
@@ -126,9 +135,15 @@ Poly3 resultant(const Poly3& a, const Poly3& b, int var) {
   fmpz_mpoly_t r;
   fmpz_mpoly_init(r, zctx());
   const int keep = other_variable(a, b, var);
-  if (!(keep >= 0 && a.total_degree() * b.total_degree() >= 24 &&
-        resultant_by_interpolation(r, zpart(a), zpart(b), var, keep)) &&
-      !fmpz_mpoly_resultant(r, zpart(a), zpart(b), var, zctx())) {
+  bool out_of_time = false;
+  const bool interpolated =
+      keep >= 0 && a.total_degree() * b.total_degree() >= 24 &&
+      resultant_by_interpolation(r, zpart(a), zpart(b), var, keep, out_of_time);
+  if (out_of_time) {
+    fmpz_mpoly_clear(r, zctx());
+    throw core::BudgetExceeded();
+  }
+  if (!interpolated && !fmpz_mpoly_resultant(r, zpart(a), zpart(b), var, zctx())) {
     fmpz_mpoly_clear(r, zctx());
     throw std::runtime_error("fmpz_mpoly_resultant failed");
   }

@@ -1,5 +1,7 @@
 #include "surfcert/core/budget.hpp"
 
+#include <limits>
+
 namespace surfcert::core {
 
 namespace {
@@ -26,6 +28,18 @@ bool budget_exhausted() {
 
 void check_budget() {
   if (budget_exhausted()) throw BudgetExceeded();
+}
+
+double budget_remaining_ms() {
+  if (!t_active) return std::numeric_limits<double>::infinity();
+  return std::chrono::duration<double, std::milli>(t_deadline - std::chrono::steady_clock::now())
+      .count();
+}
+
+void check_budget_for(double estimated_ms) {
+  if (!t_active) return;
+  const double left = budget_remaining_ms();
+  if (left <= 0 || left < estimated_ms / 4) throw BudgetExceeded();
 }
 
 } // namespace surfcert::core

@@ -4,9 +4,16 @@
 // - a batch line whose proof needs seconds (two tori overlapping by 1e-20: the branch and
 //   bound spends its whole box budget) answers undecided with reason "budget" under
 //   "budget_ms": 50, and the lines around it are answered normally, each with its time_ms;
+// - two nested ellipsoids in exact mode (the offset-system route: resultants of degree 72,
+//   factorisations) under "budget_ms": 50 answer undecided with reason "budget", and any bounds
+//   they report contain the distance the same query certifies without a budget; the long
+//   steps inside (an interpolated resultant, a factorisation judged unaffordable) stop on the
+//   budget instead of running on;
 // - a bad budget is an input error at its JSON path.
+#include "surfcert/algebra/poly_ops.hpp"
 #include "surfcert/app/scene.hpp"
 #include "surfcert/core/budget.hpp"
+#include "surfcert/core/rational.hpp"
 
 #include <gtest/gtest.h>
 
@@ -65,4 +72,59 @@ TEST(Budget, BadBudgetIsAnInputError) {
       certify::Mode::Filtered);
   EXPECT_EQ(r.find("status")->text(), "error");
   EXPECT_EQ(r.find("error")->find("json_path")->text(), "$.budget_ms");
+}
+
+TEST(Budget, CostModelGateRefusesOnlyWhatCannotFit) {
+  EXPECT_NO_THROW(core::check_budget_for(1e12)); // no budget: every step is affordable
+  core::BudgetScope minute(60000);
+  EXPECT_TRUE(core::budget_remaining_ms() > 0 && core::budget_remaining_ms() <= 60000);
+  EXPECT_NO_THROW(core::check_budget_for(1000));   // fits easily
+  EXPECT_NO_THROW(core::check_budget_for(200000)); // 4x faster than modelled would fit
+  EXPECT_THROW(core::check_budget_for(1e9), core::BudgetExceeded); // clearly cannot
+}
+
+TEST(Budget, LongResultantStopsBetweenEvaluationPoints) {
+  // Two bivariate polynomials whose resultant in y is interpolated (total degrees 6 x 6).
+  const core::Poly3 x = core::Poly3::variable(0), y = core::Poly3::variable(1);
+  const core::Poly3 a =
+      x * x * x * y * y * y + core::Poly3(3) * x * y * y + core::Poly3(7) + y * y * y * y * y * y;
+  const core::Poly3 b = y * y * y * y * y * x + core::Poly3(5) * x * x * x * x * x * x -
+                        core::Poly3(2) * y + core::Poly3(1);
+  const core::Poly3 r = algebra::resultant(a, b, 1);
+  EXPECT_FALSE(r.is_zero());
+  core::BudgetScope tiny(1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(3));
+  EXPECT_THROW(algebra::resultant(a, b, 1), core::BudgetExceeded);
+}
+
+TEST(Budget, OffsetSystemRouteStopsAndKeepsOnlyTrueBounds) {
+  const std::string line = R"({"id":"n","op":"distance","mode":"exact",)"
+                           R"("a":"x^2/4+y^2/9+z^2/16+x*y/7-y*z/11+x*z/13=1",)"
+                           R"("b":"(x-1/10)^2+2*y^2+3*z^2+x*y/3-y*z/5+2*x*z/7+z/9=1/2")";
+  const auto full = app::process_batch_line(line + "}", 1, certify::Mode::Exact);
+  ASSERT_EQ(full.find("status")->text(), "certified");
+  const auto* res = full.find("result");
+  ASSERT_NE(res, nullptr);
+  EXPECT_EQ(res->find("method")->text(), "offset_system");
+  const auto lo = core::Rational::from_string(res->find("distance")->find("lower")->text());
+  const auto hi = core::Rational::from_string(res->find("distance")->find("upper")->text());
+  ASSERT_TRUE(lo && hi);
+
+  const auto cut = app::process_batch_line(line + R"(,"budget_ms":50})", 2, certify::Mode::Exact);
+  EXPECT_EQ(cut.find("status")->text(), "undecided");
+  ASSERT_NE(cut.find("reason"), nullptr);
+  EXPECT_EQ(cut.find("reason")->text(), "budget");
+  // Bounds established before the stop (if any) must hold the certified distance.
+  const auto* cres = cut.find("result");
+  const auto* cd = cres ? cres->find("distance") : nullptr;
+  if (cd && cd->find("lower")) {
+    const auto l = core::Rational::from_string(cd->find("lower")->text());
+    ASSERT_TRUE(l);
+    EXPECT_LE(*l, *lo);
+  }
+  if (cd && cd->find("upper")) {
+    const auto u = core::Rational::from_string(cd->find("upper")->text());
+    ASSERT_TRUE(u);
+    EXPECT_GE(*u, *hi);
+  }
 }

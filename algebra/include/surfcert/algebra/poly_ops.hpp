@@ -21,7 +21,9 @@
 namespace surfcert::algebra {
 
 /// Resultant of a and b with respect to `var`, exact (including the contents' powers).
-/// Throws std::runtime_error when FLINT reports failure (it returns 0 for that).
+/// Throws std::runtime_error when FLINT reports failure (it returns 0 for that), and
+/// core::BudgetExceeded when the thread's time budget runs out between two evaluation points of
+/// a long (interpolated) resultant.
 core::Poly3 resultant(const core::Poly3& a, const core::Poly3& b, int var);
 
 /// Greatest common divisor of the integer parts: primitive, integer coefficients, positive

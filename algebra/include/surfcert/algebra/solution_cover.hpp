@@ -13,6 +13,10 @@
 // of different factors may overlap); eliminants are nonzero when ok. ok == false (eliminant
 // identically zero in every tried combination: the system has a curve of solutions, or the
 // elimination met one) is reported with a note, never papered over.
+// Time budget (core/budget.hpp): every resultant, factorisation, isolation and refinement is a
+// step; past the thread's deadline cover_real_solutions / refine_cover throw
+// core::BudgetExceeded (no partial cover is returned). A factorisation is not interruptible:
+// it starts only when its modelled cost fits the remaining time (check_budget_for).
 // What a box is NOT: a certificate that a solution exists in it, or that it holds only one.
 #pragma once
 
