@@ -18,6 +18,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -349,8 +350,9 @@ TEST(Generate, BatchAcceptsTheLinesAndEchoesTheLabel) {
 
 // The command line end to end: generate | batch, every answer agreeing with its label.
 TEST(Generate, CommandLineOutputIsBatchInput) {
-  const std::string dir = ::testing::TempDir();
-  const std::string gen = dir + "/generate_cli.jsonl", out = dir + "/generate_cli_answers.jsonl";
+  // Per-process names: two runs of this test at once (parallel suites) must not share files.
+  const std::string dir = ::testing::TempDir() + "/surfcert_generate_" + std::to_string(getpid());
+  const std::string gen = dir + "_cli.jsonl", out = dir + "_cli_answers.jsonl";
   ASSERT_EQ(std::system((std::string(SURFCERT_BINARY) +
                          " generate --case all --count 1 --seed 3 --encoding double > " + gen)
                             .c_str()),
@@ -394,7 +396,8 @@ TEST(Generate, BatchOpCasesEqualTheCommandLineLines) {
       {"--case natural --count 1 --seed 9 --encoding double",
        R"("case": "natural", "count": 1, "seed": 9, "encoding": "double")"},
   };
-  const std::string file = ::testing::TempDir() + "/generate_op_cli.jsonl";
+  const std::string file =
+      ::testing::TempDir() + "/surfcert_generate_" + std::to_string(getpid()) + "_op_cli.jsonl";
   for (const Probe& p : probes) {
     SCOPED_TRACE(p.flags);
     ASSERT_EQ(
