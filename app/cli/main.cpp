@@ -18,6 +18,7 @@
 #include <flint/flint.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -46,6 +47,7 @@ const std::string kUsage =
     "                   [--detail topology|certificate|full]\n"
     "  surfcert intersect 'EQ_A' 'EQ_B' [--mode M] [--tol T] [--json] [--export F.obj|F.ply] "
     "[--svg F.svg]\n"
+    "                   [--box X0,Y0,Z0,X1,Y1,Z1]\n"
     "  surfcert distance 'SURF_A' 'SURF_B' [--digits N] [--solid] [--mode M] [--json]\n"
     "                   [--detail value|full]   "
     "(equations, or JSON "
@@ -137,6 +139,7 @@ struct Opts {
   bool mode_given = false;
   bool json = false, solid = false;
   std::string tol, export_path, svg_path, out_path, scene_path;
+  std::string box;                 ///< intersect --box "x0,y0,z0,x1,y1,z1"
   std::vector<std::string> claims; ///< verify: each a JSON claim or array of claims
   long digits = 15;
   int threads = 1;
@@ -212,12 +215,6 @@ int cmd_classify(const std::vector<std::string>& eq, const Opts& o) {
   return r.status == certify::Status::Undecided ? 3 : 0;
 }
 
-std::string tol_text(double t) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", t);
-  return buf;
-}
-
 // --tol: a number (read exactly, e.g. 1/1000 or 2e-4) from 1e-12 to 1; 0 when it is none.
 double tol_value(const std::string& v) {
   auto t = core::Rational::from_string(v);
@@ -232,6 +229,29 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   const std::string& svg_path = o.svg_path;
   trace::TraceOptions opt;
   if (!o.tol.empty()) opt.tolerance = tol_value(o.tol);
+  if (!o.box.empty()) {
+    // Six numbers separated by commas (read exactly, rounded once), min < max per coordinate.
+    std::vector<double> v;
+    std::stringstream ss(o.box);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      auto r = core::Rational::from_string(item);
+      if (!r) break;
+      v.push_back(r->to_double_approx());
+    }
+    trace::Box bx;
+    bool ok = v.size() == 6;
+    for (size_t k = 0; ok && k < 3; ++k) {
+      bx.min[k] = v[k];
+      bx.max[k] = v[k + 3];
+      ok = std::isfinite(v[k]) && std::isfinite(v[k + 3]) && v[k] < v[k + 3];
+    }
+    if (!ok)
+      throw InputError(Location{"<command line>", 0, 0, ""},
+                       "--box X0,Y0,Z0,X1,Y1,Z1 with min < max in every coordinate",
+                       "\"" + o.box + "\"");
+    opt.box = bx;
+  }
   if (eq.size() != 2) throw UsageError("intersect needs exactly two surfaces");
   auto ends_with = [](const std::string& s, const std::string& e) {
     return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
@@ -256,14 +276,7 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
     trace::Picture pic;
     pic.branches = c.branches;
     pic.special_points = special;
-    pic.caption =
-        c.topology.morphology
-            ? "case " + std::to_string(c.topology.tu_case) + " " + c.topology.morphology->id +
-                  ": " + c.topology.morphology->description + " (topology " +
-                  certify::to_string(c.topology.status) + "; branches traced to tolerance " +
-                  tol_text(opt.tolerance) +
-                  (c.matches_topology ? ", matching it)" : ", NOT matching it: undecided)")
-            : std::string("no curve: ") + c.note;
+    pic.caption = trace::curve_caption(c);
     write_atomically(svg_path, trace::to_svg(a, b, pic));
   }
   if (json) {
@@ -278,6 +291,20 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
       std::cout << " " << br.kind << "(" << br.points.size() << " points)";
     std::cout << ", " << c.isolated_points.size() << " isolated point(s), max residual "
               << c.max_residual << "\n";
+    const auto& af = c.affine;
+    if (af.computed) {
+      auto n = [](const std::optional<int>& v) { return v ? std::to_string(*v) : "undecided"; };
+      std::cout << "affine (" << (af.certified() ? "certified" : "undecided")
+                << "): " << n(af.loops) << " loop(s), " << n(af.unbounded_branches)
+                << " unbounded branch(es), " << n(af.isolated_points) << " isolated point(s), "
+                << n(af.lines) << " line(s), " << n(af.conics) << " conic(s), "
+                << af.points_at_infinity.size() << " point(s) at infinity, "
+                << af.at_infinity_only.size() << " component(s) at infinity only\n";
+    }
+    if (c.box)
+      std::cout << "box" << (c.box_automatic ? " (automatic)" : "") << ": [" << c.box->min[0]
+                << ", " << c.box->max[0] << "] x [" << c.box->min[1] << ", " << c.box->max[1]
+                << "] x [" << c.box->min[2] << ", " << c.box->max[2] << "]\n";
     if (!c.note.empty()) std::cout << "note: " << c.note << "\n";
   }
   return c.status == certify::Status::Undecided ? 3 : 0;
@@ -544,6 +571,9 @@ int main(int argc, char** argv) {
           "1e-12..1"));
   intersect->add_option("--export", o.export_path, "write the branches to F.obj or F.ply");
   intersect->add_option("--svg", o.svg_path, "draw the curve to F.svg");
+  intersect->add_option("--box", o.box,
+                        "trace unbounded curves in the box X0,Y0,Z0,X1,Y1,Z1 (min then max; "
+                        "default: chosen automatically)");
 
   CLI::App* distance = cli.add_subcommand(
       "distance", "distance 'SURF_A' 'SURF_B': certified distance (equations or JSON surfaces)");

@@ -15,6 +15,7 @@
 #include <tbb/task_scheduler_observer.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <istream>
 #include <memory>
@@ -104,6 +105,51 @@ double read_tolerance(const Json& v, const std::string& source, const std::strin
   return d;
 }
 
+// box: {"min": [x, y, z], "max": [x, y, z]} with min < max in every coordinate.
+std::array<double, 6> read_box(const Json& v, const std::string& source, const std::string& path) {
+  if (!v.is_object())
+    throw InputError(at(v, source, path), "a box {\"min\": [x, y, z], \"max\": [x, y, z]}",
+                     core::io::type_name(v.type()));
+  check_fields(v, {"min", "max"}, source, path);
+  std::array<double, 6> out{};
+  for (int e = 0; e < 2; ++e) {
+    const char* key = e == 0 ? "min" : "max";
+    const std::string kp = json_path_child(path, key);
+    const Json* c = v.find(key);
+    if (!c || !c->is_array() || c->items().size() != 3)
+      throw InputError(at(c ? *c : v, source, kp), "an array of three numbers",
+                       c ? core::io::type_name(c->type()) : "none");
+    for (size_t k = 0; k < 3; ++k) {
+      const double d =
+          core::io::read_number(c->items()[k], source, json_path_index(kp, k)).to_double_approx();
+      if (!std::isfinite(d))
+        throw InputError(at(c->items()[k], source, json_path_index(kp, k)), "a finite number",
+                         "a number beyond the double range");
+      out[static_cast<size_t>(3 * e) + k] = d;
+    }
+  }
+  for (size_t k = 0; k < 3; ++k)
+    if (!(out[k] < out[k + 3]))
+      throw InputError(at(v, source, path), "min < max in every coordinate",
+                       "min[" + std::to_string(k) + "] >= max[" + std::to_string(k) + "]");
+  return out;
+}
+
+trace::TraceOptions trace_options(double tolerance,
+                                  const std::optional<std::array<double, 6>>& box) {
+  trace::TraceOptions opt;
+  opt.tolerance = tolerance;
+  if (box) {
+    trace::Box b;
+    for (size_t k = 0; k < 3; ++k) {
+      b.min[k] = (*box)[k];
+      b.max[k] = (*box)[k + 3];
+    }
+    opt.box = b;
+  }
+  return opt;
+}
+
 // budget_ms: a time limit in milliseconds, 0 (none) to 10^9.
 double read_budget(const Json& v, const std::string& source, const std::string& path) {
   Rational t = core::io::read_number(v, source, path);
@@ -160,9 +206,10 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
     std::string path = json_path_index("$.queries", i);
     if (!q.is_object())
       throw InputError(at(q, source, path), "a query object", core::io::type_name(q.type()));
-    check_fields(q,
-                 {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "detail", "claims"},
-                 source, path);
+    check_fields(
+        q,
+        {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "detail", "claims", "box"},
+        source, path);
     Query query;
     query.mode = default_mode;
     if (const Json* id = q.find("id")) query.id = *id;
@@ -196,6 +243,8 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
       query.mode = read_mode(*m, source, json_path_child(path, "mode"));
     if (const Json* t = q.find("tolerance"))
       query.tolerance = read_tolerance(*t, source, json_path_child(path, "tolerance"));
+    if (const Json* bx = q.find("box"))
+      query.box = read_box(*bx, source, json_path_child(path, "box"));
     if (const Json* d = q.find("digits"))
       query.digits = read_digits(*d, source, json_path_child(path, "digits"));
     if (const Json* sd = q.find("solid"))
@@ -245,8 +294,7 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   } else if (q.op == "intersect") {
     const auto& a = std::get<core::QuadricMatrix>(s.surface(q.a));
     const auto& b = std::get<core::QuadricMatrix>(s.surface(q.b));
-    trace::TraceOptions opt;
-    opt.tolerance = q.tolerance;
+    const trace::TraceOptions opt = trace_options(q.tolerance, q.box);
     CurveResult c = intersect_curve(a, b, q.mode, opt, q.detail);
     env = curve_envelope_json(c, a, b, q.detail);
     if (text_summary) *text_summary = qsic_result_text(c.topology, a, b) + curve_summary(c);
@@ -312,7 +360,7 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       }
       check_fields(doc,
                    {"id", "op", "a", "b", "mode", "tolerance", "digits", "solid", "budget_ms",
-                    "claims", "detail", "label"},
+                    "claims", "detail", "label", "box"},
                    source, "$");
       if (!known_op(op))
         throw InputError(
@@ -363,6 +411,8 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
           trace::TraceOptions opt;
           if (const Json* t = doc.find("tolerance"))
             opt.tolerance = read_tolerance(*t, source, "$.tolerance");
+          if (const Json* bx = doc.find("box"))
+            opt = trace_options(opt.tolerance, read_box(*bx, source, "$.box"));
           CurveResult c = intersect_curve(*a, *b, mode, opt, detail);
           if (fallback) *fallback = c.topology.exact_fallback;
           env = curve_envelope_json(c, *a, *b, detail);

@@ -135,8 +135,16 @@ TEST(Intersect, DegenerateInputsAreNotCertifiedCurves) {
   EXPECT_EQ(r.status, certify::Status::Undecided);
   EXPECT_TRUE(r.branches.empty());
   auto hyp = core::io::quadric_from_equation("x^2+y^2-z^2=1", {"t", 1, 1, ""});
-  auto r2 = trace::intersect_curve(hyp, cyl, Mode::Exact, opt); // no ellipsoid: out of scope
-  EXPECT_EQ(r2.status, certify::Status::Undecided);
+  // No ellipsoid (traced in a box since issue 15): z^2 = 0, the circle x^2 + y^2 = 1 counted
+  // twice.
+  auto r2 = trace::intersect_curve(hyp, cyl, Mode::Exact, opt);
+  EXPECT_EQ(r2.status, certify::Status::Certified);
+  ASSERT_EQ(r2.branches.size(), 1u);
+  EXPECT_EQ(r2.branches[0].kind, "double_conic");
+  for (const auto& p : r2.branches[0].points) {
+    EXPECT_NEAR(p[2], 0, 1e-12);
+    EXPECT_NEAR(p[0] * p[0] + p[1] * p[1], 1, 1e-12);
+  }
 }
 
 namespace {

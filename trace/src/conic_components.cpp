@@ -129,7 +129,7 @@ V3 grad(const M4& q, const V3& p) {
 /// A conic of a plane, parametrised: ellipse c + r1 cos t e1 + r2 sin t e2; hyperbola
 /// branch c + sgn (r1 cosh t e1) + r2 sinh t e2; parabola c + t e1 + (k t^2) e2 (c = vertex).
 struct PlaneConic {
-  enum Type { Ellipse, Hyperbola, Parabola } type = Ellipse;
+  enum Type { Ellipse, Hyperbola, Parabola, Line } type = Ellipse;
   V3 c{}, e1{}, e2{};
   double r1 = 0, r2 = 0, k = 0;
   double t_max = 0; ///< clipping for the open types
@@ -146,6 +146,8 @@ struct PlaneConic {
       return axpy(axpy(c, sgn * r1 * std::cosh(t), e1), r2 * std::sinh(t), e2);
     case Parabola:
       return axpy(axpy(c, t, e1), k * t * t, e2);
+    case Line:
+      return axpy(c, t, e1);
     }
     return c;
   }
@@ -158,6 +160,8 @@ struct PlaneConic {
       return std::hypot(r1 * std::cosh(t_max), r2 * std::sinh(t_max));
     case Parabola:
       return 2 * std::fabs(k);
+    case Line:
+      return 0;
     }
     return 1;
   }
@@ -254,10 +258,26 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
     double s1 = -lw1 / mu1, s2 = -lw2 / mu2;
     double cc = c0 + lw1 * s1 + lw2 * s2;                                   // value at the centre
     double mag = std::fabs(c0) + std::fabs(lw1 * s1) + std::fabs(lw2 * s2); // cancellation
-    if (std::fabs(cc) <= 1e-10 * mag || cc == 0)
-      return out; // a point (tangent plane) or a line pair: degenerate
     double u = s1 * w1[0] + s2 * w2[0], v = s1 * w1[1] + s2 * w2[1];
     V3 centre = plane_point(u, v);
+    if (std::fabs(cc) <= 1e-10 * mag || cc == 0) {
+      // A point (tangent plane, mu1 mu2 > 0) or two lines crossing at the centre:
+      // mu1 s1^2 + mu2 s2^2 = 0, s2 / s1 = +-sqrt(-mu1 / mu2) (open, clipped by the caller).
+      if ((mu1 > 0) == (mu2 > 0)) return out;
+      const double r = std::sqrt(-mu1 / mu2);
+      const double reach = 1e3 * (1 + norm(centre));
+      for (double sg : {1.0, -1.0}) {
+        PlaneConic ln = base;
+        ln.type = PlaneConic::Line;
+        ln.c = centre;
+        V3 dir = axpy(to3(w1), sg * r, to3(w2));
+        const double dn = norm(dir);
+        ln.e1 = {dir[0] / dn, dir[1] / dn, dir[2] / dn};
+        ln.t_max = reach;
+        out.push_back(ln);
+      }
+      return out;
+    }
     if ((mu1 > 0) == (mu2 > 0)) {
       if ((mu1 > 0) == (cc > 0)) return out; // imaginary ellipse
       PlaneConic e = base;
@@ -393,10 +413,25 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
     }
   }
   if (conics.empty()) return out;
+  if (opt.box) {
+    // Open conics reach beyond the box: every point at parameter t_max is farther from the
+    // conic's centre than the box's farthest corner.
+    const Box& bx = *opt.box;
+    const V3 bc{(bx.min[0] + bx.max[0]) / 2, (bx.min[1] + bx.max[1]) / 2,
+                (bx.min[2] + bx.max[2]) / 2};
+    for (auto& pc : conics) {
+      const double reach = 1.01 * (norm(sub(pc.c, bc)) + bx.diagonal());
+      if (pc.type == PlaneConic::Hyperbola)
+        pc.t_max = std::max(pc.t_max, std::acosh(std::max(1.0, reach / std::fabs(pc.r1))));
+      else if (pc.type == PlaneConic::Parabola || pc.type == PlaneConic::Line)
+        pc.t_max = std::max(pc.t_max, reach);
+    }
+  }
 
   // Scene size: bounding-box diagonal of the conics (coarse samples of the parametrisations).
   V3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (const auto& pc : conics) {
+    if (pc.type == PlaneConic::Line) continue; // no size of its own
     double t0 = pc.type == PlaneConic::Ellipse ? 0 : -pc.t_max;
     double t1 = pc.type == PlaneConic::Ellipse ? 2 * kPi : pc.t_max;
     for (int i = 0; i <= 256; ++i) {
@@ -414,8 +449,31 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
 
   for (const auto& pc : conics) {
     Branch br;
-    br.kind = pc.doubled ? "double_conic" : "conic";
+    br.kind = pc.type == PlaneConic::Line ? "line" : pc.doubled ? "double_conic" : "conic";
     bool ellipse = pc.type == PlaneConic::Ellipse;
+    if (pc.type == PlaneConic::Line) { // straight: a few points, cut to the box by the caller
+      // Geometric spacing away from the crossing point (dense near it, where the box is).
+      std::vector<double> ts{0.0};
+      for (double t = 1e-3 * (1 + norm(pc.c)); t < pc.t_max; t *= 1.25) {
+        ts.push_back(t);
+        ts.insert(ts.begin(), -t);
+      }
+      // The line through two corrected points away from the crossing (near it the surfaces
+      // may be singular, as at a cone's apex, and the correction would not converge there);
+      // every sample is then exactly on that line.
+      const double far = 1 + norm(pc.c);
+      V3 p1 = pc.at(-far), p2 = pc.at(far);
+      correct(pc, p1);
+      correct(pc, p2);
+      const V3 mid{(p1[0] + p2[0]) / 2, (p1[1] + p2[1]) / 2, (p1[2] + p2[2]) / 2};
+      const V3 dir = sub(p2, p1);
+      const double dl = norm(dir);
+      for (double t : ts)
+        br.points.push_back(axpy(mid, t / dl, dir));
+      br.closed = false;
+      out.push_back(std::move(br));
+      continue;
+    }
     br.closed = ellipse;
     double bound = pc.second_derivative_bound();
     double dt = bound > 0 ? std::sqrt(8 * h / bound) : 1.0;

@@ -15,6 +15,7 @@ namespace surfcert::trace {
 using certify::classify_qsic;
 using certify::complete_report_data;
 using certify::Mode;
+using certify::Morphology;
 using certify::qsic_envelope_json;
 using certify::QsicResult;
 using certify::Status;
@@ -114,6 +115,228 @@ void drop_point_sections(CurveResult& out, int expected_conics, double tol) {
   br = std::move(keep);
 }
 
+using V = Point3;
+
+// The automatic box: the bounding box of the given points, widened on every side by half its
+// diagonal (at least 1e-3 of the points' distance from the origin, and 1 for a single point).
+Box box_around(const std::vector<V>& pts) {
+  Box b;
+  bool any = false;
+  for (const V& p : pts) {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
+    for (size_t k = 0; k < 3; ++k) {
+      b.min[k] = any ? std::min(b.min[k], p[k]) : p[k];
+      b.max[k] = any ? std::max(b.max[k], p[k]) : p[k];
+    }
+    any = true;
+  }
+  if (!any) b.min = b.max = V{0, 0, 0};
+  double far = 0;
+  for (size_t k = 0; k < 3; ++k)
+    far = std::max({far, std::fabs(b.min[k]), std::fabs(b.max[k])});
+  double m = std::max(0.5 * b.diagonal(), 1e-3 * far);
+  if (!(b.diagonal() > 1e-6 * (1 + far))) m = 1; // one point (up to rounding): no size
+  for (size_t k = 0; k < 3; ++k) {
+    b.min[k] -= m;
+    b.max[k] += m;
+  }
+  return b;
+}
+
+bool on_face(const Box& b, const V& p, double eps) {
+  if (!b.contains(p, eps)) return false;
+  for (size_t k = 0; k < 3; ++k)
+    if (std::fabs(p[k] - b.min[k]) <= eps || std::fabs(p[k] - b.max[k]) <= eps) return true;
+  return false;
+}
+
+// Pieces of an open polyline inside the box, each end where it leaves cut onto the face by
+// Newton (the polyline's points lie on the curve).
+std::vector<Branch> clip_to_box(const QuadricPair& q, const Branch& br, const Box& box) {
+  std::vector<Branch> out;
+  Branch cur;
+  cur.kind = br.kind;
+  cur.closed = false;
+  auto cut = [&](const V& in, const V& outp, V& y) {
+    double best = 2;
+    size_t fk = 0;
+    double fc = 0;
+    for (size_t k = 0; k < 3; ++k)
+      for (double c : {box.min[k], box.max[k]}) {
+        const double den = outp[k] - in[k];
+        if (den == 0) continue;
+        const double lam = (c - in[k]) / den;
+        if (lam >= 0 && lam <= 1 && lam < best && !(c == box.min[k] ? den > 0 : den < 0)) {
+          best = lam;
+          fk = k;
+          fc = c;
+        }
+      }
+    if (best > 1) return false;
+    for (size_t k = 0; k < 3; ++k)
+      y[k] = in[k] + best * (outp[k] - in[k]);
+    return newton_on_face(q, fk, fc, y) && box.contains(y, 1e-9 * box.diagonal());
+  };
+  for (size_t i = 0; i < br.points.size(); ++i) {
+    const V& p = br.points[i];
+    const bool inside = box.contains(p);
+    if (inside) {
+      if (cur.points.empty() && i > 0) {
+        V y{};
+        if (cut(p, br.points[i - 1], y)) cur.points.push_back(y);
+      }
+      cur.points.push_back(p);
+    } else if (!cur.points.empty()) {
+      V y{};
+      if (cut(br.points[i - 1], p, y)) cur.points.push_back(y);
+      out.push_back(cur);
+      cur.points.clear();
+    }
+  }
+  if (!cur.points.empty()) out.push_back(cur);
+  return out;
+}
+
+// Non-ellipsoid pairs: the curve inside a box, checked against the affine topology.
+void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
+                  const TraceOptions& opt) {
+  const QsicResult& t = out.topology;
+  const certify::AffineTopology& af = out.affine;
+  QuadricPair q(a, b);
+  std::vector<Point3> singular;
+  for (const auto& p : t.special_points) {
+    if (p.at_infinity) continue;
+    if (isolated_kind(p.kind))
+      out.isolated_points.push_back(p.approx);
+    else
+      singular.push_back(p.approx);
+  }
+  const Morphology& m = *t.morphology;
+  const bool curve_by_conics = m.conics > 0 || m.lines > 0 || m.cubics > 0;
+  std::vector<Branch> conics;
+  std::vector<V> sizing = out.isolated_points;
+  sizing.insert(sizing.end(), singular.begin(), singular.end());
+  std::vector<V> starts;
+  if (curve_by_conics) {
+    conics = conic_branches(a, b, t.facts, opt);
+    for (const auto& br : conics) {
+      if (br.closed)
+        sizing.insert(sizing.end(), br.points.begin(), br.points.end());
+      else if (!br.points.empty())
+        sizing.push_back(br.points[br.points.size() / 2]); // the vertex of the sampled range
+    }
+  } else {
+    starts = extreme_points_float(q);
+    sizing.insert(sizing.end(), starts.begin(), starts.end());
+    // Closed loops are traced whole first, so that the automatic box contains them.
+    if (!opt.box)
+      for (const auto& br : march(q, starts, singular, opt))
+        if (br.closed) sizing.insert(sizing.end(), br.points.begin(), br.points.end());
+  }
+  // Curve points near the origin (Gauss-Newton from a few seeds): a piece of an unbounded
+  // branch without a critical point still gets into the automatic box. (Conics and lines
+  // have their vertices and crossing points in it already.)
+  for (double r : {0.0, 1.0, 10.0})
+    if (!curve_by_conics)
+      for (size_t k = 0; k < 3; ++k)
+        for (double sg : {1.0, -1.0}) {
+          V p{0, 0, 0};
+          p[k] = sg * r;
+          if (project_onto_curve(q, p)) sizing.push_back(p);
+          if (r == 0) break;
+        }
+  out.box_automatic = !opt.box;
+  Box box = opt.box ? *opt.box : box_around(sizing);
+  auto count_open = [&] {
+    int n = 0;
+    for (const auto& br : out.branches)
+      n += br.closed ? 0 : 1;
+    return n;
+  };
+  // An automatic box is doubled (at most 6 times) while it shows fewer open pieces than the
+  // certified number of unbounded branches: a branch may pass outside the first box.
+  for (int attempt = 0; attempt < 7; ++attempt) {
+    TraceOptions bopt = opt;
+    bopt.box = box;
+    out.branches.clear();
+    if (curve_by_conics) {
+      // Open conics sampled far enough to leave this box.
+      conics = conic_branches(a, b, t.facts, bopt);
+      for (const auto& br : conics) {
+        if (br.closed) {
+          out.branches.push_back(br);
+          continue;
+        }
+        for (auto& piece : clip_to_box(q, br, box))
+          out.branches.push_back(std::move(piece));
+      }
+    } else {
+      auto run = [&](std::vector<V> st) {
+        const auto faces = box_face_points(q, box);
+        st.insert(st.end(), faces.begin(), faces.end());
+        return march(q, st, singular, bopt);
+      };
+      out.branches = run(starts);
+      // The float extreme points may miss a small loop: the exact ones then.
+      int closed = 0;
+      for (const auto& br : out.branches)
+        closed += br.closed ? 1 : 0;
+      if (af.loops && closed != *af.loops) {
+        out.branches = run(extreme_points(a, b));
+        out.exact_start_points = true;
+      }
+    }
+    if (opt.box || !af.unbounded_branches || count_open() >= *af.unbounded_branches) break;
+    for (size_t k = 0; k < 3; ++k) {
+      const double c = 0.5 * (box.min[k] + box.max[k]), h = box.max[k] - box.min[k];
+      box.min[k] = c - h;
+      box.max[k] = c + h;
+    }
+  }
+  out.box = box;
+  for (const auto& br : out.branches)
+    for (const auto& p : br.points)
+      out.max_residual = std::max(out.max_residual, residual(q, p));
+  std::vector<Point3> inside;
+  for (const auto& p : out.isolated_points)
+    if (box.contains(p)) inside.push_back(p);
+  out.isolated_points = inside;
+  for (const auto& p : out.isolated_points)
+    out.max_residual = std::max(out.max_residual, residual(q, p));
+
+  int closed = 0, open = 0, open_off_face = 0;
+  const double eps = 1e-7 * box.diagonal();
+  for (const auto& br : out.branches) {
+    if (br.closed) {
+      ++closed;
+      continue;
+    }
+    ++open;
+    if (br.points.size() < 2 || !on_face(box, br.points.front(), eps) ||
+        !on_face(box, br.points.back(), eps))
+      ++open_off_face;
+  }
+  std::string why;
+  if (!af.certified())
+    why = "the affine topology is not certified";
+  else if (!t.special_points_complete)
+    why = "special points not all computed exactly";
+  else if (closed != *af.loops || open != *af.unbounded_branches)
+    why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
+          " open branch(es) in the box; the certified affine topology has " +
+          std::to_string(*af.loops) + " loop(s) and " + std::to_string(*af.unbounded_branches) +
+          " unbounded branch(es)";
+  else if (open_off_face > 0)
+    why = std::to_string(open_off_face) + " open branch(es) do not end on the box's faces";
+  else if (static_cast<int>(out.isolated_points.size()) != *af.isolated_points)
+    why = std::to_string(out.isolated_points.size()) +
+          " isolated point(s) in the box; the affine topology has " +
+          std::to_string(*af.isolated_points);
+  out.matches_topology = why.empty();
+  out.status = why.empty() ? Status::Certified : Status::Undecided;
+  out.note = why;
+}
+
 } // namespace
 
 CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode,
@@ -140,8 +363,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     return out;
   }
   if (a.kind() != core::QuadricKind::Ellipsoid && b.kind() != core::QuadricKind::Ellipsoid) {
-    out.status = Status::Undecided;
-    out.note = "intersect needs one ellipsoid (or sphere): the curve may be unbounded otherwise";
+    trace_in_box(a, b, out, opt);
     return out;
   }
   QuadricPair q(a, b);
@@ -201,6 +423,37 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   return out;
 }
 
+std::string curve_caption(const CurveResult& r) {
+  const QsicResult& t = r.topology;
+  if (!t.morphology) return "no curve: " + r.note;
+  char tol[32];
+  std::snprintf(tol, sizeof tol, "%g", r.tolerance);
+  std::string s = "case " + std::to_string(t.tu_case) + " " + t.morphology->id + ": " +
+                  t.morphology->description + " (topology " + to_string(t.status);
+  const auto& af = r.affine;
+  if (af.computed) {
+    auto n = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string("?"); };
+    s += "; affine: " + n(af.loops) + " loop(s), " + n(af.unbounded_branches) +
+         " unbounded branch(es), " + n(af.isolated_points) + " isolated point(s)" +
+         (af.certified() ? "" : " (not all certified)");
+  }
+  s += ")";
+  int closed = 0, open = 0;
+  for (const auto& br : r.branches)
+    (br.closed ? closed : open) += 1;
+  if (r.branches.empty() && r.isolated_points.empty()) {
+    const bool empty_ok = r.matches_topology;
+    return s + (empty_ok ? ": empty, nothing to trace"
+                         : ": nothing traced (undecided: " + r.note + ")");
+  }
+  s += ": traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
+       " open branch(es)" + (r.box ? " in the box" : "") + ", " +
+       std::to_string(r.isolated_points.size()) + " isolated point(s), tolerance " + tol;
+  return s + (r.matches_topology
+                  ? ", matching the certified topology"
+                  : ", NOT matching the certified topology: undecided (" + r.note + ")");
+}
+
 Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
                          const core::QuadricMatrix& b, certify::Detail detail) {
   Json env = qsic_envelope_json(r.topology, a, b, detail);
@@ -239,6 +492,13 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
   res.set("max_residual", num(r.max_residual));
   res.set("tolerance", num(r.tolerance));
   res.set("affine", certify::affine_json(r.affine));
+  if (r.box) {
+    Json bx = Json::object();
+    bx.set("min", point(r.box->min));
+    bx.set("max", point(r.box->max));
+    bx.set("automatic", Json::boolean(r.box_automatic));
+    res.set("box", bx);
+  }
   env.set("result", res);
   return env;
 }

@@ -231,6 +231,7 @@ struct Walk {
   bool closed = false;
   bool dead = false;       // stopped where it could not continue (an end or a failure)
   bool capped = false;     // hit max_points_per_branch
+  bool exited = false;     // left the box: the last point lies on one of its faces
   std::vector<int> passes; // per singular point: number of times walked through
 };
 
@@ -238,6 +239,47 @@ class Tracer {
 public:
   Tracer(const QuadricPair& q, const TraceOptions& opt, double scene)
       : q_(q), opt_(opt), scene_(scene), tol_(opt.tolerance * scene), hmax_(200 * tol_) {}
+
+  // Whether p lies on a face of the box with the travel direction t pointing out of it.
+  bool leaving_at(const V& p, const V& t) const {
+    if (!opt_.box) return false;
+    const Box& b = *opt_.box;
+    const double eps = 1e-9 * scene_;
+    for (size_t k = 0; k < 3; ++k) {
+      if (std::abs(p[k] - b.min[k]) <= eps && t[k] < 0) return true;
+      if (std::abs(p[k] - b.max[k]) <= eps && t[k] > 0) return true;
+    }
+    return false;
+  }
+
+  // The segment p -> x leaves the box: the curve's point on the face crossed first (Newton on
+  // f = g = 0, x_k = c from the linear interpolation). False when Newton fails.
+  bool exit_point(const V& p, const V& x, V& out) const {
+    const Box& b = *opt_.box;
+    double best = 2;
+    size_t face_k = 0;
+    double face_c = 0;
+    for (size_t k = 0; k < 3; ++k)
+      for (double c : {b.min[k], b.max[k]}) {
+        const double den = x[k] - p[k];
+        if (den == 0) continue;
+        const double lam = (c - p[k]) / den;
+        const bool outward = (c == b.min[k]) ? den < 0 : den > 0;
+        if (outward && lam >= 0 && lam <= 1 && lam < best) {
+          best = lam;
+          face_k = k;
+          face_c = c;
+        }
+      }
+    if (best > 1) return false;
+    V y = add(p, mul(best, sub(x, p)));
+    y[face_k] = face_c;
+    if (!newton_on_face(q_, face_k, face_c, y)) return false;
+    if (dist(y, p) > 2 * dist(x, p) + 1e-12 * scene_) return false;
+    y[face_k] = face_c;
+    out = y;
+    return true;
+  }
 
   std::vector<Singular> sing;
 
@@ -355,6 +397,10 @@ public:
     double next_h = 0, next_hfree = 0;
     bool away = false;
     const size_t cap = static_cast<size_t>(std::max(opt_.max_points_per_branch, 2));
+    if (leaving_at(p0, t)) { // started on a face, heading out: nothing inside this way
+      w.exited = true;
+      return w;
+    }
     while (true) {
       if (w.pts.size() >= cap) {
         w.capped = true;
@@ -453,6 +499,17 @@ public:
               p = x;
               t = tx;
               hlast = len;
+              if (opt_.box && !opt_.box->contains(x)) {
+                V y;
+                if (exit_point(w.pts.back(), x, y)) {
+                  w.pts.push_back(y);
+                  w.sg.push_back(s);
+                  w.exited = true;
+                } else {
+                  w.dead = true;
+                }
+                return w;
+              }
               w.pts.push_back(x);
               w.sg.push_back(s);
               break;
@@ -534,6 +591,7 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
     }
   double scene = any ? dist(lo, hi) : 0;
   if (!(scene > 0)) scene = any ? 1 + norm(lo) : 1;
+  if (opt.box) scene = opt.box->diagonal();
 
   Tracer tr(q, opt, scene);
   for (const V& p : singular_points)
@@ -558,6 +616,7 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
     }
     if (!project_onto_curve(q, p)) continue;
     if (near_singular(p)) continue;
+    if (opt.box && !opt.box->contains(p, 1e-9 * scene)) continue;
     smooth.push_back(p);
   }
 
@@ -594,6 +653,7 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
       if (tr.sing[i].kind == SKind::Cusp && passes[i] >= 1) ++cusps;
     }
     br.kind = crunode_twice > 0 ? "figure_eight" : cusps > 0 ? "loop_with_cusp" : "loop";
+    if (!br.closed && opt.box) br.kind = "arc"; // a piece of an unbounded branch in the box
     traced.push_back(std::move(tb));
   }
   for (auto& t : traced)

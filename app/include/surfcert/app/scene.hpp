@@ -22,8 +22,10 @@
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/surface.hpp"
 
+#include <array>
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -43,6 +45,9 @@ struct Query {
   certify::Mode mode = certify::Mode::Filtered;
   /// How much the answer carries (certify/detail.hpp; a level the op has, checked on reading).
   certify::Detail detail = certify::Detail::Full;
+  /// intersect: the box {"min": [x, y, z], "max": [x, y, z]} unbounded curves are traced in
+  /// (min then max; absent: chosen automatically).
+  std::optional<std::array<double, 6>> box;
 };
 
 struct Scene {

@@ -13,6 +13,7 @@
 #include "surfcert/core/quadric.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,9 +28,23 @@ struct Branch {
   std::vector<Point3> points; ///< for closed branches the first point is not repeated at the end
 };
 
+/// An axis-aligned box: the region in which unbounded curves are traced.
+struct Box {
+  Point3 min{}, max{};
+  bool contains(const Point3& p, double slack = 0) const {
+    for (size_t k = 0; k < 3; ++k)
+      if (p[k] < min[k] - slack || p[k] > max[k] + slack) return false;
+    return true;
+  }
+  double diagonal() const;
+};
+
 struct TraceOptions {
   double tolerance = 2e-4; ///< bound on chord error and on the step (relative to the scene size)
   int max_points_per_branch = 200000;
+  /// When set, march() stops each walk where it leaves the box (the last point lies on a face)
+  /// and walks starting on a face only inwards; the scene size is the box's diagonal.
+  std::optional<Box> box;
 };
 
 /// The pair as float data, normalised; shared by the tracer's parts.
@@ -57,10 +72,20 @@ std::vector<Point3> extreme_points(const core::QuadricMatrix& a, const core::Qua
 /// from these starts do not reproduce the certified topology.
 std::vector<Point3> extreme_points_float(const QuadricPair& q);
 
+/// The points where the curve crosses the faces of the box (float proposals: each face plane
+/// meets both quadrics in a conic, the two conics are intersected through a float resultant
+/// and the roots polished by Newton onto f = g = 0 on the face). No guarantee that none is
+/// missed; tangential crossings may be reported once or not at all.
+std::vector<Point3> box_face_points(const QuadricPair& q, const Box& box);
+
+/// Newton on f = g = 0, x_k = c from x (x_k is set to c). False when it does not converge.
+bool newton_on_face(const QuadricPair& q, size_t k, double c, Point3& x);
+
 /// Marches along the smooth parts of the curve from the start points, with a step adapted to
 /// curvature and Newton correction, passing through the given singular points along their
 /// tangent directions; closes loops. Each start point lying on an already traced branch is
-/// skipped.
+/// skipped. With opt.box, walks end on the box's faces (open branches, closed = false) and
+/// start points outside the box are ignored.
 std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& starts,
                           const std::vector<Point3>& singular_points, const TraceOptions& opt);
 

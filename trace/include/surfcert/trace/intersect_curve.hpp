@@ -10,7 +10,12 @@
 // (loops, figure eight, loop with cusp, conics, double conic, isolated points); otherwise
 // Undecided, with what was found and why.
 // Scope: an ellipsoid (or sphere) and any second quadric, where the real curve is bounded
-// and the projective topology is the affine one.
+// and the projective topology is the affine one; for other pairs (regular pencils) the curve
+// is traced inside a box (given in TraceOptions::box, or chosen to contain the special points,
+// the extreme points and every closed loop, with a margin): loops closed, pieces of unbounded
+// branches open with both ends on the box's faces, conics in closed form clipped to the box.
+// There status is Certified only when the affine topology (certify/affine.hpp) is certified
+// and the traced loops, open pieces and isolated points have its counts.
 #pragma once
 
 #include "surfcert/certify/affine.hpp"
@@ -18,6 +23,7 @@
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/trace/curve.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +39,8 @@ struct CurveResult {
   double tolerance = 2e-4;
   bool matches_topology = false;
   bool exact_start_points = false; ///< the float start points missed a branch: exact ones used
+  std::optional<Box> box;          ///< the box the curve was traced in (non-ellipsoid pairs)
+  bool box_automatic = false;      ///< chosen by the tracer (not given)
   std::string note;
 };
 
@@ -56,6 +64,11 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
 core::io::Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
                                    const core::QuadricMatrix& b,
                                    certify::Detail detail = certify::Detail::Full);
+
+/// One line saying truthfully what was traced (the SVG caption): the certified topology,
+/// then "nothing traced" (with why), or the counts of closed and open branches traced (in the
+/// box) and whether they match the certified (affine) topology.
+std::string curve_caption(const CurveResult& r);
 
 /// Expected branch kinds for a Tu case (ellipsoid cases), e.g. {"loop", "loop"} for case 1.
 std::vector<std::string> expected_branch_kinds(int tu_case);
