@@ -804,6 +804,10 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   }
   int isolated_at_infinity = 0;
   std::vector<CurveRoot> curve;
+  // Where the curve has line (or cubic) components, a line may be the singular line of a
+  // member; special_points skips such lines, so points where other components cross them are
+  // not listed: every root may then lie on several components (a weaker, still sound premise).
+  const bool unlisted_crossings = m.lines > 0 || m.cubics > 0;
   bool node_at_infinity = false, other_special = false;
   for (size_t i = 0; i < roots.size(); ++i) {
     auto it = special.find(i);
@@ -823,7 +827,8 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
         other_special = true;
       curve.push_back({roots[i].p.multiplicity, true, singular_means_crossing(t.tu_case)});
     } else {
-      curve.push_back({roots[i].p.multiplicity, false});
+      curve.push_back({roots[i].p.multiplicity, unlisted_crossings});
+      if (unlisted_crossings) other_special = true;
     }
   }
   if (isolated_at_infinity > m.isolated_points) {

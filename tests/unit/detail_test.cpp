@@ -54,6 +54,7 @@ const std::set<std::string> kCertificate = {"matrices",
 const std::set<std::string> kFull = {"special_points", "special_points_complete"};
 // intersect's own fields (the curve): at every level.
 const std::set<std::string> kCurve = {"branches",
+                                      "box",
                                       "isolated_points",
                                       "branches_match_topology",
                                       "branch_points_approximate",
