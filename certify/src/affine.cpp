@@ -731,18 +731,49 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     out.reason = "two planes: the pair of planes with the plane at infinity is not analysed";
     return out;
   }
+  Chart ch;
+  const ChartOutcome co = find_chart(top_left(a.matrix()), top_left(b.matrix()), ch);
+  if (co == ChartOutcome::SharedComponent) {
+    // Proportional quadratic parts (B_inf = c A_inf): B - c A is a plane written as a quadric
+    // (the plane and the plane at infinity), so the affine curve is Q_A cut by that plane.
+    const M3 ai = top_left(a.matrix()), bi = top_left(b.matrix());
+    std::optional<Rational> c;
+    bool prop = true;
+    for (size_t i = 0; i < 3 && prop; ++i)
+      for (size_t j = 0; j < 3 && prop; ++j) {
+        if (ai[i][j].is_zero()) {
+          prop = bi[i][j].is_zero();
+        } else {
+          const Rational r = bi[i][j] / ai[i][j];
+          if (c && *c != r) prop = false;
+          c = r;
+        }
+      }
+    if (prop && c) {
+      core::Mat4 p = b.matrix() + core::scaled(a.matrix(), -*c);
+      if (!(p[0][3].is_zero() && p[1][3].is_zero() && p[2][3].is_zero())) {
+        AffineTopology pr = plane_route(core::QuadricMatrix(p), a);
+        pr.route = "pencil_plane";
+        return pr;
+      }
+      if (!p[3][3].is_zero()) {
+        // B - c A = const w^2: no affine point at all; the common conic at infinity remains.
+        out.computed = true;
+        out.points_at_infinity_complete = true;
+        out.loops = out.unbounded_branches = out.isolated_points = out.lines = out.conics = 0;
+        if (auto inf = conic_at_infinity(ai)) out.at_infinity_only.push_back(*inf);
+        return out;
+      }
+    }
+    out.reason = "the conics at infinity share a component: part of the curve lies at infinity "
+                 "(not analysed)";
+    return out;
+  }
   if (t.status != Status::Certified || !t.morphology) {
     out.reason = "no certified projective topology";
     return out;
   }
   const Morphology& m = *t.morphology;
-  Chart ch;
-  const ChartOutcome co = find_chart(top_left(a.matrix()), top_left(b.matrix()), ch);
-  if (co == ChartOutcome::SharedComponent) {
-    out.reason = "the conics at infinity share a component: part of the curve lies at infinity "
-                 "(not analysed)";
-    return out;
-  }
   if (co == ChartOutcome::Failed) {
     out.reason = "no chart of the plane at infinity separated the points at infinity";
     return out;

@@ -77,6 +77,13 @@ const Want kTable[] = {
     // (+-sqrt 2 : 1 : +-1) are algebraic. Two projective ovals: whether one oval holds all four
     // points (a loop) is not decided by the facts used: loops undecided.
     {"x^2 - 2y^2 = 1", "x^2 + z^2 - 3y^2 = 4", -1, 4, 0, 0, 0, 4},
+    // Equal paraboloids with parallel axes: B - A = 2 - 2x, the plane x = 1 cuts the parabola
+    // z = 1 + y^2 (one unbounded branch, (0:0:1) with multiplicity 2).
+    {"z = x^2 + y^2", "z - 1 = (x - 1)^2 + y^2", 0, 1, 0, 0, 1, 1},
+    // Equal parallel cylinders (a degenerate pencil): x = 1/2, the lines y = +-sqrt(3)/2.
+    {"x^2 + y^2 = 1", "(x - 1)^2 + y^2 = 1", 0, 2, 0, 2, 0, 1},
+    // Equal parallel cylinders too far apart: x = 5/4 misses both: empty.
+    {"x^2 + y^2 = 1", "(x - 5/2)^2 + y^2 = 1", 0, 0, 0, 0, 0, 0},
 };
 
 void expect_field(const std::optional<int>& got, int want, const std::string& ctx) {

@@ -25,7 +25,10 @@
 // all of them agree, otherwise it stays unset with a reason. When one quadric is a plane
 // (written as a degenerate quadric: plane ∪ plane at infinity) the affine curve is the plane
 // section, classified exactly as a plane conic; the other quadric's conic at infinity is then
-// a component lying at infinity. Requires a certified topology, except on that plane route.
+// a component lying at infinity. The same holds when the quadratic parts are proportional
+// (B_inf = c A_inf, e.g. two paraboloids with parallel axes and equal shapes, parallel
+// cylinders of equal radii): B - c A is then such a plane (route "pencil_plane"). Requires a
+// certified topology, except on these plane routes.
 #pragma once
 
 #include "surfcert/algebra/upoly.hpp"
@@ -62,7 +65,7 @@ struct ComponentAtInfinity {
 
 struct AffineTopology {
   bool computed = false; ///< false: nothing established (see reason)
-  std::string route;     ///< "pencil" or "plane_section"
+  std::string route;     ///< "pencil", "plane_section" or "pencil_plane"
   std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
   std::vector<PointAtInfinity> points_at_infinity;
   bool points_at_infinity_complete = false;
