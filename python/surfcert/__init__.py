@@ -170,13 +170,27 @@ class Result(Record):
     __slots__ = ("op", "json", "_text")
 
     def __init__(self, op, text, curves=None):
-        raw = _json.loads(text)
-        Record.__init__(self, raw)
+        object.__setattr__(self, "_done", {})
         object.__setattr__(self, "op", op)
-        object.__setattr__(self, "json", raw)
         object.__setattr__(self, "_text", text)
-        if curves is not None and "result" in raw:
-            _attach_curves(self._get("result"), curves)
+        # The JSON is parsed when first read (_raw and json are unset slots until then, see
+        # __getattr__): the parse is serial Python under the interpreter lock, as costly per
+        # item as a cheap query, and a batch's caller often reads only a few answers.
+        if curves is not None:
+            raw = self._parse()
+            if "result" in raw:
+                _attach_curves(self._get("result"), curves)
+
+    def _parse(self):
+        raw = _json.loads(self._text)
+        object.__setattr__(self, "_raw", raw)
+        object.__setattr__(self, "json", raw)
+        return raw
+
+    def __getattr__(self, name):
+        if name in ("_raw", "json"):
+            return self._parse()
+        return Record.__getattr__(self, name)
 
     def to_json(self):
         return self._text
