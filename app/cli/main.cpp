@@ -4,6 +4,8 @@
 // 0 success, 2 bad input or bad command line (message with location or option on stderr,
 // nothing written), 3 finished with undecided results, 1 internal error (for batch: some line
 // was answered with an "internal" error line, e.g. FLINT/Arb aborted on it).
+#include "surfcert/app/batch_line.hpp"
+#include "surfcert/app/batch_stream.hpp"
 #include "surfcert/app/generate.hpp"
 #include "surfcert/app/scene.hpp"
 #include "surfcert/app/verify.hpp"
@@ -25,7 +27,6 @@
 #include <iostream>
 #include <sstream>
 
-#include <ext/stdio_filebuf.h>
 #include <unistd.h>
 
 #ifndef SURFCERT_VERSION
@@ -84,13 +85,6 @@ const std::string kUsage =
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
-};
-
-// The batch answers: a stream buffer on a duplicate of the original stdout.
-struct BatchOutput {
-  explicit BatchOutput(int fd) : buf(fd, std::ios::out) {}
-  ~BatchOutput() { buf.close(); }
-  __gnu_cxx::stdio_filebuf<char> buf;
 };
 
 certify::Mode mode_arg(const std::string& v) {
@@ -439,25 +433,26 @@ int cmd_run(const Opts& o) {
 
 int cmd_batch(const Opts& o) {
   certify::Mode mode = mode_arg(o.mode);
-  std::ios::sync_with_stdio(false);
   // FLINT prints the diagnostic of an abort with printf on stdout: while the batch runs, fd 1
   // is stderr and the answers go to a private duplicate of the original stdout.
   std::cout.flush();
   std::fflush(stdout);
   int out_fd = ::dup(1);
   if (out_fd < 0 || ::dup2(2, 1) < 0) throw std::runtime_error("cannot duplicate stdout");
-  BatchOutput answers(out_fd);
   app::BatchStats st;
   {
-    std::ostream out(&answers.buf);
     const double budget = o.budget_ms;
     const certify::Detail detail = detail_arg(o.detail);
+    app::BatchStreamOptions opt;
+    opt.threads = o.threads;
+    opt.ordered = !o.unordered;
+    // A timeout-killed batch (SIGTERM, SIGINT, SIGHUP) writes every completed answer first.
+    opt.flush_on_signal = true;
     // A progress line on a terminal (stderr): lines/s and the outcomes so far, twice a second.
     const auto t0 = std::chrono::steady_clock::now();
     auto last = t0;
-    std::function<void(const app::BatchStats&)> progress;
     if (::isatty(2))
-      progress = [&](const app::BatchStats& s) {
+      opt.progress = [&](const app::BatchStats& s) {
         const auto now = std::chrono::steady_clock::now();
         if (now - last < std::chrono::milliseconds(500)) return;
         last = now;
@@ -467,15 +462,15 @@ int cmd_batch(const Opts& o) {
                      s.undecided, s.errors);
         std::fflush(stderr);
       };
-    st = app::process_batch(
-        std::cin, out, mode, o.threads,
-        [budget, detail](const std::string& line, long no, certify::Mode m, bool* fb) {
-          return app::process_batch_line(line, no, m, fb, budget, detail);
+    st = app::process_batch_fd(
+        0, out_fd, mode,
+        [budget, detail](const std::string& line, long no, certify::Mode m) {
+          return app::answer_batch_line(line, no, m, budget, detail);
         },
-        progress, !o.unordered);
-    if (progress) std::fputs("\n", stderr);
-    out.flush();
+        opt);
+    if (opt.progress) std::fputs("\n", stderr);
   }
+  ::close(out_fd);
   std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("
             << st.internal << " internal), " << st.undecided << " undecided, " << st.fallbacks
             << " exact fallbacks\n";

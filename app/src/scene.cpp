@@ -1,5 +1,6 @@
 #include "surfcert/app/scene.hpp"
 
+#include "surfcert/app/batch_stream.hpp"
 #include "surfcert/app/generate.hpp"
 #include "surfcert/app/verify.hpp"
 
@@ -10,15 +11,11 @@
 #include "surfcert/trace/intersect_curve.hpp"
 
 #include <flint/flint.h>
-#include <tbb/global_control.h>
-#include <tbb/parallel_pipeline.h>
-#include <tbb/task_scheduler_observer.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <istream>
-#include <memory>
 #include <mutex>
 #include <ostream>
 #include <set>
@@ -471,25 +468,6 @@ namespace {
   throw FlintAbort();
 }
 
-// Frees FLINT's thread-local caches when a TBB worker leaves the scheduler (as the old worker
-// threads did with flint_cleanup before they ended).
-class FlintCleanupObserver : public tbb::task_scheduler_observer {
-public:
-  FlintCleanupObserver() { observe(true); }
-  ~FlintCleanupObserver() override { observe(false); }
-  void on_scheduler_exit(bool is_worker) override {
-    if (is_worker) flint_cleanup();
-  }
-};
-
-struct BatchItem {
-  std::string line;
-  long line_no = 0;
-  std::string result;
-  std::string status, kind;
-  bool fallback = false;
-};
-
 } // namespace
 
 void install_flint_abort_handler() {
@@ -500,66 +478,24 @@ void install_flint_abort_handler() {
 BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode, int threads,
                          const BatchAnswer& answer,
                          const std::function<void(const BatchStats&)>& progress, bool ordered) {
-  install_flint_abort_handler();
-  BatchStats st;
-  if (threads < 1) threads = 1;
-  // --threads N: at most N threads answer lines, and at most 4 N lines are in flight (read,
-  // being answered, or waiting for an earlier line to be written).
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
-                            static_cast<size_t>(threads));
-  // One observer for the process, never destroyed: TBB keeps an internal proxy per observer
-  // that a destroyed local observer leaked (LeakSanitizer); the static pointer keeps it
-  // reachable.
-  static FlintCleanupObserver* const cleanup = new FlintCleanupObserver();
-  (void)cleanup;
-  long next_line = 1;
-  tbb::parallel_pipeline(
-      static_cast<size_t>(4 * threads),
-      tbb::make_filter<void, std::shared_ptr<BatchItem>>(
-          tbb::filter_mode::serial_in_order,
-          [&](tbb::flow_control& fc) -> std::shared_ptr<BatchItem> {
-            auto item = std::make_shared<BatchItem>();
-            if (!std::getline(in, item->line)) {
-              fc.stop();
-              return nullptr;
-            }
-            item->line_no = next_line++;
-            return item;
-          }) &
-          tbb::make_filter<std::shared_ptr<BatchItem>, std::shared_ptr<BatchItem>>(
-              tbb::filter_mode::parallel,
-              [default_mode, &answer](std::shared_ptr<BatchItem> item) {
-                Json r;
-                try { // the per-line guard: nothing escapes into the pipeline
-                  r = answer ? answer(item->line, item->line_no, default_mode, &item->fallback)
-                             : process_batch_line(item->line, item->line_no, default_mode,
-                                                  &item->fallback);
-                } catch (const std::exception& e) {
-                  r = internal_error_line(Json::null(), e.what());
-                } catch (...) {
-                  r = internal_error_line(Json::null(), "unknown exception");
-                }
-                if (const Json* s = r.find("status")) item->status = s->text();
-                if (const Json* e = r.find("error"))
-                  if (const Json* k = e->is_object() ? e->find("kind") : nullptr)
-                    if (k->is_string()) item->kind = k->text();
-                item->result = core::io::dump(r);
-                return item;
-              }) &
-          tbb::make_filter<std::shared_ptr<BatchItem>, void>(
-              ordered ? tbb::filter_mode::serial_in_order : tbb::filter_mode::serial_out_of_order,
-              [&](std::shared_ptr<BatchItem> item) {
-                out << item->result << '\n';
-                out.flush();
-                ++st.lines;
-                if (item->status == "error") ++st.errors;
-                if (item->status == "error" && item->kind == "internal") ++st.internal;
-                if (item->status == "undecided") ++st.undecided;
-                if (item->status == "certified") ++st.certified;
-                st.fallbacks += item->fallback ? 1 : 0;
-                if (progress) progress(st);
-              }));
-  return st;
+  auto text_answer = [&answer](const std::string& line, long line_no, Mode mode) {
+    BatchLineAnswer a;
+    const Json r = answer ? answer(line, line_no, mode, &a.fallback)
+                          : process_batch_line(line, line_no, mode, &a.fallback);
+    if (const Json* s = r.find("status")) a.status = s->text();
+    if (const Json* e = r.find("error"))
+      if (const Json* k = e->is_object() ? e->find("kind") : nullptr)
+        if (k->is_string()) a.error_kind = k->text();
+    a.text = core::io::dump(r);
+    return a;
+  };
+  return detail::run_batch_pipeline(
+      [&in](std::string& line) { return static_cast<bool>(std::getline(in, line)); },
+      [&out](const BatchLineAnswer& a) {
+        out << a.text << '\n';
+        out.flush();
+      },
+      default_mode, text_answer, threads, ordered, progress);
 }
 
 } // namespace surfcert::app

@@ -1,0 +1,210 @@
+// Batch streaming (app/batch_stream.hpp): a batch killed by SIGTERM has written every answer it
+// completed (through `timeout` on the real executable, and with answers held back by a long
+// write delay so that only the signal path can write them); a caller that sends a line and
+// waits gets its answer while the input stays open.
+#include "surfcert/app/batch_stream.hpp"
+#include "surfcert/core/io/json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <poll.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using surfcert::app::BatchLineAnswer;
+using surfcert::app::BatchStreamOptions;
+using surfcert::core::io::Json;
+
+namespace {
+
+std::string tmp_path(const std::string& name) {
+  return (::testing::TempDir().empty() ? std::string("/tmp/") : ::testing::TempDir()) +
+         "surfcert_batch_stream_" + std::to_string(getpid()) + "_" + name;
+}
+
+std::string slurp(const std::string& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The ids of the answer lines; every line must be a whole JSON object.
+std::vector<std::string> ids_of(const std::string& out) {
+  std::vector<std::string> ids;
+  std::istringstream lines(out);
+  std::string l;
+  while (std::getline(lines, l)) {
+    const Json o = surfcert::core::io::parse_json(l, "out");
+    ids.push_back(surfcert::core::io::dump(*o.find("id")));
+  }
+  return ids;
+}
+
+// A fast line (two spheres) with id i.
+std::string fast_line(int i) {
+  return "{\"id\":" + std::to_string(i) +
+         R"(,"op":"classify","a":{"type":"sphere","center":[0,0,0],"radius":1},)"
+         R"("b":{"type":"sphere","center":[0.5,0.25,0],"radius":0.75},"detail":"topology"})";
+}
+
+// Two tori 1e-20 apart: the distance's branch and bound runs for minutes (its budget here).
+const char* kSlowLine =
+    R"({"id":"slow","op":"distance","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],)"
+    R"("major_radius":3,"minor_radius":1},"b":{"type":"torus","center":)"
+    R"(["799999999999999999999/100000000000000000000",0,0],"axis":[0,0,1],"major_radius":3,)"
+    R"("minor_radius":1},"budget_ms":600000})";
+
+} // namespace
+
+// Answers held in the buffer (a write delay of an hour, more input behind the blocked line so
+// that the reader never waits): only the SIGTERM path can write them, and it must write all.
+TEST(BatchStream, SigtermWritesEveryCompletedAnswer) {
+  int in[2], out[2], started[2];
+  ASSERT_EQ(pipe(in), 0);
+  ASSERT_EQ(pipe(out), 0);
+  ASSERT_EQ(pipe(started), 0);
+  const int kFast = 40;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    close(in[1]);
+    close(out[0]);
+    close(started[0]);
+    BatchStreamOptions opt;
+    opt.threads = 1;
+    opt.max_delay = std::chrono::hours(1);
+    opt.flush_on_signal = true;
+    surfcert::app::process_batch_fd(
+        in[0], out[1], surfcert::certify::Mode::Filtered,
+        [&](const std::string& line, long no, surfcert::certify::Mode) {
+          if (line == "block") {
+            (void)!write(started[1], "s", 1);
+            for (;;)
+              pause();
+          }
+          return BatchLineAnswer{"{\"id\":" + std::to_string(no) + "}", "certified", "", false};
+        },
+        opt);
+    _exit(0);
+  }
+  close(in[0]);
+  close(out[1]);
+  close(started[1]);
+  std::string text;
+  for (int i = 1; i <= kFast; ++i)
+    text += "x\n";
+  text += "block\n";
+  // More input behind the blocked line, so that the reader is not waiting for input (which
+  // would write the answers at once); the pipe is left open.
+  for (int i = 0; i < 100; ++i)
+    text += "x\n";
+  ASSERT_EQ(write(in[1], text.data(), text.size()), static_cast<ssize_t>(text.size()));
+  char c;
+  ASSERT_EQ(read(started[0], &c, 1), 1); // every line before "block" is answered by now
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  std::string got;
+  char buf[4096];
+  ssize_t n;
+  while ((n = read(out[0], buf, sizeof buf)) > 0)
+    got.append(buf, static_cast<size_t>(n));
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  close(in[1]);
+  const auto ids = ids_of(got);
+  ASSERT_EQ(ids.size(), static_cast<size_t>(kFast)) << got;
+  for (int i = 0; i < kFast; ++i)
+    EXPECT_EQ(ids[static_cast<size_t>(i)], std::to_string(i + 1));
+}
+
+// The executable under `timeout`: many fast lines, a slow one, more fast lines. In input order
+// the answers are exactly the lines before the slow one; unordered (two threads) they are all
+// the fast lines. Either way no line is cut.
+TEST(BatchStream, TimeoutKilledBatchWroteEveryCompletedLine) {
+  const int kBefore = 1500, kAfter = 300;
+  std::string text;
+  for (int i = 0; i < kBefore; ++i)
+    text += fast_line(i) + "\n";
+  text += std::string(kSlowLine) + "\n";
+  for (int i = kBefore; i < kBefore + kAfter; ++i)
+    text += fast_line(i) + "\n";
+  const std::string in = tmp_path("in"), out = tmp_path("out");
+  std::ofstream(in) << text;
+  for (const bool ordered : {true, false}) {
+    const std::string cmd = std::string("timeout -s TERM 4 ") + SURFCERT_BINARY + " batch " +
+                            (ordered ? "--threads 1" : "--threads 2 --unordered") + " <" + in +
+                            " >" + out + " 2>/dev/null";
+    const int st = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 124) << st; // killed by timeout
+    const auto ids = ids_of(slurp(out));
+    if (ordered) {
+      ASSERT_EQ(ids.size(), static_cast<size_t>(kBefore));
+      for (int i = 0; i < kBefore; ++i)
+        EXPECT_EQ(ids[static_cast<size_t>(i)], std::to_string(i));
+    } else {
+      std::set<std::string> want, got(ids.begin(), ids.end());
+      for (int i = 0; i < kBefore + kAfter; ++i)
+        want.insert(std::to_string(i));
+      EXPECT_EQ(got, want);
+      EXPECT_EQ(ids.size(), want.size());
+    }
+  }
+  std::remove(in.c_str());
+  std::remove(out.c_str());
+}
+
+// Request and response through pipes with the input left open: each answer arrives without
+// more input or the end of input (a caller may wait for it before sending the next line).
+TEST(BatchStream, AnswersArriveWhileTheInputStaysOpen) {
+  for (int threads : {1, 2}) {
+    int in[2], out[2];
+    ASSERT_EQ(pipe(in), 0);
+    ASSERT_EQ(pipe(out), 0);
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      close(in[1]);
+      close(out[0]);
+      BatchStreamOptions opt;
+      opt.threads = threads;
+      opt.max_delay = std::chrono::hours(1); // only the waiting reader can release answers
+      surfcert::app::process_batch_fd(
+          in[0], out[1], surfcert::certify::Mode::Filtered,
+          [](const std::string& line, long, surfcert::certify::Mode) {
+            return BatchLineAnswer{"{\"id\":" + line + "}", "certified", "", false};
+          },
+          opt);
+      _exit(0);
+    }
+    close(in[0]);
+    close(out[1]);
+    for (int i = 0; i < 20; ++i) {
+      const std::string l = std::to_string(i) + "\n";
+      ASSERT_EQ(write(in[1], l.data(), l.size()), static_cast<ssize_t>(l.size()));
+      std::string got;
+      while (got.find('\n') == std::string::npos) {
+        pollfd p{out[0], POLLIN, 0};
+        ASSERT_GT(poll(&p, 1, 60000), 0) << "no answer to line " << i; // a hang, not a timing
+        char buf[256];
+        const ssize_t n = read(out[0], buf, sizeof buf);
+        ASSERT_GT(n, 0);
+        got.append(buf, static_cast<size_t>(n));
+      }
+      EXPECT_EQ(got, "{\"id\":" + std::to_string(i) + "}\n");
+    }
+    close(in[1]);
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    close(out[0]);
+  }
+}
