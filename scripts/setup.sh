@@ -7,6 +7,7 @@ pkgs="build-essential cmake libgmp-dev libmpfr-dev libmpfi-dev libflint-dev libf
       libcalcium-dev libcgal-dev libboost-dev libgtest-dev libcli11-dev libtbb-dev librsvg2-bin libxml2-utils python3
       pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-matplotlib
       clang libclang-rt-14-dev"  # clang + libFuzzer runtime: scripts/fuzz.sh only (builds use g++)
+pkgs="$pkgs libsimdjson-dev"  # simdjson: the batch's fast line reader (app/src/batch_line.cpp)
 missing=""
 for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
 if [ -n "$missing" ]; then

@@ -1,22 +1,440 @@
 #include "surfcert/app/batch_line.hpp"
 
+#include "surfcert/app/batch_query.hpp"
+#include "surfcert/certify/report.hpp"
+#include "surfcert/core/budget.hpp"
 #include "surfcert/core/io/json.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
+
+#include <simdjson.h>
+
+#include <array>
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+#include <string_view>
 
 namespace surfcert::app {
 
 using core::io::Json;
+namespace od = simdjson::ondemand;
 
-BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
-                                  double default_budget_ms, certify::Detail default_detail) {
+namespace {
+
+// Any reason the fast reader does not take a line: the document route answers it instead.
+struct NotFast {};
+
+template <class T> T get(simdjson::simdjson_result<T>&& r) {
+  T v;
+  if (std::move(r).get(v) != simdjson::SUCCESS) throw NotFast{};
+  return v;
+}
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() &&
+         (s.back() == ' ' || s.back() == '\t' || s.back() == '\n' || s.back() == '\r'))
+    s.remove_suffix(1);
+  return s;
+}
+
+// A JSON number literal (RFC 8259 grammar, as the document parser accepts it).
+bool is_json_number(std::string_view s) {
+  size_t i = 0;
+  auto digit = [&](size_t k) { return k < s.size() && s[k] >= '0' && s[k] <= '9'; };
+  if (i < s.size() && s[i] == '-') ++i;
+  if (!digit(i)) return false;
+  if (s[i] == '0') {
+    ++i;
+  } else {
+    while (digit(i))
+      ++i;
+  }
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    if (!digit(i)) return false;
+    while (digit(i))
+      ++i;
+  }
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    if (!digit(i)) return false;
+    while (digit(i))
+      ++i;
+  }
+  return i == s.size();
+}
+
+// The raw text of a number value (validated).
+std::string_view number_text(od::value v) {
+  if (get(v.type()) != od::json_type::number) throw NotFast{};
+  const std::string_view t = trimmed(v.raw_json_token());
+  if (!is_json_number(t)) throw NotFast{};
+  return t;
+}
+
+// A number literal read as the shape reader reads one (surface_reader.cpp, literal_double): a
+// non-integer literal is the double it rounds to (correctly rounded, as strtod), an integer
+// literal of at most 15 digits its exact value. Anything else (longer integers: exact
+// rationals; overflow; underflow to zero or subnormals, kept for the exact reader) is not fast.
+double literal_double(od::value v) {
+  const std::string_view t = number_text(v);
+  if (t.find_first_of(".eE") == std::string_view::npos && t.size() > 15 + (t[0] == '-'))
+    throw NotFast{};
+  const double d = get(v.get_double());
+  if (!std::isfinite(d) || (d != 0 && std::fabs(d) < DBL_MIN)) throw NotFast{};
+  if (d == 0) // a literal zero only (no underflow to zero)
+    for (char c : t) {
+      if (c == 'e' || c == 'E') break;
+      if (c >= '1' && c <= '9') throw NotFast{};
+    }
+  return d;
+}
+
+template <size_t N> std::array<double, N> literal_doubles(od::value v) {
+  std::array<double, N> out{};
+  size_t n = 0;
+  for (auto item : get(v.get_array())) {
+    if (n == N) throw NotFast{};
+    out[n++] = literal_double(get(std::move(item)));
+  }
+  if (n != N) throw NotFast{};
+  return out;
+}
+
+// A string without escapes or control characters: its text is its raw bytes (as the document
+// parser and dump() read and write it).
+std::string_view plain_string(od::value v) {
+  if (get(v.type()) != od::json_type::string) throw NotFast{};
+  const std::string_view raw = trimmed(v.raw_json_token());
+  if (raw.size() < 2 || raw.find('\\') != std::string_view::npos) throw NotFast{};
+  for (char c : raw)
+    if (static_cast<unsigned char>(c) < 0x20) throw NotFast{};
+  return raw.substr(1, raw.size() - 2);
+}
+
+// Each key at most once (the document parser rejects duplicates).
+void mark(unsigned& seen, unsigned bit) {
+  if (seen & bit) throw NotFast{};
+  seen |= bit;
+}
+
+const std::pair<const char*, core::ShapeType> kShapeTypes[] = {
+    {"sphere", core::ShapeType::Sphere},
+    {"ellipsoid", core::ShapeType::Ellipsoid},
+    {"cylinder", core::ShapeType::Cylinder},
+    {"cone", core::ShapeType::Cone},
+    {"elliptic_paraboloid", core::ShapeType::EllipticParaboloid},
+    {"hyperbolic_paraboloid", core::ShapeType::HyperbolicParaboloid},
+    {"hyperboloid_one_sheet", core::ShapeType::HyperboloidOneSheet},
+    {"hyperboloid_two_sheets", core::ShapeType::HyperboloidTwoSheets}};
+
+// A surface the fast reader takes: an equation string, {"equation": string}, {"matrix": 4x4
+// doubles} or a quadric shape in doubles ({"type", "center", "radius"/"radii", "rotation":
+// {"quaternion"}}); read as read_surface reads it (surface_reader.hpp).
+core::Surface read_surface_fast(od::value v, const std::string& path, core::io::Readings& rd) {
+  const auto type = get(v.type());
+  if (type == od::json_type::string)
+    return core::io::read_surface(Json::string(std::string(plain_string(v))), "<stdin>", path, &rd);
+  if (type != od::json_type::object) throw NotFast{};
+  enum : unsigned {
+    kEq = 1,
+    kMat = 2,
+    kType = 4,
+    kCenter = 8,
+    kRadius = 16,
+    kRadii = 32,
+    kRot = 64
+  };
+  unsigned seen = 0;
+  std::string equation;
+  std::array<std::array<double, 4>, 4> m{};
+  std::optional<core::ShapeType> shape;
+  double radius = 0;
+  std::array<double, 3> radii{1, 1, 1}, center{};
+  std::array<double, 4> quaternion{};
+  size_t radii_read = 0;
+  for (auto field : get(v.get_object())) {
+    od::field f = get(std::move(field));
+    const std::string_view key = get(f.unescaped_key());
+    od::value val = f.value();
+    if (key == "equation") {
+      mark(seen, kEq);
+      equation = plain_string(val);
+    } else if (key == "matrix") {
+      mark(seen, kMat);
+      size_t i = 0;
+      for (auto row : get(val.get_array())) {
+        if (i == 4) throw NotFast{};
+        m[i++] = literal_doubles<4>(get(std::move(row)));
+      }
+      if (i != 4) throw NotFast{};
+    } else if (key == "type") {
+      mark(seen, kType);
+      const std::string_view t = plain_string(val);
+      for (const auto& [name, st] : kShapeTypes)
+        if (t == name) shape = st;
+      if (!shape) throw NotFast{};
+    } else if (key == "center") {
+      mark(seen, kCenter);
+      center = literal_doubles<3>(val);
+    } else if (key == "radius") {
+      mark(seen, kRadius);
+      radius = literal_double(val);
+    } else if (key == "radii") {
+      mark(seen, kRadii);
+      // The count depends on the type, which may come later: 2 or 3, checked below.
+      for (auto item : get(val.get_array())) {
+        if (radii_read == 3) throw NotFast{};
+        radii[radii_read++] = literal_double(get(std::move(item)));
+      }
+    } else if (key == "rotation") {
+      mark(seen, kRot);
+      unsigned rseen = 0;
+      for (auto rf : get(val.get_object())) {
+        od::field g = get(std::move(rf));
+        if (get(g.unescaped_key()) != "quaternion") throw NotFast{};
+        mark(rseen, 1);
+        quaternion = literal_doubles<4>(g.value());
+      }
+      if (rseen != 1) throw NotFast{};
+    } else {
+      throw NotFast{};
+    }
+  }
+  if (seen == kEq)
+    return core::io::read_surface(Json::string(equation), "<stdin>",
+                                  core::io::json_path_child(path, "equation"), &rd);
+  if (seen == kMat) {
+    auto q = core::io::quadric_of_double_matrix(m, core::io::json_path_child(path, "matrix"), &rd);
+    if (!q) throw NotFast{};
+    return *q;
+  }
+  if (!(seen & kType) || (seen & (kEq | kMat))) throw NotFast{};
+  // The fields a shape of this type allows (read_shape): a sphere its radius, a cylinder its
+  // radius or radii, the others their radii.
+  const bool sphere = *shape == core::ShapeType::Sphere;
+  const bool cylinder = *shape == core::ShapeType::Cylinder;
+  const bool by_radius = seen & kRadius;
+  if ((by_radius && (seen & kRadii)) || (by_radius && !sphere && !cylinder) ||
+      (!by_radius && (!(seen & kRadii) || sphere)))
+    throw NotFast{};
+  if (!by_radius && radii_read != core::io::shape_radii_count(*shape)) throw NotFast{};
+  auto spec = core::io::double_shape_spec(
+      *shape, by_radius ? &radius : nullptr, by_radius ? nullptr : &radii,
+      (seen & kCenter) ? &center : nullptr, (seen & kRot) ? &quaternion : nullptr);
+  if (!spec) throw NotFast{};
+  return core::QuadricMatrix(*spec);
+}
+
+// A line the fast reader takes (batch_line.hpp), read.
+struct FastLine {
+  std::string id = "null"; ///< the id's JSON text, as dump() writes it
+  BatchQuery q;
+  std::optional<core::Surface> a, b;
+  core::io::Readings readings; ///< a's, then b's (as the document route reads them)
+};
+
+FastLine read_fast(const std::string& line, certify::Mode default_mode, double default_budget_ms,
+                   certify::Detail default_detail) {
+  // simdjson reads up to SIMDJSON_PADDING bytes past the end: the batch reader leaves room,
+  // other callers' lines are copied.
+  thread_local od::parser parser;
+  thread_local std::string padded;
+  simdjson::padded_string_view view;
+  if (line.capacity() - line.size() >= simdjson::SIMDJSON_PADDING) {
+    view = simdjson::padded_string_view(line.data(), line.size(), line.capacity());
+  } else {
+    padded.reserve(line.size() + simdjson::SIMDJSON_PADDING);
+    padded.assign(line);
+    view = simdjson::padded_string_view(padded.data(), padded.size(), padded.capacity());
+  }
+  od::document doc = get(parser.iterate(view));
+  enum : unsigned {
+    kId = 1,
+    kOp = 2,
+    kA = 4,
+    kB = 8,
+    kMode = 16,
+    kDetail = 32,
+    kBudget = 64,
+    kDigits = 128,
+    kSolid = 256,
+    kTol = 512
+  };
+  unsigned seen = 0;
+  FastLine fl;
+  std::string_view detail_text, budget_text, digits_text, tolerance_text;
+  core::io::Readings rb;
+  bool solid = false;
+  for (auto field : get(doc.get_object())) {
+    od::field f = get(std::move(field));
+    const std::string_view key = get(f.unescaped_key());
+    od::value v = f.value();
+    if (key == "id") {
+      mark(seen, kId);
+      switch (get(v.type())) {
+      case od::json_type::number:
+        fl.id = number_text(v);
+        break;
+      case od::json_type::string:
+        fl.id = "\"" + std::string(plain_string(v)) + "\"";
+        break;
+      case od::json_type::boolean:
+        fl.id = get(v.get_bool()) ? "true" : "false";
+        break;
+      case od::json_type::null:
+        if (!get(v.is_null())) throw NotFast{};
+        break;
+      default:
+        throw NotFast{};
+      }
+    } else if (key == "op") {
+      mark(seen, kOp);
+      fl.q.op = plain_string(v);
+      if (fl.q.op != "classify" && fl.q.op != "intersect" && fl.q.op != "distance") throw NotFast{};
+    } else if (key == "a") {
+      mark(seen, kA);
+      fl.a = read_surface_fast(v, "$.a", fl.readings);
+    } else if (key == "b") {
+      mark(seen, kB);
+      fl.b = read_surface_fast(v, "$.b", rb);
+    } else if (key == "mode") {
+      mark(seen, kMode);
+      auto m = certify::parse_mode(std::string(plain_string(v)));
+      if (!m) throw NotFast{};
+      default_mode = *m;
+    } else if (key == "detail") {
+      mark(seen, kDetail);
+      detail_text = plain_string(v);
+    } else if (key == "budget_ms") {
+      mark(seen, kBudget);
+      budget_text = number_text(v);
+    } else if (key == "digits") {
+      mark(seen, kDigits);
+      digits_text = number_text(v);
+    } else if (key == "solid") {
+      mark(seen, kSolid);
+      solid = get(v.get_bool());
+    } else if (key == "tolerance") {
+      mark(seen, kTol);
+      tolerance_text = number_text(v);
+    } else {
+      throw NotFast{};
+    }
+  }
+  // Nothing after the object (the document is exhausted: no location left in it).
+  if (doc.current_location().error() != simdjson::OUT_OF_BOUNDS) throw NotFast{};
+  if (!(seen & kOp) || !(seen & kA) || !(seen & kB)) throw NotFast{};
+  fl.readings.insert(fl.readings.end(), rb.begin(), rb.end());
+  BatchQuery& q = fl.q;
+  q.mode = default_mode;
+  q.detail = certify::detail_for_op(q.op, default_detail);
+  if (seen & kDetail) {
+    auto d = certify::parse_detail(std::string(detail_text));
+    if (!d || !certify::detail_accepted(q.op, *d)) throw NotFast{};
+    q.detail = *d;
+  }
+  if (q.op != "distance" && (!std::holds_alternative<core::QuadricMatrix>(*fl.a) ||
+                             !std::holds_alternative<core::QuadricMatrix>(*fl.b)))
+    throw NotFast{};
+  // The scalar fields through the document route's own readers (an error: not fast).
+  auto number = [](std::string_view t) { return Json::number_text(std::string(t)); };
+  q.budget_ms = default_budget_ms;
+  if (seen & kBudget) q.budget_ms = read_budget(number(budget_text), "<stdin>", "$.budget_ms");
+  if (q.op == "distance") {
+    if (seen & kDigits) q.digits = read_digits(number(digits_text), "<stdin>", "$.digits");
+    q.solid = solid;
+  } else if (q.op == "intersect" && (seen & kTol)) {
+    q.tolerance = read_tolerance(number(tolerance_text), "<stdin>", "$.tolerance");
+  }
+  return fl;
+}
+
+BatchLineAnswer document_route(const std::string& line, long line_no, certify::Mode mode,
+                               double budget_ms, certify::Detail detail) {
   BatchLineAnswer a;
-  const Json r = process_batch_line(line, line_no, default_mode, &a.fallback, default_budget_ms,
-                                    default_detail);
+  const Json r = process_batch_line(line, line_no, mode, &a.fallback, budget_ms, detail);
   if (const Json* s = r.find("status")) a.status = s->text();
   if (const Json* e = r.find("error"))
     if (const Json* k = e->is_object() ? e->find("kind") : nullptr)
       if (k->is_string()) a.error_kind = k->text();
   a.text = core::io::dump(r);
   return a;
+}
+
+// The members of an envelope, as dump() writes them inside the answer object.
+void append_members(std::string& out, const Json& env) {
+  for (const auto& [k, v] : env.members()) {
+    out += ',';
+    core::io::append_json_string(out, k);
+    out += ':';
+    out += core::io::dump(v);
+  }
+}
+
+} // namespace
+
+BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
+                                  double default_budget_ms, certify::Detail default_detail) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::optional<FastLine> fl;
+  try {
+    fl = read_fast(line, default_mode, default_budget_ms, default_detail);
+  } catch (...) { // not a line for the fast reader (or a bad one): the document route
+  }
+  if (!fl) return document_route(line, line_no, default_mode, default_budget_ms, default_detail);
+  try {
+    BatchLineAnswer ans;
+    std::string& out = ans.text;
+    out.reserve(640);
+    out += "{\"id\":";
+    out += fl->id;
+    const BatchQuery& q = fl->q;
+    if (q.op == "classify" && q.detail == certify::Detail::Topology) {
+      const auto& a = std::get<core::QuadricMatrix>(*fl->a);
+      const auto& b = std::get<core::QuadricMatrix>(*fl->b);
+      std::optional<certify::QsicResult> r;
+      try {
+        core::BudgetScope budget(q.budget_ms);
+        r = batch_classify(q, a, b);
+      } catch (const core::BudgetExceeded&) {
+      }
+      if (r) {
+        ans.fallback = r->exact_fallback;
+        ans.status = certify::to_string(r->status);
+        const size_t start = out.size();
+        certify::append_qsic_topology_envelope(out, *r);
+        out[start] = ','; // its members continue the answer object
+        out.pop_back();
+      } else {
+        const Json env = budget_undecided_envelope(q.budget_ms);
+        ans.status = env.find("status")->text();
+        append_members(out, env);
+      }
+    } else {
+      const Json env = batch_envelope(q, *fl->a, *fl->b, &ans.fallback);
+      if (const Json* s = env.find("status")) ans.status = s->text();
+      append_members(out, env);
+    }
+    if (!fl->readings.empty()) {
+      out += ",\"readings\":";
+      out += core::io::dump(core::io::readings_json(fl->readings));
+    }
+    char ms[32];
+    std::snprintf(
+        ms, sizeof ms, "%.3f",
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    out += ",\"time_ms\":";
+    out += ms;
+    out += '}';
+    return ans;
+  } catch (...) { // e.g. an internal error: the document route answers it as it always has
+    return document_route(line, line_no, default_mode, default_budget_ms, default_detail);
+  }
 }
 
 } // namespace surfcert::app

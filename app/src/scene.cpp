@@ -1,5 +1,6 @@
 #include "surfcert/app/scene.hpp"
 
+#include "surfcert/app/batch_query.hpp"
 #include "surfcert/app/batch_stream.hpp"
 #include "surfcert/app/generate.hpp"
 #include "surfcert/app/verify.hpp"
@@ -53,6 +54,29 @@ Location at(const Json& v, const std::string& source, const std::string& path) {
   return core::io::json_location(v, source, path);
 }
 
+const char* kSupportedOps = "\"classify\", \"intersect\", \"distance\" or \"verify\"";
+
+bool known_op(const Json* op) {
+  return op && op->is_string() &&
+         (op->text() == "classify" || op->text() == "intersect" || op->text() == "distance" ||
+          op->text() == "verify");
+}
+
+std::string curve_summary(const CurveResult& c) {
+  std::string s = "curve: " + std::string(to_string(c.status)) + ", " +
+                  std::to_string(c.branches.size()) + " branch(es):";
+  for (const auto& b : c.branches)
+    s += " " + b.kind + "(" + std::to_string(b.points.size()) + " pts)";
+  s += ", " + std::to_string(c.isolated_points.size()) + " isolated point(s), max residual ";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2e", c.max_residual);
+  s += buf;
+  if (!c.note.empty()) s += "\nnote: " + c.note;
+  return s + "\n";
+}
+
+} // namespace
+
 Mode read_mode(const Json& v, const std::string& source, const std::string& path) {
   auto m = v.is_string() ? parse_mode(v.text()) : std::nullopt;
   if (!m)
@@ -61,7 +85,6 @@ Mode read_mode(const Json& v, const std::string& source, const std::string& path
   return *m;
 }
 
-// "detail" of a line or query whose op is `op` (certify/detail.hpp): a level that op has.
 certify::Detail read_detail(const Json& v, const std::string& source, const std::string& path,
                             const std::string& op) {
   auto d = v.is_string() ? certify::parse_detail(v.text()) : std::nullopt;
@@ -70,14 +93,6 @@ certify::Detail read_detail(const Json& v, const std::string& source, const std:
                      std::string("a detail for ") + op + ": " + certify::detail_spellings(op),
                      v.is_string() ? "\"" + v.text() + "\"" : core::io::type_name(v.type()));
   return *d;
-}
-
-const char* kSupportedOps = "\"classify\", \"intersect\", \"distance\" or \"verify\"";
-
-bool known_op(const Json* op) {
-  return op && op->is_string() &&
-         (op->text() == "classify" || op->text() == "intersect" || op->text() == "distance" ||
-          op->text() == "verify");
 }
 
 long read_digits(const Json& v, const std::string& source, const std::string& path) {
@@ -101,6 +116,8 @@ double read_tolerance(const Json& v, const std::string& source, const std::strin
                      t.to_decimal_approx(6));
   return d;
 }
+
+namespace {
 
 // box: {"min": [x, y, z], "max": [x, y, z]} with min < max in every coordinate.
 std::array<double, 6> read_box(const Json& v, const std::string& source, const std::string& path) {
@@ -147,7 +164,8 @@ trace::TraceOptions trace_options(double tolerance,
   return opt;
 }
 
-// budget_ms: a time limit in milliseconds, 0 (none) to 10^9.
+} // namespace
+
 double read_budget(const Json& v, const std::string& source, const std::string& path) {
   Rational t = core::io::read_number(v, source, path);
   double d = t.to_double_approx();
@@ -157,20 +175,56 @@ double read_budget(const Json& v, const std::string& source, const std::string& 
   return d;
 }
 
-std::string curve_summary(const CurveResult& c) {
-  std::string s = "curve: " + std::string(to_string(c.status)) + ", " +
-                  std::to_string(c.branches.size()) + " branch(es):";
-  for (const auto& b : c.branches)
-    s += " " + b.kind + "(" + std::to_string(b.points.size()) + " pts)";
-  s += ", " + std::to_string(c.isolated_points.size()) + " isolated point(s), max residual ";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", c.max_residual);
-  s += buf;
-  if (!c.note.empty()) s += "\nnote: " + c.note;
-  return s + "\n";
+Json budget_undecided_envelope(double budget_ms) {
+  Json env = Json::object();
+  env.set("status", Json::string("undecided"));
+  env.set("reason", Json::string("budget"));
+  char ms[32];
+  std::snprintf(ms, sizeof ms, "%g", budget_ms);
+  env.set("note", Json::string(std::string("the time budget of ") + ms +
+                               " ms ran out before the answer was proven"));
+  return env;
 }
 
-} // namespace
+Json budget_limited(double budget_ms, const std::function<Json()>& decide) {
+  // Past the budget the line answers undecided with reason "budget" (a distance keeps what
+  // its earlier routes established; core/budget.hpp); other lines are not held up by it.
+  core::BudgetScope budget(budget_ms);
+  try {
+    return decide();
+  } catch (const core::BudgetExceeded&) {
+    return budget_undecided_envelope(budget_ms);
+  }
+}
+
+QsicResult batch_classify(const BatchQuery& q, const core::QuadricMatrix& a,
+                          const core::QuadricMatrix& b) {
+  QsicResult r = classify_qsic(a, b, q.mode);
+  complete_report_data(r, a, b, q.detail);
+  return r;
+}
+
+Json batch_envelope(const BatchQuery& q, const core::Surface& sa, const core::Surface& sb,
+                    bool* fallback) {
+  return budget_limited(q.budget_ms, [&]() -> Json {
+    if (q.op == "distance")
+      return distance_envelope_json(surface_distance(sa, sb, q.digits, q.solid, q.mode), q.digits,
+                                    q.detail);
+    const auto& a = std::get<core::QuadricMatrix>(sa);
+    const auto& b = std::get<core::QuadricMatrix>(sb);
+    if (q.op == "intersect") {
+      trace::TraceOptions opt;
+      if (q.tolerance) opt.tolerance = *q.tolerance;
+      if (q.box) opt = trace_options(opt.tolerance, q.box);
+      CurveResult c = intersect_curve(a, b, q.mode, opt, q.detail);
+      if (fallback) *fallback = c.topology.exact_fallback;
+      return curve_envelope_json(c, a, b, q.detail);
+    }
+    QsicResult r = batch_classify(q, a, b);
+    if (fallback) *fallback = r.exact_fallback;
+    return qsic_envelope_json(r, a, b, q.detail);
+  });
+}
 
 const core::Surface& Scene::surface(const std::string& name) const {
   for (const auto& [n, q] : surfaces)
@@ -387,47 +441,26 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
           if (!q)
             throw InputError(at(*j, source, key),
                              "a quadric (\"" + op->text() + "\" needs two quadrics)", "a torus");
-      double budget_ms = default_budget_ms;
+      BatchQuery q;
+      q.op = op->text();
+      q.mode = mode;
+      q.detail = detail;
+      q.budget_ms = default_budget_ms;
       if (const Json* bj = doc.find("budget_ms"))
-        budget_ms = read_budget(*bj, source, "$.budget_ms");
-      // Past the budget the line answers undecided with reason "budget" (a distance keeps what
-      // its earlier routes established; core/budget.hpp); other lines are not held up by it.
-      core::BudgetScope budget(budget_ms);
-      Json env;
-      try {
-        if (op->text() == "verify") {
-          env = verify_claims(sa, sb, doc, source, mode);
-        } else if (op->text() == "distance") {
-          long digits = 15;
-          bool solid = false;
-          if (const Json* d = doc.find("digits")) digits = read_digits(*d, source, "$.digits");
-          if (const Json* sd = doc.find("solid")) solid = read_bool(*sd, source, "$.solid");
-          env =
-              distance_envelope_json(surface_distance(sa, sb, digits, solid, mode), digits, detail);
-        } else if (op->text() == "intersect") {
-          trace::TraceOptions opt;
-          if (const Json* t = doc.find("tolerance"))
-            opt.tolerance = read_tolerance(*t, source, "$.tolerance");
-          if (const Json* bx = doc.find("box"))
-            opt = trace_options(opt.tolerance, read_box(*bx, source, "$.box"));
-          CurveResult c = intersect_curve(*a, *b, mode, opt, detail);
-          if (fallback) *fallback = c.topology.exact_fallback;
-          env = curve_envelope_json(c, *a, *b, detail);
-        } else {
-          QsicResult r = classify_qsic(*a, *b, mode);
-          complete_report_data(r, *a, *b, detail);
-          if (fallback) *fallback = r.exact_fallback;
-          env = qsic_envelope_json(r, *a, *b, detail);
-        }
-      } catch (const core::BudgetExceeded&) {
-        env = Json::object();
-        env.set("status", Json::string("undecided"));
-        env.set("reason", Json::string("budget"));
-        char ms[32];
-        std::snprintf(ms, sizeof ms, "%g", budget_ms);
-        env.set("note", Json::string(std::string("the time budget of ") + ms +
-                                     " ms ran out before the answer was proven"));
+        q.budget_ms = read_budget(*bj, source, "$.budget_ms");
+      if (q.op == "distance") {
+        if (const Json* d = doc.find("digits")) q.digits = read_digits(*d, source, "$.digits");
+        if (const Json* sd = doc.find("solid")) q.solid = read_bool(*sd, source, "$.solid");
+      } else if (q.op == "intersect") {
+        if (const Json* t = doc.find("tolerance"))
+          q.tolerance = read_tolerance(*t, source, "$.tolerance");
+        if (const Json* bx = doc.find("box")) q.box = read_box(*bx, source, "$.box");
       }
+      const Json env =
+          q.op == "verify"
+              ? budget_limited(q.budget_ms,
+                               [&] { return verify_claims(sa, sb, doc, source, mode); })
+              : batch_envelope(q, sa, sb, fallback);
       for (const auto& [k, v] : env.members())
         out.set(k, v);
       if (!readings.empty()) out.set("readings", core::io::readings_json(readings));

@@ -2,6 +2,7 @@
 
 #include "surfcert/algebra/real_roots.hpp"
 
+#include <charconv>
 #include <cstdio>
 #include <sstream>
 
@@ -11,6 +12,14 @@ using core::Rational;
 using core::io::Json;
 
 namespace {
+
+const char* const kDegenerateDescription =
+    "det(lA - B) vanishes identically: every member of the pencil is singular (outside the "
+    "35-case classification)";
+const char* const kCoincidentDescription =
+    "the two quadrics coincide (B is a multiple of A): the intersection is the whole surface";
+const char* const kComponentsSpace =
+    "real projective; equal to the affine count when one quadric is an ellipsoid";
 
 Json str(const std::string& s) {
   return Json::string(s);
@@ -79,8 +88,7 @@ Json components_json(const Morphology& m) {
   c.set("cubics", Json::number(m.cubics));
   c.set("double_components", Json::number(m.double_components));
   c.set("connected_components", Json::number(m.connected_components));
-  c.set("space",
-        str("real projective; equal to the affine count when one quadric is an ellipsoid"));
+  c.set("space", str(kComponentsSpace));
   return c;
 }
 
@@ -118,11 +126,9 @@ Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
     res.set("tu_case", Json::null());
     res.set("morphology", str(r.pencil == algebra::PencilKind::Degenerate ? "degenerate_pencil"
                                                                           : "coincident_quadrics"));
-    res.set("description", str(r.pencil == algebra::PencilKind::Degenerate
-                                   ? "det(lA - B) vanishes identically: every member of the pencil "
-                                     "is singular (outside the 35-case classification)"
-                                   : "the two quadrics coincide (B is a multiple of A): the "
-                                     "intersection is the whole surface"));
+    res.set("description",
+            str(r.pencil == algebra::PencilKind::Degenerate ? kDegenerateDescription
+                                                            : kCoincidentDescription));
     if (!r.ellipsoid_relation.empty()) res.set("ellipsoid_relation", str(r.ellipsoid_relation));
     return res;
   }
@@ -258,6 +264,111 @@ Json qsic_envelope_json(const QsicResult& r, const core::QuadricMatrix& a,
   if (detail != Detail::Full) o.set("detail", str(to_string(detail)));
   o.set("result", qsic_result_json(r, a, b, detail));
   return o;
+}
+
+void append_qsic_topology_envelope(std::string& out, const QsicResult& r) {
+  // The fields and order of qsic_envelope_json at Detail::Topology (the keys need no escaping).
+  auto key = [&out](const char* k) {
+    out += '"';
+    out += k;
+    out += "\":";
+  };
+  auto text = [&out](const std::string& v) { core::io::append_json_string(out, v); };
+  auto number = [&out](long n) {
+    char buf[24];
+    out.append(buf, std::to_chars(buf, buf + sizeof buf, n).ptr);
+  };
+  auto boolean = [&out](bool b) { out += b ? "true" : "false"; };
+  out += '{';
+  key("status");
+  text(to_string(r.status));
+  out += ',';
+  key("mode");
+  text(to_string(r.mode));
+  if (r.mode == Mode::Filtered) {
+    out += ',';
+    key("exact_fallback");
+    boolean(r.exact_fallback);
+  }
+  if (!r.note.empty()) {
+    out += ',';
+    key("note");
+    text(r.note);
+  }
+  out += ',';
+  key("detail");
+  text(to_string(Detail::Topology));
+  out += ',';
+  key("result");
+  out += '{';
+  key("pencil");
+  text(pencil_name(r.pencil));
+  out += ',';
+  key("tu_case");
+  if (r.pencil != algebra::PencilKind::Regular) {
+    out += "null,";
+    key("morphology");
+    text(r.pencil == algebra::PencilKind::Degenerate ? "degenerate_pencil" : "coincident_quadrics");
+    out += ',';
+    key("description");
+    text(r.pencil == algebra::PencilKind::Degenerate ? kDegenerateDescription
+                                                     : kCoincidentDescription);
+  } else {
+    if (r.morphology) {
+      number(r.tu_case);
+      out += ',';
+      key("morphology");
+      text(r.morphology->id);
+      out += ',';
+      key("description");
+      text(r.morphology->description);
+      out += ',';
+      key("tu_label_reconstructed");
+      boolean(r.morphology->label_reconstructed);
+    } else {
+      out += "null,";
+      key("morphology");
+      out += "null";
+    }
+    out += ',';
+    key("segre");
+    text(r.segre);
+    out += ',';
+    key("root_pattern");
+    text(r.facts.root_pattern);
+    if (const Morphology* m = r.morphology) {
+      out += ',';
+      key("components");
+      const std::pair<const char*, int> counts[] = {
+          {"loops", m->loops},
+          {"isolated_points", m->isolated_points},
+          {"lines", m->lines},
+          {"conics", m->conics},
+          {"cubics", m->cubics},
+          {"double_components", m->double_components},
+          {"connected_components", m->connected_components}};
+      out += '{';
+      for (const auto& [k, n] : counts) {
+        key(k);
+        number(n);
+        out += ',';
+      }
+      key("space");
+      text(kComponentsSpace);
+      out += '}';
+    }
+  }
+  if (!r.ellipsoid_relation.empty()) {
+    out += ',';
+    key("ellipsoid_relation");
+    text(r.ellipsoid_relation);
+  }
+  if (r.pencil == algebra::PencilKind::Regular && !r.containment.empty()) {
+    out += ',';
+    key("containment");
+    text(r.containment);
+  }
+  out += "}}";
 }
 
 std::string qsic_result_text(const QsicResult& r, const core::QuadricMatrix& a,

@@ -403,9 +403,7 @@ private:
 
 } // namespace detail
 
-namespace {
-
-void dump_string(std::string& out, const std::string& s) {
+void append_json_string(std::string& out, const std::string& s) {
   out += '"';
   for (std::size_t i = 0; i < s.size();) {
     auto b = static_cast<unsigned char>(s[i]);
@@ -458,6 +456,8 @@ void dump_string(std::string& out, const std::string& s) {
   out += '"';
 }
 
+namespace {
+
 void newline_indent(std::string& out, int indent, int level) {
   out += '\n';
   out.append(static_cast<std::size_t>(indent) * static_cast<std::size_t>(level), ' ');
@@ -475,7 +475,7 @@ void dump_value(std::string& out, const Json& v, int indent, int level) {
     out += v.text();
     return;
   case Json::Type::String:
-    dump_string(out, v.text());
+    append_json_string(out, v.text());
     return;
   case Json::Type::Array: {
     if (v.items().empty()) {
@@ -505,7 +505,7 @@ void dump_value(std::string& out, const Json& v, int indent, int level) {
       if (!first) out += ',';
       first = false;
       if (indent >= 0) newline_indent(out, indent, level + 1);
-      dump_string(out, key);
+      append_json_string(out, key);
       out += indent >= 0 ? ": " : ":";
       dump_value(out, value, indent, level + 1);
     }
@@ -648,7 +648,7 @@ std::string json_path_child(const std::string& parent, const std::string& key) {
       identifier = false;
   if (identifier) return parent + "." + key;
   std::string out = parent + "[";
-  dump_string(out, key);
+  append_json_string(out, key);
   return out + "]";
 }
 

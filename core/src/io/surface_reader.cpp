@@ -162,26 +162,20 @@ bool literal_doubles(const Json* v, size_t n, double* out) {
 // the rotation absent or a nonzero quaternion; otherwise nullopt (the exact reader then
 // handles it, errors included).
 std::optional<ShapeSpec> double_shape(const Json& v, ShapeType type, size_t nradii) {
-  ShapeSpec s;
-  s.type = type;
-  if (const Json* r = v.find("radius")) {
-    double x;
-    if (!literal_double(*r, x)) return std::nullopt;
-    s.radii = {x, x, x};
-  } else if (!literal_doubles(v.find("radii"), nradii, s.radii.data())) {
+  double radius = 0;
+  std::array<double, 3> radii{1, 1, 1}, center{};
+  std::array<double, 4> quaternion{};
+  const Json* rj = v.find("radius");
+  if (rj ? !literal_double(*rj, radius) : !literal_doubles(v.find("radii"), nradii, radii.data()))
     return std::nullopt;
-  }
-  for (size_t i = 0; i < nradii; ++i)
-    if (!(s.radii[i] > 0)) return std::nullopt;
-  if (const Json* c = v.find("center"))
-    if (!literal_doubles(c, 3, s.center.data())) return std::nullopt;
-  if (const Json* rj = v.find("rotation")) {
-    if (!rj->is_object() || rj->members().size() != 1) return std::nullopt;
-    if (!literal_doubles(rj->find("quaternion"), 4, s.quaternion.data())) return std::nullopt;
-    if (s.quaternion == std::array<double, 4>{0, 0, 0, 0}) return std::nullopt;
-    s.rotated = true;
-  }
-  return s;
+  const Json* cj = v.find("center");
+  if (cj && !literal_doubles(cj, 3, center.data())) return std::nullopt;
+  const Json* rot = v.find("rotation");
+  if (rot && (!rot->is_object() || rot->members().size() != 1 ||
+              !literal_doubles(rot->find("quaternion"), 4, quaternion.data())))
+    return std::nullopt;
+  return double_shape_spec(type, rj ? &radius : nullptr, rj ? nullptr : &radii,
+                           cj ? &center : nullptr, rot ? &quaternion : nullptr);
 }
 
 QuadricMatrix read_shape(const Json& v, const std::string& source, const std::string& path,
@@ -208,8 +202,7 @@ QuadricMatrix read_shape(const Json& v, const std::string& source, const std::st
                      "\"" + name + "\"");
   const ShapeType type = it->second;
   const bool takes_radius = type == ShapeType::Sphere;
-  const LocalForm form = local_form(type);
-  const size_t nradii = takes_radius ? 3 : (form.q_sign[2] != 0 ? 3 : 2);
+  const size_t nradii = shape_radii_count(type);
   std::set<std::string> allowed{"type", "center", "rotation"};
   allowed.insert(takes_radius ? "radius" : "radii");
   if (type == ShapeType::Cylinder) allowed.insert("radius");
@@ -247,6 +240,69 @@ QuadricMatrix read_shape(const Json& v, const std::string& source, const std::st
 }
 
 } // namespace
+
+std::optional<QuadricMatrix> quadric_of_matrix(Mat4 a, const std::string& path,
+                                               Readings* readings) {
+  // A non-symmetric M means the quadric p^T M p, which is p^T ((M + M^T) / 2) p exactly:
+  // read as its symmetric part, with a Reading giving the asymmetry.
+  std::vector<Rational> asym;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i + 1; j < 4; ++j)
+      if (a[i][j] != a[j][i]) {
+        asym.push_back(a[i][j] - a[j][i]);
+        a[i][j] = a[j][i] = (a[i][j] + a[j][i]) * Rational(1, 2);
+      }
+  if (is_zero(a)) return std::nullopt;
+  if (readings && !asym.empty())
+    readings->push_back({path,
+                         "a non-symmetric matrix M read as its symmetric part (M + M^T) / 2: "
+                         "the same quadric p^T M p, exactly",
+                         {{"max_abs(M - M^T)", max_abs_text(asym)}}});
+  return QuadricMatrix(a);
+}
+
+std::optional<QuadricMatrix> quadric_of_double_matrix(const std::array<std::array<double, 4>, 4>& m,
+                                                      const std::string& path, Readings* readings) {
+  Mat4 a;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      a[i][j] = Rational::exact_from_double(m[i][j]);
+  return quadric_of_matrix(std::move(a), path, readings);
+}
+
+std::optional<ShapeSpec> double_shape_spec(ShapeType type, const double* radius,
+                                           const std::array<double, 3>* radii,
+                                           const std::array<double, 3>* center,
+                                           const std::array<double, 4>* quaternion) {
+  ShapeSpec s;
+  s.type = type;
+  if (radius) {
+    s.radii = {*radius, *radius, *radius};
+  } else if (radii) {
+    s.radii = *radii;
+  } else {
+    return std::nullopt;
+  }
+  for (size_t i = 0; i < shape_radii_count(type); ++i)
+    if (!(s.radii[i] > 0) || !std::isfinite(s.radii[i])) return std::nullopt;
+  if (center) {
+    for (double c : *center)
+      if (!std::isfinite(c)) return std::nullopt;
+    s.center = *center;
+  }
+  if (quaternion) {
+    for (double c : *quaternion)
+      if (!std::isfinite(c)) return std::nullopt;
+    if (*quaternion == std::array<double, 4>{0, 0, 0, 0}) return std::nullopt;
+    s.quaternion = *quaternion;
+    s.rotated = true;
+  }
+  return s;
+}
+
+size_t shape_radii_count(ShapeType type) {
+  return type == ShapeType::Sphere ? 3 : (local_form(type).q_sign[2] != 0 ? 3 : 2);
+}
 
 Json readings_json(const Readings& rs) {
   Json out = Json::array();
@@ -336,22 +392,9 @@ QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j)
         a[i][j] = rows[i][j];
-    // A non-symmetric M means the quadric p^T M p, which is p^T ((M + M^T) / 2) p exactly:
-    // read as its symmetric part, with a Reading giving the asymmetry.
-    std::vector<Rational> asym;
-    for (size_t i = 0; i < 4; ++i)
-      for (size_t j = i + 1; j < 4; ++j)
-        if (a[i][j] != a[j][i]) {
-          asym.push_back(a[i][j] - a[j][i]);
-          a[i][j] = a[j][i] = (a[i][j] + a[j][i]) * Rational(1, 2);
-        }
-    if (readings && !asym.empty())
-      readings->push_back({mp,
-                           "a non-symmetric matrix M read as its symmetric part (M + M^T) / 2: "
-                           "the same quadric p^T M p, exactly",
-                           {{"max_abs(M - M^T)", max_abs_text(asym)}}});
-    if (is_zero(a)) throw InputError(at(*m, source, mp), "a nonzero matrix", "all entries zero");
-    return QuadricMatrix(a);
+    auto q = quadric_of_matrix(std::move(a), mp, readings);
+    if (!q) throw InputError(at(*m, source, mp), "a nonzero matrix", "all entries zero");
+    return *q;
   }
   if (v.find("type")) return read_shape(v, source, path, readings);
   throw InputError(at(v, source, path), "a field \"matrix\", \"equation\" or \"type\"",

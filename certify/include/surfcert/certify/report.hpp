@@ -28,6 +28,10 @@ core::io::Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& 
 core::io::Json qsic_envelope_json(const QsicResult& r, const core::QuadricMatrix& a,
                                   const core::QuadricMatrix& b, Detail detail = Detail::Full);
 
+/// Appends dump(qsic_envelope_json(r, a, b, Detail::Topology)) byte for byte, written directly
+/// (no document is built: the batch's lean answers; tests compare the two).
+void append_qsic_topology_envelope(std::string& out, const QsicResult& r);
+
 /// The signature sequence <I0, s1, I1, ...>, multiple roots wrapped in m parentheses.
 std::string signature_sequence(const algebra::PencilFacts& f);
 

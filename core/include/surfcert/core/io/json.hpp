@@ -100,6 +100,10 @@ Json parse_json(const std::string& text, const std::string& source_name);
 /// that are not valid UTF-8 are written as U+FFFD so that the output is always valid JSON).
 std::string dump(const Json& v, int indent = -1);
 
+/// Appends the string `s` as dump() writes a string value (quoted and escaped, see above): for
+/// writers that put out JSON text directly and must match dump() byte for byte.
+void append_json_string(std::string& out, const std::string& s);
+
 /// JSON path of a member: parent + ".key", or parent + "[\"key\"]" when key is not an
 /// identifier ([A-Za-z_][A-Za-z0-9_]*). The root path is "$".
 std::string json_path_child(const std::string& parent, const std::string& key);

@@ -22,6 +22,8 @@
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/surface.hpp"
 
+#include <array>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -65,6 +67,26 @@ QuadricMatrix read_quadric(const Json& v, const std::string& source, const std::
 /// "z", "w"?: expressions in u, v} (the point (x, y, z) / w); or any SURFACE above.
 Surface read_surface(const Json& v, const std::string& source, const std::string& path,
                      Readings* readings = nullptr);
+
+/// The quadric of a 4x4 matrix as {"matrix": a} reads it: a non-symmetric a as its symmetric
+/// part (with a Reading at `path`); nullopt when that part is zero (an input error).
+std::optional<QuadricMatrix> quadric_of_matrix(Mat4 a, const std::string& path, Readings* readings);
+/// The same for a matrix of doubles (each read as its exact value).
+std::optional<QuadricMatrix> quadric_of_double_matrix(const std::array<std::array<double, 4>, 4>& m,
+                                                      const std::string& path, Readings* readings);
+
+/// How many radii a shape type reads: 3 for a sphere's radius and most types, 2 when the
+/// unit shape has no z^2 term (cylinder, paraboloids).
+size_t shape_radii_count(ShapeType type);
+
+/// A shape posed in doubles as the shape reader reads it when every number is a finite double:
+/// a radius (all three radii) or the radii (shape_radii_count of them, positive), the centre
+/// (default the origin) and the unit quaternion (default no rotation; nonzero). nullopt when a
+/// value is out of range (the exact reader then handles the shape, errors included).
+std::optional<ShapeSpec> double_shape_spec(ShapeType type, const double* radius,
+                                           const std::array<double, 3>* radii,
+                                           const std::array<double, 3>* center,
+                                           const std::array<double, 4>* quaternion);
 
 /// A quadric from an equation string (degree 1 or 2 required).
 QuadricMatrix quadric_from_equation(const std::string& text, const Location& where);
