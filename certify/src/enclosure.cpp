@@ -6,7 +6,9 @@
 
 #include <CGAL/FPU.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 
 namespace surfcert::certify {
 
@@ -89,6 +91,33 @@ IMat4 enclose_shape(const core::ShapeSpec& s) {
   return m;
 }
 
+bool same_shape(const core::ShapeSpec& a, const core::ShapeSpec& b) {
+  // Bit for bit (-0.0 and 0.0 apart): equal specs give equal enclosures.
+  auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  return a.type == b.type && a.rotated == b.rotated && same(a.radii, b.radii) &&
+         same(a.center, b.center) && same(a.quaternion, b.quaternion);
+}
+
+// A line's decision encloses the same two shapes more than once (the pencil filter, then the
+// ellipsoid relation): this thread's last few enclosures, keyed by the shape's value, so that
+// a different shape (even at a reused address) never gets another's enclosure.
+IMat4 enclose_shape_cached(const core::ShapeSpec& s) {
+  struct Entry {
+    core::ShapeSpec spec;
+    IMat4 m;
+    bool used = false;
+  };
+  thread_local std::array<Entry, 4> cache;
+  thread_local size_t next = 0;
+  for (const Entry& e : cache)
+    if (e.used && same_shape(e.spec, s)) return e.m;
+  Entry& e = cache[next++ % cache.size()];
+  e.spec = s;
+  e.m = enclose_shape(s);
+  e.used = true;
+  return e.m;
+}
+
 } // namespace
 
 I enclose(const core::Rational& x) {
@@ -98,7 +127,7 @@ I enclose(const core::Rational& x) {
 }
 
 IMat4 enclose(const core::QuadricMatrix& q) {
-  if (const core::ShapeSpec* s = q.shape()) return enclose_shape(*s);
+  if (const core::ShapeSpec* s = q.shape()) return enclose_shape_cached(*s);
   IMat4 m;
   const core::Mat4& e = q.matrix();
   for (size_t i = 0; i < 4; ++i)

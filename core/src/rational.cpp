@@ -146,10 +146,17 @@ std::string Rational::to_decimal_approx(int digits) const {
   mpfr_init2(t, static_cast<mpfr_prec_t>(digits * 3.33 + 16));
   fmpq_get_mpfr(t, v_, MPFR_RNDN);
   std::string fmt = "%." + std::to_string(digits) + "Rg";
-  int n = mpfr_snprintf(nullptr, 0, fmt.c_str(), t);
-  std::string out(static_cast<size_t>(n) + 1, '\0');
-  mpfr_snprintf(out.data(), out.size(), fmt.c_str(), t);
-  out.resize(static_cast<size_t>(n));
+  // One formatting pass when the text fits a small buffer (the common case), else measure.
+  char small[96];
+  int n = mpfr_snprintf(small, sizeof small, fmt.c_str(), t);
+  std::string out;
+  if (n >= 0 && static_cast<size_t>(n) < sizeof small) {
+    out.assign(small, static_cast<size_t>(n));
+  } else {
+    out.assign(static_cast<size_t>(n) + 1, '\0');
+    mpfr_snprintf(out.data(), out.size(), fmt.c_str(), t);
+    out.resize(static_cast<size_t>(n));
+  }
   mpfr_clear(t);
   return out;
 }
