@@ -5,6 +5,7 @@
 // app::process_batch_line step for step; to_json() builds the same envelope it does.
 #include "surfcert/surfcert.hpp"
 
+#include "surfcert/app/batch_query.hpp"
 #include "surfcert/app/generate.hpp"
 #include "surfcert/app/verify.hpp"
 #include "surfcert/certify/report.hpp"
@@ -103,20 +104,8 @@ template <class A> void start(A& ans, const Surface& a, const Surface& b, const 
   ans.readings.insert(ans.readings.end(), b.readings().begin(), b.readings().end());
 }
 
-// The envelope of an answer whose budget ran out (as process_batch_line writes it).
-Json budget_envelope(double budget_ms) {
-  Json env = Json::object();
-  env.set("status", Json::string("undecided"));
-  env.set("reason", Json::string("budget"));
-  char ms[32];
-  std::snprintf(ms, sizeof ms, "%g", budget_ms);
-  env.set("note", Json::string(std::string("the time budget of ") + ms +
-                               " ms ran out before the answer was proven"));
-  return env;
-}
-
 Json finish(const Answer& ans, Json env) {
-  if (ans.budget_exhausted) env = budget_envelope(ans.budget_ms);
+  if (ans.budget_exhausted) env = app::budget_undecided_envelope(ans.budget_ms);
   if (!ans.readings.empty()) env.set("readings", core::io::readings_json(ans.readings));
   return env;
 }
