@@ -8,6 +8,7 @@ pkgs="build-essential cmake libgmp-dev libmpfr-dev libmpfi-dev libflint-dev libf
       pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-matplotlib
       clang libclang-rt-14-dev"  # clang + libFuzzer runtime: scripts/fuzz.sh only (builds use g++)
 pkgs="$pkgs libsimdjson-dev"  # simdjson: the batch's fast line reader (app/src/batch_line.cpp)
+pkgs="$pkgs openmpi-bin libopenmpi-dev"  # MPI (optional): `surfcert batch --mpi` (app/src/batch_mpi.cpp)
 missing=""
 for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
 if [ -n "$missing" ]; then

@@ -5,6 +5,7 @@
 // nothing written), 3 finished with undecided results, 1 internal error (for batch: some line
 // was answered with an "internal" error line, e.g. FLINT/Arb aborted on it).
 #include "surfcert/app/batch_line.hpp"
+#include "surfcert/app/batch_mpi.hpp"
 #include "surfcert/app/batch_stream.hpp"
 #include "surfcert/app/generate.hpp"
 #include "surfcert/app/scene.hpp"
@@ -58,6 +59,7 @@ const std::string kUsage =
     "  surfcert run SCENE.json [-o REPORT.json] [--json] [--mode M]\n"
     "  surfcert batch [--mode M] [--threads N] [--budget-ms MS] [--unordered] [--detail D]\n"
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
+    "  mpirun -n P surfcert batch --mpi [--checkpoint F] [--retry-undecided MS] [batch options]\n"
     "  surfcert generate [--case N|all|ellipsoid|natural|distance] [--count K] [--seed S]\n"
     "                   [--encoding exact|double|shape] [--family F --gaps 10,20,40]\n"
     "                                              (labelled test cases as batch lines)\n"
@@ -141,6 +143,10 @@ struct Opts {
   int threads = 1;
   double budget_ms = 0;        ///< batch: default per-line time budget (0 = none)
   bool unordered = false;      ///< batch: write answers as they complete
+  bool mpi = false;            ///< batch --mpi (app/batch_mpi.hpp)
+  bool mpi_child = false;      ///< batch --mpi-child: a compute child of batch --mpi (hidden)
+  std::string checkpoint;      ///< batch --mpi --checkpoint FILE
+  double retry_undecided = 0;  ///< batch --mpi --retry-undecided MS (0: none)
   std::string detail = "full"; ///< --detail (certify/detail.hpp; checked by CLI11 per command)
   app::GenerateRequest gen;    ///< generate
   std::string encoding = "exact", gaps = "10,20,40";
@@ -433,14 +439,81 @@ int cmd_run(const Opts& o) {
   return undecided ? 3 : 0;
 }
 
+// The command line of a compute child of `batch --mpi`: this executable with the batch's
+// options (a line's own fields override them there as in the single-process batch).
+std::vector<std::string> mpi_child_command(const Opts& o) {
+  char exe[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n <= 0) throw std::runtime_error("batch --mpi: cannot find its own executable");
+  exe[n] = '\0';
+  char budget[64];
+  std::snprintf(budget, sizeof budget, "%.17g", o.budget_ms);
+  return {exe,      "batch", "--mpi-child", "--threads", std::to_string(o.threads),
+          "--mode", o.mode,  "--detail",    o.detail,    "--budget-ms",
+          budget};
+}
+
+int batch_exit_code(const app::BatchStats& st) {
+  // Every line is answered whatever happens; the exit code summarises the worst outcome so
+  // that a caller's script notices: internal failures, then bad input lines, then undecided.
+  if (st.internal > 0) return 1;
+  if (st.errors > 0) return 2;
+  return st.undecided > 0 ? 3 : 0;
+}
+
+void print_batch_summary(const app::BatchStats& st) {
+  std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("
+            << st.internal << " internal), " << st.undecided << " undecided, " << st.fallbacks
+            << " exact fallbacks\n";
+}
+
+// batch --mpi (and its hidden compute child, --mpi-child): app/batch_mpi.hpp.
+int cmd_batch_mpi(const Opts& o, int out_fd) {
+  app::MpiBatchOptions mo;
+  mo.mode = mode_arg(o.mode);
+  mo.detail = detail_arg(o.detail);
+  mo.budget_ms = o.budget_ms;
+  mo.threads = o.threads;
+  mo.ordered = !o.unordered;
+  mo.checkpoint = o.checkpoint;
+  mo.retry_budget_ms = o.retry_undecided;
+  if (o.mpi_child) {
+    app::run_batch_child(0, out_fd, mo);
+    return 0;
+  }
+  mo.child_command = mpi_child_command(o);
+  bool root = false;
+  app::MpiBatchReport rep;
+  const app::BatchStats st = app::run_batch_mpi(out_fd, mo, &root, &rep);
+  if (!root) return 0;
+  print_batch_summary(st);
+  std::cerr << "surfcert batch --mpi: " << rep.resumed << " lines from the checkpoint, "
+            << rep.retried << " sent again after their compute process died, " << rep.lost_twice
+            << " lost twice, " << rep.second_pass << " in the second pass\n";
+  return batch_exit_code(st);
+}
+
 int cmd_batch(const Opts& o) {
   certify::Mode mode = mode_arg(o.mode);
+  if (o.mpi || o.mpi_child) {
+    if (!app::mpi_available())
+      throw UsageError("--mpi: this surfcert was built without MPI (install openmpi-bin and "
+                       "libopenmpi-dev, e.g. with scripts/setup.sh, and build again)");
+  } else if (!o.checkpoint.empty() || o.retry_undecided > 0) {
+    throw UsageError(std::string(o.checkpoint.empty() ? "--retry-undecided" : "--checkpoint") +
+                     " needs --mpi");
+  }
   // FLINT prints the diagnostic of an abort with printf on stdout: while the batch runs, fd 1
   // is stderr and the answers go to a private duplicate of the original stdout.
   std::cout.flush();
   std::fflush(stdout);
   int out_fd = ::dup(1);
   if (out_fd < 0 || ::dup2(2, 1) < 0) throw std::runtime_error("cannot duplicate stdout");
+  if (o.mpi || o.mpi_child) {
+    const int rc = cmd_batch_mpi(o, out_fd);
+    ::close(out_fd);
+    return rc;
+  }
   app::BatchStats st;
   {
     const double budget = o.budget_ms;
@@ -473,14 +546,8 @@ int cmd_batch(const Opts& o) {
     if (opt.progress) std::fputs("\n", stderr);
   }
   ::close(out_fd);
-  std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("
-            << st.internal << " internal), " << st.undecided << " undecided, " << st.fallbacks
-            << " exact fallbacks\n";
-  // Every line is answered whatever happens; the exit code summarises the worst outcome so
-  // that a caller's script notices: internal failures, then bad input lines, then undecided.
-  if (st.internal > 0) return 1;
-  if (st.errors > 0) return 2;
-  return st.undecided > 0 ? 3 : 0;
+  print_batch_summary(st);
+  return batch_exit_code(st);
 }
 
 // generate: the labelled lines on stdout. Exit code 3 when some label is not certified, 1
@@ -616,6 +683,21 @@ int main(int argc, char** argv) {
              "intersect read value as topology, distance reads topology and certificate as value");
   batch->add_flag("--unordered", o.unordered,
                   "write each answer as soon as it is done (not in input order; key by \"id\")");
+  batch->add_flag("--mpi", o.mpi,
+                  "spread the lines over the ranks of an MPI job (mpirun/srun; rank 0 reads and "
+                  "writes, the others compute; docs/cli.md)");
+  batch
+      ->add_option("--checkpoint", o.checkpoint,
+                   "--mpi: append each answer to FILE; a run restarted with it skips the lines "
+                   "answered there")
+      ->type_name("FILE");
+  batch
+      ->add_option("--retry-undecided", o.retry_undecided,
+                   "--mpi: run the lines undecided by their budget again, after the others, "
+                   "with this budget in ms")
+      ->check(CLI::Range(1.0, 1e9))
+      ->type_name("MS");
+  batch->add_flag("--mpi-child", o.mpi_child, "")->group(""); // batch --mpi's compute child
 
   CLI::App* generate = cli.add_subcommand(
       "generate", "labelled test cases as batch lines (JSON lines on stdout; docs/cli.md)");

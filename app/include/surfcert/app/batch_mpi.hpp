@@ -1,0 +1,75 @@
+// surfcert::app `surfcert batch --mpi`: the batch spread over the ranks of an MPI job (Open
+// MPI's mpirun, Slurm's srun), with on-demand scheduling, a resumable checkpoint, a second pass
+// for lines undecided by their budget, and worker processes whose death costs only their lines.
+//
+// What it represents and its contract:
+//   - rank 0 reads JSON lines from stdin and writes one answer line per input line to out_fd,
+//     in input order (ordered) or as completed; every answer is byte for byte the one the
+//     single-process batch writes for that line (answer_batch_line, batch_line.hpp), apart
+//     from its own "time_ms"; the BatchStats are the single-process batch's.
+//   - the other ranks are workers. Each runs its lines in a compute child process: this same
+//     executable run as `surfcert batch --mpi-child` (the single-process batch pipeline, its
+//     `threads` threads, framed lines: run_batch_child). A worker asks rank 0 for work when its
+//     child has room, for groups of 1 to 16 lines sized from the lines' measured times (fast
+//     lines share a message; a slow line holds no queue behind it), so a slow line never
+//     stalls the other workers. With one rank, rank 0 drives a compute child itself.
+//   - a compute child that dies (killed, out of memory) loses only the lines it held: each is
+//     retried once on another worker (if any), and a line lost twice is answered with an
+//     "internal" error line; the run completes. (The death of an MPI rank itself ends the job:
+//     Open MPI 4.1 has no MPI-level fault tolerance.)
+//   - checkpoint (not empty): every answer is appended to that file as it arrives (one record
+//     per line: line number, a hash of the input line, the answer), fsync'd at least every
+//     0.2 s and at the end; a run restarted on the same input skips every line answered there
+//     and writes the same final output. A record whose line hash differs from the input is an
+//     InputError (another input), a torn last record (a killed run) is dropped.
+//   - retry_budget_ms > 0: lines answered undecided with reason "budget" are run again, after
+//     every first-pass line, with "budget_ms" set to retry_budget_ms; their answer is the
+//     second pass's.
+// These functions are defined by the optional component surfcert_batch_mpi that the `surfcert`
+// executable links (app/CMakeLists.txt): with MPI when CMake finds it, else as stubs
+// (mpi_available() false, the others throw std::runtime_error).
+#pragma once
+
+#include "surfcert/app/scene.hpp"
+#include "surfcert/certify/detail.hpp"
+
+#include <string>
+#include <vector>
+
+namespace surfcert::app {
+
+struct MpiBatchOptions {
+  certify::Mode mode = certify::Mode::Filtered;
+  certify::Detail detail = certify::Detail::Full;
+  double budget_ms = 0; ///< default per-line budget (a line's "budget_ms" overrides)
+  int threads = 1;      ///< threads of each compute child
+  bool ordered = true;
+  std::string checkpoint;     ///< empty: none
+  double retry_budget_ms = 0; ///< 0: no second pass
+  /// The compute child's command line: the surfcert executable, "batch", "--mpi-child" and
+  /// the options above (mode, detail, budget, threads) as the CLI spells them.
+  std::vector<std::string> child_command;
+};
+
+/// What the run did beyond the statistics (rank 0).
+struct MpiBatchReport {
+  long resumed = 0;     ///< lines answered from the checkpoint
+  long retried = 0;     ///< lines lost by a compute child that died, sent again
+  long lost_twice = 0;  ///< lines lost twice, answered with an "internal" error line
+  long second_pass = 0; ///< lines undecided by their budget, run again (--retry-undecided)
+};
+
+/// Whether this executable was built with MPI (CMake found it).
+bool mpi_available();
+
+/// Initializes MPI, runs rank 0 or a worker (see above), finalizes MPI. On rank 0 the stats of
+/// the run; on workers all zero with *is_root = false (they write nothing).
+BatchStats run_batch_mpi(int out_fd, const MpiBatchOptions& options, bool* is_root,
+                         MpiBatchReport* report);
+
+/// The compute child (`surfcert batch --mpi-child`): framed lines "<line_no>\t<json>" on in_fd,
+/// framed answers "<line_no> <status> <kind|-> <fallback 0|1> <microseconds>\t<answer>" on
+/// out_fd, as completed, through the single-process batch pipeline.
+BatchStats run_batch_child(int in_fd, int out_fd, const MpiBatchOptions& options);
+
+} // namespace surfcert::app
