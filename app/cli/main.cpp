@@ -487,9 +487,10 @@ int cmd_batch_mpi(const Opts& o, int out_fd) {
   const app::BatchStats st = app::run_batch_mpi(out_fd, mo, &root, &rep);
   if (!root) return 0;
   print_batch_summary(st);
-  std::cerr << "surfcert batch --mpi: " << rep.resumed << " lines from the checkpoint, "
-            << rep.retried << " sent again after their compute process died, " << rep.lost_twice
-            << " lost twice, " << rep.second_pass << " in the second pass\n";
+  // Counts as key=value (docs/cli.md): from the checkpoint, sent again after their compute
+  // process died, lost twice (internal error lines), run again with --retry-undecided.
+  std::cerr << "surfcert batch --mpi: resumed=" << rep.resumed << " retried=" << rep.retried
+            << " lost_twice=" << rep.lost_twice << " second_pass=" << rep.second_pass << "\n";
   return batch_exit_code(st);
 }
 

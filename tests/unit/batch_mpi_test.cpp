@@ -6,8 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <dirent.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <map>
+#include <thread>
 
 #include <algorithm>
 #include <cstdio>
@@ -49,7 +55,7 @@ Outcome sh(const std::string& cmd, const std::string& in_path) {
 // mpirun as the tests run it: root allowed (CI containers), more ranks than cores, and the
 // leak checker off in the ranks (Open MPI's own allocations outlive MPI_Finalize).
 std::string mpirun(int ranks) {
-  return std::string("ASAN_OPTIONS=detect_leaks=0 ") + SURFCERT_MPIEXEC +
+  return std::string("env ASAN_OPTIONS=detect_leaks=0 ") + SURFCERT_MPIEXEC +
          " --allow-run-as-root --oversubscribe -x ASAN_OPTIONS -n " + std::to_string(ranks) + " ";
 }
 
@@ -114,6 +120,94 @@ std::string mixed_input() {
   return in;
 }
 
+// The records of a checkpoint file per line number (batch_checkpoint.hpp: "<line_no> ...").
+std::map<long, int> checkpoint_counts(const std::string& path) {
+  std::map<long, int> n;
+  std::istringstream in(slurp(path));
+  std::string l;
+  while (std::getline(in, l))
+    ++n[std::stol(l)];
+  return n;
+}
+
+long count_records(const std::map<long, int>& m) {
+  long n = 0;
+  for (const auto& [no, k] : m)
+    n += k;
+  return n;
+}
+
+// Starts a shell command in the background (its stdin, stdout, stderr redirected); its pid.
+pid_t start(const std::string& cmd) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+// The processes whose parent is ppid and whose command line contains what.
+std::vector<pid_t> children_of(pid_t ppid, const std::string& what) {
+  std::vector<pid_t> out;
+  DIR* d = opendir("/proc");
+  if (!d) return out;
+  while (dirent* e = readdir(d)) {
+    const pid_t pid = static_cast<pid_t>(std::atol(e->d_name));
+    if (pid <= 0) continue;
+    std::istringstream st(slurp("/proc/" + std::to_string(pid) + "/stat"));
+    std::string tok;
+    pid_t parent = 0;
+    // pid (comm) state ppid: comm has no spaces here (surfcert, mpirun, sh).
+    st >> tok >> tok >> tok >> parent;
+    if (parent != ppid) continue;
+    std::string cmdline = slurp("/proc/" + std::to_string(pid) + "/cmdline");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find(what) != std::string::npos) out.push_back(pid);
+  }
+  closedir(d);
+  return out;
+}
+
+// The rank of an MPI process, from the environment Open MPI gives it (-1: not one).
+int rank_of(pid_t pid) {
+  const std::string env = slurp("/proc/" + std::to_string(pid) + "/environ");
+  const std::string key = std::string("OMPI_COMM_WORLD_RANK=");
+  const size_t at = env.find(key);
+  return at == std::string::npos ? -1 : std::atoi(env.c_str() + at + key.size());
+}
+
+// The CPU time (user + system, clock ticks) of a process so far.
+long cpu_ticks(pid_t pid) {
+  std::istringstream st(slurp("/proc/" + std::to_string(pid) + "/stat"));
+  std::string tok;
+  long utime = 0, stime = 0;
+  for (int field = 1; field <= 13; ++field)
+    st >> tok; // pid (comm) state ppid ... cmajflt: comm has no spaces here
+  st >> utime >> stime;
+  return utime + stime;
+}
+
+int wait_exit(pid_t pid) {
+  int st = 0;
+  waitpid(pid, &st, 0);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+// Lines that take a while: budget-limited tori (budget_ms each, always undecided) between
+// fast classify lines.
+std::string slow_input(int slow, int budget_ms) {
+  std::string in;
+  for (int i = 0; i < slow; ++i) {
+    in += budget_line("slow" + std::to_string(i), budget_ms) + "\n";
+    for (int k = 0; k < 3; ++k)
+      in += R"({"id":")" + std::to_string(i) + "-" + std::to_string(k) +
+            R"(","op":"classify","a":"x^2+y^2+z^2=1","b":"x^2+y^2=0.)" + std::to_string(k + 1) +
+            "\"}\n";
+  }
+  return in;
+}
+
 class BatchMpi : public ::testing::Test {
 protected:
   void SetUp() override {
@@ -153,4 +247,138 @@ TEST_F(BatchMpi, OptionsThatNeedMpiAreRefusedWithout) {
   EXPECT_EQ(sh(bin + " batch --checkpoint " + tmp_path("ck"), in_).code, 2);
   EXPECT_EQ(sh(bin + " batch --retry-undecided 1000", in_).code, 2);
   EXPECT_EQ(sh(bin + " batch --mpi --retry-undecided 0", in_).code, 2);
+}
+
+// SIGKILL to rank 0 midway (after some answers are in the checkpoint), then the same command
+// again: the same final output as the single-process batch, and every line recorded exactly
+// once (the restarted run computed only the lines the first one had not answered).
+TEST(BatchMpiResume, KilledRootResumesFromTheCheckpoint) {
+  const std::string in = tmp_path("slow_in"), out = tmp_path("slow_out"), ck = tmp_path("ck");
+  std::remove(ck.c_str());
+  const int kSlow = 12;
+  std::ofstream(in) << slow_input(kSlow, 400);
+  const long total = 4 * kSlow;
+  const Outcome single = sh(std::string(SURFCERT_BINARY) + " batch --threads 2", in);
+  ASSERT_EQ(single.code, 3) << single.err; // the budget-limited lines
+  const std::string cmd =
+      mpirun(3) + SURFCERT_BINARY + " batch --mpi --checkpoint " + ck + " <" + in + " >" + out;
+  const pid_t run = start(cmd + " 2>/dev/null");
+  long before = 0;
+  pid_t root = -1;
+  for (int i = 0; i < 6000 && before < 6; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    before = count_records(checkpoint_counts(ck));
+  }
+  for (pid_t p : children_of(run, "surfcert"))
+    if (rank_of(p) == 0) root = p;
+  ASSERT_GT(root, 0) << "rank 0 not found";
+  ASSERT_EQ(kill(root, SIGKILL), 0);
+  EXPECT_NE(wait_exit(run), 0);
+  const auto first = checkpoint_counts(ck);
+  const long answered = count_records(first);
+  ASSERT_GE(answered, 6);
+  ASSERT_LT(answered, total) << "the run ended before it was killed";
+  for (const auto& [no, k] : first)
+    EXPECT_EQ(k, 1) << "line " << no;
+
+  const Outcome again = sh(mpirun(3) + SURFCERT_BINARY + " batch --mpi --checkpoint " + ck, in);
+  EXPECT_EQ(again.code, single.code) << again.err;
+  EXPECT_EQ(untimed(again.out), untimed(single.out));
+  const auto both = checkpoint_counts(ck);
+  EXPECT_EQ(static_cast<long>(both.size()), total);
+  for (const auto& [no, k] : both)
+    EXPECT_EQ(k, 1) << "line " << no << " computed twice";
+
+  // A third run computes nothing and writes the same; a torn last record is cut off.
+  std::ofstream(ck, std::ios::app) << "7 0123";
+  const Outcome third = sh(mpirun(1) + SURFCERT_BINARY + " batch --mpi --checkpoint " + ck, in);
+  EXPECT_EQ(third.code, single.code) << third.err;
+  EXPECT_EQ(third.out, again.out); // the recorded answers, time_ms included
+  EXPECT_EQ(count_records(checkpoint_counts(ck)), total);
+
+  // Another input with this checkpoint: refused (exit 2), nothing answered from it.
+  const std::string other = tmp_path("other_in");
+  std::ofstream(other) << slow_input(kSlow, 400).substr(1);
+  EXPECT_EQ(sh(mpirun(1) + SURFCERT_BINARY + " batch --mpi --checkpoint " + ck, other).code, 2);
+  for (const std::string& p : {in, out, ck, other})
+    std::remove(p.c_str());
+}
+
+// SIGKILL to a worker's compute child while it holds a slow line: the run completes, the
+// lines it held are retried elsewhere, and the output is the single-process batch's.
+TEST(BatchMpiFaults, KilledComputeChildLosesOnlyItsLines) {
+  const std::string in = tmp_path("fault_in"), out = tmp_path("fault_out"),
+                    err = tmp_path("fault_err");
+  std::ofstream(in) << slow_input(8, 400);
+  const Outcome single = sh(std::string(SURFCERT_BINARY) + " batch --threads 2", in);
+  const pid_t run =
+      start(mpirun(3) + SURFCERT_BINARY + " batch --mpi <" + in + " >" + out + " 2>" + err);
+  // A worker (rank 1 or 2) and its compute child, once it has been computing for a while.
+  pid_t victim = -1;
+  for (int i = 0; i < 3000 && victim < 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    for (pid_t p : children_of(run, "surfcert"))
+      if (rank_of(p) > 0)
+        for (pid_t c : children_of(p, "--mpi-child"))
+          victim = c;
+  }
+  ASSERT_GT(victim, 0) << "no compute child found";
+  // Killed once it has computed for 0.3 s of CPU: inside its lines (most of its time goes to
+  // the 400 ms ones), long before the run's 3 s of work end.
+  for (int i = 0; i < 3000 && cpu_ticks(victim) < 30; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(kill(victim, SIGKILL), 0);
+  EXPECT_EQ(wait_exit(run), single.code) << slurp(err);
+  EXPECT_EQ(untimed(slurp(out)), untimed(single.out));
+  std::smatch m;
+  const std::string e = slurp(err);
+  ASSERT_TRUE(std::regex_search(e, m, std::regex(R"(retried=([0-9]+) lost_twice=([0-9]+))"))) << e;
+  EXPECT_GE(std::stol(m[1]), 1); // the killed child held at least its slow line
+  EXPECT_EQ(std::stol(m[2]), 0);
+  for (const std::string& p : {in, out, err})
+    std::remove(p.c_str());
+}
+
+// --retry-undecided: distance lines with a budget far too small (undecided, reason "budget")
+// are run again with a large one; their answers are then the unbudgeted single-process
+// batch's, and the checkpoint holds both passes.
+TEST(BatchMpiRetry, BudgetUndecidedLinesGetTheSecondPass) {
+  const std::string gen = tmp_path("retry_gen"), in = tmp_path("retry_in"),
+                    ck = tmp_path("retry_ck");
+  std::remove(ck.c_str());
+  ASSERT_EQ(std::system((std::string(SURFCERT_BINARY) +
+                         " generate --case distance --count 1 --seed 5 > " + gen)
+                            .c_str()),
+            0);
+  std::string budgeted;
+  std::istringstream lines(slurp(gen));
+  std::string l;
+  int n = 0;
+  while (std::getline(lines, l)) {
+    budgeted += "{\"budget_ms\":0.001," + l.substr(1) + "\n";
+    ++n;
+  }
+  std::ofstream(in) << budgeted;
+  const Outcome first = sh(std::string(SURFCERT_BINARY) + " batch", in);
+  EXPECT_EQ(first.code, 3); // undecided: the budget
+  const Outcome unbudgeted = sh(std::string(SURFCERT_BINARY) + " batch", gen);
+  EXPECT_EQ(unbudgeted.code, 0) << unbudgeted.err;
+  const Outcome retried = sh(
+      mpirun(3) + SURFCERT_BINARY + " batch --mpi --retry-undecided 600000 --checkpoint " + ck, in);
+  EXPECT_EQ(retried.code, 0) << retried.err;
+  EXPECT_EQ(untimed(retried.out), untimed(unbudgeted.out));
+  int second = 0;
+  std::istringstream recs(slurp(ck));
+  while (std::getline(recs, l)) {
+    std::istringstream f(l);
+    long no;
+    std::string hash;
+    int pass = 0;
+    f >> no >> hash >> pass;
+    second += pass == 2;
+  }
+  EXPECT_GE(second, 1);
+  EXPECT_LE(second, n);
+  for (const std::string& p : {gen, in, ck})
+    std::remove(p.c_str());
 }

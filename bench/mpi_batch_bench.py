@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""`surfcert batch --mpi` figures (bench/results/mpi_batch.md): lines per second with 1, 2 and 4
+ranks against the single-process batch, and a heavy-tailed workload (a few budget-limited slow
+lines among many fast ones) scheduled on demand (batch --mpi) against a static split of the file
+(the file cut in W contiguous parts, one single-process batch per part, all at once: what a user
+without MPI does). Wall times of whole processes (mpirun's start included; its cost alone, on an
+empty input, is printed too). Only the standard library.
+
+usage: mpi_batch_bench.py SURFCERT [--fast N] [--medium N] [--slow K] [--slow-ms MS] [--repeat R]
+"""
+import argparse
+import os
+import random
+import shutil
+import subprocess
+import tempfile
+import time
+
+MPIRUN = shutil.which("mpirun") or "mpirun"
+
+
+def mpirun(n):
+    return [MPIRUN, "--allow-run-as-root", "--oversubscribe", "-n", str(n)]
+
+
+def wall(cmd, stdin_path):
+    """Seconds of one run of cmd with stdin from stdin_path (stdout discarded)."""
+    with open(stdin_path, "rb") as f:
+        t0 = time.perf_counter()
+        p = subprocess.run(cmd, stdin=f, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        t = time.perf_counter() - t0
+    if p.returncode not in (0, 3):
+        raise SystemExit("failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr.decode()))
+    return t
+
+
+def best(cmd, path, repeat):
+    return min(wall(cmd, path) for _ in range(repeat))
+
+
+def static_split(binary, lines, parts, tmp):
+    """Wall time of `parts` single-process batches at once, each on a contiguous part."""
+    n = len(lines)
+    paths = []
+    for k in range(parts):
+        p = os.path.join(tmp, "part%d.jsonl" % k)
+        with open(p, "w") as f:
+            f.writelines(lines[k * n // parts:(k + 1) * n // parts])
+        paths.append(p)
+    t0 = time.perf_counter()
+    procs = [subprocess.Popen([binary, "batch"], stdin=open(p, "rb"), stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL) for p in paths]
+    for pr in procs:
+        pr.wait()
+    return time.perf_counter() - t0
+
+
+def slow_line(i, budget_ms):
+    # Two tori 1e-20 apart: minutes of branch and bound, so always `budget_ms` then undecided.
+    return ('{"id":"slow%d","op":"distance","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],'
+            '"major_radius":3,"minor_radius":1},"b":{"type":"torus","center":'
+            '["799999999999999999999/100000000000000000000",0,0],"axis":[0,0,1],'
+            '"major_radius":3,"minor_radius":1},"budget_ms":%d}\n' % (i, budget_ms))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("surfcert")
+    ap.add_argument("--fast", type=int, default=20, help="classify lines per case (x37 cases)")
+    ap.add_argument("--medium", type=int, default=40, help="distance lines per case (x3 cases)")
+    ap.add_argument("--slow", type=int, default=6, help="slow lines in the heavy-tailed file")
+    ap.add_argument("--slow-ms", type=int, default=1500, help="their budget")
+    ap.add_argument("--repeat", type=int, default=2, help="runs per figure (the best is kept)")
+    a = ap.parse_args()
+    b = a.surfcert
+    tmp = tempfile.mkdtemp(prefix="mpi_bench_")
+    load = os.getloadavg()
+    print("machine: nproc %d, load average %.2f %.2f %.2f" % (os.cpu_count(), *load))
+
+    def gen(args, name):
+        p = os.path.join(tmp, name)
+        with open(p, "w") as f:
+            subprocess.run([b, "generate"] + args, stdout=f, check=True)
+        with open(p) as f:
+            return p, f.readlines()
+
+    fast_p, fast = gen(["--case", "all", "--count", str(a.fast), "--seed", "1",
+                        "--encoding", "double"], "fast.jsonl")
+    med_p, med = gen(["--case", "distance", "--count", str(a.medium), "--seed", "2"],
+                     "medium.jsonl")
+    empty = os.path.join(tmp, "empty.jsonl")
+    open(empty, "w").close()
+    print("mpirun start and end alone (empty input): 1 rank %.2f s, 2 ranks %.2f s, 4 ranks %.2f s"
+          % tuple(best(mpirun(n) + [b, "batch", "--mpi"], empty, a.repeat) for n in (1, 2, 4)))
+
+    print("\nthroughput (lines/s; wall of the whole run; ranks beyond 2 are oversubscribed:"
+          " 2 cores, rank 0 schedules, ranks 1.. compute with --threads 1):")
+    print("%-34s %10s %10s" % ("", "classify", "distance"))
+    rows = [("single-process batch --threads 1", [b, "batch", "--threads", "1"]),
+            ("single-process batch --threads 2", [b, "batch", "--threads", "2"])]
+    for n in (1, 2, 4):
+        rows.append(("mpirun -n %d batch --mpi" % n, mpirun(n) + [b, "batch", "--mpi"]))
+    for label, cmd in rows:
+        t1 = best(cmd, fast_p, a.repeat)
+        t2 = best(cmd, med_p, a.repeat)
+        print("%-34s %10.0f %10.1f" % (label, len(fast) / t1, len(med) / t2))
+
+    # Heavy tail: the distance lines with a few slow lines at random places.
+    rnd = random.Random(7)
+    tail = list(med)
+    for i in range(a.slow):
+        tail.insert(rnd.randrange(len(tail) + 1), slow_line(i, a.slow_ms))
+    tail_p = os.path.join(tmp, "tail.jsonl")
+    with open(tail_p, "w") as f:
+        f.writelines(tail)
+    print("\nheavy tail: %d distance lines + %d lines of %d ms (budget) at random places"
+          % (len(med), a.slow, a.slow_ms))
+    for w in (2, 3):
+        per = [sum(1 for l in tail[k * len(tail) // w:(k + 1) * len(tail) // w] if '"slow' in l)
+               for k in range(w)]
+        ts = min(static_split(b, tail, w, tmp) for _ in range(a.repeat))
+        td = best(mpirun(w + 1) + [b, "batch", "--mpi"], tail_p, a.repeat)
+        print("  %d workers: static split %.2f s (slow lines per part %s), dynamic (mpirun -n %d)"
+              " %.2f s" % (w, ts, per, w + 1, td))
+    print("load average after: %.2f %.2f %.2f" % os.getloadavg())
+    shutil.rmtree(tmp)
+
+
+if __name__ == "__main__":
+    main()
