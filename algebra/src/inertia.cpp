@@ -47,7 +47,11 @@ Inertia inertia_descartes(const Mat4& m) {
   scaled_integer_matrix(z, m); // a positive factor keeps the signs of the eigenvalues
   fmpz_poly_t cp;
   fmpz_poly_init(cp);
-  fmpz_mat_charpoly(cp, z);
+  // Berkowitz (division-free, O(n^4) ring operations) rather than FLINT's default multimodular
+  // charpoly: for a 4x4 matrix the latter spends most of its time generating primes when the
+  // entries are large (a sphere of radius 1e-320 gives ~2000-bit entries), the former a few
+  // dozen big-integer products. The polynomial is the same exact one either way.
+  fmpz_mat_charpoly_berkowitz(cp, z);
   int s[4];
   for (slong k = 0; k < 4; ++k) {
     fmpz_t c;

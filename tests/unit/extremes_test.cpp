@@ -156,3 +156,76 @@ TEST(Extremes, ShapesAtExtremeMagnitudesThroughTheReader) {
   EXPECT_GE(std::stod(d.upper()), 1.0 - 1e-15);
   EXPECT_TRUE(d.distance->meets_width(15));
 }
+
+namespace {
+
+core::QuadricMatrix read_sphere(double cx, double cy, double r) {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                R"({"type": "sphere", "center": [%.17g, %.17g, 0], "radius": %.17g})", cx, cy, r);
+  return core::io::read_quadric(core::io::parse_json(text, "test"), "test", "$");
+}
+
+Rational exact_arf(const arf_struct* x) {
+  Rational q;
+  arf_get_fmpq(q.raw_mut(), x);
+  return q;
+}
+
+// The certified enclosure must contain the exact rational v (both bounds, exactly) and meet
+// the 15-digit width.
+void expect_contains(const certify::DistanceResult& d, const Rational& v, const std::string& what) {
+  ASSERT_EQ(d.status, certify::Status::Certified) << what << " " << d.note;
+  ASSERT_TRUE(d.distance.has_value()) << what;
+  EXPECT_LE(exact_arf(d.distance->lower_arf()), v) << what << " lower " << d.lower();
+  EXPECT_LE(v, exact_arf(d.distance->upper_arf())) << what << " upper " << d.upper();
+  EXPECT_TRUE(d.distance->meets_width(15)) << what;
+}
+
+} // namespace
+
+// Spheres read from doubles at every magnitude from the smallest subnormal to 1e300, against
+// closed forms computed exactly from the same doubles: concentric spheres (radius s inside
+// the unit sphere, or the unit sphere inside radius s) are nested at distance |1 - s|; a
+// sphere of radius s centred at (3t, 4t, 0), t = 2^k beyond reach, is separated at distance
+// 5t - 1 - s (a Pythagorean centre keeps |c| rational). Both bounds are compared exactly, in
+// filtered and exact mode, and classify must report the same relation.
+TEST(Extremes, SphereClosedFormsAcrossMagnitudes) {
+  const auto unit = read_sphere(0, 0, 1);
+  const double scales[] = {
+      5e-324, 1e-320, 2.5e-310, 2.2250738585072014e-308, 1e-300, 1e-200, 1e-150, 3e-17, 0.75, 1e17,
+      1e150,  1e200,  1e300};
+  for (double s : scales) {
+    const Rational rs = Rational::exact_from_double(s);
+    const auto concentric = read_sphere(0, 0, s);
+    // Far: t = 2^k with 5t > 2(1 + s), so the spheres are separated by a wide gap.
+    int k = 3;
+    if (s > 1) k += std::ilogb(s);
+    const double t = std::ldexp(1.0, k);
+    const auto far = read_sphere(3 * t, 4 * t, s);
+    const Rational far_distance = Rational(5) * core::pow2(k) - Rational(1) - rs;
+    const Rational nested_distance = rs < Rational(1) ? Rational(1) - rs : rs - Rational(1);
+    char tag[64];
+    std::snprintf(tag, sizeof tag, "s = %.17g", s);
+    for (Mode m : {Mode::Filtered, Mode::Exact}) {
+      const std::string what = std::string(tag) + " mode " + certify::to_string(m);
+      expect_contains(certify::surface_distance(concentric, unit, 15, false, m), nested_distance,
+                      what + " concentric");
+      expect_contains(certify::surface_distance(unit, concentric, 15, false, m), nested_distance,
+                      what + " concentric swapped");
+      expect_contains(certify::surface_distance(far, unit, 15, false, m), far_distance,
+                      what + " far");
+      auto n = certify::classify_qsic(concentric, unit, m);
+      certify::complete_report_data(n, concentric, unit);
+      EXPECT_EQ(n.status, certify::Status::Certified) << what;
+      EXPECT_EQ(n.ellipsoid_relation, "nested") << what;
+      EXPECT_EQ(n.containment, s < 1 ? "a_inside_b" : "b_inside_a") << what;
+      EXPECT_EQ(n.morphology ? n.morphology->connected_components : -1, 0) << what;
+      auto f = certify::classify_qsic(far, unit, m);
+      certify::complete_report_data(f, far, unit);
+      EXPECT_EQ(f.status, certify::Status::Certified) << what;
+      EXPECT_EQ(f.ellipsoid_relation, "separated") << what;
+      EXPECT_EQ(f.morphology ? f.morphology->connected_components : -1, 0) << what;
+    }
+  }
+}
