@@ -921,16 +921,38 @@ bool newton_box(Ball (&N)[2], const Ctx<Ball>& C, const Chart& ch, const BoxForm
   return true;
 }
 
-// Contracts E (initially the proven box, whose critical point is unique) onto its critical
-// point until the value enclosure V has the relative width tol / 4. Each step intersects E
+// Contracts the box E of chart ch, which holds the unique critical point of a proven box, onto
+// it in double intervals: E = E cap K(E) while that halves the box (every critical point of E
+// lies in its Krawczyk image K(E), whatever E). The quadratic convergence takes a proven box
+// of width ~2^-4 to ~2^-40 in a few cheap steps, so the Arb contraction to the final digits
+// starts next to the point (one or two Arb steps instead of five or six).
+void contract_di(DI* E, const Ctx<DI>& C, const Chart& ch) {
+  const int k = C.k;
+  CGAL::Protect_FPU_rounding<true> guard; // the double intervals round outward
+  for (int it = 0; it < 20; ++it) {
+    BoxForms<DI> B;
+    DI K[2], Z[2];
+    if (!krawczyk_box(K, B, C, ch, E)) return;
+    double before = 0, after = 0;
+    for (int j = 0; j < k; ++j) {
+      if (!intersect(Z[j], E[j], K[j])) return; // impossible: the point is in both
+      before = std::max(before, E[j].sup() - E[j].inf());
+      after = std::max(after, Z[j].sup() - Z[j].inf());
+    }
+    for (int j = 0; j < k; ++j)
+      E[j] = Z[j];
+    if (!(after < 0.5 * before)) return;
+  }
+}
+
+// Contracts E (initially inside the proven box X, holding its unique critical point) onto its
+// critical point until the value enclosure V has the relative width tol / 4. Each step intersects E
 // with its Krawczyk image; when that barely shrinks (a box proven with little margin), a small
 // box around the Newton point inside E is proven instead (same point: E holds only one).
 // Quadratic convergence either way. False if it stalls.
 bool tighten(Tight& c, const Ctx<Ball>& C, const Ball& tol) {
   const int k = C.k;
   const Monomials& M = monomials(k);
-  for (int j = 0; j < k; ++j)
-    c.E[j] = c.X[j];
   for (int it = 0; it < 200; ++it) {
     BoxForms<Ball> B;
     if (!box_value(B, C, c.ch, c.E)) return false;
@@ -1116,6 +1138,10 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
     for (const Tight& o : done)
       same = same || inside(o.ch, o.E, t.ch, t.X, k);
     if (same) continue;
+    DI E[2] = {c.X[0], c.X[1]};
+    contract_di(E, Cd, c.ch);
+    for (int j = 0; j < k; ++j)
+      t.E[j] = to_ab(E[j]);
     if (!tighten(t, C, tol)) return std::nullopt;
     if (arb_lt(upper_point(t.V).v, Ua.v)) Ua = upper_point(t.V);
     done.push_back(std::move(t));
