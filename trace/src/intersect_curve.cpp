@@ -2,6 +2,8 @@
 // it (see intersect_curve.hpp).
 #include "surfcert/trace/intersect_curve.hpp"
 
+#include "surfcert/algebra/eigen4.hpp"
+#include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/special_points.hpp"
 #include "surfcert/trace/conics.hpp"
@@ -59,9 +61,57 @@ bool isolated_kind(const std::string& k) {
   return k == "acnode" || k == "isolated_point";
 }
 
-double residual(const QuadricPair& q, const Point3& p) {
-  double n = 1 + p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-  return std::max(std::fabs(q.f(p)), std::fabs(q.g(p))) / n;
+// Every returned point brought within 1e-13 of the curve's size of both EXACT surfaces, and
+// max_residual measured geometrically (the largest max(|f| / |grad f|, |g| / |grad g|)). The
+// tracer walks on the coefficients rounded to doubles; where their error bound shows that
+// may leave a point too far off (near a cone's apex, where a rounded cone is a hyperboloid
+// with a waist ~1e-8), the point is corrected by Newton on the double-double coefficients
+// (RefinedPair); endpoints on a box face stay on it.
+void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const QuadricPair& q,
+                   CurveResult& out) {
+  Point3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  auto grow = [&lo, &hi](const Point3& p) {
+    for (size_t k = 0; k < 3; ++k)
+      lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  };
+  for (const auto& br : out.branches)
+    for (const auto& p : br.points)
+      grow(p);
+  for (const auto& p : out.isolated_points)
+    grow(p);
+  double size = 0;
+  for (size_t k = 0; k < 3; ++k)
+    if (hi[k] >= lo[k]) size += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  size = std::sqrt(size);
+  if (!(size > 0)) size = out.box ? out.box->diagonal() : 1.0;
+  const double target = 1e-13 * size;
+  std::optional<RefinedPair> exact; // built on first need (reads the exact rationals)
+  auto face_axis = [&out](const Point3& p) {
+    if (!out.box) return -1;
+    for (size_t k = 0; k < 3; ++k)
+      if (p[k] == out.box->min[k] || p[k] == out.box->max[k]) return static_cast<int>(k);
+    return -1;
+  };
+  out.max_residual = 0;
+  for (auto& br : out.branches)
+    for (size_t i = 0; i < br.points.size(); ++i) {
+      Point3& p = br.points[i];
+      double d = q.distance_bound(p);
+      if (!(d <= target)) {
+        if (!exact) exact.emplace(a, b);
+        const bool end = !br.closed && (i == 0 || i + 1 == br.points.size());
+        d = exact->refine(p, target, end ? face_axis(p) : -1);
+      }
+      out.max_residual = std::max(out.max_residual, d);
+    }
+  for (const auto& p : out.isolated_points) { // exact points rounded: measured, not moved
+    double d = q.distance_bound(p);
+    if (!(d <= target)) {
+      if (!exact) exact.emplace(a, b);
+      d = exact->distance(p);
+    }
+    out.max_residual = std::max(out.max_residual, d);
+  }
 }
 
 bool branches_match(const std::vector<Branch>& branches, int c) {
@@ -294,15 +344,11 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
     }
   }
   out.box = box;
-  for (const auto& br : out.branches)
-    for (const auto& p : br.points)
-      out.max_residual = std::max(out.max_residual, residual(q, p));
   std::vector<Point3> inside;
   for (const auto& p : out.isolated_points)
     if (box.contains(p)) inside.push_back(p);
   out.isolated_points = inside;
-  for (const auto& p : out.isolated_points)
-    out.max_residual = std::max(out.max_residual, residual(q, p));
+  finish_points(a, b, q, out);
 
   int closed = 0, open = 0, open_off_face = 0;
   const double eps = 1e-7 * box.diagonal();
@@ -346,6 +392,84 @@ CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMat
   return trace_curve(a, b, std::move(t), opt);
 }
 
+namespace {
+
+// A point near which the curve lives, when the pair lies far from the origin relative to its
+// size; nullopt otherwise: the point nearest (least squares, minimum norm) to the centres of
+// both quadrics (A c = -b: a sphere's centre, a cylinder's axis, a cone's apex), far when its
+// distance from the origin exceeds 4 times the smaller positive size of the quadrics there
+// (sqrt(|f(c)| / max |eigenvalue|): a sphere's radius). The tracer's double computations
+// (plane pairs from eigenvectors of singular members, conic centres, start points, step
+// bounds) lose the curve's digits to a large translation (a quartic loop 14 sizes off the
+// origin was lost); they run on the exactly translated pair instead.
+std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
+  // Normal equations sum_q (A_q^T A_q) c = -sum_q A_q^T b_q, each quadric scaled to max
+  // |A_q| = 1.
+  algebra::Mat4d n{};
+  Point3 rhs{0, 0, 0};
+  std::array<algebra::Mat4d, 2> ms{certify::approx(a), certify::approx(b)};
+  for (auto& m : ms) {
+    double s = 0;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        s = std::max(s, std::fabs(m[i][j]));
+    if (!(s > 0) || !std::isfinite(s)) continue; // a plane: no centre
+    for (auto& row : m)
+      for (double& x : row)
+        x /= s;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        for (size_t k = 0; k < 3; ++k)
+          n[i][j] += m[k][i] * m[k][j];
+        rhs[i] -= m[j][i] * m[j][3];
+      }
+  }
+  std::array<double, 4> w{};
+  algebra::Mat4d v{};
+  algebra::jacobi4(n, w, v);
+  double lmax = 0;
+  for (double x : w)
+    lmax = std::max(lmax, std::fabs(x));
+  if (!(lmax > 0) || !std::isfinite(lmax)) return std::nullopt;
+  Point3 c{0, 0, 0};
+  for (size_t k = 0; k < 4; ++k) {
+    if (!(std::fabs(w[k]) > 1e-12 * lmax)) continue;
+    double vb = 0;
+    for (size_t i = 0; i < 3; ++i)
+      vb += v[i][k] * rhs[i];
+    for (size_t i = 0; i < 3; ++i)
+      c[i] += vb / w[k] * v[i][k];
+  }
+  if (!std::isfinite(c[0] + c[1] + c[2])) return std::nullopt;
+  const double far = std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])});
+  double size = 0;
+  for (const auto& m : ms) {
+    double lq = 0, f = m[3][3];
+    for (size_t i = 0; i < 3; ++i) {
+      f += 2 * m[i][3] * c[i];
+      for (size_t j = 0; j < 3; ++j) {
+        f += c[i] * m[i][j] * c[j];
+        lq = std::max(lq, std::fabs(m[i][j]));
+      }
+    }
+    // f(c) carries a rounding error ~1e-16 |c|^2: sizes below 1e-6 |c| are a cone's 0.
+    const double sq = lq > 0 ? std::sqrt(std::fabs(f) / lq) : 0;
+    if (sq > 1e-6 * far && (size == 0 || sq < size))
+      size = sq; // the smaller (a saddle's is
+                 // inflated)
+  }
+  if (!(size > 0) || !(far > 4 * size)) return std::nullopt; // size 0: cones and planes only
+  // Rounded to a multiple of a power of two near size * 2^-24: shorter dyadic rationals for
+  // the translated pair's exact classification. (Coarser, size / 16, made the tracer lose
+  // loops of cone pairs: it does better with a centre or apex at the origin.)
+  const double unit = std::ldexp(1.0, std::ilogb(size) - 24);
+  for (double& x : c)
+    x = std::nearbyint(x / unit) * unit;
+  return c;
+}
+
+} // namespace
+
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         QsicResult topology, const TraceOptions& opt) {
   CurveResult out;
@@ -361,6 +485,43 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
                    ? "the quadrics coincide: the intersection is a surface, not a curve"
                    : "no regular pencil: curves of degenerate pencils are not traced";
     return out;
+  }
+  if (const auto c = far_centre(a, b)) {
+    // Traced on the pair translated exactly by -c (its classification re-done there: the same
+    // certified answer, the special points and singular members in the new coordinates), the
+    // points moved back (adding c in double: an error ~1e-16 |c|) and corrected on the
+    // original exact pair; topology and affine reading stay those of the original pair.
+    core::Mat4 p;
+    for (size_t i = 0; i < 4; ++i)
+      p[i][i] = core::Rational(1);
+    for (size_t i = 0; i < 3; ++i)
+      p[i][3] = core::Rational::exact_from_double((*c)[i]);
+    const auto a2 = a.congruent(p), b2 = b.congruent(p);
+    TraceOptions o2 = opt;
+    if (o2.box)
+      for (size_t k = 0; k < 3; ++k)
+        o2.box->min[k] -= (*c)[k], o2.box->max[k] -= (*c)[k];
+    CurveResult local = trace_curve(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2);
+    auto back = [&c](Point3& x) {
+      for (size_t k = 0; k < 3; ++k)
+        x[k] += (*c)[k];
+    };
+    for (auto& br : local.branches)
+      for (auto& x : br.points)
+        back(x);
+    for (auto& x : local.isolated_points)
+      back(x);
+    if (local.box) {
+      Point3 lo = local.box->min, hi = local.box->max;
+      back(lo);
+      back(hi);
+      local.box->min = opt.box ? opt.box->min : lo;
+      local.box->max = opt.box ? opt.box->max : hi;
+    }
+    local.topology = std::move(out.topology);
+    local.affine = std::move(out.affine);
+    finish_points(a, b, QuadricPair(a, b), local);
+    return local;
   }
   if (a.kind() != core::QuadricKind::Ellipsoid && b.kind() != core::QuadricKind::Ellipsoid) {
     trace_in_box(a, b, out, opt);
@@ -388,11 +549,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     out.branches = conic_branches(a, b, t.facts, opt);
     drop_point_sections(out, t.morphology->conics, opt.tolerance);
   }
-  for (const auto& br : out.branches)
-    for (const auto& p : br.points)
-      out.max_residual = std::max(out.max_residual, residual(q, p));
-  for (const auto& p : out.isolated_points)
-    out.max_residual = std::max(out.max_residual, residual(q, p));
+  finish_points(a, b, q, out);
 
   // The branches must reproduce the certified topology exactly.
   std::vector<std::string> got, want = expected_branch_kinds(c);

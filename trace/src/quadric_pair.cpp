@@ -79,6 +79,19 @@ double dot(const Point3& a, const Point3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+// The size of the terms of X^T M X at p: sum |m_ij x_i x_j| (x = (p, 1)). The rounding floor of
+// f's evaluation is ~1e-19 of it, and f / it is scale-free: a curve scaled by 10^4 and
+// translated by 10^5 meets the same relative criterion as a unit one (1 + |p|^2 would not be:
+// there it lets points lie ~1e-3 of the curve's size off it).
+double term_size(const std::array<std::array<double, 4>, 4>& m, const Point3& p) {
+  const double x[4] = {std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2]), 1.0};
+  double s = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      s += std::fabs(m[i][j]) * x[i] * x[j];
+  return s;
+}
+
 } // namespace
 
 QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb)
@@ -95,6 +108,16 @@ Point3 QuadricPair::grad_f(const Point3& p) const {
 }
 Point3 QuadricPair::grad_g(const Point3& p) const {
   return gradient(b, p);
+}
+
+double QuadricPair::distance_bound(const Point3& p) const {
+  auto one = [&p](const M4& m) {
+    const Point3 g = gradient(m, p);
+    const double gn = std::sqrt(dot(g, g));
+    const double f = std::fabs(form(m, p)) + 0x1p-53 * term_size(m, p);
+    return gn > 0 ? f / gn : HUGE_VAL;
+  };
+  return std::max(one(a), one(b));
 }
 
 namespace {
@@ -121,6 +144,13 @@ bool gauss_newton_step(const QuadricPair& q, const Point3& p, double fv, double 
 
 double residual(const QuadricPair& q, const Point3& x) {
   return std::max(std::abs(q.f(x)), std::abs(q.g(x)));
+}
+
+// max(|f| / F, |g| / G): the residual relative to the terms' size (see term_size).
+double relative_residual(const QuadricPair& q, const Point3& x, double fv, double gv) {
+  const double fa = term_size(q.a, x), ga = term_size(q.b, x);
+  return std::max(fa > 0 ? std::abs(fv) / fa : std::abs(fv),
+                  ga > 0 ? std::abs(gv) / ga : std::abs(gv));
 }
 
 // Once within the tolerance: up to two more steps while the residual keeps dropping. Where the
@@ -153,7 +183,7 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
   for (int it = 0; it < iterations; ++it) {
     const double fv = form_fast(q.a, p), gv = form_fast(q.b, p);
     if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
-    if (std::max(std::abs(fv), std::abs(gv)) <= 1e-11 * (1 + dot(p, p))) break;
+    if (relative_residual(q, p, fv, gv) <= 1e-11) break;
     Point3 x{};
     double sn = 0;
     if (!gauss_newton_step(q, p, fv, gv, x, sn)) return false;
@@ -162,8 +192,7 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
   for (int it = 0; it <= iterations; ++it) {
     const double fv = q.f(p), gv = q.g(p);
     if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
-    const double n2 = dot(p, p);
-    if (std::max(std::abs(fv), std::abs(gv)) <= 1e-15 * (1 + n2)) {
+    if (relative_residual(q, p, fv, gv) <= 1e-15) {
       polish(q, p);
       return true;
     }
@@ -173,10 +202,8 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
     if (!gauss_newton_step(q, p, fv, gv, x, sn)) return false;
     p = x;
     if (sn <= 1e-16 * (1 + std::sqrt(dot(p, p)))) {
-      const double r = residual(q, p);
-      const double n = dot(p, p);
-      if (r <= 1e-15 * (1 + n)) return true;
-      return r <= 1e-13 * (1 + n);
+      // The steps no longer move p: accept it at a little above the rounding floor.
+      return relative_residual(q, p, q.f(p), q.g(p)) <= 1e-13;
     }
   }
   return false;

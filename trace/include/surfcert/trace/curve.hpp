@@ -55,10 +55,43 @@ struct QuadricPair {
   double g(const Point3& p) const;
   Point3 grad_f(const Point3& p) const;
   Point3 grad_g(const Point3& p) const;
+  /// An estimate of p's distance to the EXACT surfaces from these rounded coefficients:
+  /// max over f, g of (|f(p)| + 2^-53 F) / |grad f(p)|, F = sum |a_ij x_i x_j| bounding how
+  /// far the rounding of the coefficients moves f at p (infinite where a gradient vanishes).
+  double distance_bound(const Point3& p) const;
+};
+
+/// The pair's exact coefficients in double-double (each entry hi + lo, read from the exact
+/// rationals, the matrix scaled by a power of two): f and g evaluate to ~1e-30 relative at a
+/// double point. For the final correction of traced points onto the exact surfaces and for
+/// measuring how far a point lies from them; the tracer itself walks on QuadricPair's rounded
+/// coefficients, whose curve differs from the exact one by ~1e-16 relative except near a
+/// singular point of a surface (a cone's apex), where it differs by up to ~1e-8.
+class RefinedPair {
+public:
+  RefinedPair(const core::QuadricMatrix& a, const core::QuadricMatrix& b);
+  /// Geometric residual max(|f| / |grad f|, |g| / |grad g|) at p (first-order distance to the
+  /// farther surface; |f| where a gradient vanishes).
+  double distance(const Point3& p) const;
+  /// Gauss-Newton steps on the exact pair while they reduce distance(p) and it is above
+  /// `target`; p is left at the best point found. Returns distance(p). With face_axis k in
+  /// 0..2 the coordinate p[k] is kept (a point on a face of a box stays on it).
+  double refine(Point3& p, double target, int face_axis = -1) const;
+
+private:
+  struct Form {
+    std::array<std::array<double, 4>, 4> hi{}, lo{};
+  };
+  static double value(const Form& m, const Point3& p);
+  static Point3 gradient(const Form& m, const Point3& p);
+  static double distance(const Form& m, const Point3& p);
+  Form a_, b_;
 };
 
 /// Newton (minimum-norm Gauss-Newton) projection of p onto f = g = 0. Returns false when it
-/// does not converge to max(|f|, |g|) <= 1e-15 * (1 + |p|^2) within `iterations`.
+/// does not converge to max(|f| / F, |g| / G) <= 1e-15 within `iterations`, where
+/// F = sum |a_ij x_i x_j| (x = (p, 1)) is the size of the terms of f at p (so the criterion
+/// holds at any scale and translation: the rounding floor of f's evaluation is ~1e-19 F).
 bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations = 30);
 
 /// Start points: for a random-ish direction d, the points of the curve where d.x is critical

@@ -5,17 +5,18 @@
 //
 // The topology (certify::classify_qsic) is certified. The branches come from the float tracer
 // (trace/curve.hpp, trace/conics.hpp) and are approximations: every point is corrected onto
-// both surfaces and the largest residual is reported. Invariant: status is Certified only when
-// the branches returned have exactly the number and kinds the certified morphology prescribes
-// (loops, figure eight, loop with cusp, conics, double conic, isolated points); otherwise
-// Undecided, with what was found and why.
-// Scope: an ellipsoid (or sphere) and any second quadric, where the real curve is bounded
-// and the projective topology is the affine one; for other pairs (regular pencils) the curve
-// is traced inside a box (given in TraceOptions::box, or chosen to contain the special points,
-// the extreme points and every closed loop, with a margin): loops closed, pieces of unbounded
-// branches open with both ends on the box's faces, conics in closed form clipped to the box.
-// There status is Certified only when the affine topology (certify/affine.hpp) is certified
-// and the traced loops, open pieces and isolated points have its counts.
+// both exact surfaces (to 1e-13 of the curve's size; Newton on double-double coefficients
+// where the rounded ones are not enough) and the largest geometric residual is reported. Invariant:
+// status is Certified only when the branches returned have exactly the number and kinds the
+// certified morphology prescribes (loops, figure eight, loop with cusp, conics, double conic,
+// isolated points); otherwise Undecided, with what was found and why. Scope: an ellipsoid (or
+// sphere) and any second quadric, where the real curve is bounded and the projective topology is
+// the affine one; for other pairs (regular pencils) the curve is traced inside a box (given in
+// TraceOptions::box, or chosen to contain the special points, the extreme points and every closed
+// loop, with a margin): loops closed, pieces of unbounded branches open with both ends on the box's
+// faces, conics in closed form clipped to the box. There status is Certified only when the affine
+// topology (certify/affine.hpp) is certified and the traced loops, open pieces and isolated points
+// have its counts.
 #pragma once
 
 #include "surfcert/certify/affine.hpp"
@@ -35,7 +36,10 @@ struct CurveResult {
   certify::Status status = certify::Status::Error;
   std::vector<Branch> branches;
   std::vector<Point3> isolated_points;
-  double max_residual = 0; ///< max over returned points of max(|f|, |g|), normalised quadrics
+  /// The largest geometric residual max(|f| / |grad f|, |g| / |grad g|) over the returned
+  /// points, on the exact quadrics: a distance in the input's length unit. Every point is
+  /// brought within 1e-13 of the curve's size where Newton on the exact pair can.
+  double max_residual = 0;
   double tolerance = 2e-4;
   bool matches_topology = false;
   bool exact_start_points = false; ///< the float start points missed a branch: exact ones used

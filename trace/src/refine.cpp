@@ -1,0 +1,131 @@
+// RefinedPair: the pair's exact coefficients in double-double, geometric residuals and a final
+// Newton correction of traced points onto the exact surfaces (see curve.hpp).
+//
+// Why: the tracer works on the coefficients rounded to doubles, i.e. on a nearby pair. Away
+// from singular points of the surfaces that moves the curve by ~u (relative); near a cone's
+// apex it does not: perturbing a cone's equation by u turns it into a hyperboloid with a waist
+// of radius ~sqrt(u) ~ 1e-8, so traced points near the apex lie ~1e-8 off the exact cone.
+// Double-double coefficients (~1e-32) shrink that waist below 1e-15.
+#include "surfcert/trace/curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace surfcert::trace {
+
+namespace {
+
+// Error-free transformations (Knuth two-sum, fma two-product).
+inline void two_sum(double a, double b, double& s, double& e) {
+  s = a + b;
+  const double bb = s - a;
+  e = (a - (s - bb)) + (b - bb);
+}
+
+inline void two_prod(double a, double b, double& p, double& e) {
+  p = a * b;
+  e = std::fma(a, b, -p);
+}
+
+// (ah + al) * (bh + bl), to ~2^-104 relative.
+inline void dd_mul(double ah, double al, double bh, double bl, double& ph, double& pl) {
+  double p, e;
+  two_prod(ah, bh, p, e);
+  e += ah * bl + al * bh;
+  two_sum(p, e, ph, pl);
+}
+
+inline void dd_add(double& sh, double& sl, double bh, double bl) {
+  double s, e;
+  two_sum(sh, bh, s, e);
+  e += sl + bl;
+  two_sum(s, e, sh, sl);
+}
+
+double dot3(const Point3& a, const Point3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+} // namespace
+
+RefinedPair::RefinedPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb) {
+  auto fill = [](const core::QuadricMatrix& q, Form& out) {
+    // Scaled by a power of two (exact) so that the largest entry is ~1.
+    double mx = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        mx = std::max(mx, std::fabs(q(i, j).to_double_approx()));
+    int e = 0;
+    if (std::isfinite(mx) && mx > 0) std::frexp(mx, &e);
+    const core::Rational s = core::Rational::exact_from_double(std::ldexp(1.0, -e));
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        const core::Rational v = q(static_cast<int>(i), static_cast<int>(j)) * s;
+        const double hi = v.to_double_approx();
+        out.hi[i][j] = hi;
+        out.lo[i][j] = (v - core::Rational::exact_from_double(hi)).to_double_approx();
+      }
+  };
+  fill(qa, a_);
+  fill(qb, b_);
+}
+
+double RefinedPair::value(const Form& m, const Point3& p) {
+  const double x[4] = {p[0], p[1], p[2], 1.0};
+  double sh = 0, sl = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j) {
+      double xh, xl; // x_i x_j exactly
+      two_prod(x[i], x[j], xh, xl);
+      double th, tl;
+      dd_mul(m.hi[i][j], m.lo[i][j], xh, xl, th, tl);
+      if (i != j) th *= 2, tl *= 2;
+      dd_add(sh, sl, th, tl);
+    }
+  return sh + sl;
+}
+
+Point3 RefinedPair::gradient(const Form& m, const Point3& p) {
+  Point3 g{};
+  for (size_t i = 0; i < 3; ++i)
+    g[i] = 2 * (m.hi[i][0] * p[0] + m.hi[i][1] * p[1] + m.hi[i][2] * p[2] + m.hi[i][3]);
+  return g;
+}
+
+double RefinedPair::distance(const Form& m, const Point3& p) {
+  const double f = std::fabs(value(m, p));
+  const Point3 g = gradient(m, p);
+  const double gn = std::sqrt(dot3(g, g));
+  return gn > 0 ? f / gn : f; // at a vanishing gradient (a cone's apex) f itself, as 0 there
+}
+
+double RefinedPair::distance(const Point3& p) const {
+  return std::max(distance(a_, p), distance(b_, p));
+}
+
+double RefinedPair::refine(Point3& p, double target, int face_axis) const {
+  double best = distance(p);
+  Point3 x = p;
+  for (int it = 0; it < 8 && best > target; ++it) {
+    const double fv = value(a_, x), gv = value(b_, x);
+    Point3 gf = gradient(a_, x), gg = gradient(b_, x);
+    if (face_axis >= 0) { // the step stays in the face's plane
+      gf[static_cast<size_t>(face_axis)] = 0;
+      gg[static_cast<size_t>(face_axis)] = 0;
+    }
+    // Minimum-norm Gauss-Newton step (on a face: Newton in the face's two coordinates).
+    const double a11 = dot3(gf, gf), a12 = dot3(gf, gg), a22 = dot3(gg, gg);
+    const double det = a11 * a22 - a12 * a12;
+    if (!(det > 1e-30 * a11 * a22) || !std::isfinite(det)) break;
+    const double m1 = (a22 * fv - a12 * gv) / det, m2 = (a11 * gv - a12 * fv) / det;
+    for (size_t i = 0; i < 3; ++i)
+      x[i] -= m1 * gf[i] + m2 * gg[i];
+    const double d = distance(x);
+    if (!(d < best)) break;
+    best = d;
+    p = x;
+  }
+  return best;
+}
+
+} // namespace surfcert::trace
