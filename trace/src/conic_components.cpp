@@ -352,15 +352,18 @@ void correct(const PlaneConic& pc, V3& x) {
   }
 }
 
+// Normals parallel (to 1e-12) and offsets equal (to 1e-12 relative). Not the angle between
+// the homogeneous 4-vectors: far from the origin their offsets dominate them, and two distinct
+// planes (x - y = 3e5, x + y = -1e5) would compare equal.
 bool same_plane(const V4& p, const V4& q) {
-  double np = 0, nq = 0, dp = 0;
-  for (size_t i = 0; i < 4; ++i) {
-    np += p[i] * p[i];
-    nq += q[i] * q[i];
-    dp += p[i] * q[i];
-  }
+  const double np = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+  const double nq = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
   if (np == 0 || nq == 0) return false;
-  return std::fabs(std::fabs(dp) / std::sqrt(np * nq) - 1) < 1e-12;
+  const double s = p[0] * q[0] + p[1] * q[1] + p[2] * q[2] < 0 ? -1 : 1;
+  for (size_t i = 0; i < 3; ++i)
+    if (std::fabs(p[i] / np - s * q[i] / nq) > 1e-12) return false;
+  const double dp = p[3] / np, dq = s * q[3] / nq;
+  return std::fabs(dp - dq) <= 1e-12 * std::max(std::fabs(dp), std::fabs(dq));
 }
 
 } // namespace
