@@ -279,6 +279,7 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
     pic.branches = c.branches;
     pic.special_points = special;
     pic.caption = trace::curve_caption(c);
+    pic.box = c.box;
     write_atomically(svg_path, trace::to_svg(a, b, pic));
   }
   if (json) {

@@ -1,12 +1,14 @@
 // trace exports: OBJ and PLY element counts for known branches (parsed back), SVG checked by a
 // small well-formedness parser of our own and by xmllint, one <g class="branch"> per branch
 // with its three view paths, special points, escaped caption, ellipsoid outlines (the sphere's
-// outline in the x-y view must coincide with the equator it is tangent to), and rasterised by
-// rsvg-convert into a PNG.
+// outline in the x-y view must coincide with the equator it is tangent to), outlines of
+// cylinders (cross-section circle, silhouette lines at the curve's extent), zoomed insets for
+// tiny components, and rasterised by rsvg-convert into a PNG.
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 #include "surfcert/trace/conics.hpp"
 #include "surfcert/trace/export.hpp"
+#include "surfcert/trace/intersect_curve.hpp"
 
 #include <gtest/gtest.h>
 
@@ -372,7 +374,8 @@ TEST(Export, SvgCase13WithSpecialPoints) {
 TEST(Export, SvgOutlineMatchesTangentEquator) {
   // Sphere and cylinder tangent along the equator: the sphere's outline seen along z is the
   // double conic itself, so both paths of the x-y view have the same pixel bounding box; the
-  // cylinder is not an ellipsoid and gets no outline.
+  // cylinder's outline there is its cross-section, the same circle, and in the other views its
+  // silhouette lines.
   auto a = q("x^2 + y^2 + z^2 - 1"), b = q("x^2 + y^2 - 1");
   auto r = certify::classify_qsic(a, b, certify::Mode::Exact);
   ASSERT_EQ(r.tu_case, 21);
@@ -383,7 +386,7 @@ TEST(Export, SvgOutlineMatchesTangentEquator) {
   auto svg = trace::to_svg(a, b, pic);
   EXPECT_EQ(xml_problem(svg), "");
   EXPECT_EQ(count(svg, "outline-a\" d="), 3u);
-  EXPECT_EQ(count(svg, "outline-b\" d="), 0u);
+  EXPECT_EQ(count(svg, "outline-b\" d="), 3u);
   EXPECT_EQ(count(svg, "<g class=\"branch\""), 1u);
   EXPECT_EQ(count(svg, "<circle class=\"special\""), 0u);
 
@@ -400,6 +403,55 @@ TEST(Export, SvgOutlineMatchesTangentEquator) {
     EXPECT_NEAR(bo[k], bc[k], 0.3) << k;
   EXPECT_GT(bo[2] - bo[0], 100); // a visible circle
   EXPECT_NEAR(bo[2] - bo[0], bo[3] - bo[1], 0.3);
+  // The cylinder's cross-section (marching squares on a 2.5-pixel grid) is the same circle.
+  auto bb = bbox(path_points(attr_after("outline outline-b")));
+  for (size_t k = 0; k < 4; ++k)
+    EXPECT_NEAR(bb[k], bc[k], 1.0) << k;
+}
+
+// Outlines of non-ellipsoids and the zoomed inset: Steinmetz (cylinders along y and x) in a box
+// 100 times the curve's size. Seen along z the cylinder x^2 + z^2 = 1 is the two lines x = +-1,
+// spanning the same x range as the curve there; each ellipse (2 wide: ~3 pixels) gets an inset,
+// where it is drawn 0.8 of the inset's 110 pixels wide.
+TEST(Export, SvgOutlinesOfCylindersAndInsets) {
+  auto a = q("x^2 + z^2 - 1"), b = q("y^2 + z^2 - 1");
+  trace::TraceOptions opt;
+  trace::Box box;
+  box.min = {-100, -100, -100};
+  box.max = {100, 100, 100};
+  opt.box = box;
+  auto r = trace::intersect_curve(a, b, certify::Mode::Exact, opt);
+  ASSERT_EQ(r.branches.size(), 2u);
+  trace::Picture pic;
+  pic.branches = r.branches;
+  pic.caption = trace::curve_caption(r);
+  pic.box = r.box;
+  auto svg = trace::to_svg(a, b, pic);
+  EXPECT_EQ(xml_problem(svg), "");
+  EXPECT_EQ(count(svg, "outline-a\" d="), 3u); // lines x = +-1 (z, y views), the circle (x view)
+  EXPECT_EQ(count(svg, "outline-b\" d="), 3u);
+  EXPECT_EQ(count(svg, "<g class=\"inset\""), 2u);
+  EXPECT_EQ(count(svg, "<rect class=\"box\""), 3u);
+  auto attr_after = [&](const std::string& marker, size_t from = 0) {
+    size_t at = svg.find(marker, from);
+    EXPECT_NE(at, std::string::npos) << marker;
+    if (at == std::string::npos) return std::string();
+    size_t d = svg.find(" d=\"", at) + 4, e = svg.find('"', d);
+    return svg.substr(d, e - d);
+  };
+  // The first outline-a path is the x-y view's; the first curve path too (branch 0, view 0).
+  auto bo = bbox(path_points(attr_after("outline outline-a")));
+  auto bc = bbox(path_points(attr_after("<path class=\"curve\"")));
+  EXPECT_NEAR(bo[0], bc[0], 0.5);
+  EXPECT_NEAR(bo[2], bc[2], 0.5);
+  EXPECT_GT(bo[3] - bo[1], 300); // the lines run through the box
+  // The inset's curve: 0.8 * 110 pixels across (its larger extent).
+  auto bi = bbox(path_points(attr_after("<path class=\"curve\"", svg.find("<g class=\"inset\""))));
+  EXPECT_NEAR(std::max(bi[2] - bi[0], bi[3] - bi[1]), 88, 0.5);
+
+  // The same curve at its own scale: no inset.
+  pic.box.reset();
+  EXPECT_EQ(count(trace::to_svg(a, b, pic), "<g class=\"inset\""), 0u);
 }
 
 TEST(Export, EmptyPictureIsValid) {

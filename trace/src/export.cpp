@@ -3,11 +3,13 @@
 // SVG layout: a fixed viewBox with three square panels (views along z, y and x, i.e. the
 // planes x-y, x-z, y-z), all drawn at the same scale so that lengths compare across views.
 // Each panel has a light grid with tick labels, axis names, the silhouettes of the quadrics
-// that are real ellipsoids (the projection of an ellipsoid along axis k is the ellipse of the
-// Schur complement of its 4x4 matrix with respect to k), then one <g class="branch"> per
-// branch holding its three projected <path class="curve">, then one <circle class="special">
-// per special point and view. The caption is XML-escaped (control characters and invalid
-// UTF-8 bytes are replaced) and written as <text class="caption">.
+// (the projection of a quadric's contour along axis k is the conic of the Schur complement of
+// its 4x4 matrix with respect to k: an ellipsoid's is drawn whole as an ellipse; any other
+// quadric's is traced by marching squares inside the box's projection, or its cross-section
+// when it is a cylinder along k), the box dashed, then one <g class="branch"> per branch
+// holding its three projected <path class="curve">, zoomed insets for branches under 6
+// pixels, then one <circle class="special"> per special point and view. The caption is XML-escaped
+// (control characters and invalid UTF-8 bytes are replaced) and written as <text class="caption">.
 #include "surfcert/trace/export.hpp"
 
 #include <algorithm>
@@ -153,6 +155,95 @@ std::optional<std::vector<std::array<double, 2>>> silhouette(const core::Quadric
   return pts;
 }
 
+/// The conic whose zero set is the outline of q seen along axis k, as a symmetric 3x3 matrix in
+/// the view's (u, v, 1): the Schur complement with respect to k (the silhouette: points where
+/// df/dx_k = 0 on f = 0, projected), or, when f does not depend on x_k (a cylinder along the
+/// view, a plane containing it), the cross-section x_k = 0. Nullopt when q has no outline in
+/// this view (a paraboloid along its axis, a plane seen face-on: they cover the view).
+std::optional<std::array<std::array<double, 3>, 3>> view_conic(const core::QuadricMatrix& q,
+                                                               size_t k) {
+  M4 m{};
+  double s = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      m[i][j] = q(static_cast<int>(i), static_cast<int>(j)).to_double_approx();
+      s = std::max(s, std::fabs(m[i][j]));
+    }
+  if (!(s > 0) || !std::isfinite(s)) return std::nullopt;
+  for (auto& r : m)
+    for (double& v : r)
+      v /= s;
+  std::array<size_t, 3> id{};
+  size_t t = 0;
+  for (size_t i = 0; i < 4; ++i)
+    if (i != k) id[t++] = i; // (u, v, w)
+  std::array<std::array<double, 3>, 3> c{};
+  const bool depends =
+      std::fabs(m[k][0]) + std::fabs(m[k][1]) + std::fabs(m[k][2]) + std::fabs(m[k][3]) > 1e-12;
+  if (std::fabs(m[k][k]) > 1e-12) {
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        c[i][j] = m[id[i]][id[j]] - m[id[i]][k] * m[k][id[j]] / m[k][k];
+  } else if (!depends) {
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        c[i][j] = m[id[i]][id[j]];
+  } else {
+    return std::nullopt;
+  }
+  return c;
+}
+
+/// The zero set of the conic c inside [u0, u1] x [v0, v1] as line segments (marching squares
+/// on an n x n grid, crossings placed by linear interpolation): any conic type, degenerate
+/// ones (a cone's two lines) included. Segments as (u, v, u', v').
+std::vector<std::array<double, 4>> conic_segments(const std::array<std::array<double, 3>, 3>& c,
+                                                  double u0, double u1, double v0, double v1,
+                                                  int n) {
+  auto g = [&c](double u, double v) {
+    const double x[3] = {u, v, 1};
+    double r = 0;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        r += x[i] * c[i][j] * x[j];
+    return r;
+  };
+  std::vector<double> val(static_cast<size_t>((n + 1) * (n + 1)));
+  auto at = [&](int i, int j) -> double& { return val[static_cast<size_t>(j * (n + 1) + i)]; };
+  const double du = (u1 - u0) / n, dv = (v1 - v0) / n;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      at(i, j) = g(u0 + i * du, v0 + j * dv);
+  std::vector<std::array<double, 4>> out;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      // Corners counter-clockwise: (i,j), (i+1,j), (i+1,j+1), (i,j+1).
+      const double cu[4] = {u0 + i * du, u0 + (i + 1) * du, u0 + (i + 1) * du, u0 + i * du};
+      const double cv[4] = {v0 + j * dv, v0 + j * dv, v0 + (j + 1) * dv, v0 + (j + 1) * dv};
+      const double f[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+      std::vector<std::array<double, 2>> x;
+      for (int e = 0; e < 4; ++e) {
+        const int e2 = (e + 1) % 4;
+        if ((f[e] >= 0) == (f[e2] >= 0)) continue;
+        const double lam = f[e] / (f[e] - f[e2]);
+        x.push_back({cu[e] + lam * (cu[e2] - cu[e]), cv[e] + lam * (cv[e2] - cv[e])});
+      }
+      if (x.size() == 2) {
+        out.push_back({x[0][0], x[0][1], x[1][0], x[1][1]});
+      } else if (x.size() == 4) { // a saddle cell: pair the crossings by the centre's sign
+        const bool centre = g(cu[0] + du / 2, cv[0] + dv / 2) >= 0;
+        if (centre == (f[0] >= 0)) {
+          out.push_back({x[0][0], x[0][1], x[3][0], x[3][1]});
+          out.push_back({x[1][0], x[1][1], x[2][0], x[2][1]});
+        } else {
+          out.push_back({x[0][0], x[0][1], x[1][0], x[1][1]});
+          out.push_back({x[2][0], x[2][1], x[3][0], x[3][1]});
+        }
+      }
+    }
+  return out;
+}
+
 } // namespace
 
 std::string to_obj(const std::vector<Branch>& branches, const std::vector<Point3>& points) {
@@ -220,7 +311,23 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
   const size_t view_axes[3][3] = {{0, 1, 2}, {0, 2, 1}, {1, 2, 0}};
   const char* axis_name[3] = {"x", "y", "z"};
   const double panel = 400, gap = 20, top = 50, inner_margin = 34;
-  const double width = 3 * panel + 4 * gap, height = top + panel + 70;
+  // The caption wrapped at spaces into lines of at most ~180 characters (one line overflowed
+  // the picture).
+  std::vector<std::string> caption_lines;
+  {
+    std::string line, word;
+    std::istringstream words(pic.caption);
+    while (words >> word) {
+      if (!line.empty() && line.size() + 1 + word.size() > 180) {
+        caption_lines.push_back(line);
+        line.clear();
+      }
+      line += (line.empty() ? "" : " ") + word;
+    }
+    if (!line.empty() || caption_lines.empty()) caption_lines.push_back(line);
+  }
+  const double width = 3 * panel + 4 * gap,
+               height = top + panel + 70 + 18.0 * static_cast<double>(caption_lines.size() - 1);
 
   // Outlines of the ellipsoids, per view, in the view's (u, v) coordinates.
   struct Outline {
@@ -258,6 +365,11 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
     for (const auto& q : o.pts) {
       grow(view_axes[o.view][0], q[0]);
       grow(view_axes[o.view][1], q[1]);
+    }
+  if (pic.box)
+    for (size_t k = 0; k < 3; ++k) {
+      grow(k, pic.box->min[k]);
+      grow(k, pic.box->max[k]);
     }
   double range = 0;
   for (size_t k = 0; k < 3; ++k) {
@@ -308,7 +420,9 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
        ".outline{fill:none;stroke-width:1.5} .outline-a{stroke:#1f77b4} "
        ".outline-b{stroke:#2ca02c} .curve{fill:none;stroke-width:2;stroke-linejoin:round} "
        ".special{fill:#ff8c00;stroke:#222;stroke-width:1} .caption{fill:#111;font-size:14px} "
-       ".legend{font-size:12px}</style>\n"
+       ".legend{font-size:12px} .box{fill:none;stroke:#bbb;stroke-dasharray:4 3} "
+       ".inset-frame{fill:#fff;stroke:#555;stroke-width:1} .inset-label{fill:#555;font-size:10px} "
+       ".inset-link{stroke:#555;stroke-width:0.8;fill:none}</style>\n"
     << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height
     << "\" fill=\"#ffffff\"/>\n<defs>\n";
   for (size_t v = 0; v < 3; ++v)
@@ -363,6 +477,31 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
         o << (i == 0 ? "M" : " L") << num2(px(v, ol.pts[i][0])) << ',' << num2(py(v, ol.pts[i][1]));
       o << " Z\"/>\n";
     }
+    // Outlines of the other quadrics: their view conics traced inside the box's projection
+    // (or the panel).
+    for (int sf = 0; sf < 2; ++sf) {
+      if (quadrics[sf]->kind() == core::QuadricKind::Ellipsoid) continue;
+      const auto c = view_conic(*quadrics[sf], kw);
+      if (!c) continue;
+      double u0 = lo[ku] - inner_margin / scale, u1 = hi[ku] + inner_margin / scale;
+      double w0 = lo[kv] - inner_margin / scale, w1 = hi[kv] + inner_margin / scale;
+      if (pic.box) {
+        u0 = pic.box->min[ku], u1 = pic.box->max[ku];
+        w0 = pic.box->min[kv], w1 = pic.box->max[kv];
+      }
+      const auto segs = conic_segments(*c, u0, u1, w0, w1, 160);
+      if (segs.empty()) continue;
+      o << "<path class=\"outline " << (sf == 0 ? "outline-a" : "outline-b") << "\" d=\"";
+      for (const auto& sg : segs)
+        o << "M" << num2(px(v, sg[0])) << ',' << num2(py(v, sg[1])) << "L" << num2(px(v, sg[2]))
+          << ',' << num2(py(v, sg[3]));
+      o << "\"/>\n";
+    }
+    if (pic.box)
+      o << "<rect class=\"box\" x=\"" << num2(px(v, pic.box->min[ku])) << "\" y=\""
+        << num2(py(v, pic.box->max[kv])) << "\" width=\""
+        << num2((pic.box->max[ku] - pic.box->min[ku]) * scale) << "\" height=\""
+        << num2((pic.box->max[kv] - pic.box->min[kv]) * scale) << "\"/>\n";
     o << "</g>\n</g>\n";
   }
 
@@ -403,6 +542,66 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
     o << "</g>\n";
   }
 
+  // Zoomed insets: a branch smaller than 6 pixels in every view is drawn again, magnified,
+  // in a framed square at the top right of the view where it is largest, linked to where it
+  // lies.
+  std::array<int, 3> insets_in{0, 0, 0};
+  const double inset = 110;
+  for (size_t bi = 0; bi < pic.branches.size(); ++bi) {
+    const auto& br = pic.branches[bi];
+    std::array<double, 3> blo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, bhi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (const auto& p : br.points)
+      if (finite(p))
+        for (size_t k = 0; k < 3; ++k)
+          blo[k] = std::min(blo[k], p[k]), bhi[k] = std::max(bhi[k], p[k]);
+    if (br.points.size() < 2 || !(blo[0] <= bhi[0])) continue;
+    // The view where the branch shows most: the largest enclosed area of its projection
+    // (a loop seen edge-on is a segment), then the larger extent.
+    size_t best = 0;
+    double ext = 0, best_key = -1;
+    for (size_t v = 0; v < 3; ++v) {
+      const size_t ku = view_axes[v][0], kv = view_axes[v][1];
+      const double e = std::max(bhi[ku] - blo[ku], bhi[kv] - blo[kv]);
+      double area = 0;
+      for (size_t i = 0; i < br.points.size(); ++i) {
+        const auto& p = br.points[i];
+        const auto& q = br.points[(i + 1) % br.points.size()];
+        area += p[ku] * q[kv] - q[ku] * p[kv];
+      }
+      const double key = std::fabs(area) + 1e-3 * e * e;
+      ext = std::max(ext, e);
+      if (key > best_key) best_key = key, best = v;
+    }
+    if (!(ext * scale < 6) || !(ext > 0) || insets_in[best] >= 3) continue;
+    const size_t v = best, ku = view_axes[v][0], kv = view_axes[v][1];
+    const double x0 = gap + v * (panel + gap) + panel - inset - 6,
+                 y0 = top + 6 + insets_in[best]++ * (inset + 6);
+    const double zoom = 0.8 * inset / ext; // world -> inset pixels
+    const double cu = 0.5 * (blo[ku] + bhi[ku]), cv = 0.5 * (blo[kv] + bhi[kv]);
+    auto ix = [&](double u) { return x0 + inset / 2 + (u - cu) * zoom; };
+    auto iy = [&](double w) { return y0 + inset / 2 - (w - cv) * zoom; };
+    o << "<g class=\"inset\" data-branch=\"" << bi << "\">\n";
+    o << "<path class=\"inset-link\" d=\"M" << num2(px(v, cu)) << ',' << num2(py(v, cv)) << "L"
+      << num2(x0) << ',' << num2(y0 + inset) << "\"/>\n";
+    o << "<circle class=\"inset-link\" cx=\"" << num2(px(v, cu)) << "\" cy=\"" << num2(py(v, cv))
+      << "\" r=\"7\"/>\n";
+    o << "<rect class=\"inset-frame\" x=\"" << num2(x0) << "\" y=\"" << num2(y0) << "\" width=\""
+      << inset << "\" height=\"" << inset << "\"/>\n";
+    o << "<path class=\"curve\" stroke=\"#d62728\" d=\"";
+    for (size_t i = 0; i < br.points.size(); ++i)
+      o << (i == 0 ? "M" : " L") << num2(ix(br.points[i][ku])) << ',' << num2(iy(br.points[i][kv]));
+    if (br.closed) o << " Z";
+    o << "\"/>\n";
+    for (const auto& p : pic.special_points)
+      if (finite(p) && std::fabs(p[ku] - cu) <= ext && std::fabs(p[kv] - cv) <= ext)
+        o << "<circle class=\"special\" cx=\"" << num2(ix(p[ku])) << "\" cy=\"" << num2(iy(p[kv]))
+          << "\" r=\"3\"/>\n";
+    char zl[48];
+    std::snprintf(zl, sizeof zl, "zoom x%.3g", zoom / scale);
+    o << "<text class=\"inset-label\" x=\"" << num2(x0 + 4) << "\" y=\"" << num2(y0 + inset - 4)
+      << "\">" << zl << "</text>\n</g>\n";
+  }
+
   // Special points.
   for (const auto& p : pic.special_points) {
     if (!finite(p)) continue;
@@ -411,8 +610,10 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
         << num2(py(v, p[view_axes[v][1]])) << "\" r=\"4.5\"/>\n";
   }
 
-  o << "<text class=\"caption\" x=\"" << gap << "\" y=\"" << num2(top + panel + 34) << "\">"
-    << xml_escape(pic.caption) << "</text>\n";
+  for (size_t i = 0; i < caption_lines.size(); ++i)
+    o << "<text class=\"caption\" x=\"" << gap << "\" y=\""
+      << num2(top + panel + 34 + 18.0 * static_cast<double>(i)) << "\">"
+      << xml_escape(caption_lines[i]) << "</text>\n";
   o << "</svg>\n";
   return o.str();
 }
