@@ -177,6 +177,7 @@ Ball from_rational(const Rational& q) {
 // or an exact orthogonal basis of the plane orthogonal to the cylinder's axis (D = 2).
 struct Frame {
   int D = 3;
+  bool standard = true; ///< E is the standard basis
   std::array<V3<Rational>, 3> E;
 };
 
@@ -331,6 +332,11 @@ Ctx<Ball> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const
   for (size_t i = 0; i < 3; ++i) {
     for (size_t l = 0; l < 3; ++l) {
       C.E[l][i] = from_rational(f.E[l][i]);
+      if (l < i) { // W is symmetric
+        Wi[i][l] = Wi[l][i];
+        Wo[i][l] = Wo[l][i];
+        continue;
+      }
       Wi[i][l] = from_rational(inner.W[i][l]);
       Wo[i][l] = from_rational(outer.W[i][l]);
     }
@@ -340,13 +346,29 @@ Ctx<Ball> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const
     for (int s : {1, -1}) {
       const Chart ch{a, s};
       ChartPoly<Ball>& P = C.cp[static_cast<size_t>(ch.id())];
+      const int slot[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}}; // coefficient of v_x^T M v_y
+      if (f.standard) {
+        // v_x = sgn_x e_idx_x: the forms are signed entries of W (exact, no products).
+        const int idx[3] = {a, free_index(ch, 0), free_index(ch, 1)}, sgn[3] = {s, 1, 1};
+        for (int x = 0; x <= C.k; ++x) {
+          const auto ix = static_cast<size_t>(idx[x]);
+          for (int y = x; y <= C.k; ++y) {
+            const auto iy = static_cast<size_t>(idx[y]);
+            const Ball two(sgn[x] * sgn[y] * (x == y ? 1 : 2));
+            P.Qo[slot[x][y]] = Wo[ix][iy] * two;
+            P.Qi[slot[x][y]] = Wi[ix][iy] * two;
+            P.N[slot[x][y]] = Ball(x == y ? 1 : 0);
+          }
+          P.l[x] = dc[ix] * Ball(sgn[x]);
+        }
+        continue;
+      }
       Ball v[3][3]; // v0 = s E_a, v1, v2 = the free basis vectors
       for (size_t i = 0; i < 3; ++i) {
         v[0][i] = C.E[a][i] * Ball(s);
         for (int j = 0; j < C.k; ++j)
           v[j + 1][i] = C.E[free_index(ch, j)][i];
       }
-      const int slot[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}}; // coefficient of v_x^T M v_y
       for (int x = 0; x <= C.k; ++x)
         for (int y = x; y <= C.k; ++y) {
           Ball qo(0), qi(0), nn(0);
@@ -1068,6 +1090,7 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
                           x[0] * y[1] - x[1] * y[0]};
     };
     f.D = 2;
+    f.standard = false;
     f.E[0] = cross(ax, e);
     f.E[1] = cross(ax, f.E[0]);
     // Nearly unit lengths (exact rational scalings): the charts keep comparable scales, else
