@@ -256,8 +256,44 @@ void tp_mul(TP<I>& out, const TP<I>& A, const TP<I>& B, const Monomials& M, int 
 }
 
 // f(x) = f0 + f1 x~ + f2 x~^2 + f3 x~^3 truncated at degree deg, x~ = x - x(b).
+// The powers x~^2 and x~^3 truncated at degree 3 for a quadratic x~ = L + A without constant
+// term (L linear, A quadratic: what tp_quadratic gives) in two variables: L^2 + 2 L A and
+// L^3, written out (15 products instead of the 22 of two general products, and squares where
+// a coefficient is squared, which are tighter in interval arithmetic).
+template <class I> void quadratic_powers(TP<I>& sq, TP<I>& cu, const TP<I>& x, const Monomials& M) {
+  const I &l0 = x.c[M.index[1][0]], &l1 = x.c[M.index[0][1]];
+  const I &a00 = x.c[M.index[2][0]], &a01 = x.c[M.index[1][1]], &a11 = x.c[M.index[0][2]];
+  for (int a = 0; a < M.count[1]; ++a)
+    sq.c[a] = cu.c[a] = I(0);
+  for (int a = M.count[1]; a < M.count[2]; ++a)
+    cu.c[a] = I(0);
+  const I l00 = square(l0), l11 = square(l1), l01 = l0 * l1;
+  sq.c[M.index[2][0]] = l00;
+  sq.c[M.index[1][1]] = I(2) * l01;
+  sq.c[M.index[0][2]] = l11;
+  sq.c[M.index[3][0]] = I(2) * (l0 * a00);
+  sq.c[M.index[2][1]] = I(2) * (l0 * a01 + l1 * a00);
+  sq.c[M.index[1][2]] = I(2) * (l0 * a11 + l1 * a01);
+  sq.c[M.index[0][3]] = I(2) * (l1 * a11);
+  cu.c[M.index[3][0]] = l00 * l0;
+  cu.c[M.index[2][1]] = I(3) * (l00 * l1);
+  cu.c[M.index[1][2]] = I(3) * (l0 * l11);
+  cu.c[M.index[0][3]] = l11 * l1;
+}
+
 template <class I>
 void tp_func(TP<I>& out, const TP<I>& x, const I (&f)[4], const Monomials& M, int deg) {
+  if (deg == 3 && M.k == 2 && is_zero(x.c[M.index[3][0]]) && is_zero(x.c[M.index[2][1]]) &&
+      is_zero(x.c[M.index[1][2]]) && is_zero(x.c[M.index[0][3]])) {
+    TP<I> sq, cu;
+    quadratic_powers(sq, cu, x, M);
+    out.c[0] = f[0];
+    for (int a = 1; a < M.count[2]; ++a)
+      out.c[a] = f[1] * x.c[a] + f[2] * sq.c[a];
+    for (int a = M.count[2]; a < M.count[3]; ++a)
+      out.c[a] = f[1] * x.c[a] + f[2] * sq.c[a] + f[3] * cu.c[a];
+    return;
+  }
   TP<I> xt, sq;
   xt.c[0] = I(0);
   for (int a = 1; a < M.count[deg]; ++a)
@@ -1139,7 +1175,11 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
         scale = std::max(scale, std::fabs(x.G));
         grid.push_back(x);
       }
-  std::sort(grid.begin(), grid.end(), [](const Point& x, const Point& y) { return x.G < y.G; });
+  // Only the best three seed Newton.
+  std::partial_sort(grid.begin(),
+                    grid.begin() +
+                        std::min<std::ptrdiff_t>(3, static_cast<std::ptrdiff_t>(grid.size())),
+                    grid.end(), [](const Point& x, const Point& y) { return x.G < y.G; });
   // Clearly negative somewhere: the inner solid pokes out (wrong order, or not nested).
   if (!(grid.front().G > -1e-9 * scale)) return std::nullopt;
   Point best = grid.front();
