@@ -2,6 +2,8 @@
 
 #include "surfcert/algebra/arb.hpp"
 
+#include <flint/fmpz_poly_factor.h>
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -247,6 +249,38 @@ std::optional<RootSeparation> isolate_with_arb(const UPolyZ& p) {
 
 } // namespace
 
+namespace {
+
+// Separators from exact rational roots when p (square-free, k real roots) splits into linear
+// factors over Q; nullopt otherwise. Pencils of concentric spheres of radii 1e300 and 1 have
+// the roots 1 and 1e600: beyond the double range of the float guess, and ~2000 bisections
+// deep for CGAL's Descartes (milliseconds), while factoring a quadratic or quartic is cheap.
+std::optional<std::vector<Rational>> rational_root_separators(const UPolyZ& p, long k) {
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor(fac, p.raw());
+  std::vector<Rational> roots;
+  for (slong i = 0; i < fac->num; ++i) {
+    const fmpz_poly_struct* f = fac->p + i;
+    if (fmpz_poly_degree(f) != 1) break;
+    Rational r;
+    fmpq_set_fmpz_frac(r.raw_mut(), f->coeffs + 0, f->coeffs + 1); // root -c0/c1
+    fmpq_neg(r.raw_mut(), r.raw());
+    roots.push_back(r);
+  }
+  const bool linear = static_cast<slong>(roots.size()) == fac->num;
+  fmpz_poly_factor_clear(fac);
+  if (!linear || static_cast<long>(roots.size()) != k) return std::nullopt;
+  std::sort(roots.begin(), roots.end());
+  std::vector<Rational> s{roots.front() - Rational(1)};
+  for (size_t i = 0; i + 1 < roots.size(); ++i)
+    s.push_back((roots[i] + roots[i + 1]) * Rational(1, 2));
+  s.push_back(roots.back() + Rational(1));
+  return s;
+}
+
+} // namespace
+
 RootSeparation isolate_real_roots(const UPolyZ& p) {
   if (p.degree() >= 12)
     if (auto s = isolate_with_arb(p)) return *s;
@@ -306,6 +340,11 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
       return out;
     }
   }
+  if (p.degree() <= 4)
+    if (auto s = rational_root_separators(p, k); s && separators_certify(p, *s, k)) {
+      out.separators = std::move(*s); // exact roots: CGAL not needed
+      return out;
+    }
   out = isolate_real_roots_cgal(p);
   out.used_fallback = true;
   if (!separators_certify(p, out.separators, k))

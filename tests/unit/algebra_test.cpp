@@ -11,6 +11,8 @@
 #include <flint/fmpq_mat.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdlib>
 #include <random>
 
@@ -143,6 +145,17 @@ TEST(RealRoots, RootsOfHugeDynamicRange) {
     // Each factor's root lies in its own gap: exact signs of p at the separators alternate.
     for (size_t i = 0; i + 1 < s.separators.size(); ++i)
       EXPECT_EQ(p.sign_at(s.separators[i]) * p.sign_at(s.separators[i + 1]), -1) << ctx;
+    // And the known roots -c0/c1, sorted, lie one per gap (degree <= 4 takes the exact
+    // rational-root route, higher degrees the others).
+    std::vector<Rational> roots;
+    for (size_t i = 0; i < n; ++i)
+      roots.push_back(-Rational(factors[i].first) / Rational(factors[i].second));
+    std::sort(roots.begin(), roots.end());
+    ASSERT_EQ(s.separators.size(), roots.size() + 1) << ctx;
+    for (size_t i = 0; i < roots.size(); ++i) {
+      EXPECT_LT(s.separators[i], roots[i]) << ctx << " root " << i;
+      EXPECT_LT(roots[i], s.separators[i + 1]) << ctx << " root " << i;
+    }
   }
 }
 
