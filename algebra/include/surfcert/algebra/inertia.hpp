@@ -29,7 +29,7 @@ struct Inertia {
 /// Descartes on mu^4 + c3 mu^3 + c2 mu^2 + c1 mu + c0 given the signs s[k] = sign(c_k).
 Inertia inertia_from_charpoly_signs(const int s[4]);
 
-/// Exact, by Descartes on the characteristic polynomial (FLINT fmpz_mat_charpoly).
+/// Exact, by Descartes on the characteristic polynomial (FLINT's Berkowitz charpoly).
 Inertia inertia_descartes(const core::Mat4& m);
 
 /// Exact, by symmetric congruence elimination over Q (independent second route).

@@ -18,11 +18,12 @@
 // - a float grid and Newton search only picks a direction; G there is a certified upper bound;
 // - branch and bound in outward-rounded double intervals (CGAL::Interval_nt): per box a cubic
 //   Taylor model of G at the box centre with a rigorous remainder drops boxes above the upper
-//   bound, derivative enclosures drop boxes without critical point, and the Krawczyk test
-//   proves the boxes left to hold exactly one critical point;
-// - each proven box that can hold the minimum is contracted in Arb (Krawczyk / interval
-//   Newton, quadratic convergence) at bits_for(digits + 10) until G there is enclosed to the
-//   relative width 10^-digits.
+//   bound (the children of a split box first by their parent's model, valid on them too),
+//   derivative enclosures drop boxes without critical point, and the Krawczyk test proves the
+//   boxes left to hold exactly one critical point;
+// - each proven box that can hold the minimum is contracted (Krawczyk / interval Newton,
+//   quadratic convergence), first in double intervals, then in Arb at bits_for(digits + 10)
+//   until G there is enclosed to the relative width 10^-digits.
 // d is the least of those critical values: every minimizer is a critical point, and every
 // dropped box has G above a genuine value of G on it, or no critical point. Every critical
 // direction whose enclosure meets the optimal one is a reported minimizer (their equality is not
