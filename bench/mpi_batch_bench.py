@@ -11,6 +11,7 @@ usage: mpi_batch_bench.py SURFCERT [--fast N] [--medium N] [--slow K] [--slow-ms
 import argparse
 import os
 import random
+import resource
 import shutil
 import subprocess
 import tempfile
@@ -23,19 +24,35 @@ def mpirun(n):
     return [MPIRUN, "--allow-run-as-root", "--oversubscribe", "-n", str(n)]
 
 
-def wall(cmd, stdin_path):
-    """Seconds of one run of cmd with stdin from stdin_path (stdout discarded)."""
+def cpu_children():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def run_timed(cmd, stdin_path):
+    """(wall seconds, CPU seconds of every process of the run) of cmd, stdin from stdin_path."""
     with open(stdin_path, "rb") as f:
+        c0 = cpu_children()
         t0 = time.perf_counter()
         p = subprocess.run(cmd, stdin=f, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         t = time.perf_counter() - t0
+        c = cpu_children() - c0
     if p.returncode not in (0, 3):
         raise SystemExit("failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr.decode()))
-    return t
+    return t, c
+
+
+def wall(cmd, stdin_path):
+    return run_timed(cmd, stdin_path)[0]
 
 
 def best(cmd, path, repeat):
     return min(wall(cmd, path) for _ in range(repeat))
+
+
+def best_pair(cmd, path, repeat):
+    """The run of least wall time: (wall, cpu)."""
+    return min(run_timed(cmd, path) for _ in range(repeat))
 
 
 def static_split(binary, lines, parts, tmp):
@@ -90,20 +107,28 @@ def main():
                      "medium.jsonl")
     empty = os.path.join(tmp, "empty.jsonl")
     open(empty, "w").close()
+    start = {n: best(mpirun(n) + [b, "batch", "--mpi"], empty, a.repeat) for n in (1, 2, 4)}
     print("mpirun start and end alone (empty input): 1 rank %.2f s, 2 ranks %.2f s, 4 ranks %.2f s"
-          % tuple(best(mpirun(n) + [b, "batch", "--mpi"], empty, a.repeat) for n in (1, 2, 4)))
+          % (start[1], start[2], start[4]))
 
-    print("\nthroughput (lines/s; wall of the whole run; ranks beyond 2 are oversubscribed:"
-          " 2 cores, rank 0 schedules, ranks 1.. compute with --threads 1):")
-    print("%-34s %10s %10s" % ("", "classify", "distance"))
-    rows = [("single-process batch --threads 1", [b, "batch", "--threads", "1"]),
-            ("single-process batch --threads 2", [b, "batch", "--threads", "2"])]
+    print("\nthroughput: lines/s over the whole run's wall time (in brackets: over the wall time"
+          " minus mpirun's start and end alone). Ranks beyond 2 are oversubscribed (2 cores);"
+          " rank 0 schedules, ranks 1.. compute with --threads 1; -n 1: rank 0 computes.")
+    print("CPU: milliseconds of CPU (every process of the run, mpirun included) per line.")
+    print("%-34s %9s (%6s) %7s %9s (%6s) %7s" % ("", "classify", "net", "CPU ms", "distance",
+                                                "net", "CPU ms"))
+    print("%-34s %9d %16d" % ("lines", len(fast), len(med)))
+    rows = [("single-process batch --threads 1", [b, "batch", "--threads", "1"], 0),
+            ("single-process batch --threads 2", [b, "batch", "--threads", "2"], 0)]
     for n in (1, 2, 4):
-        rows.append(("mpirun -n %d batch --mpi" % n, mpirun(n) + [b, "batch", "--mpi"]))
-    for label, cmd in rows:
-        t1 = best(cmd, fast_p, a.repeat)
-        t2 = best(cmd, med_p, a.repeat)
-        print("%-34s %10.0f %10.1f" % (label, len(fast) / t1, len(med) / t2))
+        rows.append(("mpirun -n %d batch --mpi" % n, mpirun(n) + [b, "batch", "--mpi"], start[n]))
+    for label, cmd, s0 in rows:
+        t1, c1 = best_pair(cmd, fast_p, a.repeat)
+        t2, c2 = best_pair(cmd, med_p, a.repeat)
+        net = lambda n, t: "%6.0f" % (n / (t - s0)) if s0 and t > s0 else "     -"
+        print("%-34s %9.0f (%s) %7.2f %9.1f (%s) %7.1f" % (
+            label, len(fast) / t1, net(len(fast), t1), 1000 * c1 / len(fast),
+            len(med) / t2, net(len(med), t2), 1000 * c2 / len(med)))
 
     # Heavy tail: the distance lines with a few slow lines at random places.
     rnd = random.Random(7)

@@ -599,7 +599,12 @@ BatchStats run_batch_mpi(int out_fd, const MpiBatchOptions& options, bool* is_ro
   *is_root = rank == 0;
   BatchStats st;
   if (rank != 0) {
-    mpi_batch::run_worker(options);
+    try {
+      mpi_batch::run_worker(options);
+    } catch (const std::exception& e) {
+      std::cerr << "surfcert: internal error: rank " << rank << ": " << e.what() << "\n";
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
     MPI_Finalize();
     return st;
   }

@@ -209,16 +209,24 @@ bool LineWorker::poll(std::vector<WorkAnswer>& answers, std::vector<long>& lost)
   for (size_t i = before; i < answers.size(); ++i) {
     held_.erase(answers[i].no);
     mean_micros_ = 0.8 * mean_micros_ + 0.2 * answers[i].micros;
+    answered_ = true;
   }
   if (!alive) {
     // Answers the child wrote before it died were taken above; the rest are lost.
     child_->take(answers);
     for (size_t i = before; i < answers.size(); ++i)
       held_.erase(answers[i].no);
+    // A child that keeps dying before it answers anything (cannot start, e.g. the executable
+    // is gone) would be started again forever: that ends the worker instead.
+    silent_deaths_ = answers.size() > before || answered_ ? 0 : silent_deaths_ + 1;
+    if (silent_deaths_ >= 3)
+      throw std::runtime_error("batch --mpi: the compute child (" + command_[0] +
+                               " batch --mpi-child) died three times without answering a line");
     lost.insert(lost.end(), held_.begin(), held_.end());
     held_.clear();
     child_.reset();
     child_ = std::make_unique<ComputeChild>(command_);
+    answered_ = false;
   }
   return answers.size() > before || lost.size() > lost_before;
 }

@@ -88,6 +88,8 @@ private:
   std::unique_ptr<ComputeChild> child_;
   std::set<long> held_;
   double mean_micros_ = 5000; ///< moving mean of the lines' compute times
+  bool answered_ = false;     ///< the current child has answered a line
+  int silent_deaths_ = 0;     ///< children in a row that died without answering a line
 };
 
 } // namespace surfcert::app::mpi_batch
