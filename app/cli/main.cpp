@@ -489,9 +489,11 @@ int cmd_batch_mpi(const Opts& o, int out_fd) {
   if (!root) return 0;
   print_batch_summary(st);
   // Counts as key=value (docs/cli.md): from the checkpoint, sent again after their compute
-  // process died, lost twice (internal error lines), run again with --retry-undecided.
+  // process died, lost twice (internal error lines), run again with --retry-undecided, given
+  // back unstarted by a worker whose threads were all on slow lines.
   std::cerr << "surfcert batch --mpi: resumed=" << rep.resumed << " retried=" << rep.retried
-            << " lost_twice=" << rep.lost_twice << " second_pass=" << rep.second_pass << "\n";
+            << " lost_twice=" << rep.lost_twice << " second_pass=" << rep.second_pass
+            << " returned=" << rep.returned << "\n";
   return batch_exit_code(st);
 }
 

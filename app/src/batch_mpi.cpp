@@ -4,7 +4,8 @@
 // Messages (MPI_BYTE, each sent with MPI_Isend so that a worker and rank 0 sending to each
 // other at once never wait on each other):
 //   worker -> 0, kReport: how many lines it wants now (0: none), the answers completed since
-//     its last report, and the lines its compute child lost by dying;
+//     its last report, the lines its compute child lost by dying, and the lines it gives back
+//     unstarted (every thread of its child is on a slow line);
 //   0 -> worker, kWork: a group of lines (line number, text); kStop: the run is over.
 // A worker has at most one request open; rank 0 answers it as soon as it has lines.
 #include "surfcert/app/batch_mpi.hpp"
@@ -236,7 +237,13 @@ public:
     return out;
   }
 
-  void on_answers(int w, std::vector<WorkAnswer>& answers, const std::vector<long>& lost) {
+  /// A worker's answers, the lines its compute child lost by dying, and the lines it gave
+  /// back unstarted (they go first to the next worker that asks).
+  void on_answers(int w, std::vector<WorkAnswer>& answers, const std::vector<long>& lost,
+                  const std::vector<long>& returned) {
+    for (auto it = returned.rbegin(); it != returned.rend(); ++it)
+      if (open_.count(*it)) fresh_.push_front(*it);
+    report_.returned += static_cast<long>(returned.size());
     for (WorkAnswer& a : answers) {
       auto it = open_.find(a.no);
       if (it == open_.end()) continue; // already answered (cannot happen: each line has one holder)
@@ -442,13 +449,14 @@ private:
 void run_single(BatchMaster& master, const MpiBatchOptions& o) {
   LineWorker lw(o.child_command, o.threads);
   std::vector<WorkAnswer> answers;
-  std::vector<long> lost;
+  std::vector<long> lost, returned;
   for (;;) {
     master.pump_input();
     answers.clear();
     lost.clear();
-    bool progressed = lw.poll(answers, lost);
-    if (progressed) master.on_answers(0, answers, lost);
+    returned.clear();
+    bool progressed = lw.poll(answers, lost, returned);
+    if (progressed) master.on_answers(0, answers, lost, returned);
     if (const int want = lw.want(); want > 0) {
       std::vector<WorkLine> lines = master.take_lines(0, want);
       progressed = progressed || !lines.empty();
@@ -486,8 +494,11 @@ void run_root(BatchMaster& master, int size) {
       std::vector<long> lost(static_cast<size_t>(u.i64()));
       for (long& l : lost)
         l = u.i64();
+      std::vector<long> returned(static_cast<size_t>(u.i64()));
+      for (long& l : returned)
+        l = u.i64();
       if (asked > 0) want[static_cast<size_t>(w)] = asked;
-      master.on_answers(w, answers, lost);
+      master.on_answers(w, answers, lost, returned);
       progressed = true;
     }
     for (int w = 1; w < size; ++w) {
@@ -525,15 +536,15 @@ void run_worker(const MpiBatchOptions& o) {
   Backoff backoff;
   bool requested = false;
   std::vector<WorkAnswer> outbox;
-  std::vector<long> lost;
+  std::vector<long> lost, returned;
   Clock::time_point oldest;
   for (;;) {
     const size_t had = outbox.size();
-    bool progressed = lw.poll(outbox, lost);
+    bool progressed = lw.poll(outbox, lost, returned);
     if (had == 0 && outbox.size() > 0) oldest = Clock::now();
     const int want = requested ? 0 : lw.want();
     // Answers go back in groups (at most 2 ms late) unless a request or a loss goes anyway.
-    if (want > 0 || !lost.empty() || outbox.size() >= kMaxGroup ||
+    if (want > 0 || !lost.empty() || !returned.empty() || outbox.size() >= kMaxGroup ||
         (!outbox.empty() &&
          (lw.held() == 0 || Clock::now() - oldest >= std::chrono::milliseconds(2)))) {
       std::string buf;
@@ -549,9 +560,13 @@ void run_worker(const MpiBatchOptions& o) {
       put_i64(buf, static_cast<std::int64_t>(lost.size()));
       for (long l : lost)
         put_i64(buf, l);
+      put_i64(buf, static_cast<std::int64_t>(returned.size()));
+      for (long l : returned)
+        put_i64(buf, l);
       sends.send(std::move(buf), 0, kReport);
       outbox.clear();
       lost.clear();
+      returned.clear();
       if (want > 0) requested = true;
       progressed = true;
     }

@@ -184,11 +184,24 @@ LineWorker::LineWorker(const std::vector<std::string>& command, int threads)
     : command_(command), threads_(std::max(1, threads)),
       child_(std::make_unique<ComputeChild>(command)) {}
 
+double LineWorker::stall_micros() const {
+  return std::max(50000.0, 4 * mean_micros_);
+}
+
+bool LineWorker::stalled(Clock::time_point now) const {
+  if (static_cast<int>(in_child_.size()) < threads_) return false;
+  for (const auto& [no, sent] : in_child_)
+    if (std::chrono::duration<double, std::micro>(now - sent).count() < stall_micros())
+      return false;
+  return true;
+}
+
 int LineWorker::want() const {
+  if (stalled(Clock::now())) return 0; // every thread is on a slow line: take nothing more
   // Prefetch: lines worth about 20 ms at the recent pace, at most 16; none for slow lines.
   const int prefetch =
       static_cast<int>(std::clamp(20000.0 / std::max(mean_micros_, 1.0), 0.0, 16.0));
-  const int held = static_cast<int>(held_.size());
+  const int held = static_cast<int>(this->held());
   const int target = threads_ + prefetch;
   // Ask when a thread is idle, or when half the prefetch is used up (so that fast lines come
   // in groups, not one message each).
@@ -196,39 +209,59 @@ int LineWorker::want() const {
   return 0;
 }
 
-void LineWorker::give(std::vector<WorkLine> lines) {
-  for (WorkLine& l : lines) {
-    held_.insert(l.no);
-    child_->send(l);
+void LineWorker::feed() {
+  // One line per thread in the child, two when the lines are fast (so that a thread never
+  // waits for the pipe's round trip); the rest wait here, where they can still be given back.
+  const size_t depth = static_cast<size_t>(threads_) * (mean_micros_ < 2000 ? 2 : 1);
+  const auto now = Clock::now();
+  while (in_child_.size() < depth && !queue_.empty()) {
+    child_->send(queue_.front());
+    in_child_[queue_.front().no] = now;
+    queue_.pop_front();
   }
 }
 
-bool LineWorker::poll(std::vector<WorkAnswer>& answers, std::vector<long>& lost) {
-  const size_t before = answers.size(), lost_before = lost.size();
+void LineWorker::give(std::vector<WorkLine> lines) {
+  for (WorkLine& l : lines)
+    queue_.push_back(std::move(l));
+  feed();
+}
+
+bool LineWorker::poll(std::vector<WorkAnswer>& answers, std::vector<long>& lost,
+                      std::vector<long>& returned) {
+  const size_t before = answers.size(), lost_before = lost.size(),
+               returned_before = returned.size();
   const bool alive = child_->take(answers);
+  if (!alive) child_->take(answers); // the last answers it wrote before it died
   for (size_t i = before; i < answers.size(); ++i) {
-    held_.erase(answers[i].no);
+    in_child_.erase(answers[i].no);
     mean_micros_ = 0.8 * mean_micros_ + 0.2 * answers[i].micros;
     answered_ = true;
   }
   if (!alive) {
-    // Answers the child wrote before it died were taken above; the rest are lost.
-    child_->take(answers);
-    for (size_t i = before; i < answers.size(); ++i)
-      held_.erase(answers[i].no);
     // A child that keeps dying before it answers anything (cannot start, e.g. the executable
     // is gone) would be started again forever: that ends the worker instead.
-    silent_deaths_ = answers.size() > before || answered_ ? 0 : silent_deaths_ + 1;
+    silent_deaths_ = answered_ ? 0 : silent_deaths_ + 1;
     if (silent_deaths_ >= 3)
       throw std::runtime_error("batch --mpi: the compute child (" + command_[0] +
                                " batch --mpi-child) died three times without answering a line");
-    lost.insert(lost.end(), held_.begin(), held_.end());
-    held_.clear();
+    // The lines in the child are lost; those waiting here go to the next child.
+    for (const auto& [no, sent] : in_child_)
+      lost.push_back(no);
+    in_child_.clear();
     child_.reset();
     child_ = std::make_unique<ComputeChild>(command_);
     answered_ = false;
   }
-  return answers.size() > before || lost.size() > lost_before;
+  // Every thread on a slow line: the lines waiting behind them go back to rank 0 (others
+  // answer them meanwhile).
+  if (!queue_.empty() && stalled(Clock::now())) {
+    for (const WorkLine& l : queue_)
+      returned.push_back(l.no);
+    queue_.clear();
+  }
+  feed();
+  return answers.size() > before || lost.size() > lost_before || returned.size() > returned_before;
 }
 
 } // namespace surfcert::app::mpi_batch

@@ -7,7 +7,11 @@
 // is reported lost (answered by nobody) and a new child is started for the next lines.
 // want() is the scheduling rule: a worker asks for as many lines as keep its threads busy
 // plus a prefetch sized so that the prefetched lines take about 20 ms by the recent lines'
-// measured times (0 to 16): fast lines come in groups, slow ones one at a time. No MPI here.
+// measured times (0 to 16): fast lines come in groups, slow ones one at a time. The child
+// gets one line per thread (two while the lines are fast); the prefetched rest waits in the
+// worker, and when every thread of the child is on a slow line those lines are given back to
+// rank 0, so a slow line holds up at most the one line queued behind it in the child. No MPI
+// here.
 #pragma once
 
 #include "surfcert/app/batch_mpi.hpp"
@@ -17,6 +21,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -76,20 +81,28 @@ public:
   /// How many more lines to give now (0: none; see above).
   int want() const;
   void give(std::vector<WorkLine> lines);
-  /// Appends the answers since the last call, and the lines lost by a child that died (a new
-  /// child is then started). True when something was appended.
-  bool poll(std::vector<WorkAnswer>& answers, std::vector<long>& lost);
-  size_t held() const { return held_.size(); }
+  /// Appends the answers since the last call, the lines lost by a child that died (a new
+  /// child is then started), and the lines given back (waiting here while every thread of the
+  /// child is on a slow line). True when something was appended.
+  bool poll(std::vector<WorkAnswer>& answers, std::vector<long>& lost, std::vector<long>& returned);
+  size_t held() const { return queue_.size() + in_child_.size(); }
   void wait_for(std::chrono::microseconds d) { child_->wait_for(d); }
 
 private:
+  using Clock = std::chrono::steady_clock;
+  void feed();
+  /// A line running longer than this (the larger of 50 ms and 4 mean lines) is slow.
+  double stall_micros() const;
+  bool stalled(Clock::time_point now) const;
+
   std::vector<std::string> command_;
   int threads_;
   std::unique_ptr<ComputeChild> child_;
-  std::set<long> held_;
-  double mean_micros_ = 5000; ///< moving mean of the lines' compute times
-  bool answered_ = false;     ///< the current child has answered a line
-  int silent_deaths_ = 0;     ///< children in a row that died without answering a line
+  std::deque<WorkLine> queue_;                 ///< given, not yet sent to the child
+  std::map<long, Clock::time_point> in_child_; ///< sent to the child, and when
+  double mean_micros_ = 5000;                  ///< moving mean of the lines' compute times
+  bool answered_ = false;                      ///< the current child has answered a line
+  int silent_deaths_ = 0; ///< children in a row that died without answering a line
 };
 
 } // namespace surfcert::app::mpi_batch

@@ -12,7 +12,8 @@
 //     `threads` threads, framed lines: run_batch_child). A worker asks rank 0 for work when its
 //     child has room, for groups of 1 to 16 lines sized from the lines' measured times (fast
 //     lines share a message; a slow line holds no queue behind it), so a slow line never
-//     stalls the other workers. With one rank, rank 0 drives a compute child itself.
+//     stalls the other workers: a worker whose every thread is on a slow line gives back the
+//     lines waiting behind them. With one rank, rank 0 drives a compute child itself.
 //   - a compute child that dies (killed, out of memory) loses only the lines it held: each is
 //     retried once on another worker (if any), and a line lost twice is answered with an
 //     "internal" error line; the run completes. (The death of an MPI rank itself ends the job:
@@ -57,6 +58,7 @@ struct MpiBatchReport {
   long retried = 0;     ///< lines lost by a compute child that died, sent again
   long lost_twice = 0;  ///< lines lost twice, answered with an "internal" error line
   long second_pass = 0; ///< lines undecided by their budget, run again (--retry-undecided)
+  long returned = 0;    ///< lines a worker gave back unstarted (its threads on slow lines)
 };
 
 /// Whether this executable was built with MPI (CMake found it).
