@@ -19,9 +19,12 @@
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
+
+using surfcert::core::io::Json;
 
 namespace {
 
@@ -380,5 +383,40 @@ TEST(BatchMpiRetry, BudgetUndecidedLinesGetTheSecondPass) {
   EXPECT_GE(second, 1);
   EXPECT_LE(second, n);
   for (const std::string& p : {gen, in, ck})
+    std::remove(p.c_str());
+}
+
+// The compute child holding a line is killed, and again on the retry: the line is answered
+// with an "internal" error line (its id kept), the run completes with exit code 1.
+TEST(BatchMpiFaults, LineLostTwiceIsAnInternalError) {
+  const std::string in = tmp_path("lost_in"), out = tmp_path("lost_out"),
+                    err = tmp_path("lost_err");
+  std::ofstream(in) << budget_line("slow", 20000) << "\n";
+  const pid_t run =
+      start(mpirun(2) + SURFCERT_BINARY + " batch --mpi <" + in + " >" + out + " 2>" + err);
+  // Each compute child of the worker (rank 1), once it has computed 0.3 s of CPU: then it is
+  // inside the one line (starting takes a few ms).
+  std::set<pid_t> killed;
+  for (int i = 0; i < 12000 && killed.size() < 2; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    for (pid_t p : children_of(run, "surfcert"))
+      if (rank_of(p) == 1)
+        for (pid_t c : children_of(p, "--mpi-child"))
+          if (!killed.count(c) && cpu_ticks(c) >= 30 && kill(c, SIGKILL) == 0) killed.insert(c);
+  }
+  ASSERT_EQ(killed.size(), 2u);
+  EXPECT_EQ(wait_exit(run), 1) << slurp(err);
+  const std::string answer = slurp(out);
+  ASSERT_EQ(std::count(answer.begin(), answer.end(), '\n'), 1) << answer;
+  const Json a = surfcert::core::io::parse_json(answer.substr(0, answer.size() - 1), "answer");
+  EXPECT_EQ(a.find("id")->text(), "slow");
+  EXPECT_EQ(a.find("status")->text(), "error");
+  EXPECT_EQ(a.find("error")->find("kind")->text(), "internal");
+  std::smatch m;
+  const std::string e = slurp(err);
+  ASSERT_TRUE(std::regex_search(e, m, std::regex(R"(retried=([0-9]+) lost_twice=([0-9]+))"))) << e;
+  EXPECT_EQ(std::stol(m[1]), 1);
+  EXPECT_EQ(std::stol(m[2]), 1);
+  for (const std::string& p : {in, out, err})
     std::remove(p.c_str());
 }
