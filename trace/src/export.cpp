@@ -97,64 +97,6 @@ std::string xml_escape(const std::string& s) {
 
 using M4 = std::array<std::array<double, 4>, 4>;
 
-/// Outline of an ellipsoid seen along axis k, as points (u, v) in the view's coordinates
-/// (the two remaining axes in increasing order); nullopt when the projection is not a real
-/// ellipse (it always is for a real ellipsoid).
-std::optional<std::vector<std::array<double, 2>>> silhouette(const core::QuadricMatrix& q, size_t k,
-                                                             int samples) {
-  M4 m{};
-  double s = 0;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      m[i][j] = q(static_cast<int>(i), static_cast<int>(j)).to_double_approx();
-      s = std::max(s, std::fabs(m[i][j]));
-    }
-  if (!(s > 0)) return std::nullopt;
-  for (auto& r : m)
-    for (double& v : r)
-      v /= s;
-  if (m[k][k] == 0) return std::nullopt;
-  std::array<size_t, 3> id{};
-  size_t t = 0;
-  for (size_t i = 0; i < 4; ++i)
-    if (i != k) id[t++] = i; // (u, v, w)
-  double c[3][3];
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      c[i][j] = m[id[i]][id[j]] - m[id[i]][k] * m[k][id[j]] / m[k][k];
-  double a11 = c[0][0], a12 = c[0][1], a22 = c[1][1];
-  double mean = 0.5 * (a11 + a22), diff = 0.5 * (a11 - a22), rad = std::hypot(diff, a12);
-  double mu1 = mean + rad, mu2 = mean - rad;
-  if (!((mu1 > 0) == (mu2 > 0)) || mu1 == 0 || mu2 == 0) return std::nullopt;
-  double w1x, w1y;
-  if (rad == 0) {
-    w1x = 1;
-    w1y = 0;
-  } else if (diff >= 0) {
-    double l = std::hypot(diff + rad, a12);
-    w1x = (diff + rad) / l;
-    w1y = a12 / l;
-  } else {
-    double l = std::hypot(a12, rad - diff);
-    w1x = a12 / l;
-    w1y = (rad - diff) / l;
-  }
-  double w2x = -w1y, w2y = w1x;
-  double l1 = c[0][2] * w1x + c[1][2] * w1y, l2 = c[0][2] * w2x + c[1][2] * w2y;
-  double s1 = -l1 / mu1, s2 = -l2 / mu2;
-  double cc = c[2][2] + l1 * s1 + l2 * s2;
-  if ((cc > 0) == (mu1 > 0) || cc == 0) return std::nullopt;
-  double r1 = std::sqrt(-cc / mu1), r2 = std::sqrt(-cc / mu2);
-  double cx = s1 * w1x + s2 * w2x, cy = s1 * w1y + s2 * w2y;
-  std::vector<std::array<double, 2>> pts;
-  for (int i = 0; i < samples; ++i) {
-    double th = 2 * kPi * i / samples;
-    double a = r1 * std::cos(th), b = r2 * std::sin(th);
-    pts.push_back({cx + a * w1x + b * w2x, cy + a * w1y + b * w2y});
-  }
-  return pts;
-}
-
 /// The conic whose zero set is the outline of q seen along axis k, as a symmetric 3x3 matrix in
 /// the view's (u, v, 1): the Schur complement with respect to k (the silhouette: points where
 /// df/dx_k = 0 on f = 0, projected), or, when f does not depend on x_k (a cylinder along the
@@ -192,6 +134,47 @@ std::optional<std::array<std::array<double, 3>, 3>> view_conic(const core::Quadr
     return std::nullopt;
   }
   return c;
+}
+
+/// Outline of an ellipsoid seen along axis k, as points (u, v) in the view's coordinates
+/// (the two remaining axes in increasing order); nullopt when the projection is not a real
+/// ellipse (it always is for a real ellipsoid).
+std::optional<std::vector<std::array<double, 2>>> silhouette(const core::QuadricMatrix& q, size_t k,
+                                                             int samples) {
+  const auto vc = view_conic(q, k);
+  if (!vc) return std::nullopt;
+  const auto& c = *vc;
+  double a11 = c[0][0], a12 = c[0][1], a22 = c[1][1];
+  double mean = 0.5 * (a11 + a22), diff = 0.5 * (a11 - a22), rad = std::hypot(diff, a12);
+  double mu1 = mean + rad, mu2 = mean - rad;
+  if (!((mu1 > 0) == (mu2 > 0)) || mu1 == 0 || mu2 == 0) return std::nullopt;
+  double w1x, w1y;
+  if (rad == 0) {
+    w1x = 1;
+    w1y = 0;
+  } else if (diff >= 0) {
+    double l = std::hypot(diff + rad, a12);
+    w1x = (diff + rad) / l;
+    w1y = a12 / l;
+  } else {
+    double l = std::hypot(a12, rad - diff);
+    w1x = a12 / l;
+    w1y = (rad - diff) / l;
+  }
+  double w2x = -w1y, w2y = w1x;
+  double l1 = c[0][2] * w1x + c[1][2] * w1y, l2 = c[0][2] * w2x + c[1][2] * w2y;
+  double s1 = -l1 / mu1, s2 = -l2 / mu2;
+  double cc = c[2][2] + l1 * s1 + l2 * s2;
+  if ((cc > 0) == (mu1 > 0) || cc == 0) return std::nullopt;
+  double r1 = std::sqrt(-cc / mu1), r2 = std::sqrt(-cc / mu2);
+  double cx = s1 * w1x + s2 * w2x, cy = s1 * w1y + s2 * w2y;
+  std::vector<std::array<double, 2>> pts;
+  for (int i = 0; i < samples; ++i) {
+    double th = 2 * kPi * i / samples;
+    double a = r1 * std::cos(th), b = r2 * std::sin(th);
+    pts.push_back({cx + a * w1x + b * w2x, cy + a * w1y + b * w2y});
+  }
+  return pts;
 }
 
 /// The zero set of the conic c inside [u0, u1] x [v0, v1] as line segments (marching squares
