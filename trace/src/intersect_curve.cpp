@@ -114,6 +114,20 @@ void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
   }
 }
 
+// The affine special points: isolated ones appended to `isolated`, the others (crunodes,
+// cusps, tangency points on the curve) returned: the tracer passes through them.
+std::vector<Point3> split_special_points(const QsicResult& t, std::vector<Point3>& isolated) {
+  std::vector<Point3> singular;
+  for (const auto& p : t.special_points) {
+    if (p.at_infinity) continue;
+    if (isolated_kind(p.kind))
+      isolated.push_back(p.approx);
+    else
+      singular.push_back(p.approx);
+  }
+  return singular;
+}
+
 bool branches_match(const std::vector<Branch>& branches, int c) {
   std::vector<std::string> got, want = expected_branch_kinds(c);
   for (const auto& br : branches)
@@ -208,24 +222,7 @@ std::vector<Branch> clip_to_box(const QuadricPair& q, const Branch& br, const Bo
   cur.kind = br.kind;
   cur.closed = false;
   auto cut = [&](const V& in, const V& outp, V& y) {
-    double best = 2;
-    size_t fk = 0;
-    double fc = 0;
-    for (size_t k = 0; k < 3; ++k)
-      for (double c : {box.min[k], box.max[k]}) {
-        const double den = outp[k] - in[k];
-        if (den == 0) continue;
-        const double lam = (c - in[k]) / den;
-        if (lam >= 0 && lam <= 1 && lam < best && !(c == box.min[k] ? den > 0 : den < 0)) {
-          best = lam;
-          fk = k;
-          fc = c;
-        }
-      }
-    if (best > 1) return false;
-    for (size_t k = 0; k < 3; ++k)
-      y[k] = in[k] + best * (outp[k] - in[k]);
-    return newton_on_face(q, fk, fc, y) && box.contains(y, 1e-9 * box.diagonal());
+    return face_crossing(q, box, in, outp, y) && box.contains(y, 1e-9 * box.diagonal());
   };
   for (size_t i = 0; i < br.points.size(); ++i) {
     const V& p = br.points[i];
@@ -253,14 +250,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   const QsicResult& t = out.topology;
   const certify::AffineTopology& af = out.affine;
   QuadricPair q(a, b);
-  std::vector<Point3> singular;
-  for (const auto& p : t.special_points) {
-    if (p.at_infinity) continue;
-    if (isolated_kind(p.kind))
-      out.isolated_points.push_back(p.approx);
-    else
-      singular.push_back(p.approx);
-  }
+  std::vector<Point3> singular = split_special_points(t, out.isolated_points);
   const Morphology& m = *t.morphology;
   const bool curve_by_conics = m.conics > 0 || m.lines > 0 || m.cubics > 0;
   std::vector<Branch> conics;
@@ -528,14 +518,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     return out;
   }
   QuadricPair q(a, b);
-  std::vector<Point3> singular;
-  for (const auto& p : t.special_points) {
-    if (p.at_infinity) continue;
-    if (isolated_kind(p.kind))
-      out.isolated_points.push_back(p.approx);
-    else
-      singular.push_back(p.approx);
-  }
+  std::vector<Point3> singular = split_special_points(t, out.isolated_points);
   const int c = t.tu_case;
   if (quartic_case(c)) {
     // Float start points first (cheap); if the branches traced from them do not reproduce the

@@ -255,28 +255,9 @@ public:
   // The segment p -> x leaves the box: the curve's point on the face crossed first (Newton on
   // f = g = 0, x_k = c from the linear interpolation). False when Newton fails.
   bool exit_point(const V& p, const V& x, V& out) const {
-    const Box& b = *opt_.box;
-    double best = 2;
-    size_t face_k = 0;
-    double face_c = 0;
-    for (size_t k = 0; k < 3; ++k)
-      for (double c : {b.min[k], b.max[k]}) {
-        const double den = x[k] - p[k];
-        if (den == 0) continue;
-        const double lam = (c - p[k]) / den;
-        const bool outward = (c == b.min[k]) ? den < 0 : den > 0;
-        if (outward && lam >= 0 && lam <= 1 && lam < best) {
-          best = lam;
-          face_k = k;
-          face_c = c;
-        }
-      }
-    if (best > 1) return false;
-    V y = add(p, mul(best, sub(x, p)));
-    y[face_k] = face_c;
-    if (!newton_on_face(q_, face_k, face_c, y)) return false;
+    V y{};
+    if (!face_crossing(q_, *opt_.box, p, x, y)) return false;
     if (dist(y, p) > 2 * dist(x, p) + 1e-12 * scene_) return false;
-    y[face_k] = face_c;
     out = y;
     return true;
   }
@@ -659,6 +640,32 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
   for (auto& t : traced)
     out.push_back(std::move(t.br));
   return out;
+}
+
+bool face_crossing(const QuadricPair& q, const Box& box, const Point3& in, const Point3& out,
+                   Point3& y) {
+  double best = 2;
+  size_t face_k = 0;
+  double face_c = 0;
+  for (size_t k = 0; k < 3; ++k)
+    for (double c : {box.min[k], box.max[k]}) {
+      const double den = out[k] - in[k];
+      if (den == 0) continue;
+      const double lam = (c - in[k]) / den;
+      const bool outward = (c == box.min[k]) ? den < 0 : den > 0;
+      if (outward && lam >= 0 && lam <= 1 && lam < best) {
+        best = lam;
+        face_k = k;
+        face_c = c;
+      }
+    }
+  if (best > 1) return false;
+  for (size_t k = 0; k < 3; ++k)
+    y[k] = in[k] + best * (out[k] - in[k]);
+  y[face_k] = face_c;
+  if (!newton_on_face(q, face_k, face_c, y)) return false;
+  y[face_k] = face_c;
+  return true;
 }
 
 } // namespace surfcert::trace

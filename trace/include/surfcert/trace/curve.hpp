@@ -114,6 +114,12 @@ std::vector<Point3> box_face_points(const QuadricPair& q, const Box& box);
 /// Newton on f = g = 0, x_k = c from x (x_k is set to c). False when it does not converge.
 bool newton_on_face(const QuadricPair& q, size_t k, double c, Point3& x);
 
+/// Where the segment from `in` (inside the box) to `out` first leaves the box: the curve's
+/// point on that face, by newton_on_face from the segment's crossing (y[k] = c exactly).
+/// False when the segment does not leave through a face or Newton fails.
+bool face_crossing(const QuadricPair& q, const Box& box, const Point3& in, const Point3& out,
+                   Point3& y);
+
 /// Marches along the smooth parts of the curve from the start points, with a step adapted to
 /// curvature and Newton correction, passing through the given singular points along their
 /// tangent directions; closes loops. Each start point lying on an already traced branch is
