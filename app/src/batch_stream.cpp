@@ -3,13 +3,16 @@
 #include <flint/flint.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_pipeline.h>
+#include <tbb/task_group.h>
 #include <tbb/task_scheduler_observer.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <condition_variable>
 #include <csignal>
 #include <cstring>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -33,12 +36,6 @@ public:
   void on_scheduler_exit(bool is_worker) override {
     if (is_worker) flint_cleanup();
   }
-};
-
-struct BatchItem {
-  std::string line;
-  long line_no = 0;
-  BatchLineAnswer answer;
 };
 
 // Writes all of [p, p + n) to fd; false on an error (the rest is then dropped: nobody reads).
@@ -145,7 +142,9 @@ class FdLineReader {
 public:
   FdLineReader(int fd, OutputBuffer& out) : fd_(fd), out_(out), buf_(1 << 16) {}
 
-  bool next(std::string& line) {
+  // The next line; without may_wait, only a line whose bytes have already arrived (else
+  // WouldBlock: the caller hands over the lines it holds before it waits).
+  detail::NextLine next(std::string& line, bool may_wait) {
     for (;;) {
       if (const void* nl = std::memchr(buf_.data() + begin_, '\n', end_ - begin_)) {
         const size_t e = static_cast<size_t>(static_cast<const char*>(nl) - buf_.data());
@@ -154,20 +153,21 @@ public:
         line.reserve(e - begin_ + 64);
         line.assign(buf_.data() + begin_, e - begin_);
         begin_ = e + 1;
-        return true;
+        return detail::NextLine::Line;
       }
       if (eof_) {
-        if (begin_ == end_) return false;
+        if (begin_ == end_) return detail::NextLine::End;
         line.assign(buf_.data() + begin_, end_ - begin_); // the last line has no '\n'
         begin_ = end_;
-        return true;
+        return detail::NextLine::Line;
       }
-      fill();
+      if (!fill(may_wait)) return detail::NextLine::WouldBlock;
     }
   }
 
 private:
-  void fill() {
+  // Reads what is there; false when nothing is there and may_wait is false.
+  bool fill(bool may_wait) {
     // Keep the partial line, make room behind it.
     if (begin_ > 0) {
       std::memmove(buf_.data(), buf_.data() + begin_, end_ - begin_);
@@ -177,6 +177,7 @@ private:
     if (end_ == buf_.size()) buf_.resize(2 * buf_.size());
     pollfd p{fd_, POLLIN, 0};
     const bool ready = ::poll(&p, 1, 0) > 0;
+    if (!ready && !may_wait) return false;
     if (!ready) out_.set_input_idle(true);
     ssize_t n;
     do
@@ -186,9 +187,10 @@ private:
     if (n <= 0) {
       eof_ = true; // end of input (a read error ends it too)
       out_.set_input_idle(true);
-      return;
+      return true;
     }
     end_ += static_cast<size_t>(n);
+    return true;
   }
 
   int fd_;
@@ -254,16 +256,153 @@ private:
 
 namespace detail {
 
-BatchStats run_batch_pipeline(const std::function<bool(std::string& line)>& next_line,
-                              const std::function<void(const BatchLineAnswer&)>& write,
-                              certify::Mode default_mode, const BatchTextAnswer& answer,
-                              int threads, bool ordered,
-                              const std::function<void(const BatchStats&)>& progress) {
+namespace {
+
+// Lines handed from stage to stage together (one TBB token per chunk, not per line: the
+// hand-over cost a few µs per line, as much as a classify answer). A chunk ends at kChunkLines
+// lines, kChunkBytes bytes, the end of input, or where the next line has not arrived yet (a
+// caller waiting for its answer is not held back by a chunk that waits to fill up).
+constexpr size_t kChunkLines = 64;
+constexpr size_t kChunkBytes = 1 << 15;
+
+struct BatchItem {
+  std::string line;
+  long line_no = 0;
+  BatchLineAnswer answer;
+};
+
+struct Chunk {
+  std::vector<BatchItem> items; // the first n are this chunk's; the rest keep their capacity
+  size_t n = 0;
+  long seq = 0;
+  std::atomic<size_t> next{0}; ///< the next line to answer (claimed by fetch_add)
+  std::mutex m;                ///< guards complete and the advance of done
+  std::vector<char> complete;  ///< complete[i]: answer i is complete
+  std::atomic<size_t> done{0}; ///< answers [0, done) are complete
+  size_t written = 0;          ///< answers [0, written) are written (under Writer::m)
+
+  // Answer i is complete: advance done over the complete prefix.
+  void completed(size_t i) {
+    std::lock_guard<std::mutex> lock(m);
+    complete[i] = 1;
+    size_t d = done.load();
+    while (d < n && complete[d])
+      ++d;
+    done.store(d);
+  }
+};
+
+// Chunks for reuse: their strings keep their capacity, so a line costs no allocation.
+class ChunkPool {
+public:
+  Chunk* take() {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      if (!free_.empty()) {
+        Chunk* c = free_.back().release();
+        free_.pop_back();
+        return c;
+      }
+    }
+    return new Chunk();
+  }
+  void give(Chunk* c) {
+    std::fill(c->complete.begin(), c->complete.begin() + static_cast<std::ptrdiff_t>(c->n), 0);
+    c->n = 0;
+    c->next.store(0, std::memory_order_relaxed);
+    c->done.store(0, std::memory_order_relaxed);
+    c->written = 0;
+    std::lock_guard<std::mutex> lock(m_);
+    free_.emplace_back(c);
+  }
+
+private:
+  std::mutex m_;
+  std::vector<std::unique_ptr<Chunk>> free_;
+};
+
+// Writes answers as soon as they may be written: unordered, each when complete; ordered, the
+// complete answers of the oldest chunk not yet written (the head), in order, whichever stage
+// completes them. So a line completed in a chunk is written as it would have been alone (a
+// slow line later in its chunk does not hold it back), and a signal finds it in the output.
+class Writer {
+public:
+  Writer(const std::function<void(const BatchLineAnswer&)>& write, bool ordered,
+         const std::function<void(const BatchStats&)>& progress)
+      : write_(write), progress_(progress), ordered_(ordered) {}
+
+  // Stage 1, in input order: c is in flight.
+  void enter(Chunk* c) {
+    if (!ordered_) return;
+    std::lock_guard<std::mutex> lock(m_);
+    in_flight_.push_back(c);
+  }
+
+  // Stage 2, once answer i of c is complete (c->done already advanced).
+  void answered(Chunk* c, size_t i) {
+    if (!ordered_) {
+      std::lock_guard<std::mutex> lock(m_);
+      write_locked(c->items[i].answer);
+      return;
+    }
+    // seq_cst on both sides (done / head here, head / done in leave()): either this sees c
+    // as the head or leave() sees the new done, so no complete answer is left unwritten.
+    if (head_.load() != c->seq) return;
+    std::lock_guard<std::mutex> lock(m_);
+    write_done_locked(c);
+  }
+
+  // Stage 3, in input order (ordered) once every answer of c is complete.
+  void leave(Chunk* c) {
+    if (!ordered_) return; // every answer was written when complete
+    std::lock_guard<std::mutex> lock(m_);
+    write_done_locked(c);
+    in_flight_.pop_front(); // c: chunks leave in input order
+    head_.store(c->seq + 1);
+    if (!in_flight_.empty()) write_done_locked(in_flight_.front());
+  }
+
+  const BatchStats& stats() const { return st_; }
+
+private:
+  // Ordered: the complete answers of c not yet written (c is the head).
+  void write_done_locked(Chunk* c) {
+    const size_t d = c->done.load();
+    for (; c->written < d; ++c->written)
+      write_locked(c->items[c->written].answer);
+  }
+
+  void write_locked(const BatchLineAnswer& a) {
+    write_(a);
+    ++st_.lines;
+    if (a.status == "error") ++st_.errors;
+    if (a.status == "error" && a.error_kind == "internal") ++st_.internal;
+    if (a.status == "undecided") ++st_.undecided;
+    if (a.status == "certified") ++st_.certified;
+    st_.fallbacks += a.fallback ? 1 : 0;
+    if (progress_) progress_(st_);
+  }
+
+  const std::function<void(const BatchLineAnswer&)>& write_;
+  const std::function<void(const BatchStats&)>& progress_;
+  const bool ordered_;
+  std::mutex m_;
+  std::deque<Chunk*> in_flight_; // ordered: the chunks read and not yet left, oldest first
+  std::atomic<long> head_{0};    // ordered: the seq of in_flight_.front()
+  BatchStats st_;
+};
+
+} // namespace
+
+BatchStats
+run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait)>& next_line,
+                   const std::function<void(const BatchLineAnswer&)>& write,
+                   certify::Mode default_mode, const BatchTextAnswer& answer, int threads,
+                   bool ordered, const std::function<void(const BatchStats&)>& progress) {
   install_flint_abort_handler();
-  BatchStats st;
   if (threads < 1) threads = 1;
-  // --threads N: at most N threads answer lines, and at most 4 N lines are in flight (read,
-  // being answered, or waiting for an earlier line to be written).
+  // --threads N: at most N threads answer lines, and at most 4 N chunks are in flight (read,
+  // being answered, or waiting for an earlier chunk to be written).
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<size_t>(threads));
   // One observer for the process, never destroyed: TBB keeps an internal proxy per observer
@@ -271,50 +410,93 @@ BatchStats run_batch_pipeline(const std::function<bool(std::string& line)>& next
   // reachable.
   static FlintCleanupObserver* const cleanup = new FlintCleanupObserver();
   (void)cleanup;
-  long next_no = 1;
+  ChunkPool pool;
+  Writer writer(write, ordered, progress);
+  long next_no = 1, next_seq = 0;
+  bool ended = false;
   tbb::parallel_pipeline(
       static_cast<size_t>(4 * threads),
-      tbb::make_filter<void, std::shared_ptr<BatchItem>>(
-          tbb::filter_mode::serial_in_order,
-          [&](tbb::flow_control& fc) -> std::shared_ptr<BatchItem> {
-            auto item = std::make_shared<BatchItem>();
-            if (!next_line(item->line)) {
-              fc.stop();
-              return nullptr;
-            }
-            item->line_no = next_no++;
-            return item;
-          }) &
-          tbb::make_filter<std::shared_ptr<BatchItem>, std::shared_ptr<BatchItem>>(
+      tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& fc) -> Chunk* {
+                                       if (ended) {
+                                         fc.stop();
+                                         return nullptr;
+                                       }
+                                       Chunk* c = pool.take();
+                                       size_t bytes = 0;
+                                       while (c->n < kChunkLines && bytes < kChunkBytes) {
+                                         if (c->items.size() == c->n) {
+                                           c->items.emplace_back();
+                                           c->complete.push_back(0);
+                                         }
+                                         BatchItem& item = c->items[c->n];
+                                         // The first line may wait for input; later ones only if
+                                         // already there.
+                                         const NextLine r = next_line(item.line, c->n == 0);
+                                         if (r == NextLine::End) ended = true;
+                                         if (r != NextLine::Line) break;
+                                         item.line_no = next_no++;
+                                         bytes += item.line.size();
+                                         ++c->n;
+                                       }
+                                       if (c->n == 0) {
+                                         pool.give(c);
+                                         fc.stop();
+                                         return nullptr;
+                                       }
+                                       c->seq = next_seq++;
+                                       writer.enter(c);
+                                       return c;
+                                     }) &
+          tbb::make_filter<Chunk*, Chunk*>(
               tbb::filter_mode::parallel,
-              [default_mode, &answer](std::shared_ptr<BatchItem> item) {
-                try { // the per-line guard: nothing escapes into the pipeline
-                  item->answer = answer(item->line, item->line_no, default_mode);
-                } catch (const std::exception& e) {
-                  item->answer = {
-                      core::io::dump(internal_error_line(core::io::Json::null(), e.what())),
-                      "error", "internal", false};
-                } catch (...) {
-                  item->answer = {core::io::dump(internal_error_line(core::io::Json::null(),
-                                                                     "unknown exception")),
-                                  "error", "internal", false};
+              [default_mode, &answer, &writer](Chunk* c) {
+                auto answer_line = [&](size_t i) {
+                  BatchItem& item = c->items[i];
+                  try { // the per-line guard: nothing escapes into the pipeline
+                    item.answer = answer(item.line, item.line_no, default_mode);
+                  } catch (const std::exception& e) {
+                    item.answer = {
+                        core::io::dump(internal_error_line(core::io::Json::null(), e.what())),
+                        "error", "internal", false};
+                  } catch (...) {
+                    item.answer = {core::io::dump(internal_error_line(core::io::Json::null(),
+                                                                      "unknown exception")),
+                                   "error", "internal", false};
+                  }
+                  c->completed(i);
+                  writer.answered(c, i);
+                };
+                // The lines are answered in turn by this thread; a helper task, stolen only by
+                // an idle thread, answers lines of the chunk too (and leaves another helper
+                // behind each line it takes), so a slow line does not hold back the lines
+                // after it in its chunk while a thread is free (unordered output writes them
+                // at once).
+                tbb::task_group helpers;
+                std::function<void()> help = [&] {
+                  for (;;) {
+                    const size_t i = c->next.fetch_add(1);
+                    if (i >= c->n) return;
+                    if (i + 1 < c->n) helpers.run([&] { help(); });
+                    answer_line(i);
+                  }
+                };
+                if (c->n > 1) helpers.run([&] { help(); });
+                for (;;) {
+                  const size_t i = c->next.fetch_add(1);
+                  if (i >= c->n) break;
+                  answer_line(i);
                 }
-                return item;
+                helpers.wait();
+                return c;
               }) &
-          tbb::make_filter<std::shared_ptr<BatchItem>, void>(
-              ordered ? tbb::filter_mode::serial_in_order : tbb::filter_mode::serial_out_of_order,
-              [&](std::shared_ptr<BatchItem> item) {
-                const BatchLineAnswer& a = item->answer;
-                write(a);
-                ++st.lines;
-                if (a.status == "error") ++st.errors;
-                if (a.status == "error" && a.error_kind == "internal") ++st.internal;
-                if (a.status == "undecided") ++st.undecided;
-                if (a.status == "certified") ++st.certified;
-                st.fallbacks += a.fallback ? 1 : 0;
-                if (progress) progress(st);
-              }));
-  return st;
+          tbb::make_filter<Chunk*, void>(ordered ? tbb::filter_mode::serial_in_order
+                                                 : tbb::filter_mode::serial_out_of_order,
+                                         [&](Chunk* c) {
+                                           writer.leave(c);
+                                           pool.give(c);
+                                         }));
+  return writer.stats();
 }
 
 } // namespace detail
@@ -328,7 +510,7 @@ BatchStats process_batch_fd(int in_fd, int out_fd, certify::Mode default_mode,
   if (block) signals.emplace(*block, out);
   FdLineReader in(in_fd, out);
   BatchStats st = detail::run_batch_pipeline(
-      [&](std::string& line) { return in.next(line); },
+      [&](std::string& line, bool may_wait) { return in.next(line, may_wait); },
       [&](const BatchLineAnswer& a) { out.append_line(a.text); }, default_mode, answer,
       options.threads, options.ordered, options.progress);
   out.flush(); // while the signals are still taken

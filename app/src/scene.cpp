@@ -523,7 +523,12 @@ BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode,
     return a;
   };
   return detail::run_batch_pipeline(
-      [&in](std::string& line) { return static_cast<bool>(std::getline(in, line)); },
+      // One line per chunk (never "already there"): a stream cannot say whether its next line
+      // has arrived, and a caller may be waiting for this answer before it sends more.
+      [&in](std::string& line, bool may_wait) {
+        if (!may_wait) return detail::NextLine::WouldBlock;
+        return std::getline(in, line) ? detail::NextLine::Line : detail::NextLine::End;
+      },
       [&out](const BatchLineAnswer& a) {
         out << a.text << '\n';
         out.flush();

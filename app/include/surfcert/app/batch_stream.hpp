@@ -6,7 +6,10 @@
 // (process_batch_line, batch_line.hpp). Contract:
 //   - every input line ('\n'-separated; a last line without '\n' counts) gets exactly one
 //     answer line, in input order when ordered (else as completed); at most `threads` lines
-//     are answered at once and at most 4 * threads are in flight;
+//     are answered at once. Lines travel in chunks (up to 64 lines or 32 KB, cut short where
+//     the next line has not arrived yet) and at most 4 * threads chunks are in flight; an
+//     answer is handed to the output as soon as it and (ordered) every earlier answer are
+//     complete, whether or not the rest of its chunk is;
 //   - an exception escaping the answer function gives that line an "internal" error line;
 //   - on file descriptors, answers are buffered and written (write(2)) when the input has no
 //     more data immediately available (so a caller that sends a line and waits for its answer
@@ -56,13 +59,18 @@ BatchStats process_batch_fd(int in_fd, int out_fd, certify::Mode default_mode,
                             const BatchTextAnswer& answer, const BatchStreamOptions& options);
 
 namespace detail {
-/// The pipeline shared by process_batch and process_batch_fd: next_line returns false at the
-/// end of input; write receives the answers (in input order when ordered).
-BatchStats run_batch_pipeline(const std::function<bool(std::string& line)>& next_line,
-                              const std::function<void(const BatchLineAnswer&)>& write,
-                              certify::Mode default_mode, const BatchTextAnswer& answer,
-                              int threads, bool ordered,
-                              const std::function<void(const BatchStats&)>& progress);
+/// What a line source gives: a line, the end of input, or (asked not to wait) "the next line
+/// has not arrived yet".
+enum class NextLine { Line, End, WouldBlock };
+
+/// The pipeline shared by process_batch and process_batch_fd: next_line(line, may_wait) gives
+/// the next line (with may_wait false it may answer WouldBlock instead of waiting for input);
+/// write receives the answers (in input order when ordered), one call at a time.
+BatchStats
+run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait)>& next_line,
+                   const std::function<void(const BatchLineAnswer&)>& write,
+                   certify::Mode default_mode, const BatchTextAnswer& answer, int threads,
+                   bool ordered, const std::function<void(const BatchStats&)>& progress);
 } // namespace detail
 
 } // namespace surfcert::app
