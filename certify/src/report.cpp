@@ -273,7 +273,7 @@ void append_qsic_topology_envelope(std::string& out, const QsicResult& r) {
     out += k;
     out += "\":";
   };
-  auto text = [&out](const std::string& v) { core::io::append_json_string(out, v); };
+  auto text = [&out](std::string_view v) { core::io::append_json_string(out, v); };
   auto number = [&out](long n) {
     char buf[24];
     out.append(buf, std::to_chars(buf, buf + sizeof buf, n).ptr);

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cstdio>
 #include <set>
+#include <string_view>
 
 namespace surfcert::core::io {
 
@@ -18,7 +19,7 @@ bool is_digit(char c) {
 
 // Length of the well-formed UTF-8 sequence starting at s[i] (1..4), or 0 when the bytes there
 // are not one (overlong forms, surrogates and code points above U+10FFFF are ill-formed).
-std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
   auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
   unsigned char b0 = byte(i);
   if (b0 < 0x80) return 1;
@@ -403,9 +404,21 @@ private:
 
 } // namespace detail
 
-void append_json_string(std::string& out, const std::string& s) {
+void append_json_string(std::string& out, std::string_view s) {
   out += '"';
   for (std::size_t i = 0; i < s.size();) {
+    // A run of bytes written as they are (printable ASCII other than '"' and '\\'): at once.
+    std::size_t e = i;
+    while (e < s.size()) {
+      const auto c = static_cast<unsigned char>(s[e]);
+      if (c < 0x20 || c >= 0x80 || c == '"' || c == '\\') break;
+      ++e;
+    }
+    if (e > i) {
+      out.append(s.data() + i, e - i);
+      i = e;
+      if (i == s.size()) break;
+    }
     auto b = static_cast<unsigned char>(s[i]);
     if (b >= 0x80) {
       std::size_t len = utf8_sequence_length(s, i);

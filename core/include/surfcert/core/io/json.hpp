@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -102,7 +103,7 @@ std::string dump(const Json& v, int indent = -1);
 
 /// Appends the string `s` as dump() writes a string value (quoted and escaped, see above): for
 /// writers that put out JSON text directly and must match dump() byte for byte.
-void append_json_string(std::string& out, const std::string& s);
+void append_json_string(std::string& out, std::string_view s);
 
 /// JSON path of a member: parent + ".key", or parent + "[\"key\"]" when key is not an
 /// identifier ([A-Za-z_][A-Za-z0-9_]*). The root path is "$".
