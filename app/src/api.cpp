@@ -51,17 +51,10 @@ Json triple(const std::array<double, 3>& v, const std::string& path, const char*
 
 // How many radii a shape type takes in the JSON form ("radii"); 0: a sphere ("radius").
 std::size_t shape_radii(const std::string& type) {
-  static const std::pair<const char*, core::ShapeType> kTypes[] = {
-      {"ellipsoid", core::ShapeType::Ellipsoid},
-      {"cylinder", core::ShapeType::Cylinder},
-      {"cone", core::ShapeType::Cone},
-      {"elliptic_paraboloid", core::ShapeType::EllipticParaboloid},
-      {"hyperbolic_paraboloid", core::ShapeType::HyperbolicParaboloid},
-      {"hyperboloid_one_sheet", core::ShapeType::HyperboloidOneSheet},
-      {"hyperboloid_two_sheets", core::ShapeType::HyperboloidTwoSheets}};
-  for (const auto& [name, t] : kTypes)
-    if (type == name) return core::local_form(t).q_sign[2] != 0 ? 3 : 2;
-  return 0; // a sphere, or an unknown type the reader reports
+  const auto t = core::io::shape_type_of_name(type);
+  if (!t || *t == core::ShapeType::Sphere)
+    return 0; // a sphere, or an unknown type the reader reports
+  return core::io::shape_radii_count(*t);
 }
 
 Location option_at(const std::string& key) {

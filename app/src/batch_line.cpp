@@ -133,21 +133,20 @@ std::string_view plain_string(od::value v) {
   return raw.substr(1, raw.size() - 2);
 }
 
-// Each key at most once (the document parser rejects duplicates).
-void mark(unsigned& seen, unsigned bit) {
-  if (seen & bit) throw NotFast{};
-  seen |= bit;
-}
+// The keys of one JSON object met so far, by number: each at most once (the document parser
+// rejects duplicates).
+class Seen {
+public:
+  void mark(unsigned key) {
+    if (has(key)) throw NotFast{};
+    bits_ |= 1u << key;
+  }
+  bool has(unsigned key) const { return (bits_ >> key) & 1u; }
+  bool only(unsigned key) const { return bits_ == 1u << key; }
 
-const std::pair<const char*, core::ShapeType> kShapeTypes[] = {
-    {"sphere", core::ShapeType::Sphere},
-    {"ellipsoid", core::ShapeType::Ellipsoid},
-    {"cylinder", core::ShapeType::Cylinder},
-    {"cone", core::ShapeType::Cone},
-    {"elliptic_paraboloid", core::ShapeType::EllipticParaboloid},
-    {"hyperbolic_paraboloid", core::ShapeType::HyperbolicParaboloid},
-    {"hyperboloid_one_sheet", core::ShapeType::HyperboloidOneSheet},
-    {"hyperboloid_two_sheets", core::ShapeType::HyperboloidTwoSheets}};
+private:
+  unsigned bits_ = 0;
+};
 
 // A surface the fast reader takes: an equation string, {"equation": string}, {"matrix": 4x4
 // doubles} or a quadric shape in doubles ({"type", "center", "radius"/"radii", "rotation":
@@ -157,16 +156,8 @@ core::Surface read_surface_fast(od::value v, const std::string& path, core::io::
   if (type == od::json_type::string)
     return core::io::read_surface(Json::string(std::string(plain_string(v))), "<stdin>", path, &rd);
   if (type != od::json_type::object) throw NotFast{};
-  enum : unsigned {
-    kEq = 1,
-    kMat = 2,
-    kType = 4,
-    kCenter = 8,
-    kRadius = 16,
-    kRadii = 32,
-    kRot = 64
-  };
-  unsigned seen = 0;
+  enum : unsigned { kEq, kMat, kType, kCenter, kRadius, kRadii, kRot };
+  Seen seen;
   std::string equation;
   std::array<std::array<double, 4>, 4> m{};
   std::optional<core::ShapeType> shape;
@@ -179,10 +170,10 @@ core::Surface read_surface_fast(od::value v, const std::string& path, core::io::
     const std::string_view key = get(f.unescaped_key());
     od::value val = f.value();
     if (key == "equation") {
-      mark(seen, kEq);
+      seen.mark(kEq);
       equation = plain_string(val);
     } else if (key == "matrix") {
-      mark(seen, kMat);
+      seen.mark(kMat);
       size_t i = 0;
       for (auto row : get(val.get_array())) {
         if (i == 4) throw NotFast{};
@@ -190,59 +181,57 @@ core::Surface read_surface_fast(od::value v, const std::string& path, core::io::
       }
       if (i != 4) throw NotFast{};
     } else if (key == "type") {
-      mark(seen, kType);
-      const std::string_view t = plain_string(val);
-      for (const auto& [name, st] : kShapeTypes)
-        if (t == name) shape = st;
+      seen.mark(kType);
+      shape = core::io::shape_type_of_name(plain_string(val));
       if (!shape) throw NotFast{};
     } else if (key == "center") {
-      mark(seen, kCenter);
+      seen.mark(kCenter);
       center = literal_doubles<3>(val);
     } else if (key == "radius") {
-      mark(seen, kRadius);
+      seen.mark(kRadius);
       radius = literal_double(val);
     } else if (key == "radii") {
-      mark(seen, kRadii);
+      seen.mark(kRadii);
       // The count depends on the type, which may come later: 2 or 3, checked below.
       for (auto item : get(val.get_array())) {
         if (radii_read == 3) throw NotFast{};
         radii[radii_read++] = literal_double(get(std::move(item)));
       }
     } else if (key == "rotation") {
-      mark(seen, kRot);
-      unsigned rseen = 0;
+      seen.mark(kRot);
+      Seen rseen;
       for (auto rf : get(val.get_object())) {
         od::field g = get(std::move(rf));
         if (get(g.unescaped_key()) != "quaternion") throw NotFast{};
-        mark(rseen, 1);
+        rseen.mark(0);
         quaternion = literal_doubles<4>(g.value());
       }
-      if (rseen != 1) throw NotFast{};
+      if (!rseen.only(0)) throw NotFast{};
     } else {
       throw NotFast{};
     }
   }
-  if (seen == kEq)
+  if (seen.only(kEq))
     return core::io::read_surface(Json::string(equation), "<stdin>",
                                   core::io::json_path_child(path, "equation"), &rd);
-  if (seen == kMat) {
+  if (seen.only(kMat)) {
     auto q = core::io::quadric_of_double_matrix(m, core::io::json_path_child(path, "matrix"), &rd);
     if (!q) throw NotFast{};
     return *q;
   }
-  if (!(seen & kType) || (seen & (kEq | kMat))) throw NotFast{};
+  if (!seen.has(kType) || seen.has(kEq) || seen.has(kMat)) throw NotFast{};
   // The fields a shape of this type allows (read_shape): a sphere its radius, a cylinder its
   // radius or radii, the others their radii.
   const bool sphere = *shape == core::ShapeType::Sphere;
   const bool cylinder = *shape == core::ShapeType::Cylinder;
-  const bool by_radius = seen & kRadius;
-  if ((by_radius && (seen & kRadii)) || (by_radius && !sphere && !cylinder) ||
-      (!by_radius && (!(seen & kRadii) || sphere)))
+  const bool by_radius = seen.has(kRadius);
+  if ((by_radius && seen.has(kRadii)) || (by_radius && !sphere && !cylinder) ||
+      (!by_radius && (!seen.has(kRadii) || sphere)))
     throw NotFast{};
   if (!by_radius && radii_read != core::io::shape_radii_count(*shape)) throw NotFast{};
   auto spec = core::io::double_shape_spec(
       *shape, by_radius ? &radius : nullptr, by_radius ? nullptr : &radii,
-      (seen & kCenter) ? &center : nullptr, (seen & kRot) ? &quaternion : nullptr);
+      seen.has(kCenter) ? &center : nullptr, seen.has(kRot) ? &quaternion : nullptr);
   if (!spec) throw NotFast{};
   return core::QuadricMatrix(*spec);
 }
@@ -270,19 +259,8 @@ FastLine read_fast(const std::string& line, certify::Mode default_mode, double d
     view = simdjson::padded_string_view(padded.data(), padded.size(), padded.capacity());
   }
   od::document doc = get(parser.iterate(view));
-  enum : unsigned {
-    kId = 1,
-    kOp = 2,
-    kA = 4,
-    kB = 8,
-    kMode = 16,
-    kDetail = 32,
-    kBudget = 64,
-    kDigits = 128,
-    kSolid = 256,
-    kTol = 512
-  };
-  unsigned seen = 0;
+  enum : unsigned { kId, kOp, kA, kB, kMode, kDetail, kBudget, kDigits, kSolid, kTol };
+  Seen seen;
   FastLine fl;
   std::string_view detail_text, budget_text, digits_text, tolerance_text;
   core::io::Readings rb;
@@ -292,7 +270,7 @@ FastLine read_fast(const std::string& line, certify::Mode default_mode, double d
     const std::string_view key = get(f.unescaped_key());
     od::value v = f.value();
     if (key == "id") {
-      mark(seen, kId);
+      seen.mark(kId);
       switch (get(v.type())) {
       case od::json_type::number:
         fl.id = number_text(v);
@@ -310,34 +288,34 @@ FastLine read_fast(const std::string& line, certify::Mode default_mode, double d
         throw NotFast{};
       }
     } else if (key == "op") {
-      mark(seen, kOp);
+      seen.mark(kOp);
       fl.q.op = plain_string(v);
       if (fl.q.op != "classify" && fl.q.op != "intersect" && fl.q.op != "distance") throw NotFast{};
     } else if (key == "a") {
-      mark(seen, kA);
+      seen.mark(kA);
       fl.a = read_surface_fast(v, "$.a", fl.readings);
     } else if (key == "b") {
-      mark(seen, kB);
+      seen.mark(kB);
       fl.b = read_surface_fast(v, "$.b", rb);
     } else if (key == "mode") {
-      mark(seen, kMode);
+      seen.mark(kMode);
       auto m = certify::parse_mode(std::string(plain_string(v)));
       if (!m) throw NotFast{};
       default_mode = *m;
     } else if (key == "detail") {
-      mark(seen, kDetail);
+      seen.mark(kDetail);
       detail_text = plain_string(v);
     } else if (key == "budget_ms") {
-      mark(seen, kBudget);
+      seen.mark(kBudget);
       budget_text = number_text(v);
     } else if (key == "digits") {
-      mark(seen, kDigits);
+      seen.mark(kDigits);
       digits_text = number_text(v);
     } else if (key == "solid") {
-      mark(seen, kSolid);
+      seen.mark(kSolid);
       solid = get(v.get_bool());
     } else if (key == "tolerance") {
-      mark(seen, kTol);
+      seen.mark(kTol);
       tolerance_text = number_text(v);
     } else {
       throw NotFast{};
@@ -345,12 +323,12 @@ FastLine read_fast(const std::string& line, certify::Mode default_mode, double d
   }
   // Nothing after the object (the document is exhausted: no location left in it).
   if (doc.current_location().error() != simdjson::OUT_OF_BOUNDS) throw NotFast{};
-  if (!(seen & kOp) || !(seen & kA) || !(seen & kB)) throw NotFast{};
+  if (!seen.has(kOp) || !seen.has(kA) || !seen.has(kB)) throw NotFast{};
   fl.readings.insert(fl.readings.end(), rb.begin(), rb.end());
   BatchQuery& q = fl.q;
   q.mode = default_mode;
   q.detail = certify::detail_for_op(q.op, default_detail);
-  if (seen & kDetail) {
+  if (seen.has(kDetail)) {
     auto d = certify::parse_detail(std::string(detail_text));
     if (!d || !certify::detail_accepted(q.op, *d)) throw NotFast{};
     q.detail = *d;
@@ -361,11 +339,11 @@ FastLine read_fast(const std::string& line, certify::Mode default_mode, double d
   // The scalar fields through the document route's own readers (an error: not fast).
   auto number = [](std::string_view t) { return Json::number_text(std::string(t)); };
   q.budget_ms = default_budget_ms;
-  if (seen & kBudget) q.budget_ms = read_budget(number(budget_text), "<stdin>", "$.budget_ms");
+  if (seen.has(kBudget)) q.budget_ms = read_budget(number(budget_text), "<stdin>", "$.budget_ms");
   if (q.op == "distance") {
-    if (seen & kDigits) q.digits = read_digits(number(digits_text), "<stdin>", "$.digits");
+    if (seen.has(kDigits)) q.digits = read_digits(number(digits_text), "<stdin>", "$.digits");
     q.solid = solid;
-  } else if (q.op == "intersect" && (seen & kTol)) {
+  } else if (q.op == "intersect" && seen.has(kTol)) {
     q.tolerance = read_tolerance(number(tolerance_text), "<stdin>", "$.tolerance");
   }
   return fl;

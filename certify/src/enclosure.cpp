@@ -59,35 +59,44 @@ IMat4 enclose_shape(const core::ShapeSpec& s) {
       for (size_t j = 0; j < 3; ++j)
         inv[i][j] = I(i == j ? 1 : 0);
   }
-  IMat4 t;
-  for (auto& row : t)
-    row.fill(I(0));
+  // T = [[R^T, tc], [0, 1]] with tc = -R^T c; L = [[diag(d), l], [l^T, k]] with l = (0, 0, h).
+  // The products below are those of the plain 4x4 formulas M = T^T (L T) without the terms
+  // that are exact zeros (T's last row, L's zero entries), summed in the same order: adding an
+  // exact zero changes no interval, so the enclosure is the same, at a third of the cost.
+  std::array<I, 3> tc;
   for (size_t i = 0; i < 3; ++i) {
     I acc(0);
-    for (size_t j = 0; j < 3; ++j) {
-      t[i][j] = inv[i][j];
+    for (size_t j = 0; j < 3; ++j)
       acc += inv[i][j] * I(s.center[j]);
-    }
-    t[i][3] = -acc;
+    tc[i] = -acc;
   }
-  t[3][3] = I(1);
-  IMat4 lt, m;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      I acc(0);
-      for (size_t k = 0; k < 4; ++k)
-        acc += local[i][k] * t[k][j];
-      lt[i][j] = acc;
-    }
+  const I h = local[2][3], k = local[3][3];
+  // lt = L T.
+  std::array<std::array<I, 4>, 4> lt;
+  for (size_t i = 0; i < 3; ++i) {
+    const I& d = local[i][i];
+    for (size_t j = 0; j < 3; ++j)
+      lt[i][j] = d * inv[i][j];
+    lt[i][3] = d * tc[i];
+  }
+  lt[2][3] += h; // h * T[3][3] = h
+  for (size_t j = 0; j < 3; ++j)
+    lt[3][j] = h * inv[2][j];
+  lt[3][3] = h * tc[2] + k;
   // Symmetric by construction: compute the upper triangle once and mirror it, so the
   // enclosure is exactly symmetric as the exact matrix is.
-  for (size_t i = 0; i < 4; ++i)
+  IMat4 m;
+  for (size_t i = 0; i < 3; ++i)
     for (size_t j = i; j < 4; ++j) {
       I acc(0);
-      for (size_t k = 0; k < 4; ++k)
-        acc += t[k][i] * lt[k][j];
+      for (size_t q = 0; q < 3; ++q)
+        acc += inv[q][i] * lt[q][j];
       m[i][j] = m[j][i] = acc;
     }
+  I acc(0);
+  for (size_t q = 0; q < 3; ++q)
+    acc += tc[q] * lt[q][3];
+  m[3][3] = acc + lt[3][3];
   return m;
 }
 

@@ -183,24 +183,14 @@ QuadricMatrix read_shape(const Json& v, const std::string& source, const std::st
   const Json& tj = require(v, "type", source, path);
   std::string tpath = json_path_child(path, "type");
   if (!tj.is_string()) throw InputError(at(tj, source, tpath), "a shape name string", describe(tj));
-  static const std::pair<const char*, ShapeType> kTypes[] = {
-      {"sphere", ShapeType::Sphere},
-      {"ellipsoid", ShapeType::Ellipsoid},
-      {"cylinder", ShapeType::Cylinder},
-      {"cone", ShapeType::Cone},
-      {"elliptic_paraboloid", ShapeType::EllipticParaboloid},
-      {"hyperbolic_paraboloid", ShapeType::HyperbolicParaboloid},
-      {"hyperboloid_one_sheet", ShapeType::HyperboloidOneSheet},
-      {"hyperboloid_two_sheets", ShapeType::HyperboloidTwoSheets}};
   const std::string& name = tj.text();
-  const auto* it = std::find_if(std::begin(kTypes), std::end(kTypes),
-                                [&](const auto& t) { return name == t.first; });
-  if (it == std::end(kTypes))
+  const std::optional<ShapeType> found = shape_type_of_name(name);
+  if (!found)
     throw InputError(at(tj, source, tpath),
                      "one of sphere, ellipsoid, cylinder, cone, elliptic_paraboloid, "
                      "hyperbolic_paraboloid, hyperboloid_one_sheet, hyperboloid_two_sheets",
                      "\"" + name + "\"");
-  const ShapeType type = it->second;
+  const ShapeType type = *found;
   const bool takes_radius = type == ShapeType::Sphere;
   const size_t nradii = shape_radii_count(type);
   std::set<std::string> allowed{"type", "center", "rotation"};
@@ -298,6 +288,21 @@ std::optional<ShapeSpec> double_shape_spec(ShapeType type, const double* radius,
     s.rotated = true;
   }
   return s;
+}
+
+std::optional<ShapeType> shape_type_of_name(std::string_view name) {
+  static const std::pair<const char*, ShapeType> kTypes[] = {
+      {"sphere", ShapeType::Sphere},
+      {"ellipsoid", ShapeType::Ellipsoid},
+      {"cylinder", ShapeType::Cylinder},
+      {"cone", ShapeType::Cone},
+      {"elliptic_paraboloid", ShapeType::EllipticParaboloid},
+      {"hyperbolic_paraboloid", ShapeType::HyperbolicParaboloid},
+      {"hyperboloid_one_sheet", ShapeType::HyperboloidOneSheet},
+      {"hyperboloid_two_sheets", ShapeType::HyperboloidTwoSheets}};
+  for (const auto& [n, t] : kTypes)
+    if (name == n) return t;
+  return std::nullopt;
 }
 
 size_t shape_radii_count(ShapeType type) {

@@ -26,6 +26,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -74,6 +75,10 @@ std::optional<QuadricMatrix> quadric_of_matrix(Mat4 a, const std::string& path, 
 /// The same for a matrix of doubles (each read as its exact value).
 std::optional<QuadricMatrix> quadric_of_double_matrix(const std::array<std::array<double, 4>, 4>& m,
                                                       const std::string& path, Readings* readings);
+
+/// The shape type a "type" string names ("sphere", "ellipsoid", ..., "hyperboloid_two_sheets");
+/// nullopt for any other string.
+std::optional<ShapeType> shape_type_of_name(std::string_view name);
 
 /// How many radii a shape type reads: 3 for a sphere's radius and most types, 2 when the
 /// unit shape has no z^2 term (cylinder, paraboloids).
