@@ -407,12 +407,15 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
     if (q.op == "classify" && q.detail == certify::Detail::Topology) {
       const auto& a = std::get<core::QuadricMatrix>(*fl->a);
       const auto& b = std::get<core::QuadricMatrix>(*fl->b);
-      std::optional<certify::QsicResult> r;
-      try {
-        core::BudgetScope budget(q.budget_ms);
-        r = batch_classify(q, a, b);
-      } catch (const core::BudgetExceeded&) {
-      }
+      // Built in place (a QsicResult holds dozens of exact numbers: no default and move).
+      const std::optional<certify::QsicResult> r = [&]() -> std::optional<certify::QsicResult> {
+        try {
+          core::BudgetScope budget(q.budget_ms);
+          return batch_classify(q, a, b);
+        } catch (const core::BudgetExceeded&) {
+          return std::nullopt;
+        }
+      }();
       if (r) {
         ans.fallback = r->exact_fallback;
         ans.status = certify::to_string(r->status);

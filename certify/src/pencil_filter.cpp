@@ -68,21 +68,28 @@ I horner(const std::array<I, 5>& f, double x) {
 
 std::optional<PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& qa,
                                                    const core::QuadricMatrix& qb) {
+  std::optional<PencilFacts> out(std::in_place);
+  if (!analyze_pencil_filtered(qa, qb, *out)) out.reset();
+  return out;
+}
+
+bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb,
+                             PencilFacts& out) {
   CGAL::Protect_FPU_rounding<true> guard; // interval arithmetic needs rounding upwards
   // Enclosures of the exact matrices; for shapes posed in doubles, straight from the doubles
   // (the exact rationals are not formed unless this filter fails).
   const Mat4T<I> a = enclose(qa), b = enclose(qb);
   auto f = algebra::pencil_char_coeffs(a, b);
-  if (isign(f[4]) == 2 || isign(f[4]) == 0) return std::nullopt; // det A ~ 0: exact path re-bases
+  if (isign(f[4]) == 2 || isign(f[4]) == 0) return false; // det A ~ 0: exact path re-bases
   auto q = algebra::quartic_invariants(f);
   int s4 = isign(q.d4);
-  if (s4 == 0 || s4 == 2) return std::nullopt; // possibly a multiple root: exact path
+  if (s4 == 0 || s4 == 2) return false; // possibly a multiple root: exact path
   int k;
   if (s4 < 0) {
     k = 2;
   } else {
     int s3 = isign(q.d3), s2 = isign(q.d2);
-    if (s3 == 2 || s2 == 2) return std::nullopt;
+    if (s3 == 2 || s2 == 2) return false;
     k = (s3 > 0 && s2 > 0) ? 4 : 0;
   }
   // Separators: the critical points of f (roots of the cubic f', found in double) separate
@@ -94,20 +101,19 @@ std::optional<PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& qa
     fd[i] = CGAL::to_double(f[i]);
   double seps[5];
   size_t nsep = separator_candidates(fd, k, seps);
-  if (nsep == 0) return std::nullopt;
+  if (nsep == 0) return false;
   int prev = 0;
   int fsign[5] = {0, 0, 0, 0, 0};
   for (size_t i = 0; i < nsep; ++i) {
-    if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return std::nullopt;
+    if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return false;
     int sg = isign(horner(f, seps[i]));
-    if (sg == 0 || sg == 2 || (i > 0 && sg == prev)) return std::nullopt;
+    if (sg == 0 || sg == 2 || (i > 0 && sg == prev)) return false;
     fsign[i] = sg; // = sign det(s*A - B), reused by Jacobi's rule below
     prev = sg;
   }
   // Indices: Descartes on the interval charpoly of s*A - B (all signs must be certain).
   // The caller holds a and b: the facts of a filtered answer do not copy them (see
   // complete_report_data), to keep the fast path free of big-number copies.
-  PencilFacts out;
   out.indices.reserve(nsep);
   out.samples.reserve(nsep);
   for (size_t si = 0; si < nsep; ++si) {
@@ -137,13 +143,14 @@ std::optional<PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& qa
     int sg[4];
     for (size_t t = 0; t < 4; ++t) {
       sg[t] = isign(c[t]);
-      if (sg[t] == 2) return std::nullopt;
+      if (sg[t] == 2) return false;
     }
     out.indices.push_back(algebra::inertia_from_charpoly_signs(sg).p);
     out.samples.push_back(Rational::exact_from_double(s));
   }
   for (int idx : out.indices)
     if (idx == 0 || idx == 4) out.definite_member = true;
+  out.real_roots.reserve(static_cast<size_t>(k));
   for (int i = 0; i < k; ++i) {
     RootFacts r;
     r.lo = out.samples[static_cast<size_t>(i)];
@@ -156,7 +163,7 @@ std::optional<PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& qa
   }
   out.complex_roots = 4 - k;
   out.root_pattern = k == 4 ? "R1" : (k == 2 ? "R3" : "R2");
-  return out;
+  return true;
 }
 
 void complete_exact_invariants(PencilFacts& facts) {

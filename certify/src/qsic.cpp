@@ -63,11 +63,8 @@ QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix
     r.float_invariants = inv;
     r.status = Status::Uncertified;
   } else {
-    std::optional<PencilFacts> fast;
-    if (mode == Mode::Filtered) fast = analyze_pencil_filtered(a, b);
-    if (fast) {
-      r.facts = std::move(*fast);
-    } else {
+    // The filter writes into r.facts (no moves of the facts' exact members on the fast path).
+    if (!(mode == Mode::Filtered && analyze_pencil_filtered(a, b, r.facts))) {
       r.exact_fallback = mode == Mode::Filtered;
       r.facts = algebra::analyze_pencil_exact(a.matrix(), b.matrix());
     }

@@ -25,6 +25,11 @@ namespace surfcert::certify {
 
 std::optional<algebra::PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& a,
                                                             const core::QuadricMatrix& b);
+/// The same, written into `out` (a default-constructed PencilFacts): true when the filter
+/// decides (out holds the facts), false when it cannot (out is then unspecified). Spares the
+/// fast path the moves of the facts' exact members.
+bool analyze_pencil_filtered(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                             algebra::PencilFacts& out);
 
 struct FloatInvariants {
   double f[5];
