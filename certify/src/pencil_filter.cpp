@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 namespace surfcert::certify {
 
@@ -201,6 +202,18 @@ Inertia float_inertia(const Mat4T<double>& m, double tol) {
   return r;
 }
 
+// The index (positive eigenvalues) of a member at a separator: between roots the member is
+// regular, so no eigenvalue is zero and none is tested against a tolerance. (A zero test on
+// the charpoly's coefficients relative to |member|^4, as before, called a regular but
+// ill-conditioned member singular: the node family in a translated pose has entries ~200 and
+// a smallest eigenvalue ~1e-5 of them between two roots 0.03 apart.)
+int separator_index(const Mat4T<double>& m) {
+  int p = 0;
+  for (double e : eigenvalues(m))
+    p += e > 0 ? 1 : 0;
+  return p;
+}
+
 Mat4T<double> member(double t, const Mat4T<double>& a, const Mat4T<double>& b) {
   Mat4T<double> m;
   for (size_t i = 0; i < 4; ++i)
@@ -249,6 +262,188 @@ double max_abs(const Mat4T<double>& x) {
   return s;
 }
 
+using cd = std::complex<double>;
+
+// f^(d)(x) / d! for f = sum c[i] x^i: the d-th Taylor coefficient of f at x.
+cd taylor_coeff(const std::array<double, 5>& c, int d, cd x) {
+  static const double binom[5][5] = {
+      {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
+  cd r = 0;
+  for (int i = 4; i >= d; --i)
+    r = r * x + binom[i][d] * c[static_cast<size_t>(i)];
+  return r;
+}
+
+// D2, D3, D4, E of the quartic f as symmetric functions of its roots z_i (lead a):
+// D2 = a^2 sum_{i<j} (z_i - z_j)^2, D3 = a^4/2 sum over triples of the product of their three
+// squared differences, D4 = a^6 prod_{i<j} (z_i - z_j)^2, E = -8 a^3 e3(z - mean z). These are
+// the monomial formulas of pencil_poly.hpp (the same polynomials of the coefficients) without
+// their cancellation: the monomial terms reach ~|f|^6 and cancel down to a product of squared
+// root differences, which for clustered roots is below their rounding error.
+algebra::QuarticInvariants<double> invariants_from_roots(double a, const std::vector<cd>& z) {
+  cd sq[4][4];
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      sq[i][j] = (z[i] - z[j]) * (z[i] - z[j]);
+  cd s2 = 0, s3 = 0, s4 = 1, e3 = 0;
+  const cd mean = (z[0] + z[1] + z[2] + z[3]) / 4.0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i + 1; j < 4; ++j) {
+      s2 += sq[i][j];
+      s4 *= sq[i][j];
+      for (size_t k = j + 1; k < 4; ++k) {
+        s3 += sq[i][j] * sq[j][k] * sq[i][k];
+        e3 += (z[i] - mean) * (z[j] - mean) * (z[k] - mean);
+      }
+    }
+  const double a2 = a * a;
+  algebra::QuarticInvariants<double> q;
+  q.d2 = a2 * s2.real();
+  q.d3 = 0.5 * a2 * a2 * s3.real();
+  q.d4 = a2 * a2 * a2 * s4.real();
+  q.e = -8 * a2 * a * e3.real();
+  return q;
+}
+
+// The root structure of f read from its float roots: which roots form one multiple root.
+struct RootClusters {
+  std::string pattern;                      // "R1".."R9", empty when no reading fits
+  std::vector<std::pair<double, int>> real; // real roots (centre, multiplicity), increasing
+  int complex_roots = 0;
+  cd complex_double{0, 0}; // R8: the refined centre of one of the two double complex roots
+};
+
+// A block of m >= 2 float roots is one m-fold root when f is within relative `tol` of a
+// polynomial with an m-fold root at the block's centre c: the Taylor coefficients t_0..t_{m-1}
+// of f at c, against all of them, are at most tol (the backward error of the multiple root).
+// c starts at the block's mean and is refined by Newton on f^(m-1), of which it is a simple
+// root: near an m-fold root f is rounding noise in a band of width ~eps^(1/m) (1e-5 for a
+// triple root), so the mean alone can be off by 1e-6 while the test needs c to working
+// precision. Returns the backward error (infinity when c cannot be found) and c.
+double block_backward_error(const std::array<double, 5>& f, const std::vector<cd>& z,
+                            const std::vector<size_t>& block, cd& centre) {
+  const int m = static_cast<int>(block.size());
+  cd mean = 0;
+  for (size_t i : block)
+    mean += z[i];
+  mean /= static_cast<double>(m);
+  double radius = 0;
+  for (size_t i : block)
+    radius = std::max(radius, std::abs(z[i] - mean));
+  cd c = mean;
+  for (int it = 0; it < 8; ++it) {
+    const cd v = taylor_coeff(f, m - 1, c), dv = static_cast<double>(m) * taylor_coeff(f, m, c);
+    if (v == cd(0) || dv == cd(0)) break;
+    const cd step = v / dv;
+    if (!std::isfinite(step.real()) || !std::isfinite(step.imag())) break;
+    c -= step;
+  }
+  // The float roots of an m-fold root scatter in a band of width ~eps^(1/m), not necessarily
+  // around it (both of a double root's float roots can sit 3e-8 to one side): Newton may move
+  // that far (1e-4 covers a quadruple root), further means it went elsewhere.
+  if (!(std::abs(c - mean) <= 2 * radius + 1e-4 * std::max(1.0, std::abs(mean)))) c = mean;
+  centre = c;
+  // The block must be the roots near c: a spread-out block centred on another multiple root
+  // (0.875 and 1.125 around a double root at 1) passes the Taylor test with the wrong roots.
+  for (size_t i = 0; i < z.size(); ++i)
+    if (std::find(block.begin(), block.end(), i) == block.end() &&
+        !(std::abs(z[i] - c) > 2 * radius))
+      return INFINITY;
+  double low = 0, all = 0;
+  for (int j = 0; j <= 4; ++j) {
+    const double t = std::abs(taylor_coeff(f, j, c));
+    all += t;
+    if (j < m) low += t;
+  }
+  return all > 0 ? low / all : INFINITY;
+}
+
+// The coarsest grouping of the four float roots into multiple roots that the backward-error
+// test accepts (among the 15 set partitions; ties by the smallest error) and that reads as a
+// real quartic's root pattern. The all-simple grouping always passes the test.
+RootClusters cluster_roots(const std::array<double, 5>& f, const std::vector<cd>& z, double tol) {
+  RootClusters best;
+  size_t best_blocks = 5;
+  double best_err = INFINITY;
+  int label[4] = {0, 0, 0, 0};
+  // Restricted growth strings label[0..3] enumerate the set partitions of {0, 1, 2, 3}.
+  for (label[1] = 0; label[1] <= 1; ++label[1])
+    for (label[2] = 0; label[2] <= std::max(label[0], label[1]) + 1; ++label[2])
+      for (label[3] = 0; label[3] <= std::max({label[0], label[1], label[2]}) + 1; ++label[3]) {
+        const int nb = std::max({label[0], label[1], label[2], label[3]}) + 1;
+        std::vector<std::vector<size_t>> blocks(static_cast<size_t>(nb));
+        for (size_t i = 0; i < 4; ++i)
+          blocks[static_cast<size_t>(label[i])].push_back(i);
+        double err = 0;
+        RootClusters rc;
+        int complex_single = 0, complex_double = 0;
+        bool ok = true;
+        for (const auto& blk : blocks) {
+          cd c = z[blk[0]];
+          double radius = 0;
+          if (blk.size() > 1) {
+            const double e = block_backward_error(f, z, blk, c);
+            if (!(e <= tol)) {
+              ok = false;
+              break;
+            }
+            err = std::max(err, e);
+            for (size_t i : blk)
+              radius = std::max(radius, std::abs(z[i] - c));
+          }
+          // Real when the centre is as near the axis as the block's own spread (a block that
+          // holds a conjugate pair), or a simple root within rounding of it.
+          const bool real = std::fabs(c.imag()) <= radius + 1e-10 * std::max(1.0, std::abs(c));
+          if (real)
+            rc.real.emplace_back(c.real(), static_cast<int>(blk.size()));
+          else if (blk.size() == 1)
+            ++complex_single;
+          else if (blk.size() == 2)
+            ++complex_double, rc.complex_double = c;
+          else
+            ok = false;
+        }
+        if (!ok) continue;
+        std::sort(rc.real.begin(), rc.real.end());
+        std::vector<int> m;
+        for (const auto& r : rc.real)
+          m.push_back(r.second);
+        std::sort(m.rbegin(), m.rend());
+        if (complex_double == 2 && m.empty())
+          rc.pattern = "R8";
+        else if (complex_double != 0)
+          continue;
+        else if (complex_single == 4 && m.empty())
+          rc.pattern = "R2";
+        else if (complex_single == 2 && m == std::vector<int>{1, 1})
+          rc.pattern = "R3";
+        else if (complex_single == 2 && m == std::vector<int>{2})
+          rc.pattern = "R5";
+        else if (complex_single != 0)
+          continue;
+        else if (m == std::vector<int>{1, 1, 1, 1})
+          rc.pattern = "R1";
+        else if (m == std::vector<int>{2, 1, 1})
+          rc.pattern = "R4";
+        else if (m == std::vector<int>{2, 2})
+          rc.pattern = "R6";
+        else if (m == std::vector<int>{3, 1})
+          rc.pattern = "R7";
+        else if (m == std::vector<int>{4})
+          rc.pattern = "R9";
+        else
+          continue;
+        rc.complex_roots = complex_single + 2 * complex_double;
+        const size_t n = blocks.size();
+        if (n < best_blocks || (n == best_blocks && err < best_err)) {
+          best = std::move(rc);
+          best_blocks = n;
+          best_err = err;
+        }
+      }
+  return best;
+}
+
 } // namespace
 
 PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb,
@@ -258,6 +453,28 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
   // do not copy the exact matrices (a float answer never needs them).
   PencilFacts out;
   Mat4T<double> a = approx(qa), b = approx(qb);
+  {
+    // Coincident quadrics (B = tA, or A = 0 or B = 0 exactly): B - tA within tol of zero for
+    // the least-squares t, as the exact path's proportionality test.
+    double aa = 0, ab = 0, bb = 0;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        aa += a[i][j] * a[i][j];
+        ab += a[i][j] * b[i][j];
+        bb += b[i][j] * b[i][j];
+      }
+    // The residual itself, not bb - ab^2/aa: that difference cancels to rounding (~eps bb),
+    // the size of tol^2 bb. A = 0 is proportional to B too.
+    double res = 0;
+    const double t = aa > 0 ? ab / aa : 0;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        res += (b[i][j] - t * a[i][j]) * (b[i][j] - t * a[i][j]);
+    if (aa == 0 || bb == 0 || res <= tol * tol * bb) {
+      out.kind = algebra::PencilKind::Coincident;
+      return out;
+    }
+  }
   auto f = algebra::pencil_char_coeffs(a, b);
   double fs = 0;
   for (double c : f)
@@ -287,39 +504,48 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
     }
     f = algebra::pencil_char_coeffs(a, b);
   }
-  std::array<double, 5> fn;
-  for (size_t i = 0; i < 5; ++i)
+  // The root pattern from the float roots themselves: clusters that are multiple roots within
+  // relative tolerance `tol` (cluster_roots). Not from the signs of D2, D3, D4, E with an
+  // absolute tolerance as seed 002 does: those are polynomials of degree up to 12 in the roots,
+  // so any fixed zero threshold calls a pencil whose four roots lie within ~0.3 of one another
+  // (B near a multiple of A) degenerate, and their monomial formulas, evaluated in double,
+  // cancel terms of ~|f|^6 down to products of squared root differences: at gap 2^-10 from a
+  // node the computed sign of D4 was noise. D2..E are still reported, computed from the roots.
+  std::array<double, 5> fn, fr;
+  double frs = 0;
+  for (size_t i = 0; i < 5; ++i) {
     fn[i] = f[i];
-  auto q = algebra::quartic_invariants(fn);
+    frs = std::max(frs, std::fabs(f[i]));
+  }
+  for (size_t i = 0; i < 5; ++i)
+    fr[i] = f[i] / frs;
+  const std::vector<cd> zroots =
+      algebra::approx_complex_roots(std::vector<double>(fr.begin(), fr.end()));
+  auto q = invariants_from_roots(f[4], zroots);
   for (size_t i = 0; i < 5; ++i)
     inv.f[i] = f[i];
   inv.d2 = q.d2;
   inv.d3 = q.d3;
   inv.d4 = q.d4;
   inv.e = q.e;
+  const RootClusters clusters = cluster_roots(fr, zroots, tol);
+
+  // No grouping reads as a real quartic's pattern only on non-finite or wild float roots: the
+  // seed's signs then.
   auto z = [&](double x) { return std::fabs(x) <= tol ? 0 : (x > 0 ? 1 : -1); };
-  out.root_pattern = algebra::root_pattern_from_signs(z(q.d2), z(q.d3), z(q.d4), z(q.e));
+  out.root_pattern = !clusters.pattern.empty()
+                         ? clusters.pattern
+                         : algebra::root_pattern_from_signs(z(q.d2), z(q.d3), z(q.d4), z(q.e));
   const std::string& rp = out.root_pattern;
   if (rp == "R1" || rp == "R2" || rp == "R3") {
-    // All roots simple: separators as in the filter, indices by Descartes on float charpolys.
+    // All roots simple: separators as in the filter, indices from the eigenvalues' signs.
     int k = rp == "R1" ? 4 : (rp == "R3" ? 2 : 0);
     double seps[5];
     size_t nsep = separator_candidates(fn.data(), k, seps);
     if (nsep == 0) { // fall through to the clustering route below with the same pattern
     } else {
       for (size_t si = 0; si < nsep; ++si) {
-        auto m = member(seps[si], a, b);
-        auto c = algebra::charpoly_coeffs(m);
-        double scale = 0;
-        for (const auto& row : m)
-          for (double v : row)
-            scale = std::max(scale, std::fabs(v));
-        int sg[4];
-        for (size_t t = 0; t < 4; ++t) {
-          double tolk = tol * std::pow(std::max(scale, 1e-300), static_cast<double>(4 - t));
-          sg[t] = std::fabs(c[t]) <= tolk ? 0 : (c[t] > 0 ? 1 : -1);
-        }
-        out.indices.push_back(algebra::inertia_from_charpoly_signs(sg).p);
+        out.indices.push_back(separator_index(member(seps[si], a, b)));
         out.samples.push_back(Rational::exact_from_double(seps[si]));
       }
       for (int idx : out.indices)
@@ -339,62 +565,63 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
       return out;
     }
   }
-  std::array<double, 5> fnorm;
-  for (size_t i = 0; i < 5; ++i)
-    fnorm[i] = f[i] / fs;
-  // Root multiplicities the pattern implies (real ones listed with their multiplicity).
-  std::vector<int> mults; // multiplicities of the real roots, in increasing root order later
-  int complex_roots = 0;
-  if (rp == "R1")
-    mults = {1, 1, 1, 1};
-  else if (rp == "R2")
-    complex_roots = 4;
-  else if (rp == "R3")
-    mults = {1, 1}, complex_roots = 2;
-  else if (rp == "R4")
-    mults = {2, 1, 1};
-  else if (rp == "R5")
-    mults = {2}, complex_roots = 2;
-  else if (rp == "R6")
-    mults = {2, 2};
-  else if (rp == "R7")
-    mults = {3, 1};
-  else if (rp == "R8")
-    complex_roots = 4, out.complex_double_pair = true;
-  else
-    mults = {4};
-  // Approximate roots: cluster the float roots closest to the real axis.
-  std::vector<double> coeffs(fnorm.begin(), fnorm.end());
-  int nreal = 0;
-  for (int m : mults)
-    nreal += m;
-  auto r = algebra::approx_real_roots(coeffs, static_cast<size_t>(nreal));
-  // Group sorted real roots into clusters whose sizes are the multiplicities: try every order
-  // of the multiplicity list and keep the grouping with the smallest spread.
+  // Multiple roots: the real clusters' centres and multiplicities (when the seed's signs
+  // decided the pattern, group the real-most float roots by the smallest spread instead).
   std::vector<int> best;
-  double best_spread = INFINITY;
-  std::sort(mults.begin(), mults.end());
-  do {
-    double spread = 0;
+  std::vector<double> roots;
+  if (!clusters.pattern.empty()) {
+    for (const auto& [centre, m] : clusters.real) {
+      roots.push_back(centre);
+      best.push_back(m);
+    }
+  } else {
+    std::vector<int> mults;
+    if (rp == "R1")
+      mults = {1, 1, 1, 1};
+    else if (rp == "R3")
+      mults = {1, 1};
+    else if (rp == "R4")
+      mults = {2, 1, 1};
+    else if (rp == "R5")
+      mults = {2};
+    else if (rp == "R6")
+      mults = {2, 2};
+    else if (rp == "R7")
+      mults = {3, 1};
+    else if (rp == "R9")
+      mults = {4};
+    int nreal = 0;
+    for (int m : mults)
+      nreal += m;
+    auto r = algebra::approx_real_roots(std::vector<double>(fr.begin(), fr.end()),
+                                        static_cast<size_t>(nreal));
+    double best_spread = INFINITY;
+    std::sort(mults.begin(), mults.end());
+    do {
+      double spread = 0;
+      size_t pos = 0;
+      for (int m : mults) {
+        spread += r[pos + static_cast<size_t>(m) - 1] - r[pos];
+        pos += static_cast<size_t>(m);
+      }
+      if (spread < best_spread) {
+        best_spread = spread;
+        best = mults;
+      }
+    } while (std::next_permutation(mults.begin(), mults.end()));
     size_t pos = 0;
-    for (int m : mults) {
-      spread += r[pos + static_cast<size_t>(m) - 1] - r[pos];
+    for (int m : best) {
+      double s = 0;
+      for (int i = 0; i < m; ++i)
+        s += r[pos + static_cast<size_t>(i)];
+      roots.push_back(s / m);
       pos += static_cast<size_t>(m);
     }
-    if (spread < best_spread) {
-      best_spread = spread;
-      best = mults;
-    }
-  } while (std::next_permutation(mults.begin(), mults.end()));
-  std::vector<double> roots;
-  size_t pos = 0;
-  for (int m : best) {
-    double s = 0;
-    for (int i = 0; i < m; ++i)
-      s += r[pos + static_cast<size_t>(i)];
-    roots.push_back(s / m);
-    pos += static_cast<size_t>(m);
   }
+  int complex_roots = 4;
+  for (int m : best)
+    complex_roots -= m;
+  if (rp == "R8") out.complex_double_pair = true;
   std::vector<double> seps;
   if (roots.empty()) {
     seps.push_back(0.0);
@@ -406,7 +633,7 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
     seps.push_back(roots.back() + span);
   }
   for (double s : seps) {
-    out.indices.push_back(float_inertia(member(s, a, b), tol).p);
+    out.indices.push_back(separator_index(member(s, a, b)));
     out.samples.push_back(Rational::exact_from_double(s));
   }
   for (int idx : out.indices)
@@ -436,14 +663,17 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
     out.real_roots.push_back(std::move(rf));
   }
   if (out.complex_double_pair) {
-    // g = l^2 - s l + p from the clustered complex roots; test g(X) = 0.
-    auto zc = algebra::approx_complex_roots(coeffs);
-    double re = 0, absq = 0;
-    for (auto c : zc) {
-      re += c.real();
-      absq += std::norm(c);
+    // g = l^2 - s l + p from the double complex root c (refined: the means of the float roots
+    // are off by ~1e-8, enough to fail the test); test g(X) = 0.
+    double s = 0, p = 0; // sum and product of the two distinct conjugate roots
+    if (!clusters.pattern.empty()) {
+      s = 2 * clusters.complex_double.real(), p = std::norm(clusters.complex_double);
+    } else {
+      for (auto c : zroots) {
+        s += c.real() / 2;
+        p += std::norm(c) / 4;
+      }
     }
-    double s = re / 2, p = absq / 4; // sum and product of the two distinct conjugate roots
     auto x2 = mul(x, x);
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j)

@@ -169,7 +169,8 @@ Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
     inv.set("D3_approx", str(dbl(fi.d3)));
     inv.set("D4_approx", str(dbl(fi.d4)));
     inv.set("E_approx", str(dbl(fi.e)));
-    inv.set("note", str("float mode: values of f normalised to max |coefficient| = 1"));
+    inv.set("note", str("float mode: of f as printed, computed from its float roots; "
+                        "the root pattern is read from root clusters, not from these signs"));
     res.set("invariants", inv);
   } else if (!f.f.is_zero()) {
     res.set("characteristic_polynomial", str(f.f.to_string("l")));

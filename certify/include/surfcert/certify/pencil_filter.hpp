@@ -11,9 +11,13 @@
 // Otherwise it returns nullopt and the caller falls back to exact arithmetic. Its facts carry
 // exact dyadic separators but no exact f/D values (fill them with complete_exact_invariants).
 //
-// analyze_pencil_float: doubles throughout (facts.a / facts.b left empty), zeros decided with the
-// seed's tolerance 1e-8 on a normalised scale; multiple roots by clustering, ranks and inertias
-// from eigenvalues. Nothing it returns is certified.
+// analyze_pencil_float: doubles throughout (facts.a / facts.b left empty). The root pattern from
+// the float roots of f (Aberth): a cluster of m roots is one m-fold root when f is within
+// relative `tol` (seed 002's 1e-8 by default) of a polynomial with that m-fold root (its Taylor
+// coefficients at the refined cluster centre); indices from the members' eigenvalue signs at
+// separators, ranks and inertias at multiple roots from eigenvalues with `tol`. B = tA within
+// `tol` is coincident. D2, D3, D4, E (reported in `inv`) are computed from the roots. Nothing it
+// returns is certified; away from degeneracy (relative distance >> tol) it should be right.
 #pragma once
 
 #include "surfcert/algebra/pencil.hpp"
