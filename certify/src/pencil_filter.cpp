@@ -316,6 +316,7 @@ struct RootClusters {
 // A block of m >= 2 float roots is one m-fold root when f is within relative `tol` of a
 // polynomial with an m-fold root at the block's centre c: the Taylor coefficients t_0..t_{m-1}
 // of f at c, against all of them, are at most tol (the backward error of the multiple root).
+// f is the balanced polynomial (analyze_pencil_float): its roots are O(1) when A and B are.
 // c starts at the block's mean and is refined by Newton on f^(m-1), of which it is a simple
 // root: near an m-fold root f is rounding noise in a band of width ~eps^(1/m) (1e-5 for a
 // triple root), so the mean alone can be off by 1e-6 while the test needs c to working
@@ -511,16 +512,32 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
   // (B near a multiple of A) degenerate, and their monomial formulas, evaluated in double,
   // cancel terms of ~|f|^6 down to products of squared root differences: at gap 2^-10 from a
   // node the computed sign of D4 was noise. D2..E are still reported, computed from the roots.
+  // The roots are clustered on the balanced pencil (A, sigma B), sigma = |A| / |B| (max
+  // entries), whose roots are sigma times f's: a small ellipsoid inside a large one puts three
+  // roots of f within 1e-3 of 0 and one near 1, which are within 1e-9 of a double root
+  // relative to f's coefficients, though no perturbation of A and B that small merges them.
   std::array<double, 5> fn, fr;
+  double na = 0, nb = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      na = std::max(na, std::fabs(a[i][j]));
+      nb = std::max(nb, std::fabs(b[i][j]));
+    }
+  double sigma = na > 0 && nb > 0 ? na / nb : 1;
+  if (!std::isfinite(std::pow(sigma, 4)) || std::pow(sigma, 4) == 0) sigma = 1;
   double frs = 0;
   for (size_t i = 0; i < 5; ++i) {
     fn[i] = f[i];
-    frs = std::max(frs, std::fabs(f[i]));
+    fr[i] = f[i] * std::pow(sigma, static_cast<double>(4 - i)); // det(l A - sigma B)
+    frs = std::max(frs, std::fabs(fr[i]));
   }
   for (size_t i = 0; i < 5; ++i)
-    fr[i] = f[i] / frs;
-  const std::vector<cd> zroots =
+    fr[i] /= frs;
+  const std::vector<cd> zbal =
       algebra::approx_complex_roots(std::vector<double>(fr.begin(), fr.end()));
+  std::vector<cd> zroots;
+  for (cd x : zbal)
+    zroots.push_back(x / sigma);
   auto q = invariants_from_roots(f[4], zroots);
   for (size_t i = 0; i < 5; ++i)
     inv.f[i] = f[i];
@@ -528,7 +545,10 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
   inv.d3 = q.d3;
   inv.d4 = q.d4;
   inv.e = q.e;
-  const RootClusters clusters = cluster_roots(fr, zroots, tol);
+  RootClusters clusters = cluster_roots(fr, zbal, tol);
+  for (auto& r : clusters.real)
+    r.first /= sigma;
+  clusters.complex_double /= sigma;
 
   // No grouping reads as a real quartic's pattern only on non-finite or wild float roots: the
   // seed's signs then.
@@ -595,6 +615,8 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
       nreal += m;
     auto r = algebra::approx_real_roots(std::vector<double>(fr.begin(), fr.end()),
                                         static_cast<size_t>(nreal));
+    for (double& x : r)
+      x /= sigma;
     double best_spread = INFINITY;
     std::sort(mults.begin(), mults.end());
     do {
