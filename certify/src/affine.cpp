@@ -1,6 +1,7 @@
 // affine_topology: the affine reading of a certified QSIC topology (see affine.hpp).
 #include "surfcert/certify/affine.hpp"
 
+#include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 
@@ -34,16 +35,11 @@ M3 top_left(const core::Mat4& m) {
 }
 
 M3 congruent(const M3& a, const M3& t) { // t^T a t
-  M3 r;
+  std::array<V3, 3> cols;
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) {
-      Rational s;
-      for (size_t k = 0; k < 3; ++k)
-        for (size_t l = 0; l < 3; ++l)
-          s += t[k][i] * a[k][l] * t[l][j];
-      r[i][j] = s;
-    }
-  return r;
+    for (size_t k = 0; k < 3; ++k)
+      cols[i][k] = t[k][i];
+  return algebra::restrict_form(a, cols);
 }
 
 bool is_zero3(const M3& m) {
@@ -564,15 +560,7 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
   col[1][k] = -n[j2] / n[k];
   col[2][3] = Rational(1);
   col[2][k] = -c / n[k];
-  M3 cm;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) {
-      Rational s;
-      for (size_t a = 0; a < 4; ++a)
-        for (size_t b = 0; b < 4; ++b)
-          s += col[i][a] * q[a][b] * col[j][b];
-      cm[i][j] = s;
-    }
+  const M3 cm = algebra::restrict_form(q, col);
   out.computed = true;
   out.points_at_infinity_complete = true;
   if (auto inf = conic_at_infinity(top_left(q))) out.at_infinity_only.push_back(*inf);

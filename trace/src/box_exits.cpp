@@ -6,6 +6,7 @@
 // data; R(s) = Res_t of the two conics (degree <= 4) gives the s of the common points, its
 // near-real roots (Aberth) are completed by the t that zeroes both conics and polished by
 // Newton on f = g = 0 in the face plane.
+#include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/trace/curve.hpp"
 
@@ -41,21 +42,6 @@ Poly sub(const Poly& a, const Poly& b) {
     r[i] -= b[i];
   return r;
 }
-// The conic of m on the face: 3x3 form in (s, t, 1), X = s E0 + t E1 + E2.
-std::array<std::array<double, 3>, 3> face_conic(const M4& m,
-                                                const std::array<std::array<double, 4>, 3>& e) {
-  std::array<std::array<double, 3>, 3> c{};
-  for (size_t a = 0; a < 3; ++a)
-    for (size_t b = 0; b < 3; ++b) {
-      double s = 0;
-      for (size_t i = 0; i < 4; ++i)
-        for (size_t j = 0; j < 4; ++j)
-          s += e[a][i] * m[i][j] * e[b][j];
-      c[a][b] = s;
-    }
-  return c;
-}
-
 double dot3(const Point3& a, const Point3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
@@ -98,7 +84,8 @@ std::vector<Point3> box_face_points(const QuadricPair& q, const Box& box) {
       e[1][j] = cs;
       e[2][k] = c;
       e[2][3] = 1;
-      auto ca = face_conic(q.a, e), cb = face_conic(q.b, e);
+      // The conics on the face: 3x3 forms in (s, t, 1), X = s E0 + t E1 + E2.
+      auto ca = algebra::restrict_form(q.a, e), cb = algebra::restrict_form(q.b, e);
       // Each conic as A2 t^2 + A1(s) t + A0(s).
       auto parts = [](const std::array<std::array<double, 3>, 3>& m, Poly& p2, Poly& p1, Poly& p0) {
         p2 = {m[1][1]};

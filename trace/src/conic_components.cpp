@@ -16,6 +16,7 @@
 #include "surfcert/trace/conics.hpp"
 
 #include "surfcert/algebra/eigen4.hpp"
+#include "surfcert/algebra/form_restriction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -170,18 +171,9 @@ struct PlaneConic {
 /// Restriction of the 4x4 form q to the frame (e1, e2, x0) of a plane: a 3x3 conic in (u, v, 1).
 std::array<std::array<double, 3>, 3> restrict_to_plane(const M4& q, const V3& e1, const V3& e2,
                                                        const V3& x0) {
-  std::array<V4, 3> t = {V4{e1[0], e1[1], e1[2], 0.0}, V4{e2[0], e2[1], e2[2], 0.0},
-                         V4{x0[0], x0[1], x0[2], 1.0}};
-  std::array<std::array<double, 3>, 3> c{};
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j) {
-      double s = 0;
-      for (size_t a = 0; a < 4; ++a)
-        for (size_t b = 0; b < 4; ++b)
-          s += t[i][a] * q[a][b] * t[j][b];
-      c[i][j] = s;
-    }
-  return c;
+  const std::array<V4, 3> t = {V4{e1[0], e1[1], e1[2], 0.0}, V4{e2[0], e2[1], e2[2], 0.0},
+                               V4{x0[0], x0[1], x0[2], 1.0}};
+  return algebra::restrict_form(q, t);
 }
 
 /// Real, non-degenerate conics of the plane p.X = 0 with the quadric qa (or qb). Empty when the
