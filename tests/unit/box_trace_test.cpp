@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace surfcert;
@@ -240,4 +241,129 @@ TEST(BoxTrace, ScaledAndTranslatedCurvesStayOnBothSurfaces) {
   expect_accurate("x^2 + 2y^2 + 4z^2 = 1", "y^2 + z^2 = 1/16", m);
   expect_accurate("x^2 + 2y^2 + 4z^2 = 1", "(x-3/4)^2 + y^2 = 1/16", m);
   expect_accurate("x^2 + y^2 + z^2 = 1", "x^2 + y^2/4 + z^2/4 = 1/2", m);
+}
+
+namespace {
+
+trace::TraceOptions given_box(trace::Point3 lo, trace::Point3 hi) {
+  trace::TraceOptions opt;
+  trace::Box box;
+  box.min = lo;
+  box.max = hi;
+  opt.box = box;
+  return opt;
+}
+
+trace::Point3 plus(const trace::Point3& p, const trace::Point3& t) {
+  return {p[0] + t[0], p[1] + t[1], p[2] + t[2]};
+}
+
+// The exact crossings found, sorted, against the expected ones (each within 1e-12).
+void expect_crossings(const trace::CurveResult& r, std::vector<trace::Point3> want,
+                      const std::string& ctx) {
+  ASSERT_TRUE(r.box_exits.has_value()) << ctx;
+  ASSERT_TRUE(r.box_exits->certified) << ctx << ": " << r.box_exits->reason;
+  std::vector<trace::Point3> got;
+  for (const auto& c : r.box_exits->points)
+    got.push_back(c.approx);
+  ASSERT_EQ(got.size(), want.size()) << ctx;
+  std::sort(got.begin(), got.end());
+  std::sort(want.begin(), want.end());
+  for (size_t i = 0; i < got.size(); ++i)
+    for (size_t k = 0; k < 3; ++k)
+      EXPECT_NEAR(got[i][k], want[i][k], 1e-12) << ctx << " crossing " << i;
+}
+
+} // namespace
+
+// One unbounded branch (the parabola z = x^2 in y = 0) that leaves the box below its vertex:
+// two pieces of one branch, each certified by the exact crossings x = -+sqrt(1/2) at z = 1/2
+// and x = -+sqrt(2) at z = 2. Swapped and translated alike (a translation keeps the box
+// axis-aligned).
+TEST(BoxTrace, BranchCrossingTheBoxTwiceIsCertified) {
+  const double h = std::sqrt(0.5), t = std::sqrt(2.0);
+  const std::vector<trace::Point3> want = {{-h, 0, 0.5}, {h, 0, 0.5}, {-t, 0, 2}, {t, 0, 2}};
+  const trace::Point3 shift{1.5, -1, 1.25};
+  const Rational sx(3, 2), sy(-1), sz(5, 4);
+  const auto m = motion(1, 0, 0, 0, {sx, sy, sz}); // the identity rotation: a translation
+  for (int moved = 0; moved < 2; ++moved)
+    for (int swapped = 0; swapped < 2; ++swapped) {
+      auto a = q("z = x^2 + y^2"), b = q("y = 0");
+      trace::Point3 lo{-2, -1, 0.5}, hi{2, 1, 2};
+      std::vector<trace::Point3> w = want;
+      if (moved) {
+        a = a.congruent(m);
+        b = b.congruent(m);
+        lo = plus(lo, shift);
+        hi = plus(hi, shift);
+        for (auto& p : w)
+          p = plus(p, shift);
+      }
+      if (swapped) std::swap(a, b);
+      const std::string ctx = std::string(moved ? "moved" : "") + (swapped ? " swapped" : "");
+      auto r = trace::intersect_curve(a, b, Mode::Exact, given_box(lo, hi));
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << " " << r.note;
+      ASSERT_TRUE(r.affine.certified()) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, 1) << ctx;
+      expect_crossings(r, w, ctx);
+      int open = 0;
+      std::vector<int> used;
+      for (const auto& br : r.branches) {
+        EXPECT_FALSE(br.closed) << ctx;
+        ++open;
+        ASSERT_EQ(br.exits.size(), 2u) << ctx;
+        used.insert(used.end(), br.exits.begin(), br.exits.end());
+        // Each piece joins a crossing at z = 1/2 to one at z = 2 on the same side of x = 0.
+        const auto& c0 = r.box_exits->points[static_cast<size_t>(br.exits[0])].approx;
+        const auto& c1 = r.box_exits->points[static_cast<size_t>(br.exits[1])].approx;
+        EXPECT_GT((c0[0] - shift[0] * moved) * (c1[0] - shift[0] * moved), 0) << ctx;
+        EXPECT_NEAR(std::fabs(c0[2] - c1[2]), 1.5, 1e-12) << ctx;
+      }
+      EXPECT_EQ(open, 2) << ctx;
+      std::sort(used.begin(), used.end());
+      EXPECT_EQ(used, (std::vector<int>{0, 1, 2, 3})) << ctx;
+    }
+}
+
+// Steinmetz pipes in a box narrower than the curve: each ellipse leaves through x = +-1/2
+// at y = +-1/2, z = +-sqrt(3)/2: eight exact crossings, four open pieces (two per ellipse;
+// the ellipses are loops of the affine topology, so the answer is undecided, but the
+// crossings are certified and exact).
+TEST(BoxTrace, SteinmetzCrossingsInANarrowBox) {
+  auto r = trace::intersect_curve(q("x^2 + z^2 = 1"), q("y^2 + z^2 = 1"), Mode::Exact,
+                                  given_box({-0.5, -2, -2}, {0.5, 2, 2}));
+  const double s = std::sqrt(3.0) / 2;
+  std::vector<trace::Point3> want;
+  for (double x : {-0.5, 0.5})
+    for (double y : {-0.5, 0.5})
+      for (double z : {-s, s})
+        want.push_back({x, y, z});
+  expect_crossings(r, want, "steinmetz");
+  EXPECT_EQ(r.status, certify::Status::Undecided);
+}
+
+// Cylinder x^2 + y^2 = 1 cut by the plane z = x/2 (an ellipse): the face x = -1/2 meets it at
+// y = -+sqrt(3)/2, z = -1/4; a box containing the ellipse has no crossing at all.
+TEST(BoxTrace, CylinderPlaneCrossings) {
+  const double s = std::sqrt(3.0) / 2;
+  auto r = trace::intersect_curve(q("x^2 + y^2 = 1"), q("z = x/2"), Mode::Exact,
+                                  given_box({-0.5, -2, -2}, {2, 2, 2}));
+  expect_crossings(r, {{-0.5, -s, -0.25}, {-0.5, s, -0.25}}, "cut ellipse");
+  auto whole = trace::intersect_curve(q("x^2 + y^2 = 1"), q("z = x/2"), Mode::Exact,
+                                      given_box({-2, -2, -2}, {2, 2, 2}));
+  expect_crossings(whole, {}, "whole ellipse");
+  EXPECT_EQ(whole.status, certify::Status::Certified) << whole.note;
+}
+
+// Non-generic faces are never counted: a face tangent to the curve (the parabola's vertex on
+// z = 0) and a crossing on an edge (the parabola through the edge x = 1, z = 1) leave the
+// crossings undecided, and with them the answer.
+TEST(BoxTrace, TangentFaceAndEdgeCrossingAreUndecided) {
+  for (const auto& [lo, hi] : std::vector<std::pair<trace::Point3, trace::Point3>>{
+           {{-2, -1, 0}, {2, 1, 2}}, {{-1, -1, -1}, {1, 1, 1}}}) {
+    auto r = trace::intersect_curve(q("z = x^2 + y^2"), q("y = 0"), Mode::Exact, given_box(lo, hi));
+    ASSERT_TRUE(r.box_exits.has_value());
+    EXPECT_FALSE(r.box_exits->certified);
+    EXPECT_EQ(r.status, certify::Status::Undecided);
+  }
 }

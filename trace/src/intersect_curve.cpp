@@ -181,6 +181,19 @@ void drop_point_sections(CurveResult& out, int expected_conics, double tol) {
 
 using V = Point3;
 
+// The box widened to short dyadic faces (multiples of 2^-12 of its diagonal's binary order):
+// the exact face conics then have small coefficients.
+Box dyadic_outward(Box b) {
+  int e = 0;
+  std::frexp(b.diagonal(), &e);
+  const double unit = std::ldexp(1.0, e - 12);
+  for (size_t k = 0; k < 3; ++k) {
+    b.min[k] = std::floor(b.min[k] / unit) * unit;
+    b.max[k] = std::ceil(b.max[k] / unit) * unit;
+  }
+  return b;
+}
+
 // The automatic box: the bounding box of the given points, widened on every side by half its
 // diagonal (at least 1e-3 of the points' distance from the origin, and 1 for a single point).
 Box box_around(const std::vector<V>& pts) {
@@ -204,7 +217,7 @@ Box box_around(const std::vector<V>& pts) {
     b.min[k] -= m;
     b.max[k] += m;
   }
-  return b;
+  return dyadic_outward(b);
 }
 
 bool on_face(const Box& b, const V& p, double eps) {
@@ -242,6 +255,54 @@ std::vector<Branch> clip_to_box(const QuadricPair& q, const Branch& br, const Bo
   }
   if (!cur.points.empty()) out.push_back(cur);
   return out;
+}
+
+certify::BoxExits exact_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                              const Box& box) {
+  std::array<core::Rational, 3> lo, hi;
+  for (size_t k = 0; k < 3; ++k) {
+    lo[k] = core::Rational::exact_from_double(box.min[k]);
+    hi[k] = core::Rational::exact_from_double(box.max[k]);
+  }
+  return certify::box_exits(a.matrix(), b.matrix(), lo, hi);
+}
+
+// Matches each end of each open piece with exactly one exact crossing (within tol) and each
+// crossing with exactly one end; sets the pieces' `exits`. Empty string on success, else why.
+std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& ex, double tol) {
+  std::vector<const Point3*> ends;
+  for (auto& br : branches) {
+    br.exits.clear();
+    if (br.closed || br.points.empty()) continue;
+    ends.push_back(&br.points.front());
+    ends.push_back(&br.points.back());
+  }
+  if (ends.size() != ex.points.size())
+    return "traced " + std::to_string(ends.size() / 2) + " open piece(s) in the box; the curve " +
+           "crosses its faces at " + std::to_string(ex.points.size()) + " exact point(s)";
+  auto dist = [](const Point3& p, const Point3& q) {
+    return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                     (p[2] - q[2]) * (p[2] - q[2]));
+  };
+  std::vector<int> of_end(ends.size(), -1);
+  for (size_t c = 0; c < ex.points.size(); ++c) {
+    int hit = -1, hits = 0;
+    for (size_t e = 0; e < ends.size(); ++e)
+      if (dist(*ends[e], ex.points[c].approx) <= tol) {
+        hit = static_cast<int>(e);
+        ++hits;
+      }
+    if (hits != 1 || of_end[static_cast<size_t>(hit)] >= 0)
+      return "a traced end does not match exactly one exact crossing with the box's faces";
+    of_end[static_cast<size_t>(hit)] = static_cast<int>(c);
+  }
+  size_t e = 0;
+  for (auto& br : branches) {
+    if (br.closed || br.points.empty()) continue;
+    br.exits = {of_end[e], of_end[e + 1]};
+    e += 2;
+  }
+  return "";
 }
 
 // Non-ellipsoid pairs: the curve inside a box, checked against the affine topology.
@@ -295,9 +356,9 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   };
   // An automatic box is doubled (at most 6 times) while it shows fewer open pieces than the
   // certified number of unbounded branches: a branch may pass outside the first box.
-  for (int attempt = 0; attempt < 7; ++attempt) {
+  auto trace_at = [&](const Box& in) {
     TraceOptions bopt = opt;
-    bopt.box = box;
+    bopt.box = in;
     out.branches.clear();
     if (curve_by_conics) {
       // Open conics sampled far enough to leave this box.
@@ -307,12 +368,12 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
           out.branches.push_back(br);
           continue;
         }
-        for (auto& piece : clip_to_box(q, br, box))
+        for (auto& piece : clip_to_box(q, br, in))
           out.branches.push_back(std::move(piece));
       }
     } else {
       auto run = [&](std::vector<V> st) {
-        const auto faces = box_face_points(q, box);
+        const auto faces = box_face_points(q, in);
         st.insert(st.end(), faces.begin(), faces.end());
         return march(q, st, singular, bopt);
       };
@@ -326,12 +387,32 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
         out.exact_start_points = true;
       }
     }
+  };
+  for (int attempt = 0; attempt < 7; ++attempt) {
+    trace_at(box);
     if (opt.box || !af.unbounded_branches || count_open() >= *af.unbounded_branches) break;
     for (size_t k = 0; k < 3; ++k) {
       const double c = 0.5 * (box.min[k] + box.max[k]), h = box.max[k] - box.min[k];
       box.min[k] = c - h;
       box.max[k] = c + h;
     }
+  }
+  // The exact crossings with the faces; an automatic box whose faces meet the curve
+  // non-generically (on an edge, tangentially) is widened a little, unevenly, and retraced.
+  out.box_exits = exact_exits(a, b, box);
+  for (int nudge = 1; nudge <= 3 && !opt.box && !out.box_exits->certified; ++nudge) {
+    Box wider = box;
+    for (size_t k = 0; k < 3; ++k) {
+      const double h = box.max[k] - box.min[k];
+      wider.min[k] -= h * 0.0371 * nudge * static_cast<double>(k + 1);
+      wider.max[k] += h * 0.0253 * nudge * static_cast<double>(3 - k);
+    }
+    wider = dyadic_outward(wider);
+    certify::BoxExits ex = exact_exits(a, b, wider);
+    if (!ex.certified) continue;
+    box = wider;
+    trace_at(box);
+    out.box_exits = std::move(ex);
   }
   out.box = box;
   std::vector<Point3> inside;
@@ -357,17 +438,21 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
     why = "the affine topology is not certified";
   else if (!t.special_points_complete)
     why = "special points not all computed exactly";
-  else if (closed != *af.loops || open != *af.unbounded_branches)
+  else if (closed != *af.loops || (!opt.box && open < *af.unbounded_branches))
     why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
           " open branch(es) in the box; the certified affine topology has " +
           std::to_string(*af.loops) + " loop(s) and " + std::to_string(*af.unbounded_branches) +
           " unbounded branch(es)";
   else if (open_off_face > 0)
     why = std::to_string(open_off_face) + " open branch(es) do not end on the box's faces";
+  else if (!out.box_exits->certified)
+    why = "the crossings with the box's faces are not certified: " + out.box_exits->reason;
   else if (static_cast<int>(out.isolated_points.size()) != *af.isolated_points)
     why = std::to_string(out.isolated_points.size()) +
           " isolated point(s) in the box; the affine topology has " +
           std::to_string(*af.isolated_points);
+  else
+    why = match_exits(out.branches, *out.box_exits, 1e-7 * box.diagonal());
   out.matches_topology = why.empty();
   out.status = why.empty() ? Status::Certified : Status::Undecided;
   out.note = why;
@@ -511,6 +596,23 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     local.topology = std::move(out.topology);
     local.affine = std::move(out.affine);
     finish_points(a, b, QuadricPair(a, b), local);
+    if (local.box_exits && local.box) {
+      // The reported box is the translated one moved back in double: its exact crossings are
+      // recomputed on the original pair and matched again (the claim is about this box).
+      local.box_exits = exact_exits(a, b, *local.box);
+      if (local.status == Status::Certified) {
+        const std::string why =
+            local.box_exits->certified
+                ? match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal())
+                : "the crossings with the box's faces are not certified: " +
+                      local.box_exits->reason;
+        if (!why.empty()) {
+          local.status = Status::Undecided;
+          local.matches_topology = false;
+          local.note = why;
+        }
+      }
+    }
     return local;
   }
   if (a.kind() != core::QuadricKind::Ellipsoid && b.kind() != core::QuadricKind::Ellipsoid) {
@@ -616,6 +718,12 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
     Json o = Json::object();
     o.set("kind", Json::string(br.kind));
     o.set("closed", Json::boolean(br.closed));
+    if (!br.exits.empty()) {
+      Json ex = Json::array();
+      for (int i : br.exits)
+        ex.push_back(Json::number_text(std::to_string(i)));
+      o.set("exits", ex);
+    }
     Json pts = Json::array();
     for (const auto& p : br.points)
       pts.push_back(point(p));
@@ -637,6 +745,23 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
     bx.set("min", point(r.box->min));
     bx.set("max", point(r.box->max));
     bx.set("automatic", Json::boolean(r.box_automatic));
+    if (r.box_exits) {
+      // The exact crossings of the curve with the faces: "certified" when complete and each
+      // transversal, off the edges (certify/box_exits.hpp); points are their double values.
+      Json ex = Json::object();
+      ex.set("status", Json::string(r.box_exits->certified ? "certified" : "undecided"));
+      if (r.box_exits->certified) {
+        ex.set("count", Json::number_text(std::to_string(r.box_exits->points.size())));
+        Json pts = Json::array();
+        for (const auto& c : r.box_exits->points)
+          pts.push_back(point(c.approx));
+        ex.set("points", pts);
+      } else {
+        ex.set("count", Json::null());
+        ex.set("reason", Json::string(r.box_exits->reason));
+      }
+      bx.set("exits", ex);
+    }
     res.set("box", bx);
   }
   env.set("result", res);

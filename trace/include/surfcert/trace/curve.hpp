@@ -26,6 +26,9 @@ struct Branch {
   std::string kind; ///< "loop", "figure_eight", "loop_with_cusp", "conic", "line", "double_conic"
   bool closed = true;
   std::vector<Point3> points; ///< for closed branches the first point is not repeated at the end
+  /// Open pieces in a box: the indices, in the exact box crossings (certify/box_exits.hpp),
+  /// of the crossings its two ends were matched with (empty when not matched).
+  std::vector<int> exits;
 };
 
 /// An axis-aligned box: the region in which unbounded curves are traced.

@@ -14,12 +14,18 @@
 // the affine one; for other pairs (regular pencils) the curve is traced inside a box (given in
 // TraceOptions::box, or chosen to contain the special points, the extreme points and every closed
 // loop, with a margin): loops closed, pieces of unbounded branches open with both ends on the box's
-// faces, conics in closed form clipped to the box. There status is Certified only when the affine
-// topology (certify/affine.hpp) is certified and the traced loops, open pieces and isolated points
-// have its counts.
+// faces, conics in closed form clipped to the box.
+// There status is Certified only when the affine topology (certify/affine.hpp) is certified,
+// the traced closed loops and isolated points have its counts, the exact crossings of the
+// curve with the box's faces are certified (certify/box_exits.hpp: complete, transversal, off
+// the edges) and the traced open pieces are exactly half as many, their ends matched one to
+// one with those crossings (so a branch crossing the box twice is two certified pieces); an
+// automatic box must also show at least one piece per unbounded branch. The automatic box has
+// short dyadic faces, moved a little when a face meets the curve non-generically.
 #pragma once
 
 #include "surfcert/certify/affine.hpp"
+#include "surfcert/certify/box_exits.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/trace/curve.hpp"
@@ -45,6 +51,9 @@ struct CurveResult {
   bool exact_start_points = false; ///< the float start points missed a branch: exact ones used
   std::optional<Box> box;          ///< the box the curve was traced in (non-ellipsoid pairs)
   bool box_automatic = false;      ///< chosen by the tracer (not given)
+  /// The exact crossings of the curve with the box's faces (certify/box_exits.hpp), each
+  /// matched with one end of one traced open piece when the answer is certified.
+  std::optional<certify::BoxExits> box_exits;
   std::string note;
 };
 

@@ -1,0 +1,51 @@
+// surfcert::certify::box_exits: the exact points where the intersection curve of two quadrics
+// crosses the faces of an axis-aligned box with rational faces.
+//
+// What a BoxExits represents: when `certified`, `points` is the complete list of the real
+// points of Q_A ∩ Q_B on the box's boundary, each inside the open rectangle of one face, each
+// a smooth point of the curve where the curve crosses the face transversally. Then the curve
+// inside the box is a set of closed loops and exactly points.size() / 2 arcs, each arc ending
+// on two of these points (a traced picture must show that many open pieces, ending there).
+//
+// How (exact): on the face x_k = c both quadrics restrict to conics in the face's coordinates
+// (u, v); in a chart (x, y) sheared from (u, v) by a fixed rational matrix, chosen so that
+// conic A has a nonzero y^2 coefficient and every real root of R(x) = Res_y(A, B) (degree <= 4,
+// over Q) is simple (multiple non-real roots are allowed: a double component missing the
+// face), every real root of R is exactly one common point, of intersection multiplicity
+// one, i.e. a transversal crossing at a smooth point of the curve; y = -s10(x)/s11(x) (first
+// subresultant). Roots are isolated exactly (algebra::isolate_real_roots) and the point's
+// membership in the face rectangle is decided from Arb enclosures of shrinking isolating
+// intervals. Not certified (with the reason) when a face plane carries a common component,
+// when every chart leaves R with a multiple real root (a tangency, a singular point, two
+// components meeting on the face, a double component crossing it), or when a crossing lies on an
+// edge of the box (or within 2^-200 of one, relative to the box).
+#pragma once
+
+#include "surfcert/core/quadric.hpp"
+#include "surfcert/core/rational.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace surfcert::certify {
+
+struct BoxCrossing {
+  int axis = 0; ///< the face is x_axis = (at_max ? hi : lo)[axis]
+  bool at_max = false;
+  std::array<double, 3> approx{}; ///< midpoint of an enclosure (the point, to double)
+  double radius = 0;              ///< max over coordinates of the enclosure's radius
+};
+
+struct BoxExits {
+  bool certified = false;
+  std::vector<BoxCrossing> points; ///< complete when certified
+  std::string reason;              ///< why not certified
+};
+
+/// The crossings of Q_A ∩ Q_B with the faces of [lo, hi] (lo < hi coordinate-wise).
+BoxExits box_exits(const core::Mat4& a, const core::Mat4& b,
+                   const std::array<core::Rational, 3>& lo,
+                   const std::array<core::Rational, 3>& hi);
+
+} // namespace surfcert::certify

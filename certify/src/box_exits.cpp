@@ -1,0 +1,249 @@
+// box_exits: exact crossings of the curve with the faces of a box (see box_exits.hpp).
+#include "surfcert/certify/box_exits.hpp"
+
+#include "surfcert/algebra/arb.hpp"
+#include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/algebra/real_roots.hpp"
+
+#include <flint/fmpz_poly.h>
+#include <flint/fmpz_poly_factor.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace surfcert::certify {
+
+namespace {
+
+using algebra::Ball;
+using algebra::UPolyQ;
+using algebra::UPolyZ;
+using core::Rational;
+using M3 = std::array<std::array<Rational, 3>, 3>;
+using V3 = std::array<Rational, 3>;
+
+bool is_zero(const M3& m) {
+  for (const auto& row : m)
+    for (const auto& x : row)
+      if (!x.is_zero()) return false;
+  return true;
+}
+
+// A conic in chart coordinates as c2 y^2 + c1(x) y + c0(x).
+struct InY {
+  Rational c2;
+  UPolyQ c1, c0;
+};
+
+InY in_y(const M3& c) {
+  InY r;
+  r.c2 = c[1][1];
+  r.c1 = UPolyQ::from_coeffs({Rational(2) * c[1][2], Rational(2) * c[0][1]});
+  r.c0 = UPolyQ::from_coeffs({c[2][2], Rational(2) * c[0][2], c[0][0]});
+  return r;
+}
+
+// One face in one chart: R(x) and the first subresultant s11(x) y + s10(x).
+struct FaceChart {
+  std::array<V3, 3> t; ///< columns: (u, v, 1) = x t[0] + y t[1] + t[2]
+  UPolyQ r;
+  UPolyZ rz; ///< R's square-free part (R's real roots, all simple)
+  UPolyQ s11, s10;
+};
+
+bool has_real_root(const UPolyZ& p) {
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor_squarefree(fac, p.raw());
+  bool real = false;
+  for (slong i = 0; i < fac->num && !real; ++i) {
+    UPolyZ f;
+    fmpz_poly_set(f.raw_mut(), fac->p + i);
+    real = f.degree() >= 1 && algebra::count_real_roots(f) > 0;
+  }
+  fmpz_poly_factor_clear(fac);
+  return real;
+}
+
+enum class ChartOutcome { Ok, SharedComponent, Failed };
+
+// The charts tried, in order: shears of (u, v) and of (v, u) by small fixed rationals.
+std::vector<std::array<V3, 3>> charts() {
+  const std::pair<long, long> shears[] = {{0, 1}, {1, 3}, {-2, 5}, {3, 7}, {-5, 4}, {7, 11}};
+  std::vector<std::array<V3, 3>> out;
+  for (int swap = 0; swap < 2; ++swap)
+    for (const auto& [n, d] : shears) {
+      const Rational s(n, d);
+      std::array<V3, 3> t;
+      t[0] = swap ? V3{Rational(0), Rational(1), Rational(0)}
+                  : V3{Rational(1), Rational(0), Rational(0)};
+      t[1] = swap ? V3{Rational(1), s, Rational(0)} : V3{s, Rational(1), Rational(0)};
+      t[2] = V3{Rational(0), Rational(0), Rational(1)};
+      out.push_back(t);
+    }
+  return out;
+}
+
+ChartOutcome face_chart(const M3& ca, const M3& cb, FaceChart& out) {
+  for (const auto& t : charts()) {
+    InY a = in_y(algebra::restrict_form(ca, t)), b = in_y(algebra::restrict_form(cb, t));
+    if (a.c2.is_zero()) std::swap(a, b);
+    if (a.c2.is_zero()) continue; // (0 : 1 : 0) on both conics: another chart
+    const UPolyQ A2(a.c2), B2(b.c2);
+    const UPolyQ x = A2 * b.c0 - a.c0 * B2;
+    UPolyQ r = x * x - (A2 * b.c1 - a.c1 * B2) * (a.c1 * b.c0 - a.c0 * b.c1);
+    // With a2 != 0 constant, r == 0 exactly when the conics share a component.
+    if (r.is_zero()) return ChartOutcome::SharedComponent;
+    UPolyZ rz = r.primitive_integer();
+    if (rz.degree() >= 1 && !fmpz_poly_is_squarefree(rz.raw())) {
+      // Multiple non-real roots are harmless (complex points, e.g. of a double component
+      // that misses the face); a multiple real root is not read: another chart.
+      UPolyZ g;
+      fmpz_poly_gcd(g.raw_mut(), rz.raw(), rz.derivative().raw());
+      if (has_real_root(g)) continue;
+      fmpz_poly_div(rz.raw_mut(), rz.raw(), g.raw());
+    }
+    out = FaceChart{t, r, rz, B2 * a.c1 - A2 * b.c1, B2 * a.c0 - A2 * b.c0};
+    return ChartOutcome::Ok;
+  }
+  return ChartOutcome::Failed;
+}
+
+Ball ball_of(const Rational& q, long prec) {
+  Ball b;
+  arb_set_fmpq(b.v, q.raw(), prec);
+  return b;
+}
+
+Ball eval(const UPolyQ& p, const Ball& x, long prec) {
+  Ball s;
+  for (long i = p.degree(); i >= 0; --i) {
+    arb_mul(s.v, s.v, x.v, prec);
+    Ball c = ball_of(p.coeff(i), prec);
+    arb_add(s.v, s.v, c.v, prec);
+  }
+  return s;
+}
+
+enum class Where { Inside, Outside, Unknown };
+
+// Where v lies against the open interval (lo, hi).
+Where against(const Ball& v, const Rational& lo, const Rational& hi, long prec) {
+  const Ball l = ball_of(lo, prec), h = ball_of(hi, prec);
+  if (arb_lt(v.v, l.v) || arb_gt(v.v, h.v)) return Where::Outside;
+  if (arb_gt(v.v, l.v) && arb_lt(v.v, h.v)) return Where::Inside;
+  return Where::Unknown;
+}
+
+} // namespace
+
+BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Rational, 3>& lo,
+                   const std::array<Rational, 3>& hi) {
+  BoxExits out;
+  Rational scale;
+  for (size_t k = 0; k < 3; ++k)
+    if (hi[k] - lo[k] > scale) scale = hi[k] - lo[k];
+  for (int k = 0; k < 3; ++k)
+    for (int side = 0; side < 2; ++side) {
+      const size_t ku = static_cast<size_t>(k);
+      const size_t i = (ku + 1) % 3, j = (ku + 2) % 3;
+      const Rational& c = side ? hi[ku] : lo[ku];
+      // (u, v, 1) -> (x, y, z, w): u along axis i, v along axis j, x_k = c.
+      std::array<std::array<Rational, 4>, 3> cols;
+      cols[0][i] = Rational(1);
+      cols[1][j] = Rational(1);
+      cols[2][ku] = c;
+      cols[2][3] = Rational(1);
+      const M3 ca = algebra::restrict_form(a, cols), cb = algebra::restrict_form(b, cols);
+      const std::string name =
+          std::string(side ? "max" : "min") + " face of axis " + std::to_string(k);
+      if (is_zero(ca) || is_zero(cb)) {
+        out.reason = "the " + name + " lies on a quadric";
+        return out;
+      }
+      FaceChart fc;
+      switch (face_chart(ca, cb, fc)) {
+      case ChartOutcome::SharedComponent:
+        out.reason = "the curve has a component in the plane of the " + name;
+        return out;
+      case ChartOutcome::Failed:
+        out.reason = "a multiple crossing on the " + name +
+                     " (tangency, singular point or components meeting there)";
+        return out;
+      case ChartOutcome::Ok:
+        break;
+      }
+      if (fc.r.degree() < 1) continue; // no common affine point on this face
+      const UPolyZ& rz = fc.rz;
+      const algebra::RootSeparation sep = algebra::isolate_real_roots(rz);
+      // The crossing's face coordinates (u, v) from an isolating interval of x narrowed to
+      // 2^-bits of the box (nullopt while s11 is not proved nonzero there).
+      auto enclose = [&](Rational& l, Rational& h,
+                         long bits) -> std::optional<std::array<Ball, 2>> {
+        algebra::refine_root(rz, l, h, scale * Rational::exact_from_double(std::ldexp(1.0, -bits)));
+        const long prec = bits + 64;
+        Ball x = ball_of((l + h) * Rational(1, 2), prec);
+        if (l != h) {
+          Ball rad = ball_of((h - l) * Rational(1, 2), prec);
+          arb_add_error(x.v, rad.v);
+        }
+        const Ball s11 = eval(fc.s11, x, prec);
+        if (arb_contains_zero(s11.v)) return std::nullopt;
+        Ball y = eval(fc.s10, x, prec);
+        arb_div(y.v, y.v, s11.v, prec);
+        arb_neg(y.v, y.v);
+        std::array<Ball, 2> uv;
+        for (size_t d = 0; d < 2; ++d) {
+          Ball tx = ball_of(fc.t[0][d], prec), ty = ball_of(fc.t[1][d], prec);
+          arb_mul(tx.v, tx.v, x.v, prec);
+          arb_addmul(tx.v, ty.v, y.v, prec);
+          uv[d] = tx;
+        }
+        return uv;
+      };
+      for (size_t r = 0; r + 1 < sep.separators.size(); ++r) {
+        Rational l = sep.separators[r], h = sep.separators[r + 1];
+        Where where = Where::Unknown;
+        BoxCrossing bc;
+        for (long bits : {24L, 60L, 120L, 200L}) {
+          const auto uv = enclose(l, h, bits);
+          if (!uv) continue;
+          const long prec = bits + 64;
+          const Where wu = against((*uv)[0], lo[i], hi[i], prec);
+          const Where wv = against((*uv)[1], lo[j], hi[j], prec);
+          if (wu == Where::Outside || wv == Where::Outside) {
+            where = Where::Outside;
+            break;
+          }
+          if (wu == Where::Inside && wv == Where::Inside) {
+            where = Where::Inside;
+            break;
+          }
+        }
+        if (where == Where::Inside) {
+          // The reported point: an enclosure narrowed to 2^-80 of the box.
+          const auto uv = enclose(l, h, 80);
+          bc.axis = k;
+          bc.at_max = side == 1;
+          bc.approx[ku] = c.to_double_approx();
+          if (uv) {
+            bc.approx[i] = arf_get_d(arb_midref((*uv)[0].v), ARF_RND_NEAR);
+            bc.approx[j] = arf_get_d(arb_midref((*uv)[1].v), ARF_RND_NEAR);
+            bc.radius =
+                std::max(mag_get_d(arb_radref((*uv)[0].v)), mag_get_d(arb_radref((*uv)[1].v)));
+          }
+        }
+        if (where == Where::Unknown) {
+          out.points.clear();
+          out.reason = "a crossing on an edge of the box (or within 2^-200 of one) on the " + name;
+          return out;
+        }
+        if (where == Where::Inside) out.points.push_back(bc);
+      }
+    }
+  out.certified = true;
+  return out;
+}
+
+} // namespace surfcert::certify
