@@ -534,11 +534,104 @@ std::optional<ComponentAtInfinity> conic_at_infinity(const M3& m) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Two cones with one affine apex p (both matrices vanish on (p, 1)): each quadric is
+// (x - p)^T M (x - p) = 0 with M its quadratic part, so the curve is the union of the lines
+// p + t d over the real common points d of the conics at infinity; p alone when there is none.
+
+std::optional<V3> common_apex(const core::Mat4& a, const core::Mat4& b) {
+  const M3 m = top_left(a);
+  const Rational det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  if (det.is_zero()) return std::nullopt; // no single affine apex
+  const M3 mi = inverse(m);
+  V3 p;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      p[i] -= mi[i][j] * a[j][3];
+  for (const core::Mat4* q : {&a, &b})
+    for (size_t i = 0; i < 4; ++i) {
+      Rational s = (*q)[i][3];
+      for (size_t j = 0; j < 3; ++j)
+        s += (*q)[i][j] * p[j];
+      if (!s.is_zero()) return std::nullopt;
+    }
+  return p;
+}
+
+AffineTopology common_apex_route(const V3& apex, const Chart& ch) {
+  AffineTopology out;
+  out.route = "common_apex";
+  out.apex = apex;
+  out.computed = true;
+  out.points_at_infinity_complete = true;
+  for (const auto& r : roots_of(ch))
+    out.points_at_infinity.push_back(r.p);
+  const int n = static_cast<int>(out.points_at_infinity.size());
+  out.lines = out.unbounded_branches = n;
+  out.loops = out.conics = 0;
+  out.isolated_points = n == 0 ? 1 : 0;
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// Two planes: one line (direction n_a x n_b), none (parallel) or a surface (the same plane).
+// Written as quadrics both contain the plane at infinity too; that common part is not listed.
+
+AffineTopology plane_plane_route(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
+  AffineTopology out;
+  out.route = "plane_plane";
+  const core::Mat4 &pa = a.matrix(), &pb = b.matrix();
+  out.plane = pa;
+  out.section_of = pb;
+  const V3 na{pa[0][3], pa[1][3], pa[2][3]}, nb{pb[0][3], pb[1][3], pb[2][3]};
+  auto zero = [](const V3& v) { return v[0].is_zero() && v[1].is_zero() && v[2].is_zero(); };
+  if (zero(na) || zero(nb)) {
+    out.reason = "a plane quadric has no affine plane";
+    return out;
+  }
+  const V3 d{na[1] * nb[2] - na[2] * nb[1], na[2] * nb[0] - na[0] * nb[2],
+             na[0] * nb[1] - na[1] * nb[0]};
+  if (zero(d)) {
+    // Parallel normals: the same plane when (n_b, c_b) is a multiple of (n_a, c_a).
+    size_t k = 0;
+    while (na[k].is_zero())
+      ++k;
+    const Rational r = nb[k] / na[k];
+    if (pb[3][3] == r * pa[3][3]) {
+      out.reason = "the planes coincide: the intersection is a plane, not a curve";
+      return out;
+    }
+    out.computed = true;
+    out.points_at_infinity_complete = true;
+    out.loops = out.unbounded_branches = out.isolated_points = out.lines = out.conics = 0;
+    return out;
+  }
+  out.computed = true;
+  out.points_at_infinity_complete = true;
+  out.loops = out.isolated_points = out.conics = 0;
+  out.unbounded_branches = out.lines = 1;
+  PointAtInfinity p;
+  p.rational = true;
+  const V3 dn = normalise(d);
+  std::array<double, 3> ap{};
+  for (size_t k = 0; k < 3; ++k) {
+    p.direction[k] = dn[k].to_string();
+    ap[k] = dn[k].to_double_approx();
+  }
+  p.approx = unit_approx(ap);
+  out.points_at_infinity.push_back(p);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
 // Plane route: one quadric is a plane (its matrix has a zero quadratic block).
 
 AffineTopology plane_route(const core::QuadricMatrix& plane, const core::QuadricMatrix& quad) {
   AffineTopology out;
   out.route = "plane_section";
+  out.plane = plane.matrix();
+  out.section_of = quad.matrix();
   const core::Mat4& p = plane.matrix();
   const core::Mat4& q = quad.matrix();
   V3 n{Rational(2) * p[0][3], Rational(2) * p[1][3], Rational(2) * p[2][3]};
@@ -715,10 +808,7 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   if (pa != pb) return pa ? plane_route(a, b) : plane_route(b, a);
   AffineTopology out;
   out.route = "pencil";
-  if (pa && pb) {
-    out.reason = "two planes: the pair of planes with the plane at infinity is not analysed";
-    return out;
-  }
+  if (pa && pb) return plane_plane_route(a, b);
   Chart ch;
   const ChartOutcome co = find_chart(top_left(a.matrix()), top_left(b.matrix()), ch);
   if (co == ChartOutcome::SharedComponent) {
@@ -757,6 +847,8 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
                  "(not analysed)";
     return out;
   }
+  if (t.pencil == algebra::PencilKind::Degenerate && co == ChartOutcome::Ok)
+    if (auto apex = common_apex(a.matrix(), b.matrix())) return common_apex_route(*apex, ch);
   if (t.status != Status::Certified || !t.morphology) {
     out.reason = "no certified projective topology";
     return out;

@@ -30,6 +30,11 @@ bool is_zero(const M3& m) {
   return true;
 }
 
+// No quadratic part: a line of the face (or a constant).
+bool linear(const M3& m) {
+  return m[0][0].is_zero() && m[0][1].is_zero() && m[1][1].is_zero();
+}
+
 // A conic in chart coordinates as c2 y^2 + c1(x) y + c0(x).
 struct InY {
   Rational c2;
@@ -161,6 +166,39 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Ra
       if (is_zero(ca) || is_zero(cb)) {
         out.reason = "the " + name + " lies on a quadric";
         return out;
+      }
+      if (linear(ca) && linear(cb)) {
+        // Two planes: two lines of the face, one common point (rational) or none.
+        auto constant = [](const M3& m) { return m[0][2].is_zero() && m[1][2].is_zero(); };
+        if (constant(ca) || constant(cb)) continue; // a face parallel to a plane: no point
+        const Rational det = ca[0][2] * cb[1][2] - ca[1][2] * cb[0][2];
+        if (det.is_zero()) {
+          const bool same = (ca[0][2] * cb[2][2] - ca[2][2] * cb[0][2]).is_zero() &&
+                            (ca[1][2] * cb[2][2] - ca[2][2] * cb[1][2]).is_zero();
+          if (same) {
+            out.reason = "the curve has a component in the plane of the " + name;
+            return out;
+          }
+          continue;
+        }
+        // 2 ca[0][2] u + 2 ca[1][2] v + ca[2][2] = 0, and the same for cb.
+        const Rational u = (ca[1][2] * cb[2][2] - ca[2][2] * cb[1][2]) / (Rational(2) * det);
+        const Rational v = (ca[2][2] * cb[0][2] - ca[0][2] * cb[2][2]) / (Rational(2) * det);
+        if (u == lo[i] || u == hi[i] || v == lo[j] || v == hi[j]) {
+          out.points.clear();
+          out.reason = "a crossing on an edge of the box on the " + name;
+          return out;
+        }
+        if (lo[i] < u && u < hi[i] && lo[j] < v && v < hi[j]) {
+          BoxCrossing bc;
+          bc.axis = k;
+          bc.at_max = side == 1;
+          bc.approx[ku] = c.to_double_approx();
+          bc.approx[i] = u.to_double_approx();
+          bc.approx[j] = v.to_double_approx();
+          out.points.push_back(bc);
+        }
+        continue;
       }
       FaceChart fc;
       switch (face_chart(ca, cb, fc)) {

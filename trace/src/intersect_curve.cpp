@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 namespace surfcert::trace {
 
@@ -305,6 +306,115 @@ std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& 
   return "";
 }
 
+// The exact crossings with the box's faces (an automatic box meeting the curve
+// non-generically — on an edge, tangentially — is widened a little, unevenly, up to 3 times,
+// and `retrace` called for it), then the verdict: certified only when the affine topology is
+// certified, the traced closed branches and isolated points in the box have its counts, an
+// automatic box shows at least one open piece per unbounded branch, and the traced open
+// pieces' ends match the exact crossings one to one.
+void settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
+                Box& box, bool automatic, const std::function<void(const Box&)>& retrace,
+                bool special_points_complete) {
+  const certify::AffineTopology& af = out.affine;
+  out.box_exits = exact_exits(a, b, box);
+  for (int nudge = 1; nudge <= 3 && automatic && !out.box_exits->certified; ++nudge) {
+    Box wider = box;
+    for (size_t k = 0; k < 3; ++k) {
+      const double h = box.max[k] - box.min[k];
+      wider.min[k] -= h * 0.0371 * nudge * static_cast<double>(k + 1);
+      wider.max[k] += h * 0.0253 * nudge * static_cast<double>(3 - k);
+    }
+    wider = dyadic_outward(wider);
+    certify::BoxExits ex = exact_exits(a, b, wider);
+    if (!ex.certified) continue;
+    box = wider;
+    retrace(box);
+    out.box_exits = std::move(ex);
+  }
+  out.box = box;
+  std::vector<Point3> inside;
+  for (const auto& p : out.isolated_points)
+    if (box.contains(p)) inside.push_back(p);
+  out.isolated_points = inside;
+  finish_points(a, b, QuadricPair(a, b), out);
+
+  int closed = 0, open = 0, open_off_face = 0;
+  const double eps = 1e-7 * box.diagonal();
+  for (const auto& br : out.branches) {
+    if (br.closed) {
+      ++closed;
+      continue;
+    }
+    ++open;
+    if (br.points.size() < 2 || !on_face(box, br.points.front(), eps) ||
+        !on_face(box, br.points.back(), eps))
+      ++open_off_face;
+  }
+  std::string why;
+  if (!af.certified())
+    why = "the affine topology is not certified";
+  else if (!special_points_complete)
+    why = "special points not all computed exactly";
+  else if (closed != *af.loops || (automatic && open < *af.unbounded_branches))
+    why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
+          " open branch(es) in the box; the certified affine topology has " +
+          std::to_string(*af.loops) + " loop(s) and " + std::to_string(*af.unbounded_branches) +
+          " unbounded branch(es)";
+  else if (open_off_face > 0)
+    why = std::to_string(open_off_face) + " open branch(es) do not end on the box's faces";
+  else if (!out.box_exits->certified)
+    why = "the crossings with the box's faces are not certified: " + out.box_exits->reason;
+  else if (static_cast<int>(out.isolated_points.size()) != *af.isolated_points)
+    why = std::to_string(out.isolated_points.size()) +
+          " isolated point(s) in the box; the affine topology has " +
+          std::to_string(*af.isolated_points);
+  else
+    why = match_exits(out.branches, *out.box_exits, 1e-7 * box.diagonal());
+  out.matches_topology = why.empty();
+  out.status = why.empty() ? Status::Certified : Status::Undecided;
+  out.note = why;
+}
+
+// Degenerate pencils whose affine curve is made of lines: a plane section (a plane along a
+// cylinder's rulings or through a cone's apex, equal parallel cylinders, two planes) or two
+// cones with a common apex: the lines in closed form from exact data, clipped to the box,
+// checked like any box.
+bool trace_section_lines(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                         CurveResult& out, const TraceOptions& opt) {
+  const certify::AffineTopology& af = out.affine;
+  if (!af.certified()) return false;
+  std::optional<SectionComponents> sec;
+  if (af.plane && af.section_of) {
+    sec = section_lines(*af.plane, *af.section_of);
+  } else if (af.apex) {
+    // Lines from the common apex along the exact points at infinity (directions rounded).
+    sec.emplace();
+    Point3 p;
+    for (size_t k = 0; k < 3; ++k)
+      p[k] = (*af.apex)[k].to_double_approx();
+    for (const auto& d : af.points_at_infinity)
+      sec->lines.push_back({p, d.approx});
+    if (sec->lines.empty()) sec->points.push_back(p);
+  }
+  if (!sec) return false;
+  std::vector<Point3> sizing = sec->points;
+  for (const auto& [p, d] : sec->lines)
+    sizing.push_back(p);
+  // Special points of the degenerate pencil are not computed: the box holds the lines'
+  // base points (their crossing point, or their points nearest the plane's base point).
+  Box box = opt.box ? *opt.box : box_around(sizing);
+  auto trace_at = [&](const Box& in) {
+    out.branches.clear();
+    out.isolated_points = sec->points;
+    for (const auto& [p, d] : sec->lines)
+      if (auto br = line_in_box(p, d, in)) out.branches.push_back(std::move(*br));
+  };
+  trace_at(box);
+  out.box_automatic = !opt.box;
+  settle_box(a, b, out, box, !opt.box, trace_at, true);
+  return true;
+}
+
 // Non-ellipsoid pairs: the curve inside a box, checked against the affine topology.
 void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
                   const TraceOptions& opt) {
@@ -399,63 +509,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   }
   // The exact crossings with the faces; an automatic box whose faces meet the curve
   // non-generically (on an edge, tangentially) is widened a little, unevenly, and retraced.
-  out.box_exits = exact_exits(a, b, box);
-  for (int nudge = 1; nudge <= 3 && !opt.box && !out.box_exits->certified; ++nudge) {
-    Box wider = box;
-    for (size_t k = 0; k < 3; ++k) {
-      const double h = box.max[k] - box.min[k];
-      wider.min[k] -= h * 0.0371 * nudge * static_cast<double>(k + 1);
-      wider.max[k] += h * 0.0253 * nudge * static_cast<double>(3 - k);
-    }
-    wider = dyadic_outward(wider);
-    certify::BoxExits ex = exact_exits(a, b, wider);
-    if (!ex.certified) continue;
-    box = wider;
-    trace_at(box);
-    out.box_exits = std::move(ex);
-  }
-  out.box = box;
-  std::vector<Point3> inside;
-  for (const auto& p : out.isolated_points)
-    if (box.contains(p)) inside.push_back(p);
-  out.isolated_points = inside;
-  finish_points(a, b, q, out);
-
-  int closed = 0, open = 0, open_off_face = 0;
-  const double eps = 1e-7 * box.diagonal();
-  for (const auto& br : out.branches) {
-    if (br.closed) {
-      ++closed;
-      continue;
-    }
-    ++open;
-    if (br.points.size() < 2 || !on_face(box, br.points.front(), eps) ||
-        !on_face(box, br.points.back(), eps))
-      ++open_off_face;
-  }
-  std::string why;
-  if (!af.certified())
-    why = "the affine topology is not certified";
-  else if (!t.special_points_complete)
-    why = "special points not all computed exactly";
-  else if (closed != *af.loops || (!opt.box && open < *af.unbounded_branches))
-    why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
-          " open branch(es) in the box; the certified affine topology has " +
-          std::to_string(*af.loops) + " loop(s) and " + std::to_string(*af.unbounded_branches) +
-          " unbounded branch(es)";
-  else if (open_off_face > 0)
-    why = std::to_string(open_off_face) + " open branch(es) do not end on the box's faces";
-  else if (!out.box_exits->certified)
-    why = "the crossings with the box's faces are not certified: " + out.box_exits->reason;
-  else if (static_cast<int>(out.isolated_points.size()) != *af.isolated_points)
-    why = std::to_string(out.isolated_points.size()) +
-          " isolated point(s) in the box; the affine topology has " +
-          std::to_string(*af.isolated_points);
-  else
-    why = match_exits(out.branches, *out.box_exits, 1e-7 * box.diagonal());
-  out.matches_topology = why.empty();
-  out.status = why.empty() ? Status::Certified : Status::Undecided;
-  out.note = why;
+  settle_box(a, b, out, box, !opt.box, trace_at, t.special_points_complete);
 }
 
 } // namespace
@@ -554,6 +608,9 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   // The branches need the special points (isolated points, singular points), at every detail.
   if (t.morphology) certify::complete_special_points(t, a, b);
   out.affine = certify::affine_topology(t, a, b);
+  if (t.pencil != algebra::PencilKind::Regular && t.pencil != algebra::PencilKind::Coincident &&
+      trace_section_lines(a, b, out, opt))
+    return out;
   if (t.status != Status::Certified || t.pencil != algebra::PencilKind::Regular || !t.morphology) {
     out.status = t.status == Status::Certified ? Status::Undecided : t.status;
     out.note = t.pencil == algebra::PencilKind::Coincident

@@ -27,8 +27,12 @@
 // section, classified exactly as a plane conic; the other quadric's conic at infinity is then
 // a component lying at infinity. The same holds when the quadratic parts are proportional
 // (B_inf = c A_inf, e.g. two paraboloids with parallel axes and equal shapes, parallel
-// cylinders of equal radii): B - c A is then such a plane (route "pencil_plane"). Requires a
-// certified topology, except on these plane routes.
+// cylinders of equal radii): B - c A is then such a plane (route "pencil_plane"). Two planes
+// (route "plane_plane") meet in one line with the rational direction n_A x n_B, or nowhere
+// (parallel), or coincide (not computed); the plane at infinity they share as quadrics is not
+// listed. Two cones with one common affine apex p (a degenerate pencil, route "common_apex"):
+// the curve is the lines p + t d over the real points d at infinity (p alone when there is
+// none). Requires a certified topology, except on these plane and apex routes.
 #pragma once
 
 #include "surfcert/algebra/upoly.hpp"
@@ -72,6 +76,13 @@ struct AffineTopology {
   std::vector<ComponentAtInfinity> at_infinity_only;
   std::vector<std::pair<std::string, std::string>> undecided; ///< (field, why)
   std::string reason;                                         ///< when !computed
+  /// Plane routes ("plane_section", "pencil_plane", "plane_plane"): the affine curve is
+  /// `plane` (a plane written as a quadric: zero quadratic block) cut by `section_of`
+  /// (a quadric, or the other plane).
+  std::optional<core::Mat4> plane, section_of;
+  /// Route "common_apex" (a degenerate pencil of two cones with one affine apex): the apex;
+  /// the curve is the lines from it along the points at infinity (the apex alone if none).
+  std::optional<std::array<core::Rational, 3>> apex;
   bool certified() const {
     return computed && loops && unbounded_branches && isolated_points && lines && conics &&
            points_at_infinity_complete;

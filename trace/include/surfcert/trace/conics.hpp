@@ -13,7 +13,27 @@
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/trace/curve.hpp"
 
+#include <optional>
+#include <utility>
+#include <vector>
+
 namespace surfcert::trace {
+
+/// Lines and points of a degenerate plane section, read exactly: the plane `plane` (written as
+/// a quadric: zero quadratic block) cut by `other` (a quadric or another plane). Each line is
+/// a point and a direction (doubles rounded from exact data). `doubled`: one line counted
+/// twice (the surfaces are tangent along it). nullopt when the section is a proper conic (or
+/// the plane lies on `other`).
+struct SectionComponents {
+  std::vector<std::pair<Point3, Point3>> lines; ///< (point, direction)
+  std::vector<Point3> points;                   ///< a real point of two imaginary lines
+  bool doubled = false;
+};
+std::optional<SectionComponents> section_lines(const core::Mat4& plane, const core::Mat4& other);
+
+/// The part of the line p + t d inside the box as an open branch (kind "line", both ends on
+/// faces), or nullopt when the line misses the box.
+std::optional<Branch> line_in_box(const Point3& p, const Point3& d, const Box& box);
 
 /// Conic branches (kind "conic" or "double_conic", closed) for the exact pencil facts of a
 /// pair whose morphology has conic components. Empty when there are none.
