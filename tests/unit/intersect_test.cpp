@@ -131,9 +131,16 @@ TEST(Intersect, DegenerateInputsAreNotCertifiedCurves) {
   trace::TraceOptions opt;
   auto cyl = core::io::quadric_from_equation("x^2+y^2=1", {"t", 1, 1, ""});
   auto cyl2 = core::io::quadric_from_equation("(x-1)^2+y^2=1", {"t", 1, 1, ""});
+  // Equal parallel cylinders (a degenerate pencil): since issue 15 the two lines x = 1/2,
+  // y = +-sqrt(3)/2 in closed form (degenerate_trace_test checks more such pairs).
   auto r = trace::intersect_curve(cyl, cyl2, Mode::Exact, opt);
-  EXPECT_EQ(r.status, certify::Status::Undecided);
-  EXPECT_TRUE(r.branches.empty());
+  EXPECT_EQ(r.status, certify::Status::Certified) << r.note;
+  ASSERT_EQ(r.branches.size(), 2u);
+  for (const auto& br : r.branches)
+    for (const auto& p : br.points) {
+      EXPECT_NEAR(p[0], 0.5, 1e-12);
+      EXPECT_NEAR(std::fabs(p[1]), std::sqrt(0.75), 1e-12);
+    }
   auto hyp = core::io::quadric_from_equation("x^2+y^2-z^2=1", {"t", 1, 1, ""});
   // No ellipsoid (traced in a box since issue 15): z^2 = 0, the circle x^2 + y^2 = 1 counted
   // twice.

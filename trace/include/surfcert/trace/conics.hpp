@@ -1,5 +1,6 @@
 // surfcert::trace::conic_branches: the conic components of a QSIC, produced as plane ∩ quadric
-// from the factored singular members of the pencil, never traced.
+// from the factored singular members of the pencil, never traced. Also the lines of a
+// degenerate plane section (section_lines, read exactly) and a line clipped to a box.
 //
 // At a multiple root theta of f with rank(theta*A - B) <= 2 the member is a pair of planes
 // (rank 2, real when its inertia is (1,1)) or a double plane (rank 1). Each real plane meets

@@ -22,6 +22,10 @@
 // one with those crossings (so a branch crossing the box twice is two certified pieces); an
 // automatic box must also show at least one piece per unbounded branch. The automatic box has
 // short dyadic faces, moved a little when a face meets the curve non-generically.
+// Degenerate pencils and two planes whose affine curve is lines (certify/affine.hpp routes
+// plane_section / pencil_plane with a degenerate section, plane_plane, common_apex) are
+// answered with those lines in closed form, clipped to the box and checked the same way;
+// other degenerate pencils are not traced (undecided).
 #pragma once
 
 #include "surfcert/certify/affine.hpp"
