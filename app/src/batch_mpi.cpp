@@ -12,6 +12,7 @@
 
 #include "batch_checkpoint.hpp"
 #include "batch_mpi_worker.hpp"
+#include "write_all.hpp"
 
 #include "surfcert/core/error.hpp"
 #include "surfcert/core/io/json.hpp"
@@ -75,19 +76,6 @@ struct Unpacker {
     return s;
   }
 };
-
-bool write_all(int fd, const char* p, size_t n) {
-  while (n > 0) {
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    p += w;
-    n -= static_cast<size_t>(w);
-  }
-  return true;
-}
 
 // The input's lines, read by a thread of its own so that the scheduler never blocks on stdin
 // (at most kAhead lines wait in memory).

@@ -1,4 +1,5 @@
 #include "batch_mpi_worker.hpp"
+#include "write_all.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -15,19 +16,6 @@
 namespace surfcert::app::mpi_batch {
 
 namespace {
-
-bool write_all(int fd, const char* p, size_t n) {
-  while (n > 0) {
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    p += w;
-    n -= static_cast<size_t>(w);
-  }
-  return true;
-}
 
 // "<line_no> <status> <kind|-> <fallback> <micros>\t<answer>" (run_batch_child); false when
 // the frame is malformed.

@@ -1,4 +1,5 @@
 #include "surfcert/app/batch_stream.hpp"
+#include "write_all.hpp"
 
 #include <flint/flint.h>
 #include <tbb/global_control.h>
@@ -37,20 +38,6 @@ public:
     if (is_worker) flint_cleanup();
   }
 };
-
-// Writes all of [p, p + n) to fd; false on an error (the rest is then dropped: nobody reads).
-bool write_all(int fd, const char* p, size_t n) {
-  while (n > 0) {
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    p += w;
-    n -= static_cast<size_t>(w);
-  }
-  return true;
-}
 
 // The answers not yet written, and when to write them (batch_stream.hpp). All members are
 // guarded by m; a flusher thread writes the buffer once its oldest answer is max_delay old.
