@@ -3,6 +3,7 @@
 
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/plane_chart.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 
 #include <flint/fmpz_poly_factor.h>
@@ -634,25 +635,13 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
   out.section_of = quad.matrix();
   const core::Mat4& p = plane.matrix();
   const core::Mat4& q = quad.matrix();
-  V3 n{Rational(2) * p[0][3], Rational(2) * p[1][3], Rational(2) * p[2][3]};
-  const Rational c = p[3][3];
-  size_t k = 0;
-  while (k < 3 && n[k].is_zero())
-    ++k;
-  if (k == 3) {
+  // Columns of M (4x3): X = M (s, t, 1).
+  const auto chart = algebra::plane_chart(p);
+  if (!chart) {
     out.reason = "the plane quadric has no affine plane";
     return out;
   }
-  size_t j1 = (k + 1) % 3, j2 = (k + 2) % 3;
-  if (j1 > j2) std::swap(j1, j2);
-  // Columns of M (4x3): X = M (s, t, 1).
-  std::array<std::array<Rational, 4>, 3> col;
-  col[0][j1] = Rational(1);
-  col[0][k] = -n[j1] / n[k];
-  col[1][j2] = Rational(1);
-  col[1][k] = -n[j2] / n[k];
-  col[2][3] = Rational(1);
-  col[2][k] = -c / n[k];
+  const std::array<std::array<Rational, 4>, 3>& col = *chart;
   const M3 cm = algebra::restrict_form(q, col);
   out.computed = true;
   out.points_at_infinity_complete = true;

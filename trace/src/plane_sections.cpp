@@ -6,6 +6,7 @@
 // > 0, parallel lines or one line when 0). Only the final point and direction of each line
 // are rounded to doubles.
 #include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/algebra/plane_chart.hpp"
 #include "surfcert/trace/conics.hpp"
 
 #include <algorithm>
@@ -25,21 +26,9 @@ Point3 to_double(const R3& v) {
 } // namespace
 
 std::optional<SectionComponents> section_lines(const core::Mat4& plane, const core::Mat4& other) {
-  const R3 n{plane[0][3] * Rational(2), plane[1][3] * Rational(2), plane[2][3] * Rational(2)};
-  const Rational c = plane[3][3];
-  size_t k = 0;
-  while (k < 3 && n[k].is_zero())
-    ++k;
-  if (k == 3) return std::nullopt;
-  size_t j1 = (k + 1) % 3, j2 = (k + 2) % 3;
-  if (j1 > j2) std::swap(j1, j2);
-  std::array<std::array<Rational, 4>, 3> col;
-  col[0][j1] = Rational(1);
-  col[0][k] = -n[j1] / n[k];
-  col[1][j2] = Rational(1);
-  col[1][k] = -n[j2] / n[k];
-  col[2][3] = Rational(1);
-  col[2][k] = -c / n[k];
+  const auto chart = algebra::plane_chart(plane);
+  if (!chart) return std::nullopt;
+  const std::array<std::array<Rational, 4>, 3>& col = *chart;
   // A 3D point (s, t) and direction (ds, dt) of the plane.
   auto point = [&](const Rational& s, const Rational& t) {
     R3 p;
