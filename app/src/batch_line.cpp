@@ -353,11 +353,7 @@ BatchLineAnswer document_route(const std::string& line, long line_no, certify::M
                                double budget_ms, certify::Detail detail) {
   BatchLineAnswer a;
   const Json r = process_batch_line(line, line_no, mode, &a.fallback, budget_ms, detail);
-  if (const Json* s = r.find("status")) a.status = s->text();
-  if (const Json* e = r.find("error"))
-    if (const Json* k = e->is_object() ? e->find("kind") : nullptr)
-      if (k->is_string()) a.error_kind = k->text();
-  a.text = core::io::dump(r);
+  set_answer_from_document(a, r);
   return a;
 }
 
@@ -444,6 +440,14 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
   } catch (...) { // e.g. an internal error: the document route answers it as it always has
     return document_route(line, line_no, default_mode, default_budget_ms, default_detail);
   }
+}
+
+void set_answer_from_document(BatchLineAnswer& a, const Json& r) {
+  if (const Json* s = r.find("status")) a.status = s->text();
+  if (const Json* e = r.find("error"))
+    if (const Json* k = e->is_object() ? e->find("kind") : nullptr)
+      if (k->is_string()) a.error_kind = k->text();
+  a.text = core::io::dump(r);
 }
 
 } // namespace surfcert::app

@@ -1,5 +1,6 @@
 #include "surfcert/app/scene.hpp"
 
+#include "surfcert/app/batch_line.hpp"
 #include "surfcert/app/batch_query.hpp"
 #include "surfcert/app/batch_stream.hpp"
 #include "surfcert/app/generate.hpp"
@@ -515,11 +516,7 @@ BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode,
     BatchLineAnswer a;
     const Json r = answer ? answer(line, line_no, mode, &a.fallback)
                           : process_batch_line(line, line_no, mode, &a.fallback);
-    if (const Json* s = r.find("status")) a.status = s->text();
-    if (const Json* e = r.find("error"))
-      if (const Json* k = e->is_object() ? e->find("kind") : nullptr)
-        if (k->is_string()) a.error_kind = k->text();
-    a.text = core::io::dump(r);
+    set_answer_from_document(a, r);
     return a;
   };
   return detail::run_batch_pipeline(

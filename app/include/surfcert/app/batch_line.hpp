@@ -12,6 +12,7 @@
 
 #include "surfcert/app/batch_stream.hpp"
 #include "surfcert/certify/detail.hpp"
+#include "surfcert/core/io/json.hpp"
 
 #include <string>
 
@@ -21,5 +22,9 @@ namespace surfcert::app {
 BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
                                   double default_budget_ms = 0,
                                   certify::Detail default_detail = certify::Detail::Full);
+
+/// The answer line of an answer document r: its text, status and error kind (the fields the
+/// batch's summary counts); the caller sets the exact-fallback flag.
+void set_answer_from_document(BatchLineAnswer& a, const core::io::Json& r);
 
 } // namespace surfcert::app
