@@ -141,12 +141,14 @@ struct Opts {
   std::vector<std::string> claims; ///< verify: each a JSON claim or array of claims
   long digits = 15;
   int threads = 1;
-  double budget_ms = 0;        ///< batch: default per-line time budget (0 = none)
-  bool unordered = false;      ///< batch: write answers as they complete
-  bool mpi = false;            ///< batch --mpi (app/batch_mpi.hpp)
-  bool mpi_child = false;      ///< batch --mpi-child: a compute child of batch --mpi (hidden)
-  std::string checkpoint;      ///< batch --mpi --checkpoint FILE
-  double retry_undecided = 0;  ///< batch --mpi --retry-undecided MS (0: none)
+  double budget_ms = 0;       ///< batch: default per-line time budget (0 = none)
+  bool unordered = false;     ///< batch: write answers as they complete
+  bool mpi = false;           ///< batch --mpi (app/batch_mpi.hpp)
+  bool mpi_child = false;     ///< batch --mpi-child: a compute child of batch --mpi (hidden)
+  std::string checkpoint;     ///< batch --mpi --checkpoint FILE
+  double retry_undecided = 0; ///< batch --mpi --retry-undecided MS (0: none)
+  double rank_timeout = 30;   ///< batch --mpi --rank-timeout S (with Open MPI's recovery)
+  bool rank_timeout_set = false;
   std::string detail = "full"; ///< --detail (certify/detail.hpp; checked by CLI11 per command)
   app::GenerateRequest gen;    ///< generate
   std::string encoding = "exact", gaps = "10,20,40";
@@ -478,6 +480,7 @@ int cmd_batch_mpi(const Opts& o, int out_fd) {
   mo.ordered = !o.unordered;
   mo.checkpoint = o.checkpoint;
   mo.retry_budget_ms = o.retry_undecided;
+  mo.rank_timeout_s = o.rank_timeout;
   if (o.mpi_child) {
     app::run_batch_child(0, out_fd, mo);
     return 0;
@@ -490,11 +493,14 @@ int cmd_batch_mpi(const Opts& o, int out_fd) {
   print_batch_summary(st);
   // Counts as key=value (docs/cli.md): from the checkpoint, sent again after their compute
   // process died, lost twice (internal error lines), run again with --retry-undecided, given
-  // back unstarted by a worker whose threads were all on slow lines.
+  // back unstarted by a worker whose threads were all on slow lines, worker ranks found dead;
+  // the exit code (mpirun under --enable-recovery exits 0 whatever rank 0 returns).
+  const int rc = batch_exit_code(st);
   std::cerr << "surfcert batch --mpi: resumed=" << rep.resumed << " retried=" << rep.retried
             << " lost_twice=" << rep.lost_twice << " second_pass=" << rep.second_pass
-            << " returned=" << rep.returned << "\n";
-  return batch_exit_code(st);
+            << " returned=" << rep.returned << " dead_ranks=" << rep.dead_ranks
+            << " recovery=" << (rep.recovery ? 1 : 0) << " exit=" << rc << "\n";
+  return rc;
 }
 
 int cmd_batch(const Opts& o) {
@@ -503,8 +509,10 @@ int cmd_batch(const Opts& o) {
     if (!app::mpi_available())
       throw UsageError("--mpi: this surfcert was built without MPI (install openmpi-bin and "
                        "libopenmpi-dev, e.g. with scripts/setup.sh, and build again)");
-  } else if (!o.checkpoint.empty() || o.retry_undecided > 0) {
-    throw UsageError(std::string(o.checkpoint.empty() ? "--retry-undecided" : "--checkpoint") +
+  } else if (!o.checkpoint.empty() || o.retry_undecided > 0 || o.rank_timeout_set) {
+    throw UsageError(std::string(!o.checkpoint.empty() ? "--checkpoint"
+                                 : o.rank_timeout_set  ? "--rank-timeout"
+                                                       : "--retry-undecided") +
                      " needs --mpi");
   }
   // FLINT prints the diagnostic of an abort with printf on stdout: while the batch runs, fd 1
@@ -701,6 +709,13 @@ int main(int argc, char** argv) {
                    "with this budget in ms")
       ->check(CLI::Range(1.0, 1e9))
       ->type_name("MS");
+  batch
+      ->add_option("--rank-timeout", o.rank_timeout,
+                   "--mpi under mpirun --enable-recovery: a rank silent this long (heartbeats) "
+                   "is dead and its lines go to the others")
+      ->check(CLI::Range(0.5, 1e6))
+      ->each([&o](const std::string&) { o.rank_timeout_set = true; })
+      ->type_name("S");
   batch->add_flag("--mpi-child", o.mpi_child, "")->group(""); // batch --mpi's compute child
 
   CLI::App* generate = cli.add_subcommand(

@@ -8,6 +8,10 @@
 //     unstarted (every thread of its child is on a slow line);
 //   0 -> worker, kWork: a group of lines (line number, text); kStop: the run is over.
 // A worker has at most one request open; rank 0 answers it as soon as it has lines.
+// With Open MPI's recovery (batch_mpi.hpp) also: kBeat both ways (empty, when nothing else
+// was sent for a heartbeat interval), and the end's handshake: 0 -> worker kStop, worker -> 0
+// kBye (so that no message is still on its way when the processes leave without
+// MPI_Finalize: over TCP an eager send that has "completed" may not have left yet).
 #include "surfcert/app/batch_mpi.hpp"
 
 #include "batch_checkpoint.hpp"
@@ -21,10 +25,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <iostream>
@@ -35,6 +42,7 @@
 #include <optional>
 #include <thread>
 #include <unordered_map>
+#include <utility>
 
 #include <unistd.h>
 
@@ -47,7 +55,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using core::io::Json;
 
-enum Tag { kWork = 1, kStop = 2, kReport = 3 };
+enum Tag { kWork = 1, kStop = 2, kReport = 3, kBeat = 4, kBye = 5 };
 constexpr int kMaxGroup = 16;
 
 void put_i64(std::string& b, std::int64_t v) {
@@ -222,6 +230,8 @@ public:
         out.push_back(line_for(second_.front(), open_.at(second_.front())));
         second_.pop_front();
       }
+    for (const WorkLine& l : out)
+      open_.at(l.no).holder = w;
     return out;
   }
 
@@ -230,7 +240,10 @@ public:
   void on_answers(int w, std::vector<WorkAnswer>& answers, const std::vector<long>& lost,
                   const std::vector<long>& returned) {
     for (auto it = returned.rbegin(); it != returned.rend(); ++it)
-      if (open_.count(*it)) fresh_.push_front(*it);
+      if (auto l = open_.find(*it); l != open_.end()) {
+        l->second.holder = -1;
+        fresh_.push_front(*it);
+      }
     report_.returned += static_cast<long>(returned.size());
     for (WorkAnswer& a : answers) {
       auto it = open_.find(a.no);
@@ -241,6 +254,7 @@ public:
       if (r.pass == 1 && o_.retry_budget_ms > 0 && budget_undecided(r.status, r.text)) {
         l.pass = 2;
         l.losses = 0;
+        l.holder = -1;
         second_.push_back(a.no);
         ++report_.second_pass;
         continue;
@@ -248,30 +262,22 @@ public:
       finalize(a.no, r);
       open_.erase(it);
     }
-    for (long no : lost) {
-      auto it = open_.find(no);
-      if (it == open_.end()) continue;
-      Open& l = it->second;
-      if (++l.losses < 2) {
-        l.avoid = w;
-        lost_.push_back(no);
-        ++report_.retried;
-        continue;
-      }
-      // Lost twice: the line itself is the likely cause (out of memory, a crash).
-      CheckpointRecord r{l.hash,
-                         l.pass,
-                         "error",
-                         "internal",
-                         false,
-                         core::io::dump(internal_error_line(
-                             id_of(l.text), "the compute process answering this line died "
-                                            "twice (killed, or out of memory)"))};
-      if (checkpoint_) checkpoint_->append(no, r);
-      finalize(no, r);
-      open_.erase(it);
-      ++report_.lost_twice;
-    }
+    for (long no : lost)
+      lose(w, no);
+    if (checkpoint_) checkpoint_->write_pending();
+  }
+
+  /// Worker w (a rank) is dead: the lines it held are lost, as by a compute child that died,
+  /// and it counts no more among the workers.
+  void on_rank_dead(int w) {
+    std::vector<long> held;
+    for (const auto& [no, l] : open_)
+      if (l.holder == w) held.push_back(no);
+    std::sort(held.begin(), held.end());
+    for (long no : held)
+      lose(w, no);
+    workers_ = std::max(0, workers_ - 1);
+    ++report_.dead_ranks;
     if (checkpoint_) checkpoint_->write_pending();
   }
 
@@ -305,7 +311,36 @@ private:
     std::string text;
     std::uint64_t hash = 0;
     int pass = 1, losses = 0, avoid = -1;
+    int holder = -1; ///< the worker (rank) the line was sent to, until answered, lost or given back
   };
+
+  // Line no, held by w, was lost (its compute child or its rank died): sent again once to
+  // another worker, then answered with an "internal" error line.
+  void lose(int w, long no) {
+    auto it = open_.find(no);
+    if (it == open_.end()) return;
+    Open& l = it->second;
+    l.holder = -1;
+    if (++l.losses < 2) {
+      l.avoid = w;
+      lost_.push_back(no);
+      ++report_.retried;
+      return;
+    }
+    // Lost twice: the line itself is the likely cause (out of memory, a crash).
+    CheckpointRecord r{l.hash,
+                       l.pass,
+                       "error",
+                       "internal",
+                       false,
+                       core::io::dump(internal_error_line(
+                           id_of(l.text), "the compute process answering this line died "
+                                          "twice (killed, or out of memory)"))};
+    if (checkpoint_) checkpoint_->append(no, r);
+    finalize(no, r);
+    open_.erase(it);
+    ++report_.lost_twice;
+  }
 
   WorkLine line_for(long no, const Open& l) const {
     return {no, l.pass == 2 ? with_budget(l.text, o_.retry_budget_ms) : l.text};
@@ -324,7 +359,7 @@ private:
                                  "another line " + std::to_string(no) + " (its hash differs)");
         ++report_.resumed;
         if (r.pass == 1 && o_.retry_budget_ms > 0 && budget_undecided(r.status, r.text)) {
-          open_[no] = Open{std::move(text), h, 2, 0, -1};
+          open_[no] = Open{std::move(text), h, 2, 0, -1, -1};
           second_.push_back(no);
           ++report_.second_pass;
         } else {
@@ -333,7 +368,7 @@ private:
         return;
       }
     }
-    open_[no] = Open{std::move(text), h, 1, 0, -1};
+    open_[no] = Open{std::move(text), h, 1, 0, -1, -1};
     fresh_.push_back(no);
   }
 
@@ -383,16 +418,26 @@ private:
 // Sends in flight: their buffers live until MPI is done with them.
 class Sends {
 public:
-  void send(std::string buf, int dest, int tag) {
+  /// False when MPI refused the send (with recovery's MPI_ERRORS_RETURN: the peer is gone).
+  bool send(std::string buf, int dest, int tag) {
     auto& s = pending_.emplace_back();
     s.buf = std::move(buf);
-    MPI_Isend(s.buf.data(), static_cast<int>(s.buf.size()), MPI_BYTE, dest, tag, MPI_COMM_WORLD,
-              &s.req);
+    s.dest = dest;
+    if (MPI_Isend(s.buf.data(), static_cast<int>(s.buf.size()), MPI_BYTE, dest, tag, MPI_COMM_WORLD,
+                  &s.req) != MPI_SUCCESS) {
+      pending_.pop_back();
+      failed_.push_back(dest);
+      return false;
+    }
+    return true;
   }
   void reap() {
     for (auto it = pending_.begin(); it != pending_.end();) {
       int done = 0;
-      MPI_Test(&it->req, &done, MPI_STATUS_IGNORE);
+      if (MPI_Test(&it->req, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) {
+        failed_.push_back(it->dest);
+        done = 1;
+      }
       it = done ? pending_.erase(it) : std::next(it);
     }
   }
@@ -401,13 +446,66 @@ public:
       MPI_Wait(&s.req, MPI_STATUS_IGNORE);
     pending_.clear();
   }
+  /// Waits until deadline for the sends to the ranks not dead; the others are abandoned: a
+  /// send to a dead rank never completes, and MPI may still read its buffer, so the buffer is
+  /// kept (reachable, never freed) until the process ends.
+  void wait_live(const std::vector<char>& dead, Clock::time_point deadline) {
+    for (;;) {
+      reap();
+      const bool live_left = std::any_of(pending_.begin(), pending_.end(), [&](const Pending& p) {
+        return !dead[static_cast<size_t>(p.dest)];
+      });
+      if (!live_left || Clock::now() > deadline) break;
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    static auto* abandoned = new std::list<Pending>;
+    abandoned->splice(abandoned->end(), pending_);
+  }
+  /// The ranks a send to which failed since the last call.
+  std::vector<int> take_failed() { return std::exchange(failed_, {}); }
 
 private:
   struct Pending {
     std::string buf;
+    int dest = 0;
     MPI_Request req;
   };
   std::list<Pending> pending_;
+  std::vector<int> failed_;
+};
+
+// With Open MPI's recovery: whether the job runs with it (mpirun --enable-recovery, or the
+// MCA parameter set another way, which Open MPI passes to the ranks in their environment).
+bool recovery_enabled() {
+  const char* e = std::getenv("OMPI_MCA_orte_enable_recovery");
+  if (!e) return false;
+  std::string v(e);
+  std::transform(v.begin(), v.end(), v.begin(), [](unsigned char c) { return std::tolower(c); });
+  return v == "1" || v == "true" || v == "yes" || v == "on" || v == "enabled";
+}
+
+// The heartbeat's timing: a rank silent for `timeout` is dead; each rank speaks at least every
+// `interval` (min(1 s, timeout / 5)), so a live rank misses the timeout only when it is stalled
+// for 4 intervals and more.
+struct Heartbeat {
+  Clock::duration interval, timeout;
+  explicit Heartbeat(double timeout_s)
+      : interval(std::chrono::duration_cast<Clock::duration>(
+            std::chrono::duration<double>(std::min(1.0, timeout_s / 5)))),
+        timeout(
+            std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s))) {
+  }
+  /// Called once per loop round: a round that came more than timeout / 2 after the last one
+  /// means this rank itself was stalled (blocked writing its output, say), when it could not
+  /// hear anyone: the silence is then not the others'.
+  bool self_stalled(Clock::time_point now) {
+    const bool stalled = now - last_round_ > timeout / 2;
+    last_round_ = now;
+    return stalled;
+  }
+
+private:
+  Clock::time_point last_round_ = Clock::now();
 };
 
 std::string recv_bytes(const MPI_Status& probed) {
@@ -457,19 +555,59 @@ void run_single(BatchMaster& master, const MpiBatchOptions& o) {
   master.finish();
 }
 
-void run_root(BatchMaster& master, int size) {
-  std::vector<int> want(static_cast<size_t>(size), 0); // open requests
+// Rank 0 with workers. With recovery (batch_mpi.hpp): heartbeats, dead workers' lines to the
+// others, rank 0 alone once none is left, and the end's stop/goodbye handshake.
+void run_root(BatchMaster& master, int size, const MpiBatchOptions& o, bool recovery) {
+  const auto n = static_cast<size_t>(size);
+  std::vector<int> want(n, 0); // open requests
+  std::vector<char> dead(n, 0);
+  std::vector<Clock::time_point> heard(n, Clock::now()), told(n, Clock::now());
+  int alive = size - 1;
+  Heartbeat hb(o.rank_timeout_s);
   Sends sends;
   Backoff backoff;
+  const auto declare_dead = [&](int w, const char* why) {
+    const auto i = static_cast<size_t>(w);
+    if (dead[i]) return;
+    dead[i] = 1;
+    want[i] = 0;
+    --alive;
+    std::cerr << "surfcert batch --mpi: rank " << w << " " << why
+              << ": its lines go to the others (" << alive << " workers left)\n";
+    master.on_rank_dead(w);
+  };
+  // One round of heartbeats (recovery only): the silent are dead, the others hear from rank 0.
+  const auto beat = [&](bool ending) {
+    auto now = Clock::now();
+    if (hb.self_stalled(now)) std::fill(heard.begin(), heard.end(), now);
+    for (int w = 1; w < size; ++w) {
+      const auto i = static_cast<size_t>(w);
+      if (dead[i]) continue;
+      if (now - heard[i] > hb.timeout) {
+        declare_dead(w, "is silent past --rank-timeout");
+      } else if (!ending && now - told[i] >= hb.interval) {
+        sends.send(std::string(), w, kBeat);
+        told[i] = now;
+      }
+    }
+    sends.reap();
+    for (int w : sends.take_failed())
+      declare_dead(w, "cannot be reached (a send to it failed)");
+  };
   for (;;) {
     master.pump_input();
     bool progressed = false;
     int flag = 0;
     MPI_Status st;
-    while (MPI_Iprobe(MPI_ANY_SOURCE, kReport, MPI_COMM_WORLD, &flag, &st), flag) {
+    while (MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st), flag) {
       const std::string buf = recv_bytes(st);
-      Unpacker u{buf};
       const int w = st.MPI_SOURCE;
+      // A rank found dead that was not (stalled past the timeout): its lines went to others,
+      // what it says now is dropped, and without heartbeats from rank 0 it leaves.
+      if (dead[static_cast<size_t>(w)]) continue;
+      heard[static_cast<size_t>(w)] = Clock::now();
+      if (st.MPI_TAG != kReport) continue; // a heartbeat
+      Unpacker u{buf};
       const auto asked = static_cast<int>(u.i64());
       std::vector<WorkAnswer> answers(static_cast<size_t>(u.i64()));
       for (WorkAnswer& a : answers) {
@@ -500,10 +638,15 @@ void run_root(BatchMaster& master, int size) {
         put_str(buf, l.text);
       }
       sends.send(std::move(buf), w, kWork);
+      told[static_cast<size_t>(w)] = Clock::now();
       want[static_cast<size_t>(w)] = 0;
       progressed = true;
     }
     sends.reap();
+    if (recovery) {
+      beat(false);
+      if (alive == 0) break;
+    }
     master.flush(!progressed);
     if (master.done()) break;
     if (progressed) {
@@ -512,20 +655,57 @@ void run_root(BatchMaster& master, int size) {
       std::this_thread::sleep_for(backoff.next());
     }
   }
+  if (!recovery) {
+    for (int w = 1; w < size; ++w)
+      sends.send(std::string(), w, kStop);
+    sends.wait_all();
+    master.finish();
+    return;
+  }
+  if (!master.done()) {
+    // Every worker is dead: rank 0 answers the remaining lines through a compute child of
+    // its own (as with one rank).
+    std::cerr << "surfcert batch --mpi: no worker left: rank 0 answers the remaining lines\n";
+    run_single(master, o);
+  } else {
+    master.finish(); // every answer written before the handshake
+  }
+  // The handshake: stop to every live worker, until each said goodbye or fell silent.
+  std::vector<char> bye(n, 0);
   for (int w = 1; w < size; ++w)
-    sends.send(std::string(), w, kStop);
-  sends.wait_all();
-  master.finish();
+    if (!dead[static_cast<size_t>(w)]) sends.send(std::string(), w, kStop);
+  for (;;) {
+    int flag = 0;
+    MPI_Status st;
+    while (MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st), flag) {
+      recv_bytes(st);
+      const auto i = static_cast<size_t>(st.MPI_SOURCE);
+      if (dead[i]) continue;
+      heard[i] = Clock::now();
+      if (st.MPI_TAG == kBye) bye[i] = 1;
+    }
+    beat(true);
+    bool waiting = false;
+    for (int w = 1; w < size; ++w)
+      waiting = waiting || (!dead[static_cast<size_t>(w)] && !bye[static_cast<size_t>(w)]);
+    if (!waiting) break;
+    std::this_thread::sleep_for(backoff.next());
+  }
+  sends.wait_live(dead, Clock::now() + hb.timeout);
 }
 
-void run_worker(const MpiBatchOptions& o) {
+// A worker: a relay between rank 0 and its compute child (it computes nothing itself, which is
+// why its silence means death). With recovery it sends heartbeats, leaves when rank 0 falls
+// silent, and ends with the handshake.
+void run_worker(const MpiBatchOptions& o, bool recovery) {
   LineWorker lw(o.child_command, o.threads);
   Sends sends;
   Backoff backoff;
+  Heartbeat hb(o.rank_timeout_s);
   bool requested = false;
   std::vector<WorkAnswer> outbox;
   std::vector<long> lost, returned;
-  Clock::time_point oldest;
+  Clock::time_point oldest, heard_root = Clock::now(), last_sent = Clock::now();
   for (;;) {
     const size_t had = outbox.size();
     bool progressed = lw.poll(outbox, lost, returned);
@@ -552,6 +732,7 @@ void run_worker(const MpiBatchOptions& o) {
       for (long l : returned)
         put_i64(buf, l);
       sends.send(std::move(buf), 0, kReport);
+      last_sent = Clock::now();
       outbox.clear();
       lost.clear();
       returned.clear();
@@ -563,25 +744,49 @@ void run_worker(const MpiBatchOptions& o) {
     MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
     if (flag) {
       const std::string buf = recv_bytes(st);
+      heard_root = Clock::now();
       if (st.MPI_TAG == kStop) break;
-      Unpacker u{buf};
-      std::vector<WorkLine> lines(static_cast<size_t>(u.i64()));
-      for (WorkLine& l : lines) {
-        l.no = u.i64();
-        l.text = u.str();
+      if (st.MPI_TAG == kWork) {
+        Unpacker u{buf};
+        std::vector<WorkLine> lines(static_cast<size_t>(u.i64()));
+        for (WorkLine& l : lines) {
+          l.no = u.i64();
+          l.text = u.str();
+        }
+        lw.give(std::move(lines));
+        requested = false;
+        progressed = true;
       }
-      lw.give(std::move(lines));
-      requested = false;
-      progressed = true;
     }
     sends.reap();
+    if (recovery) {
+      const auto now = Clock::now();
+      if (hb.self_stalled(now)) heard_root = now;
+      if (now - heard_root > hb.timeout) {
+        int rank = 0;
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+        std::cerr << "surfcert batch --mpi: rank " << rank
+                  << ": rank 0 is silent past --rank-timeout: leaving\n";
+        sends.wait_live(std::vector<char>(1, 1), now); // rank 0 counts as dead: abandon
+        return;
+      }
+      if (now - last_sent >= hb.interval) {
+        sends.send(std::string(), 0, kBeat);
+        last_sent = now;
+      }
+    }
     if (progressed) {
       backoff.reset();
     } else {
       lw.wait_for(backoff.next());
     }
   }
-  sends.wait_all();
+  if (!recovery) {
+    sends.wait_all();
+    return;
+  }
+  sends.send(std::string(), 0, kBye);
+  sends.wait_live(std::vector<char>(1, 0), Clock::now() + hb.timeout);
 }
 
 } // namespace
@@ -600,15 +805,19 @@ BatchStats run_batch_mpi(int out_fd, const MpiBatchOptions& options, bool* is_ro
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   *is_root = rank == 0;
+  // With recovery a failed send to a dead rank must return an error, not end this process;
+  // and no rank calls MPI_Finalize (it would wait for the dead ranks forever).
+  const bool recovery = size > 1 && mpi_batch::recovery_enabled();
+  if (recovery) MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   BatchStats st;
   if (rank != 0) {
     try {
-      mpi_batch::run_worker(options);
+      mpi_batch::run_worker(options, recovery);
     } catch (const std::exception& e) {
       std::cerr << "surfcert: internal error: rank " << rank << ": " << e.what() << "\n";
       MPI_Abort(MPI_COMM_WORLD, 1);
     }
-    MPI_Finalize();
+    if (!recovery) MPI_Finalize();
     return st;
   }
   try {
@@ -616,10 +825,13 @@ BatchStats run_batch_mpi(int out_fd, const MpiBatchOptions& options, bool* is_ro
     if (size == 1) {
       mpi_batch::run_single(master, options);
     } else {
-      mpi_batch::run_root(master, size);
+      mpi_batch::run_root(master, size, options, recovery);
     }
     st = master.stats();
-    if (report) *report = master.report();
+    if (report) {
+      *report = master.report();
+      report->recovery = recovery;
+    }
   } catch (const core::InputError& e) {
     if (size == 1) {
       MPI_Finalize();
@@ -635,7 +847,7 @@ BatchStats run_batch_mpi(int out_fd, const MpiBatchOptions& options, bool* is_ro
     std::cerr << "surfcert: internal error: " << e.what() << "\n";
     MPI_Abort(MPI_COMM_WORLD, 1);
   }
-  MPI_Finalize();
+  if (!recovery) MPI_Finalize();
   return st;
 }
 

@@ -3,7 +3,9 @@
 // the same answers byte for byte apart from "time_ms" (ordered, unordered as a multiset, one
 // rank; a budget-stopped answer by id, status and reason: see comparable()), bad option
 // combinations exit 2; resume after SIGKILL of rank 0 from the checkpoint; a killed compute
-// child (lines retried; a line lost twice is an internal error line); --retry-undecided.
+// child (lines retried; a line lost twice is an internal error line); a killed worker rank
+// under `mpirun --enable-recovery` (its lines retried by the other worker, or by rank 0 once no
+// worker is left); --retry-undecided.
 #include "surfcert/core/io/json.hpp"
 
 #include <gtest/gtest.h>
@@ -221,6 +223,22 @@ int wait_exit(pid_t pid) {
   int st = 0;
   waitpid(pid, &st, 0);
   return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+// wait_exit, but a run still going after `seconds` (it hangs: the failure this guards against)
+// is ended (SIGTERM: mpirun takes its ranks with it) and reported as -1.
+int wait_exit_within(pid_t pid, int seconds) {
+  int st = 0;
+  for (int i = 0; i < seconds * 20; ++i) {
+    if (waitpid(pid, &st, WNOHANG) == pid)
+      return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  kill(pid, SIGTERM);
+  std::this_thread::sleep_for(std::chrono::seconds(5));
+  kill(pid, SIGKILL);
+  waitpid(pid, &st, 0);
+  return -1;
 }
 
 // Lines that take a while: budget-limited tori (budget_ms each, always undecided) between
@@ -445,4 +463,58 @@ TEST(BatchMpiFaults, LineLostTwiceIsAnInternalError) {
   EXPECT_EQ(std::stol(m[2]), 1);
   for (const std::string& p : {in, out, err})
     std::remove(p.c_str());
+}
+
+// SIGKILL to a worker rank itself (the relay between rank 0 and its compute child), while its
+// child computes, in a job run with Open MPI's recovery: rank 0 finds it silent past
+// --rank-timeout, its lines go to the other worker (ranks = 3) or, once no worker is left, to
+// rank 0's own compute child (ranks = 2); the run completes with the single-process batch's
+// answers, mpirun exits 0 (Open MPI 4.1 under --enable-recovery) and rank 0's summary carries
+// the batch's exit code. Without the fault handling the run hangs (the guard ends it).
+void kill_worker_rank(int ranks) {
+  const std::string tag = "rank" + std::to_string(ranks);
+  const std::string in = tmp_path(tag + "_in"), out = tmp_path(tag + "_out"),
+                    err = tmp_path(tag + "_err");
+  std::ofstream(in) << slow_input(8, 400);
+  const Outcome single = sh(std::string(SURFCERT_BINARY) + " batch --threads 2", in);
+  ASSERT_EQ(single.code, 3) << single.err; // the budget-limited lines
+  const pid_t run = start(mpirun(ranks) + "--enable-recovery " + SURFCERT_BINARY +
+                          " batch --mpi --rank-timeout 5 <" + in + " >" + out + " 2>" + err);
+  // Rank 1, once its compute child has computed 0.3 s of CPU: then it holds a slow line.
+  pid_t victim = -1;
+  for (int i = 0; i < 6000 && victim < 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    for (pid_t p : children_of(run, "surfcert"))
+      if (rank_of(p) == 1)
+        for (pid_t c : children_of(p, "--mpi-child"))
+          if (cpu_ticks(c) >= 30) victim = p;
+  }
+  ASSERT_GT(victim, 0) << "rank 1's compute child not found";
+  ASSERT_EQ(kill(victim, SIGKILL), 0);
+  EXPECT_EQ(wait_exit_within(run, 300), 0) << slurp(err);
+  EXPECT_EQ(comparable(slurp(out)), comparable(single.out));
+  const std::string e = slurp(err);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      e, m,
+      std::regex(
+          R"(retried=([0-9]+) lost_twice=([0-9]+) .*dead_ranks=([0-9]+) recovery=1 exit=([0-9]+))")))
+      << e;
+  EXPECT_GE(std::stol(m[1]), 1); // the killed rank held at least its child's slow line
+  EXPECT_EQ(std::stol(m[2]), 0);
+  EXPECT_EQ(std::stol(m[3]), 1);
+  EXPECT_EQ(std::stoi(m[4]), single.code);
+  if (ranks == 2) {
+    EXPECT_NE(e.find("no worker left"), std::string::npos) << e;
+  }
+  for (const std::string& p : {in, out, err})
+    std::remove(p.c_str());
+}
+
+TEST(BatchMpiFaults, KilledWorkerRankUnderRecoveryLosesOnlyItsLines) {
+  kill_worker_rank(3);
+}
+
+TEST(BatchMpiFaults, LastWorkerRankKilledUnderRecoveryRankZeroFinishes) {
+  kill_worker_rank(2);
 }

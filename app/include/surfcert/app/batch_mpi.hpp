@@ -16,8 +16,21 @@
 //     lines waiting behind them. With one rank, rank 0 drives a compute child itself.
 //   - a compute child that dies (killed, out of memory) loses only the lines it held: each is
 //     retried once on another worker (if any), and a line lost twice is answered with an
-//     "internal" error line; the run completes. (The death of an MPI rank itself ends the job:
-//     Open MPI 4.1 has no MPI-level fault tolerance.)
+//     "internal" error line; the run completes.
+//   - the death of a worker rank itself (killed, its node lost) costs only its lines when the
+//     job runs with Open MPI's recovery (`mpirun --enable-recovery`, which keeps the other
+//     processes alive; rank 0 sees it as OMPI_MCA_orte_enable_recovery in its environment).
+//     Then every rank sends a heartbeat to rank 0 (and rank 0 to each worker) at least every
+//     min(1 s, rank_timeout_s / 5); a worker silent for rank_timeout_s (or whose send failed)
+//     is dead: its lines follow the rule of a dead compute child, it is never sent to again,
+//     and once no worker is left rank 0 answers the remaining lines through a compute child of
+//     its own. A worker that hears nothing from rank 0 for rank_timeout_s leaves. The run ends
+//     with a handshake (stop, goodbye) and without MPI_Finalize on every rank, since Open MPI
+//     4.1's MPI_Finalize waits for the dead ranks forever; mpirun then exits with status 0
+//     whatever rank 0 returns (Open MPI 4.1.4 under --enable-recovery), so the batch's status
+//     is in rank 0's summary on stderr (`status=N`, app/cli). Without recovery the death of
+//     any rank ends the job (mpirun kills the others); a restart with the same checkpoint
+//     resumes it. Open MPI 4.1 has no MPI-level fault tolerance (ULFM) to do better.
 //   - checkpoint (not empty): every answer is appended to that file as it arrives (one record
 //     per line: line number, a hash of the input line, the answer), fsync'd at least every
 //     0.2 s and at the end; a run restarted on the same input skips every line answered there
@@ -47,6 +60,8 @@ struct MpiBatchOptions {
   bool ordered = true;
   std::string checkpoint;     ///< empty: none
   double retry_budget_ms = 0; ///< 0: no second pass
+  /// With Open MPI's recovery: a rank silent this long is dead (see above).
+  double rank_timeout_s = 30;
   /// The compute child's command line: the surfcert executable, "batch", "--mpi-child" and
   /// the options above (mode, detail, budget, threads) as the CLI spells them.
   std::vector<std::string> child_command;
@@ -54,11 +69,13 @@ struct MpiBatchOptions {
 
 /// What the run did beyond the statistics (rank 0).
 struct MpiBatchReport {
-  long resumed = 0;     ///< lines answered from the checkpoint
-  long retried = 0;     ///< lines lost by a compute child that died, sent again
-  long lost_twice = 0;  ///< lines lost twice, answered with an "internal" error line
-  long second_pass = 0; ///< lines undecided by their budget, run again (--retry-undecided)
-  long returned = 0;    ///< lines a worker gave back unstarted (its threads on slow lines)
+  long resumed = 0;      ///< lines answered from the checkpoint
+  long retried = 0;      ///< lines lost by a compute child or worker rank that died, sent again
+  long lost_twice = 0;   ///< lines lost twice, answered with an "internal" error line
+  long second_pass = 0;  ///< lines undecided by their budget, run again (--retry-undecided)
+  long returned = 0;     ///< lines a worker gave back unstarted (its threads on slow lines)
+  long dead_ranks = 0;   ///< worker ranks found dead (only with Open MPI's recovery)
+  bool recovery = false; ///< the job ran with Open MPI's recovery (heartbeats, no MPI_Finalize)
 };
 
 /// Whether this executable was built with MPI (CMake found it).
