@@ -437,3 +437,35 @@ TEST(TorusFast, DenseSamplingNeverBeatsTheLowerBound) {
     EXPECT_LT(pair_best - U, 1e-2) << "seed " << seed << " pair " << i;
   }
 }
+
+TEST(TorusFast, TwoMinimaInOneArcAreNotCountedAsOne) {
+  // An ellipsoid (semi-axes 1/2, 2, 1/2 along x, y, z) centred at (X, 0, 2) above the torus
+  // z-axis, R = 3, r = 1/2. D(tau) = dist(K(tau), E) is even in tau (mirror y -> -y); at
+  // X* = 2.342452065972807085341... D''(0) = 0 (D'''' > 0), and X = X* - 1e-9 makes tau = 0
+  // a local maximum between two minimizers tau = +-2.5175e-5 (mpmath at 60 digits: Lagrange
+  // foot points, numeric derivatives; /tmp/audit/et.py of the audit), d = 1.10531928382811
+  // 46361869690607813..., the bump between them 2.1e-19 only. Before the fix the circle bound
+  // counted the one cluster of survivors as one certified minimizer.
+  auto e = core::io::read_surface(
+      core::io::parse_json(
+          R"({"type":"ellipsoid","center":["2.34245206497280708534107687943",0,2],)"
+          R"("radii":["0.5",2,"0.5"]})",
+          "a"),
+      "a", "$");
+  auto t = core::io::read_surface(
+      core::io::parse_json(
+          R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":"1/2"})",
+          "b"),
+      "b", "$");
+  for (bool swap : {false, true}) {
+    const auto r = swap ? certify::surface_distance(t, e, 15, false)
+                        : certify::surface_distance(e, t, 15, false);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    mpfr_t d;
+    mpfr_init2(d, 200);
+    mpfr_set_str(d, "1.10531928382811463618696906078131031727823675", 10, MPFR_RNDN);
+    EXPECT_TRUE(contains(r, d)) << r.lower() << " " << r.upper();
+    mpfr_clear(d);
+    EXPECT_NE(r.minimizers, "1") << r.note; // two, or undecided
+  }
+}

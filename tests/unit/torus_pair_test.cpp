@@ -283,3 +283,51 @@ TEST(TorusPair, CoaxialToriAgainstSampling) {
     EXPECT_LT(best - r.approx(), 0.15) << r.note;
   }
 }
+
+TEST(TorusPair, TwoMinimaInOneArcAreNotCountedAsOne) {
+  // Core circles K1 (centre (2, 0, 1), radius 1, plane z = 1) and K2 (centre 0, radius R2 =
+  // 3 - e, plane z = 0): over K1, dist(K1(s), K2) = sqrt((rho(s) - R2)^2 + 1) with rho(s) in
+  // [1, 3], so for e > 0 the minimum 1 is attained exactly twice (rho = R2, s = +-s*, mirror
+  // images in y = 0), d = 1 - 1/4 - 1/4 = 1/2, and the bump between them at s = 0 is only
+  // e^2 / 2: for e = 1e-10 and below the two minimizers lie in one arc of survivors. Before
+  // the fix the route counted that arc as one minimizer ("1", certified).
+  auto ta = core::io::read_surface(
+      core::io::parse_json(
+          R"({"type":"torus","center":[2,0,1],"axis":[0,0,1],"major_radius":1,"minor_radius":"1/4"})",
+          "a"),
+      "a", "$");
+  const std::string two100 = "1267650600228229401496703205376"; // 2^100
+  for (const std::string& R2 :
+       {std::string("2999/1000"), std::string("29999999999/10000000000"),
+        std::string("299999999999999999999/100000000000000000000"),
+        std::string("3802951800684688204490109616127/") + two100}) { // 3 - 2^-100
+    auto tb = core::io::read_surface(
+        core::io::parse_json(R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":")" +
+                                 R2 + R"(","minor_radius":"1/4"})",
+                             "b"),
+        "b", "$");
+    for (bool swap : {false, true}) {
+      const auto r = swap ? certify::surface_distance(tb, ta, 15, false)
+                          : certify::surface_distance(ta, tb, 15, false);
+      ASSERT_EQ(r.status, certify::Status::Certified) << R2 << ": " << r.note;
+      surfcert::testing::Bounds ref;
+      ref.lower = ref.upper = "0.5";
+      EXPECT_TRUE(overlap(r, ref)) << R2 << ": " << r.lower() << " " << r.upper();
+      // "2" (proven) or "undecided"; never a certified single minimizer.
+      EXPECT_NE(r.minimizers, "1") << R2 << " swap " << swap << ": " << r.note;
+    }
+  }
+}
+
+TEST(TorusPair, StrictlyConvexMinimaKeepTheirCount) {
+  // The one-arc check must not lose well separated single minimizers: side by side (the
+  // closed form of CoplanarCirclesClosedForm), and a small torus in a big one's tube.
+  const auto r = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 3, 1}),
+                                           torus({{10, 0, 0}, {0, 0, 1}, 2, 0.5}), 15, false);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.minimizers, "1") << r.note;
+  const auto n = certify::surface_distance(torus({{0, 0, 0}, {0, 0, 1}, 10, 3}),
+                                           torus({{10, 0, 0.5}, {1, 1, 1}, 1, 0.5}), 15, false);
+  ASSERT_EQ(n.status, certify::Status::Certified) << n.note;
+  EXPECT_EQ(n.minimizers, "1") << n.note;
+}

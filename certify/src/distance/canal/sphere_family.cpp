@@ -902,6 +902,10 @@ std::optional<DistanceResult> sphere_family_distance(const core::Surface& a, con
   // reported cluster was proven to hold a single candidate.
   if (unique < count) out.tie_regions.clear();
   note_unproven_ties(out, count);
+  // A cluster without the Krawczyk proof holds every minimizer inside it (at least one), but
+  // maybe several (two minima closer than its boxes, a bump between them below 10^-digits):
+  // the count is proven only when every reported cluster was.
+  if (unique < count) out.count_unproven = true;
   return out;
 }
 

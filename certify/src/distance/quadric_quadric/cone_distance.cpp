@@ -358,6 +358,13 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
              "line-ellipsoid distance, by branch and bound with slab (support-function) lower "
              "bounds (Arb)";
   note_unproven_ties(out, pm.minimizers.size());
+  // Every minimizing line lies in a group of survivors, but nothing here proves that a group
+  // holds only one: two minimizing lines closer than the surviving intervals (a bump between
+  // them below 10^-digits) make one group. The count is not proven (the enclosure is), also
+  // not by the ties' symmetry argument, which needs at most one minimizer per group.
+  out.count_unproven = true;
+  out.note += "; an arc of minimizing generator lines may hold more than one minimizer (not "
+              "proven otherwise)";
   // Tie regions (symmetry.hpp): per group the unit directions of its generator lines (up to
   // sign: a symmetry keeps the vertex and maps lines to lines); every minimizing line is in one.
   out.tie_lines = true;

@@ -921,6 +921,13 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
              "pairs: support points and their exact distance to the torus); no elimination "
              "needed";
   note_unproven_ties(out, reps.size());
+  // Every minimizing tau lies in a cluster, but nothing here proves that a cluster holds only
+  // one: two minimizers closer than the surviving intervals (a bump between them below
+  // 10^-digits) make one cluster. The count is not proven (the enclosure is), also not by the
+  // ties' symmetry argument, which needs at most one minimizer per cluster.
+  out.count_unproven = true;
+  out.note += "; a minimizing arc of the core circle may hold more than one minimizer (not "
+              "proven otherwise)";
   // Tie regions (symmetry.hpp): per cluster the core points K(tau) over its intervals, which
   // hold every minimizing tau (the branch and bound dropped the others); an isometry keeping
   // the torus maps its core circle onto itself.

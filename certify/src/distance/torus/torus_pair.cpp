@@ -111,6 +111,81 @@ void circle_circle(Dual& f, Ball (*point)[3], const Circle& c1, const Circle& c2
   arb_mul_2exp_si(f.d.v, f.d.v, -1);
 }
 
+// f''(t) over the ball T for f(t) = dist(K1(pi t), K2) (circle_circle's f), by Taylor
+// arithmetic: arb_poly series of length 3 at T enclose f, f', f''/2 for every t in T. False
+// when not finite (rho or f may vanish in T).
+bool circle_circle_second(arb_t d2, const Circle& c1, const Circle& c2, const arb_t T, long prec) {
+  struct Poly {
+    arb_poly_t p;
+    Poly() { arb_poly_init(p); }
+    ~Poly() { arb_poly_clear(p); }
+    Poly(const Poly&) = delete;
+    Poly& operator=(const Poly&) = delete;
+  };
+  const slong n = 3;
+  Poly x, s, c, w, h, w2, sq, rho2, rho, g, f;
+  arb_poly_set_coeff_arb(x.p, 0, T);
+  arb_poly_set_coeff_si(x.p, 1, 1);
+  arb_poly_sin_cos_pi_series(s.p, c.p, x.p, n, prec);
+  for (size_t i = 0; i < 3; ++i) {
+    // w_i = R1 (cos u_i + sin v_i) + o1_i - o2_i
+    Poly t1, t2;
+    Ball k;
+    arb_poly_scalar_mul(t1.p, c.p, c1.u[i].v, prec);
+    arb_poly_scalar_mul(t2.p, s.p, c1.v[i].v, prec);
+    arb_poly_add(w.p, t1.p, t2.p, prec);
+    arb_poly_scalar_mul(w.p, w.p, c1.R.v, prec);
+    arb_sub(k.v, c1.o[i].v, c2.o[i].v, prec);
+    arb_poly_set_arb(t1.p, k.v);
+    arb_poly_add(w.p, w.p, t1.p, prec);
+    arb_poly_scalar_mul(t1.p, w.p, c2.n[i].v, prec);
+    arb_poly_add(h.p, h.p, t1.p, prec);
+    arb_poly_mullow(t1.p, w.p, w.p, n, prec);
+    arb_poly_add(w2.p, w2.p, t1.p, prec);
+  }
+  arb_poly_mullow(sq.p, h.p, h.p, n, prec);
+  arb_poly_sub(rho2.p, w2.p, sq.p, prec);
+  Ball c0;
+  arb_poly_get_coeff_arb(c0.v, rho2.p, 0);
+  if (!arb_is_positive(c0.v)) return false;
+  arb_poly_sqrt_series(rho.p, rho2.p, n, prec);
+  {
+    Poly r2;
+    arb_poly_set_arb(r2.p, c2.R.v);
+    arb_poly_sub(rho.p, rho.p, r2.p, prec);
+  }
+  arb_poly_mullow(g.p, rho.p, rho.p, n, prec);
+  arb_poly_add(g.p, g.p, sq.p, prec);
+  arb_poly_get_coeff_arb(c0.v, g.p, 0);
+  if (!arb_is_positive(c0.v)) return false;
+  arb_poly_sqrt_series(f.p, g.p, n, prec);
+  arb_poly_get_coeff_arb(d2, f.p, 2);
+  arb_mul_2exp_si(d2, d2, 1);
+  return arb_is_finite(d2) != 0;
+}
+
+// The count of each group of survivors: every minimizing t lies in one of the groups' hulls;
+// a hull holds exactly one minimizer when f is strictly convex on it (sign +1: f'' > 0) or,
+// for a maximum of f, strictly concave (sign -1) and it holds one at all (a single group, or
+// the ties' symmetry argument, which needs at most one per hull). Adjacent survivors alone
+// prove nothing: two minimizers closer than the survivors' width (a bump between them below
+// 10^-digits) make one group.
+void prove_groups(DistanceResult& res, const PeriodicMinimum& pm, const Circle& c1,
+                  const Circle& c2, int sign, long prec) {
+  for (const Ball& hull : pm.group_hulls) {
+    Ball d2;
+    if (circle_circle_second(d2.v, c1, c2, hull.v, prec) &&
+        (sign > 0 ? arb_is_positive(d2.v) : arb_is_negative(d2.v)))
+      continue;
+    res.count_unproven = true;
+    res.note += std::string(res.note.empty() ? "" : "; ") +
+                "a minimizing arc of the circle may hold more than one minimizer (the distance "
+                "is not proven strictly " +
+                (sign > 0 ? "convex" : "concave") + " there)";
+    return;
+  }
+}
+
 // Tie regions (symmetry.hpp): the points K1(t) over each group of survivors, which hold every
 // minimizing t (outward double boxes).
 void add_core_regions(DistanceResult& res, const PeriodicMinimum& pm, const Circle& c1,
@@ -177,6 +252,7 @@ std::optional<DistanceResult> nested_tubes(const core::Torus& in, const core::To
              " torus lies inside the other's tube; d = r_out - r_in - max dist(K_in, K_out), by "
              "branch and bound over the inner circle (Arb)";
   note_unproven_ties(res, groups);
+  prove_groups(res, pm, ci, co, -1, prec);
   add_core_regions(res, pm, ci, co, prec);
   return res;
 }
@@ -353,6 +429,7 @@ std::optional<DistanceResult> circle_pair_distance(const core::Torus& a, const c
   res.note = "disjoint tubes: distance of the core circles minus both tube radii, by branch "
              "and bound over one circle (Arb)";
   note_unproven_ties(res, groups);
+  prove_groups(res, pm, c1, c2, 1, prec);
   // Tie regions (symmetry.hpp): the points K1(t) over each group of survivors, which hold
   // every minimizing t; an isometry keeping both tori maps each core circle onto itself.
   add_core_regions(res, pm, c1, c2, prec);
