@@ -10,6 +10,9 @@
 //   disconnected one, on one side of the other); one sheet crossing is proven, also after a
 //   rigid motion.
 #include "surfcert/certify/distance/contact_sampling.hpp"
+#include "surfcert/certify/distance/distance.hpp"
+#include "surfcert/core/io/json.hpp"
+#include "surfcert/core/io/surface_reader.hpp"
 
 #include "support/distance_checks.hpp"
 
@@ -185,4 +188,38 @@ TEST(ContactSampling, OneSheetOfADisconnectedQuadricCrosses) {
       EXPECT_NEAR(eval(A, w), 0, 1e-6 * scale * scale) << a << " | " << b;
       EXPECT_NEAR(eval(B, w), 0, 1e-6 * scale * scale) << a << " | " << b;
     }
+}
+
+TEST(ContactSampling, ConeMeetingAtItsApexOnlyIsNoContinuum) {
+  // The cone x^2 + y^2 = z^2 against the cubic z^3 + z = 0 (its real points: the plane z = 0)
+  // or z^3 + z + x^3/1000 = 0: the nappes lie on either side, the surfaces meet at the apex
+  // only (x^2 + y^2 = z^2 and z (z^2 + 1) = -x^3/1000 give |z| <= |x|^3/1000 <= |z|^3/1000 near
+  // 0, and |z| ~ |x|/10 < |x| far out: only x = y = z = 0). Distance 0 with one minimizer;
+  // before the fix the contact route answered "infinite" (a sign change on a connected
+  // surface, but a cone minus its apex is not connected).
+  auto read = [](const std::string& eq) {
+    return core::io::read_surface(core::io::Json::string(eq), "t", "$");
+  };
+  const auto cone = read("x^2 + y^2 - z^2 = 0");
+  for (const char* other : {"z^3 + z = 0", "z^3 + z + x^3/1000 = 0"}) {
+    std::array<double, 3> w{};
+    bool continuum = true;
+    ASSERT_TRUE(certify::surfaces_meet_by_sign_change(cone, read(other), w, nullptr, &continuum))
+        << other;
+    EXPECT_FALSE(continuum) << other;
+    const auto r = certify::surface_distance(cone, read(other), 15, false);
+    ASSERT_EQ(r.status, certify::Status::Certified) << other << ": " << r.note;
+    EXPECT_EQ(r.upper(), "0") << other;
+    EXPECT_NE(r.minimizers, "infinite") << other << ": " << r.note;
+  }
+  // A crossing on one nappe stays a continuum: the plane z = 1 as the cubic z^3 - 1 = 0 (real
+  // points z = 1) meets the upper nappe in a circle.
+  std::array<double, 3> w{};
+  bool continuum = false;
+  ASSERT_TRUE(
+      certify::surfaces_meet_by_sign_change(cone, read("z^3 - 1 = 0"), w, nullptr, &continuum));
+  EXPECT_TRUE(continuum);
+  const auto c = certify::surface_distance(cone, read("z^3 - 1 = 0"), 15, false);
+  ASSERT_EQ(c.status, certify::Status::Certified) << c.note;
+  EXPECT_EQ(c.upper(), "0");
 }

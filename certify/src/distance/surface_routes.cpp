@@ -158,18 +158,26 @@ Outcome implicit_pair_run(Query& q) {
 Outcome contact_run(Query& q) {
   std::array<double, 3> w{};
   double residual = 0;
-  if (!surfaces_meet_by_sign_change(q.a, q.b, w, &residual)) return Outcome::not_applicable();
+  bool continuum = false;
+  if (!surfaces_meet_by_sign_change(q.a, q.b, w, &residual, &continuum))
+    return Outcome::not_applicable();
   DistanceResult r;
   r.status = Status::Certified;
   r.distance = Enclosure::zero();
-  r.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
+  // A cone seen on either side on its two nappes only: maybe the apex alone is common (a
+  // cone and z^3 + z = 0 meet at the apex only), the count is not proven.
+  r.minimizers =
+      continuum ? Minimizers::continuum(Minimizers::Proof::Interval) : Minimizers::undecided(1);
   // Display only: list the float-polished common point when it is one.
   const bool located = residual <= 1e-9 * (1 + std::hypot(w[0], w[1], w[2]));
   if (located) r.pairs.push_back({w, w});
   r.note = std::string("the surfaces meet: certified points of a connected surface on both "
                        "sides of the other") +
            (located ? " (the pair is an approximate common point)"
-                    : " (no approximate common point located: no pair listed)");
+                    : " (no approximate common point located: no pair listed)") +
+           (continuum ? ""
+                      : "; both sides were seen on the two nappes of a cone only: the common "
+                        "points may be its apex alone, their number is not proven");
   return Outcome::answer(std::move(r));
 }
 

@@ -70,14 +70,15 @@ void point_ball(Ball (&p)[3], const std::array<double, 3>& x) {
 // w) the form A has the other sign or vanishes, so it holds no point of y^T A y = k. The sign of
 // k is read off the inertias (Q is congruent to A + (-k)). Returns false when no such w is
 // found among small integer vectors (never for these three kinds).
-bool sheet_separator(const core::QuadricMatrix& q, std::array<Rational, 3>& l, Rational& h0) {
+bool sheet_separator(const core::QuadricMatrix& q, std::array<Rational, 3>& l, Rational& h0,
+                     int sign_override = 0) {
   core::Mat4 m3 = q.matrix();
   for (size_t i = 0; i < 4; ++i) {
     m3[i][3] = Rational(0);
     m3[3][i] = Rational(0);
   }
   const algebra::Inertia im = algebra::inertia_ldlt(m3), iq = algebra::inertia_ldlt(q.matrix());
-  const int k_sign = iq.p > im.p ? -1 : 1;
+  const int k_sign = sign_override != 0 ? sign_override : iq.p > im.p ? -1 : 1;
   for (int i = -2; i <= 2; ++i)
     for (int j = -2; j <= 2; ++j)
       for (int k = -2; k <= 2; ++k) {
@@ -102,13 +103,38 @@ bool sheet_separator(const core::QuadricMatrix& q, std::array<Rational, 3>& l, R
 // Samples of a quadric: certified points on the gradient lines of a rational grid at several
 // scales; stops once both sides of `other` are seen on one connected piece (the whole quadric,
 // or one sheet of a disconnected one, told apart exactly by sheet_separator).
+// A real cone (y^T A y = 0, A indefinite of rank 3, apex c) is connected, but not once its
+// apex is removed: two nappes, told apart by the sign of w^T (A x + b) for a rational w with
+// w^T A w of the sign of A's single eigenvalue of its kind (A is definite on the plane
+// A-orthogonal to w, which meets the cone at the apex only).
+bool real_cone(const core::QuadricMatrix& q, int& minority_sign) {
+  core::Mat4 m3 = q.matrix();
+  for (size_t i = 0; i < 4; ++i) {
+    m3[i][3] = Rational(0);
+    m3[3][i] = Rational(0);
+  }
+  const algebra::Inertia im = algebra::inertia_ldlt(m3), iq = algebra::inertia_ldlt(q.matrix());
+  if (im.rank() != 3 || im.p == 0 || im.n == 0 || iq.rank() != 3) return false;
+  minority_sign = im.p == 1 ? 1 : -1;
+  return true;
+}
+
+// *one_piece (when given) tells whether both sides were seen on one piece of `a` that stays
+// connected when finitely many points are removed (a sheet, or a cone's nappe): then the
+// common points separate that piece, so they are infinitely many. Both sides on the two nappes
+// of a cone only prove a common point (a path through the apex), maybe the apex alone.
 bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& other,
                          std::array<double, 3> (&at)[2],
-                         const std::vector<std::array<Rational, 3>>* probes = nullptr) {
+                         const std::vector<std::array<Rational, 3>>* probes = nullptr,
+                         bool* one_piece = nullptr) {
   const bool connected = quadric_connected(a);
   std::array<Rational, 3> l;
   Rational h0;
   if (!connected && !sheet_separator(a, l, h0)) return false;
+  int minority = 0;
+  const bool cone = connected && real_cone(a, minority) && sheet_separator(a, l, h0, minority);
+  bool nappe_sides[2][2] = {{false, false}, {false, false}};
+  if (one_piece != nullptr) *one_piece = !cone;
   const SourceQuadric src(a);
   const long prec = 128;
   bool have[2][2] = {{false, false}, {false, false}}; // [sheet][side]
@@ -148,6 +174,20 @@ bool quadric_side_points(const core::QuadricMatrix& a, const core::Surface& othe
       const int sd = side_of(other, p);
       if (sd == 0) continue;
       const size_t w = sd > 0 ? 1 : 0;
+      if (cone) {
+        Ball h, t;
+        arb_set_fmpq(h.v, h0.raw(), prec);
+        for (size_t r = 0; r < 3; ++r) {
+          arb_set_fmpq(t.v, l[r].raw(), prec);
+          arb_addmul(h.v, t.v, p[r].v, prec);
+        }
+        if (arb_is_positive(h.v) || arb_is_negative(h.v)) {
+          const size_t nappe = arb_is_positive(h.v) ? 1 : 0;
+          nappe_sides[nappe][w] = true;
+          if (one_piece != nullptr && nappe_sides[nappe][0] && nappe_sides[nappe][1])
+            *one_piece = true;
+        }
+      }
       if (have[sheet][w]) continue;
       have[sheet][w] = true;
       for (size_t r = 0; r < 3; ++r)
@@ -295,13 +335,15 @@ bool canal_side_points(const core::CanalSurface& c, const core::Surface& other,
 }
 
 bool one_side(const core::Surface& a, const core::Surface& b, std::array<double, 3>& witness,
-              const std::vector<std::array<Rational, 3>>* probes = nullptr) {
+              const std::vector<std::array<Rational, 3>>* probes = nullptr,
+              bool* one_piece = nullptr) {
+  if (one_piece != nullptr) *one_piece = true;
   if (const auto* t = std::get_if<core::Torus>(&a)) return torus_side_points(*t, b, witness);
   if (const auto* c = std::get_if<core::CanalSurface>(&a)) return canal_side_points(*c, b, witness);
   const auto* qa = std::get_if<core::QuadricMatrix>(&a);
   if (!qa) return false;
   std::array<double, 3> at[2]{};
-  if (!quadric_side_points(*qa, b, at, probes)) return false;
+  if (!quadric_side_points(*qa, b, at, probes, one_piece)) return false;
   // Approximate common point: bisection between the two points, projected on a.
   std::array<double, 3> lo = at[0], hi = at[1];
   for (int it = 0; it < 60; ++it) {
@@ -441,8 +483,12 @@ double polish_witness(const core::Surface& a, const core::Surface& b, std::array
 } // namespace
 
 bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b,
-                                  std::array<double, 3>& witness, double* residual) {
-  if (!one_side(a, b, witness) && !one_side(b, a, witness)) return false;
+                                  std::array<double, 3>& witness, double* residual,
+                                  bool* continuum) {
+  bool piece = false;
+  if (!one_side(a, b, witness, nullptr, &piece) && !one_side(b, a, witness, nullptr, &piece))
+    return false;
+  if (continuum != nullptr) *continuum = piece;
   const double r = polish_witness(a, b, witness);
   if (residual) *residual = r;
   return true;

@@ -40,8 +40,13 @@ bool meet_by_sign_change(const core::QuadricMatrix& a, const core::QuadricMatrix
 /// implicit). Witness approximate: bisection along a path on the sampled surface, then a
 /// float Gauss-Newton polish of both surfaces' distance-like functions; `residual` (when given)
 /// receives the remaining float residual of the witness (how far it is from both surfaces).
+/// `continuum` (when given) is true when both sides were seen on a piece that stays connected
+/// once finitely many points are removed (a torus, a canal surface's outer boundary, a sheet
+/// of a quadric, one nappe of a cone): the common points are then infinitely many. A cone
+/// seen on either side on its two nappes only may meet the other surface at its apex alone.
 bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b,
-                                  std::array<double, 3>& witness, double* residual = nullptr);
+                                  std::array<double, 3>& witness, double* residual = nullptr,
+                                  bool* continuum = nullptr);
 
 /// Exact: false for the disconnected real quadrics (two-sheeted hyperboloid, hyperbolic
 /// cylinder, two parallel planes), true otherwise.
