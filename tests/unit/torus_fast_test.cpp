@@ -443,7 +443,8 @@ TEST(TorusFast, TwoMinimaInOneArcAreNotCountedAsOne) {
   // z-axis, R = 3, r = 1/2. D(tau) = dist(K(tau), E) is even in tau (mirror y -> -y); at
   // X* = 2.342452065972807085341... D''(0) = 0 (D'''' > 0), and X = X* - 1e-9 makes tau = 0
   // a local maximum between two minimizers tau = +-2.5175e-5 (mpmath at 60 digits: Lagrange
-  // foot points, numeric derivatives; /tmp/audit/et.py of the audit), d = 1.10531928382811
+  // foot points from the secular equation, D'' by numeric differentiation, X* by findroot),
+  // d = 1.10531928382811
   // 46361869690607813..., the bump between them 2.1e-19 only. Before the fix the circle bound
   // counted the one cluster of survivors as one certified minimizer.
   auto e = core::io::read_surface(
