@@ -466,7 +466,7 @@ TEST(BatchMpiFaults, LineLostTwiceIsAnInternalError) {
 }
 
 // SIGKILL to a worker rank itself (the relay between rank 0 and its compute child), while its
-// child computes, in a job run with Open MPI's recovery: rank 0 finds it silent past
+// child computes a slow line, in a job run with Open MPI's recovery: rank 0 finds it silent past
 // --rank-timeout, its lines go to the other worker (ranks = 3) or, once no worker is left, to
 // rank 0's own compute child (ranks = 2); the run completes with the single-process batch's
 // answers, mpirun exits 0 (Open MPI 4.1 under --enable-recovery) and rank 0's summary carries
@@ -482,16 +482,18 @@ void kill_worker_rank(int ranks) {
   ASSERT_EQ(single.code, 3) << single.err; // the budget-limited lines
   const pid_t run = start(mpirun(ranks) + "--enable-recovery " + SURFCERT_BINARY +
                           " batch --mpi --rank-timeout 5 <" + in + " >" + out + " 2>" + err);
-  // Rank 1, once its compute child has computed 0.3 s of CPU: then it holds a slow line.
+  // The first worker rank whose compute child has computed 0.3 s of CPU: then it holds a slow
+  // line (which worker gets the slow lines is up to the scheduler: on 16 lines one worker may
+  // get them all).
   pid_t victim = -1;
   for (int i = 0; i < 6000 && victim < 0; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     for (pid_t p : children_of(run, "surfcert"))
-      if (rank_of(p) == 1)
+      if (rank_of(p) > 0)
         for (pid_t c : children_of(p, "--mpi-child"))
           if (cpu_ticks(c) >= 30) victim = p;
   }
-  ASSERT_GT(victim, 0) << "rank 1's compute child not found";
+  ASSERT_GT(victim, 0) << "no worker's compute child computed 0.3 s";
   ASSERT_EQ(kill(victim, SIGKILL), 0);
   EXPECT_EQ(wait_exit_within(run, 300), 0) << slurp(err);
   EXPECT_EQ(comparable(slurp(out)), comparable(single.out));
