@@ -23,8 +23,8 @@
 //        [--surfcert PATH (default: the build's app/surfcert)] [--tmp DIR=/tmp]
 //        [--sections LIST=12345 (the figures to run, e.g. 45; the pairs stay the same)]
 //        [--thread-runs N=5 (figure 2: runs of each thread count, in turn)]
-//        [--keep 1 (keep the threads and distance JSONL files in DIR, for profiling and A/B
-//        runs)]
+//        [--keep 1 (keep the classify, threads and distance JSONL files in DIR, for profiling and
+//        A/B runs)]
 // (about two minutes on 2 cores; the JSONL files are written to DIR and removed).
 #include "ellipsoid_params.hpp"
 
@@ -394,7 +394,7 @@ void classify_figures(const std::vector<Pair>& pairs) {
                   count_status(r, "certified"));
     }
     exact_runs.push_back(runs["exact"]);
-    std::remove(path.c_str());
+    if (!g_keep) std::remove(path.c_str());
   }
   std::printf("\n");
   for (const auto& [form, m] : per_pair)

@@ -98,16 +98,20 @@ std::string_view number_text(od::value v) {
 // non-integer literal is the double it rounds to (correctly rounded, as strtod), an integer
 // literal of at most 15 digits its exact value. Anything else (longer integers: exact
 // rationals; overflow; underflow to zero or subnormals, kept for the exact reader) is not fast.
-// One pass over the text checks it; std::from_chars rounds it correctly.
+// simdjson checks the JSON number grammar and rounds correctly (Eisel-Lemire, with its exact
+// fallback) in one pass; only the rare values that may be one of the exceptions (|d| >= 1e15:
+// an integer of more than 15 digits?; d = 0: an underflow?) look at the text again.
 double literal_double(od::value v) {
-  const std::string_view t = raw_number(v);
-  const NumberScan n = scan_json_number(t);
-  if (!n.valid || (n.integer && n.int_digits > 15)) throw NotFast{};
+  const std::string_view t = v.raw_json_token(); // the literal (and trailing white space)
   double d = 0;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), d);
-  if (ec != std::errc() || end != t.data() + t.size()) throw NotFast{};
-  if (!std::isfinite(d) || (d != 0 && std::fabs(d) < DBL_MIN)) throw NotFast{};
-  if (d == 0 && n.nonzero) throw NotFast{}; // underflow to zero (a literal zero is fast)
+  if (v.get_double().get(d) != simdjson::SUCCESS) throw NotFast{};
+  const double a = std::fabs(d);
+  if (a >= 1e15 || d == 0) {
+    const NumberScan n = scan_json_number(trimmed(t));
+    if (!n.valid || (n.integer && n.int_digits > 15)) throw NotFast{};
+    if (d == 0 && n.nonzero) throw NotFast{}; // underflow to zero (a literal zero is fast)
+  }
+  if (!std::isfinite(d) || (d != 0 && a < DBL_MIN)) throw NotFast{};
   return d;
 }
 
@@ -382,6 +386,28 @@ void append_members(std::string& out, const Json& env) {
   }
 }
 
+// The readings as dump(readings_json(rs)) writes them, without building the document (the
+// deviation names of a reading are distinct, as readings_json needs).
+void append_readings(std::string& out, const core::io::Readings& rs) {
+  out += '[';
+  for (size_t i = 0; i < rs.size(); ++i) {
+    const core::io::Reading& r = rs[i];
+    out += i ? ",{\"path\":" : "{\"path\":";
+    core::io::append_json_string(out, r.path);
+    out += ",\"reading\":";
+    core::io::append_json_string(out, r.reading);
+    out += ",\"deviations\":{";
+    for (size_t k = 0; k < r.deviations.size(); ++k) {
+      if (k) out += ',';
+      core::io::append_json_string(out, r.deviations[k].first);
+      out += ':';
+      core::io::append_json_string(out, r.deviations[k].second);
+    }
+    out += "}}";
+  }
+  out += ']';
+}
+
 } // namespace
 
 BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify::Mode default_mode,
@@ -431,7 +457,7 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
     }
     if (!fl->readings.empty()) {
       out += ",\"readings\":";
-      out += core::io::dump(core::io::readings_json(fl->readings));
+      append_readings(out, fl->readings);
     }
     out += ",\"time_ms\":";
     append_ms(out, std::chrono::steady_clock::now() - t0);

@@ -137,6 +137,17 @@ I enclose(const core::Rational& x) {
 
 IMat4 enclose(const core::QuadricMatrix& q) {
   if (const core::ShapeSpec* s = q.shape()) return enclose_shape_cached(*s);
+  if (const core::DoubleMat4* d = q.double_matrix()) {
+    // The symmetric part (d_ij + d_ji) / 2: exact where d_ij = d_ji, else the interval sum
+    // (directed rounding; an overflow gives an infinite bound) times the exact 1/2.
+    IMat4 m;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j) {
+        const double x = (*d)[i][j], y = (*d)[j][i];
+        m[i][j] = m[j][i] = x == y ? I(x) : (I(x) + I(y)) * I(0.5);
+      }
+    return m;
+  }
   IMat4 m;
   const core::Mat4& e = q.matrix();
   for (size_t i = 0; i < 4; ++i)

@@ -179,12 +179,9 @@ namespace {
 
 // num/den in double (cheap; the float mode is uncertified anyway).
 
-// Eigenvalues of a symmetric 4x4 matrix (cyclic Jacobi, algebra/eigen4.hpp).
+// Eigenvalues of a symmetric 4x4 matrix (cyclic Jacobi, algebra/eigen4.hpp; values only).
 std::array<double, 4> eigenvalues(const Mat4T<double>& m) {
-  std::array<double, 4> w{};
-  algebra::Mat4d v{};
-  algebra::jacobi4(m, w, v);
-  return w;
+  return algebra::jacobi4_eigenvalues(m);
 }
 
 Inertia float_inertia(const Mat4T<double>& m, double tol) {

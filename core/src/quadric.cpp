@@ -2,6 +2,7 @@
 
 #include <flint/fmpq_mat.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace surfcert::core {
@@ -82,17 +83,50 @@ Rational det(const Mat4& m) {
 QuadricMatrix::QuadricMatrix(const Mat4& m) : state_(std::make_shared<State>()) {
   if (!is_symmetric(m)) throw std::invalid_argument("quadric matrix is not symmetric");
   if (is_zero(m)) throw std::invalid_argument("quadric matrix is zero");
-  state_->m = m;
-  std::call_once(state_->formed, [] {});
+  state_->m = m; // formed: matrix() reads it without the once flag
 }
 
 QuadricMatrix::QuadricMatrix(const ShapeSpec& s) : state_(std::make_shared<State>()) {
   state_->shape = s;
 }
 
+QuadricMatrix QuadricMatrix::from_double_matrix(const DoubleMat4& d) {
+  bool zero = true;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      if (!std::isfinite(d[i][j])) throw std::invalid_argument("quadric matrix entry not finite");
+      // d_ij + d_ji = 0 exactly iff d_ji = -d_ij (gradual underflow: a nonzero exact sum never
+      // rounds to zero), so this is the exact test of a zero symmetric part.
+      zero = zero && d[i][j] == -d[j][i];
+    }
+  if (zero) throw std::invalid_argument("quadric matrix is zero");
+  QuadricMatrix q;
+  q.state_ = std::make_shared<State>();
+  q.state_->doubles = d;
+  return q;
+}
+
+Mat4 symmetric_part_exact(const DoubleMat4& d) {
+  Mat4 m;
+  for (size_t i = 0; i < 4; ++i) {
+    m[i][i] = Rational::exact_from_double(d[i][i]);
+    for (size_t j = i + 1; j < 4; ++j) {
+      Rational v = Rational::exact_from_double(d[i][j]);
+      if (d[j][i] != d[i][j]) v = (v + Rational::exact_from_double(d[j][i])) * Rational(1, 2);
+      m[j][i] = v;
+      m[i][j] = std::move(v);
+    }
+  }
+  return m;
+}
+
 const Mat4& QuadricMatrix::matrix() const {
-  std::call_once(state_->formed, [this] { state_->m = exact_matrix(*state_->shape); });
-  return state_->m;
+  State& s = *state_;
+  if (!s.shape && !s.doubles) return s.m; // formed at construction
+  std::call_once(s.formed, [&s] {
+    s.m = s.shape ? exact_matrix(*s.shape) : symmetric_part_exact(*s.doubles);
+  });
+  return s.m;
 }
 
 QuadricMatrix QuadricMatrix::from_poly(const Poly3& p) {

@@ -351,6 +351,51 @@ TEST(BatchLine, EdgeCasesOfTheReading) {
     expect_same(l, Mode::Float, Detail::Full, 1e6);
 }
 
+// A double matrix is a lazy quadric (core/quadric.hpp: its symmetric part, enclosed in
+// intervals, rationals formed on demand) on the fast route and exact rationals on the document
+// route: the same answers and readings where the asymmetry is not exact in double (1 against
+// 1e-30: the rational route of the reading), where the symmetric part overflows the doubles
+// (the filter cannot decide: exact fallback), where it is zero (an input error), at tiny and
+// huge magnitudes, with -0 against 0, and in every mode and detail.
+TEST(BatchLine, DoubleMatricesAgreeWithTheExactReading) {
+  const std::string e = R"({"type":"ellipsoid","center":[0.25,0,0],"radii":[1,0.5,0.75]})";
+  auto mat = [](const char* rows) { return std::string(R"({"matrix":)") + rows + "}"; };
+  const std::vector<std::string> matrices = {
+      mat("[[1,1e-30,0,0],[1,1,0,0],[0,0,1,0],[0,0,0,-1]]"),
+      mat("[[1,0.5,0,0],[0.50000000000000011,1,0,0],[0,0,1,0],[0,0,0,-0.25]]"),
+      mat("[[1,1e-17,0,0],[-3e-300,1,0,0],[0,0,1,0.1],[0,0,0.10000000000000001,-0.25]]"),
+      mat("[[1e308,1.5e308,0,0],[1.7e308,1e308,0,0],[0,0,1,0],[0,0,0,-1]]"),
+      mat("[[1e-300,0,0,0],[0,1e-300,0,0],[0,0,1e-300,0],[0,0,0,-1e-300]]"),
+      mat("[[1e300,0,0,0],[0,2e300,0,0],[0,0,1e300,0],[0,0,0,-1e300]]"),
+      mat("[[1,-0.0,0,0],[0,1,0,0],[0,0,1,-0.0],[0,0,0,-1]]"),
+      mat("[[0,1,0,0],[-1,0,0,0],[0,0,0,0],[0,0,0,0]]"),
+      mat("[[0,0,0,0],[0,0,0,0],[0,0,0,0.5],[0,0,-0.5,0]]"),
+      mat("[[2.5,1,0,0],[1,1,0,0],[0,0,1,0],[0,0,0,-1]]"),
+      mat("[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1.0000000000000002]]"),
+  };
+  for (const auto& a : matrices)
+    for (Mode m : {Mode::Filtered, Mode::Exact, Mode::Float})
+      for (const char* d : {"topology", "certificate", "full"}) {
+        expect_same(R"({"id":1,"op":"classify","a":)" + a + R"(,"b":)" + e + R"(,"detail":")" + d +
+                        "\"}",
+                    m);
+        expect_same(R"({"id":2,"op":"classify","a":)" + e + R"(,"b":)" + a + R"(,"detail":")" + d +
+                        "\"}",
+                    m);
+      }
+  // The same sphere as a matrix and as a shape: the same answer, certified.
+  const std::string sphere = mat("[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]");
+  const auto fast = app::answer_batch_line(R"({"id":1,"op":"classify","a":)" + sphere + R"(,"b":)" +
+                                               e + R"(,"detail":"topology"})",
+                                           1, Mode::Filtered);
+  const auto shape =
+      app::answer_batch_line(R"({"id":1,"op":"classify","a":{"type":"sphere","radius":1},"b":)" +
+                                 e + R"(,"detail":"topology"})",
+                             1, Mode::Filtered);
+  EXPECT_EQ(fast.status, "certified");
+  EXPECT_EQ(untimed(fast.text), untimed(shape.text));
+}
+
 TEST(BatchLine, MutatedLines) {
   Rng r;
   const std::vector<std::string> seeds = {

@@ -253,11 +253,43 @@ std::optional<QuadricMatrix> quadric_of_matrix(Mat4 a, const std::string& path,
 
 std::optional<QuadricMatrix> quadric_of_double_matrix(const std::array<std::array<double, 4>, 4>& m,
                                                       const std::string& path, Readings* readings) {
-  Mat4 a;
+  // The same quadric and Reading as quadric_of_matrix on the exact values, without forming
+  // the rationals (the matrix is lazy, quadric.hpp). The asymmetry max |m_ij - m_ji| is a
+  // double when every difference is exact in double (TwoSum error zero: always so for the
+  // ulp-level asymmetry of a computed matrix); otherwise it is taken in rationals.
+  bool symmetric = true, zero = true, exact = true;
+  double max_diff = 0;
   for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      a[i][j] = Rational::exact_from_double(m[i][j]);
-  return quadric_of_matrix(std::move(a), path, readings);
+    for (size_t j = 0; j < 4; ++j) {
+      if (!std::isfinite(m[i][j])) return std::nullopt;
+      zero = zero && m[i][j] == -m[j][i];
+      if (j <= i || m[i][j] == m[j][i]) continue;
+      symmetric = false;
+      const double x = m[i][j], y = -m[j][i], s = x + y;
+      const double yv = s - x, err = (x - (s - yv)) + (y - yv); // TwoSum: x + y = s + err
+      exact = exact && std::isfinite(s) && err == 0;
+      max_diff = std::max(max_diff, std::fabs(s));
+    }
+  if (zero) return std::nullopt;
+  if (readings && !symmetric) {
+    std::string text;
+    if (exact) {
+      text = Rational::exact_from_double(max_diff).to_decimal_approx(3);
+    } else {
+      std::vector<Rational> asym;
+      for (size_t i = 0; i < 4; ++i)
+        for (size_t j = i + 1; j < 4; ++j)
+          if (m[i][j] != m[j][i])
+            asym.push_back(Rational::exact_from_double(m[i][j]) -
+                           Rational::exact_from_double(m[j][i]));
+      text = max_abs_text(asym);
+    }
+    readings->push_back({path,
+                         "a non-symmetric matrix M read as its symmetric part (M + M^T) / 2: "
+                         "the same quadric p^T M p, exactly",
+                         {{"max_abs(M - M^T)", std::move(text)}}});
+  }
+  return QuadricMatrix::from_double_matrix(m);
 }
 
 std::optional<ShapeSpec> double_shape_spec(ShapeType type, const double* radius,

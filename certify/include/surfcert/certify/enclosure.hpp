@@ -4,7 +4,8 @@
 // contains every entry of q's exact matrix. For a quadric built from a shape posed in doubles
 // (core/shape.hpp) it is computed straight from the doubles (1/r^2, the quaternion's rotation
 // divided by |q|^2, T^T L T) without forming the exact rationals, which is what lets the
-// filtered decision run at float speed on double input; otherwise each exact entry is
+// filtered decision run at float speed on double input; for a quadric built from a matrix of
+// doubles, its symmetric part in intervals (core/quadric.hpp); otherwise each exact entry is
 // enclosed by its directed roundings. approx() gives the midpoints (float mode's input).
 // Contract: enclose() must run with the FPU rounding upwards (inside a
 // CGAL::Protect_FPU_rounding<true> scope); overflow or underflow only widens an entry (up to

@@ -6,7 +6,10 @@
 // equation (no rescaling), so a caller can compare it with its own reading of the input.
 // A quadric built from a ShapeSpec (a shape posed in doubles, shape.hpp) is the same exact
 // quadric, but its rational matrix is formed on first use of matrix() (thread-safe, once):
-// the interval filter works from shape() without it. Copies share the matrix.
+// the interval filter works from shape() without it. So is a quadric built from a 4x4 matrix
+// of doubles (from_double_matrix): the exact quadric of its symmetric part, whose rationals are
+// formed on first use of matrix(); the filter encloses it from double_matrix(). Copies share
+// the matrix.
 #pragma once
 
 #include "surfcert/core/poly3.hpp"
@@ -29,6 +32,8 @@ enum class QuadricKind {
   Other ///< any other quadric (cones, cylinders, paraboloids, hyperboloids, planes ...)
 };
 
+using DoubleMat4 = std::array<std::array<double, 4>, 4>;
+
 class QuadricMatrix {
 public:
   /// From a symmetric, nonzero matrix; throws std::invalid_argument otherwise (callers that
@@ -36,6 +41,11 @@ public:
   explicit QuadricMatrix(const Mat4& m);
   /// The quadric of a posed shape (lazy: the exact matrix is formed on first use).
   explicit QuadricMatrix(const ShapeSpec& s);
+  /// The quadric X^T D X of a 4x4 matrix of finite doubles, each read as its exact value: the
+  /// quadric of the symmetric part (D + D^T) / 2, exactly (lazy: its rational matrix is formed
+  /// on first use). Throws std::invalid_argument when an entry is not finite or the symmetric
+  /// part is zero.
+  static QuadricMatrix from_double_matrix(const DoubleMat4& d);
   /// From a polynomial of total degree 1 or 2 (a plane counts as a degenerate quadric).
   /// Throws std::invalid_argument if the degree is not 1 or 2.
   static QuadricMatrix from_poly(const Poly3& p);
@@ -47,6 +57,8 @@ public:
   }
   /// The shape in doubles this quadric was built from, or nullptr.
   const ShapeSpec* shape() const { return state_->shape ? &*state_->shape : nullptr; }
+  /// The matrix of doubles this quadric was built from (as given, not symmetrised), or nullptr.
+  const DoubleMat4* double_matrix() const { return state_->doubles ? &*state_->doubles : nullptr; }
   Poly3 to_poly() const;
   /// P^T A P (a change of homogeneous coordinates X = P X').
   QuadricMatrix congruent(const Mat4& p) const;
@@ -58,15 +70,19 @@ public:
   bool is_sphere() const;
 
 private:
+  QuadricMatrix() = default;
   struct State {
     Mat4 m;
     std::optional<ShapeSpec> shape;
-    std::once_flag formed;
+    std::optional<DoubleMat4> doubles;
+    std::once_flag formed; ///< used only when shape or doubles is set (m formed lazily)
   };
   std::shared_ptr<State> state_;
 };
 
 bool is_symmetric(const Mat4& m);
+/// The exact symmetric part (D + D^T) / 2 of a matrix of finite doubles (each read exactly).
+Mat4 symmetric_part_exact(const DoubleMat4& d);
 bool is_zero(const Mat4& m);
 Mat4 identity4();
 Mat4 transpose(const Mat4& m);
