@@ -354,7 +354,8 @@ TEST(BatchLine, EdgeCasesOfTheReading) {
 // A double matrix is a lazy quadric (core/quadric.hpp: its symmetric part, enclosed in
 // intervals, rationals formed on demand) on the fast route and exact rationals on the document
 // route: the same answers and readings where the asymmetry is not exact in double (1 against
-// 1e-30: the rational route of the reading), where the symmetric part overflows the doubles
+// 1e-30, or a difference past the double range: the rational route of the reading), where the
+// symmetric part overflows the doubles
 // (the filter cannot decide: exact fallback), where it is zero (an input error), at tiny and
 // huge magnitudes, with -0 against 0, and in every mode and detail.
 TEST(BatchLine, DoubleMatricesAgreeWithTheExactReading) {
@@ -365,6 +366,8 @@ TEST(BatchLine, DoubleMatricesAgreeWithTheExactReading) {
       mat("[[1,0.5,0,0],[0.50000000000000011,1,0,0],[0,0,1,0],[0,0,0,-0.25]]"),
       mat("[[1,1e-17,0,0],[-3e-300,1,0,0],[0,0,1,0.1],[0,0,0.10000000000000001,-0.25]]"),
       mat("[[1e308,1.5e308,0,0],[1.7e308,1e308,0,0],[0,0,1,0],[0,0,0,-1]]"),
+      // m_01 - m_10 overflows the doubles (the reading's rational route): 3.2e+308.
+      mat("[[1,1.5e308,0,0],[-1.7e308,1,0,0],[0,0,1,0],[0,0,0,-1]]"),
       mat("[[1e-300,0,0,0],[0,1e-300,0,0],[0,0,1e-300,0],[0,0,0,-1e-300]]"),
       mat("[[1e300,0,0,0],[0,2e300,0,0],[0,0,1e300,0],[0,0,0,-1e300]]"),
       mat("[[1,-0.0,0,0],[0,1,0,0],[0,0,1,-0.0],[0,0,0,-1]]"),
