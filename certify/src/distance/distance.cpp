@@ -4,8 +4,8 @@
 #include "surfcert/certify/distance/route.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 
 namespace surfcert::certify {
 
@@ -37,6 +37,14 @@ void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits) {
 }
 
 namespace {
+
+// A double as printf's "%.17g" writes it (std::to_chars with a precision is specified to give
+// the same text, without printf's format parsing and locale machinery).
+std::string g17(double x) {
+  char buf[40];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
+  return std::string(buf, r.ptr);
+}
 
 // What every answer goes through last, whatever route produced it:
 // - a minimizer count that is not proven (several candidates whose equality is unproven, or
@@ -126,18 +134,14 @@ Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail)
     Json d = Json::object();
     d.set("lower", Json::string(r.distance->lower()));
     d.set("upper", Json::string(r.distance->upper()));
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", r.distance->approx());
-    d.set("approx", Json::string(buf));
-    res.set("distance", d);
+    d.set("approx", Json::string(g17(r.distance->approx())));
+    res.set("distance", std::move(d));
   }
   if (r.estimate) { // a float answer: never in "distance"
     Json e = Json::object();
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", r.estimate->value);
-    e.set("value", Json::string(buf));
+    e.set("value", Json::string(g17(r.estimate->value)));
     e.set("certified", Json::boolean(false));
-    res.set("estimate", e);
+    res.set("estimate", std::move(e));
   }
   if (!r.minimizers.empty()) {
     res.set("minimizers", Json::string(r.minimizers.str()));
@@ -157,16 +161,13 @@ Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail)
     Json pj = Json::array();
     for (const auto& p : pr) {
       Json a3 = Json::array();
-      for (double x : p) {
-        char buf[40];
-        std::snprintf(buf, sizeof buf, "%.17g", x);
-        a3.push_back(Json::number_text(buf));
-      }
-      pj.push_back(a3);
+      for (double x : p)
+        a3.push_back(Json::number_text(g17(x)));
+      pj.push_back(std::move(a3));
     }
-    pairs.push_back(pj);
+    pairs.push_back(std::move(pj));
   }
-  res.set("pairs", pairs);
+  res.set("pairs", std::move(pairs));
   res.set("pair_points_approximate", Json::boolean(true));
   if (full) { // the certificate data: how many critical points, the eliminated system's degrees
     res.set("critical_candidates", Json::number(r.critical_candidates));
@@ -184,7 +185,7 @@ Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail)
     deg.set("bivariate", arr(r.bivariate_degrees));
     deg.set("univariate", arr(r.univariate_degrees));
     deg.set("squarefree", arr(r.squarefree_degrees));
-    res.set("degrees", deg);
+    res.set("degrees", std::move(deg));
   }
   res.set("digits", Json::number(digits));
   res.set("solid", Json::boolean(r.solid));
@@ -192,7 +193,7 @@ Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail)
   if (r.method != Method::None) res.set("method", Json::string(to_string(r.method)));
   if (r.reduced_by != Method::None) res.set("reduced_by", Json::string(to_string(r.reduced_by)));
   if (r.ties != Ties::None) res.set("ties", Json::string(to_string(r.ties)));
-  o.set("result", res);
+  o.set("result", std::move(res));
   return o;
 }
 

@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/enclosure.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 
+#include <CGAL/Interval_nt.h>
 #include <mpfr.h>
 
 namespace surfcert::certify {
@@ -86,7 +87,25 @@ bool Enclosure::meets_width(long digits) const {
   // eps = 10^-(digits_ + 1) times itself. If hi (1 + eps) - lo (1 - eps) <= 10^-digits
   // lo (1 - eps), the printed decimals meet the width (Arb decides, rigorously). Otherwise
   // the exact check on the printed text below.
-  if (arf_sgn(lo_.v) > 0 && digits >= 0 && digits_ >= 0) {
+  if (arf_sgn(lo_.v) > 0 && digits >= 0 && digits_ >= 0 && digits <= 250 && digits_ <= 250) {
+    // The same test first in outward-rounded double intervals (CGAL::Interval_nt): lo and hi
+    // rounded down and up to doubles (which only widens w and lowers tol), 10^-k as an
+    // interval; directed rounding keeps every bound valid (an underflow only weakens tol).
+    // Not decided there (a width at the edge, extreme magnitudes): the Arb test below.
+    const double ld = arf_get_d(lo_.v, ARF_RND_FLOOR), hd = arf_get_d(hi_.v, ARF_RND_CEIL);
+    if (ld > 0x1p-600 && hd < 0x1p600) {
+      using DI = CGAL::Interval_nt<false>;
+      CGAL::Protect_FPU_rounding<true> guard;
+      auto pow10_inv = [](long k) {
+        DI r(1), tenth = DI(1) / DI(10);
+        for (; k > 0; --k)
+          r *= tenth;
+        return r;
+      };
+      const DI L(ld), H(hd), eps = pow10_inv(digits_ + 1);
+      const DI w = (H - L) + eps * (H + L), tol = L * pow10_inv(digits) * (DI(1) - eps);
+      if (w.sup() <= tol.inf()) return true;
+    }
     const long prec = 64;
     Ball eps, l, h, w, t, tol;
     arb_ui_pow_ui(eps.v, 10, static_cast<ulong>(digits_ + 1), prec);
