@@ -472,78 +472,109 @@ Solid<double> posed_solid(const core::ShapeSpec& sp, int shift) {
   return o;
 }
 
-// The pose as balls at precision prec: Rq, s, the radii and the centre (the doubles exactly).
+// The pose as balls at precision prec: RD = Rq D (row-major, Rq's columns scaled by the
+// radii), s = |q|^2 and the centre (the doubles exactly). Contiguous arb_struct arrays, so that
+// every sum of products is one arb_dot (exact accumulation, one rounding: a fraction of the
+// cost of chained arb_addmul).
 struct PosedBalls {
-  Ball rq[3][3], s, r[3], c[3];
+  arb_struct rd[9], c[3];
+  Ball s;
+  PosedBalls() {
+    for (auto& x : rd)
+      arb_init(&x);
+    for (auto& x : c)
+      arb_init(&x);
+  }
+  ~PosedBalls() {
+    for (auto& x : rd)
+      arb_clear(&x);
+    for (auto& x : c)
+      arb_clear(&x);
+  }
+  PosedBalls(const PosedBalls&) = delete;
+  PosedBalls& operator=(const PosedBalls&) = delete;
+};
+
+// Contiguous balls: arb_dot reads arrays of arb_struct.
+template <size_t N> struct Balls {
+  arb_struct v[N];
+  Balls() {
+    for (auto& x : v)
+      arb_init(&x);
+  }
+  ~Balls() {
+    for (auto& x : v)
+      arb_clear(&x);
+  }
+  Balls(const Balls&) = delete;
+  Balls& operator=(const Balls&) = delete;
 };
 
 void posed_balls(PosedBalls& e, const core::ShapeSpec& sp, long prec) {
-  for (size_t k = 0; k < 3; ++k) {
-    arb_set_d(e.r[k].v, sp.radii[k]);
-    arb_set_d(e.c[k].v, sp.center[k]);
-  }
+  for (size_t k = 0; k < 3; ++k)
+    arb_set_d(&e.c[k], sp.center[k]);
   if (!sp.rotated) {
     for (size_t i = 0; i < 3; ++i)
-      for (size_t j = 0; j < 3; ++j)
-        i == j ? arb_one(e.rq[i][j].v) : arb_zero(e.rq[i][j].v);
+      for (size_t k = 0; k < 3; ++k)
+        i == k ? arb_set_d(&e.rd[3 * i + k], sp.radii[k]) : arb_zero(&e.rd[3 * i + k]);
     arb_one(e.s.v);
     return;
   }
-  Ball q[4], p[4][4];
+  // p[i][j] = q_i q_j with q = (w, x, y, z): the diagonal of Rq is ww +- xx +- yy +- zz, the
+  // rest 2 (q_i q_j -+ w q_k). (Ten products and sums: cheaper than arb_dot on such short
+  // vectors.)
+  Ball q[4], pr[4][4];
   for (size_t i = 0; i < 4; ++i)
     arb_set_d(q[i].v, sp.quaternion[i]);
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = i; j < 4; ++j)
-      arb_mul(p[i][j].v, q[i].v, q[j].v, prec);
-  // p[i][j] = q_i q_j with q = (w, x, y, z): the diagonal of Rq is ww +- xx +- yy +- zz, the
-  // rest 2 (q_i q_j -+ w q_k).
+      arb_mul(pr[i][j].v, q[i].v, q[j].v, prec);
   auto diag = [&](arb_t out, int sx, int sy, int sz) {
-    arb_set(out, p[0][0].v);
-    (sx > 0 ? arb_add : arb_sub)(out, out, p[1][1].v, prec);
-    (sy > 0 ? arb_add : arb_sub)(out, out, p[2][2].v, prec);
-    (sz > 0 ? arb_add : arb_sub)(out, out, p[3][3].v, prec);
+    arb_set(out, pr[0][0].v);
+    (sx > 0 ? arb_add : arb_sub)(out, out, pr[1][1].v, prec);
+    (sy > 0 ? arb_add : arb_sub)(out, out, pr[2][2].v, prec);
+    (sz > 0 ? arb_add : arb_sub)(out, out, pr[3][3].v, prec);
   };
+  Balls<9> rq;
   diag(e.s.v, 1, 1, 1);
-  diag(e.rq[0][0].v, 1, -1, -1);
-  diag(e.rq[1][1].v, -1, 1, -1);
-  diag(e.rq[2][2].v, -1, -1, 1);
+  diag(&rq.v[0], 1, -1, -1);
+  diag(&rq.v[4], -1, 1, -1);
+  diag(&rq.v[8], -1, -1, 1);
   auto off = [&](arb_t out, const Ball& a, const Ball& b, int sign) {
     (sign > 0 ? arb_add : arb_sub)(out, a.v, b.v, prec);
     arb_mul_2exp_si(out, out, 1);
   };
-  off(e.rq[0][1].v, p[1][2], p[0][3], -1); // 2 (xy - wz)
-  off(e.rq[1][0].v, p[1][2], p[0][3], 1);  // 2 (xy + wz)
-  off(e.rq[0][2].v, p[1][3], p[0][2], 1);  // 2 (xz + wy)
-  off(e.rq[2][0].v, p[1][3], p[0][2], -1); // 2 (xz - wy)
-  off(e.rq[1][2].v, p[2][3], p[0][1], -1); // 2 (yz - wx)
-  off(e.rq[2][1].v, p[2][3], p[0][1], 1);  // 2 (yz + wx)
+  off(&rq.v[1], pr[1][2], pr[0][3], -1); // 2 (xy - wz)
+  off(&rq.v[3], pr[1][2], pr[0][3], 1);  // 2 (xy + wz)
+  off(&rq.v[2], pr[1][3], pr[0][2], 1);  // 2 (xz + wy)
+  off(&rq.v[6], pr[1][3], pr[0][2], -1); // 2 (xz - wy)
+  off(&rq.v[5], pr[2][3], pr[0][1], -1); // 2 (yz - wx)
+  off(&rq.v[7], pr[2][3], pr[0][1], 1);  // 2 (yz + wx)
+  Ball r;
+  for (size_t k = 0; k < 3; ++k) {
+    arb_set_d(r.v, sp.radii[k]);
+    for (size_t i = 0; i < 3; ++i)
+      arb_mul(&e.rd[3 * i + k], &rq.v[3 * i + k], r.v, prec);
+  }
 }
 
-// h(n) and the support point p(n) of the posed ellipsoid, for the exact direction n (balls).
-void posed_support(Ball& h, Ball (&p)[3], const PosedBalls& e, const Ball (&n)[3], long prec) {
-  Ball m[3], mm, len, t;
-  for (size_t k = 0; k < 3; ++k) { // m = D Rq^T n
-    arb_mul(m[k].v, e.rq[0][k].v, n[0].v, prec);
-    arb_addmul(m[k].v, e.rq[1][k].v, n[1].v, prec);
-    arb_addmul(m[k].v, e.rq[2][k].v, n[2].v, prec);
-    arb_mul(m[k].v, m[k].v, e.r[k].v, prec);
-    arb_addmul(mm.v, m[k].v, m[k].v, prec);
-  }
+// h(n) and the support point p(n) of the posed ellipsoid, for the exact direction n (balls):
+// m = D Rq^T n = RD^T n, h = n.c + |m| / s, p = c + RD m / (s |m|).
+void posed_support(Ball& h, Ball (&p)[3], const PosedBalls& e, const arb_struct* n, long prec) {
+  Balls<3> m;
+  Ball mm, len, t;
+  for (size_t k = 0; k < 3; ++k)
+    arb_dot(&m.v[k], nullptr, 0, e.rd + k, 3, n, 1, 3, prec);
+  arb_dot(mm.v, nullptr, 0, m.v, 1, m.v, 1, 3, prec);
   arb_sqrt(len.v, mm.v, prec); // |m| > 0: n != 0 and Rq, D invertible (else not finite)
-  arb_div(h.v, len.v, e.s.v, prec);
-  for (size_t i = 0; i < 3; ++i) // h = n.c + |m| / s
-    arb_addmul(h.v, n[i].v, e.c[i].v, prec);
-  arb_mul(t.v, e.s.v, len.v, prec); // p = c + Rq (D m) / (s |m|)
+  arb_div(t.v, len.v, e.s.v, prec);
+  arb_dot(h.v, t.v, 0, n, 1, e.c, 1, 3, prec);
+  arb_mul(t.v, e.s.v, len.v, prec);
   arb_inv(t.v, t.v, prec);
-  for (size_t k = 0; k < 3; ++k) {
-    arb_mul(m[k].v, m[k].v, e.r[k].v, prec);
-    arb_mul(m[k].v, m[k].v, t.v, prec);
-  }
-  for (size_t i = 0; i < 3; ++i) {
-    arb_set(p[i].v, e.c[i].v);
-    for (size_t k = 0; k < 3; ++k)
-      arb_addmul(p[i].v, e.rq[i][k].v, m[k].v, prec);
-  }
+  for (size_t k = 0; k < 3; ++k)
+    arb_mul(&m.v[k], &m.v[k], t.v, prec);
+  for (size_t i = 0; i < 3; ++i)
+    arb_dot(p[i].v, &e.c[i], 0, e.rd + 3 * i, 1, m.v, 1, 3, prec);
 }
 
 } // namespace
@@ -640,25 +671,27 @@ std::optional<DistanceResult> separated_posed_ellipsoids(const core::ShapeSpec& 
     return std::nullopt;
   }
   // The certificate at the exact direction n (its doubles), in Arb from the exact doubles.
-  Ball nb[3], mn[3];
+  Balls<3> nb, mn;
+  Ball nball[3];
   for (size_t i = 0; i < 3; ++i) {
     if (!std::isfinite(n[i])) return std::nullopt;
-    arb_set_d(nb[i].v, n[i]);
-    arb_neg(mn[i].v, nb[i].v);
+    arb_set_d(&nb.v[i], n[i]);
+    arb_neg(&mn.v[i], &nb.v[i]);
+    arb_set_d(nball[i].v, n[i]);
   }
   DistanceResult out;
   set_separated_facts(out);
-  // Two machine words first when they leave a wide margin (Arb keeps them inline: no
+  // One machine word first, then two, when they leave a wide margin (Arb keeps them inline: no
   // allocation), then the usual working precision (a small gap against the solids' size).
   const long full = bits_for(digits + 10);
-  for (long prec : {std::min(128L, full), full}) {
+  for (long prec : {std::min(64L, full), std::min(128L, full), full}) {
     PosedBalls ea, eb;
     Ball ha, hb, pa[3], pb[3];
     posed_balls(ea, a, prec);
     posed_balls(eb, b, prec);
-    posed_support(ha, pa, ea, nb, prec);
-    posed_support(hb, pb, eb, mn, prec);
-    if (enclose_at_direction(out, ha, hb, pa, pb, nb, digits, prec)) return out;
+    posed_support(ha, pa, ea, nb.v, prec);
+    posed_support(hb, pb, eb, mn.v, prec);
+    if (enclose_at_direction(out, ha, hb, pa, pb, nball, digits, prec)) return out;
     if (prec == full) break;
   }
   return std::nullopt;
