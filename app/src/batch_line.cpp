@@ -1,6 +1,7 @@
 #include "surfcert/app/batch_line.hpp"
 
 #include "surfcert/app/batch_query.hpp"
+#include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/core/budget.hpp"
 #include "surfcert/core/io/json.hpp"
@@ -443,6 +444,28 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
         ans.status = certify::to_string(r->status);
         const size_t start = out.size();
         certify::append_qsic_topology_envelope(out, *r);
+        out[start] = ','; // its members continue the answer object
+        out.pop_back();
+      } else {
+        const Json env = budget_undecided_envelope(q.budget_ms);
+        ans.status = env.find("status")->text();
+        append_members(out, env);
+      }
+    } else if (q.op == "distance") {
+      // Written directly as well (batch_envelope's bytes: tests compare the two).
+      const std::optional<certify::DistanceResult> r =
+          [&]() -> std::optional<certify::DistanceResult> {
+        try {
+          core::BudgetScope budget(q.budget_ms);
+          return certify::surface_distance(*fl->a, *fl->b, q.digits, q.solid, q.mode);
+        } catch (const core::BudgetExceeded&) {
+          return std::nullopt;
+        }
+      }();
+      if (r) {
+        ans.status = certify::to_string(r->status);
+        const size_t start = out.size();
+        certify::append_distance_envelope(out, *r, q.digits, q.detail);
         out[start] = ','; // its members continue the answer object
         out.pop_back();
       } else {

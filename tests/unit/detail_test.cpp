@@ -9,11 +9,16 @@
 //   smaller volume inside) and overlapping (a common centre, each poking out of the other), in
 //   the three modes;
 // - bad detail values are input errors at their JSON path (batch line, scene query) and bad
-//   --detail values are command-line errors.
+//   --detail values are command-line errors;
+// - the distance envelope's text (append_distance_envelope, written directly) equals the
+//   document the envelope was built as before (a reference builder here: a Json tree, doubles
+//   by printf "%.17g", dump()), for results with every optional field on and off, both
+//   levels, awkward notes and doubles (subnormal, -0, 1e300, non-finite pairs left out).
 #include "support/canonical.hpp"
 #include "support/fixtures.hpp"
 
 #include "surfcert/app/scene.hpp"
+#include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/core/error.hpp"
 
 #include <gtest/gtest.h>
@@ -427,4 +432,155 @@ TEST(Detail, CommandLine) {
   EXPECT_EQ(got[1].find("detail")->text(), "value");
   EXPECT_EQ(got[2].find("detail"), nullptr);
   EXPECT_EQ(run("batch --detail bogus", "").code, 2);
+}
+
+namespace {
+
+// The envelope as distance_envelope_json built it as a document (before it was written as
+// text directly): the reference for the text's bytes.
+Json reference_distance_envelope(const certify::DistanceResult& r, long digits,
+                                 certify::Detail detail) {
+  auto g17 = [](double x) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return std::string(buf);
+  };
+  Json o = Json::object();
+  o.set("status", Json::string(certify::to_string(r.status)));
+  if (r.budget_exhausted) o.set("reason", Json::string("budget"));
+  if (!r.note.empty()) o.set("note", Json::string(r.note));
+  const bool full = detail == certify::Detail::Full;
+  if (!full) o.set("detail", Json::string("value"));
+  Json res = Json::object();
+  if (r.distance) {
+    Json d = Json::object();
+    d.set("lower", Json::string(r.distance->lower()));
+    d.set("upper", Json::string(r.distance->upper()));
+    d.set("approx", Json::string(g17(r.distance->approx())));
+    res.set("distance", d);
+  }
+  if (r.estimate) {
+    Json e = Json::object();
+    e.set("value", Json::string(g17(r.estimate->value)));
+    e.set("certified", Json::boolean(false));
+    res.set("estimate", e);
+  }
+  if (!r.minimizers.empty()) {
+    res.set("minimizers", Json::string(r.minimizers.str()));
+    res.set("minimizers_proof", Json::string(r.minimizers.proof_str()));
+  }
+  if (r.minimizer_candidates() > 0)
+    res.set("minimizer_candidates", Json::number(r.minimizer_candidates()));
+  Json pairs = Json::array();
+  for (const auto& pr : r.pairs) {
+    bool finite = true;
+    for (const auto& p : pr)
+      for (double x : p)
+        finite = finite && std::isfinite(x);
+    if (!finite) continue;
+    Json pj = Json::array();
+    for (const auto& p : pr) {
+      Json a3 = Json::array();
+      for (double x : p)
+        a3.push_back(Json::number_text(g17(x)));
+      pj.push_back(a3);
+    }
+    pairs.push_back(pj);
+  }
+  res.set("pairs", pairs);
+  res.set("pair_points_approximate", Json::boolean(true));
+  if (full) {
+    res.set("critical_candidates", Json::number(r.critical_candidates));
+    res.set("eliminated_degree", Json::number(r.eliminated_degree));
+  }
+  if (full && !r.system_degrees.empty()) {
+    Json deg = Json::object();
+    auto arr = [](const std::vector<long>& v) {
+      Json a = Json::array();
+      for (long x : v)
+        a.push_back(Json::number(x));
+      return a;
+    };
+    deg.set("system", arr(r.system_degrees));
+    deg.set("bivariate", arr(r.bivariate_degrees));
+    deg.set("univariate", arr(r.univariate_degrees));
+    deg.set("squarefree", arr(r.squarefree_degrees));
+    res.set("degrees", deg);
+  }
+  res.set("digits", Json::number(digits));
+  res.set("solid", Json::boolean(r.solid));
+  res.set("mode", Json::string(certify::to_string(r.mode)));
+  if (r.method != certify::Method::None)
+    res.set("method", Json::string(certify::to_string(r.method)));
+  if (r.reduced_by != certify::Method::None)
+    res.set("reduced_by", Json::string(certify::to_string(r.reduced_by)));
+  if (r.ties != certify::Ties::None) res.set("ties", Json::string(certify::to_string(r.ties)));
+  o.set("result", res);
+  return o;
+}
+
+} // namespace
+
+TEST(Detail, DistanceEnvelopeTextEqualsTheReferenceDocument) {
+  using certify::DistanceResult;
+  using certify::Minimizers;
+  std::mt19937_64 rng(20261125);
+  const double doubles[] = {0.1,     -0.0,        5e-324, 2.2250738585072014e-308, 1e300, -1.5e-7,
+                            1.0 / 3, 123456789.0, 0.5};
+  const char* notes[] = {"", "plain", "quote \" and backslash \\", "new\nline\ttab \x01",
+                         "UTF-8 \xc3\xa9 \xe2\x88\x9a"};
+  const certify::Status statuses[] = {certify::Status::Certified, certify::Status::Undecided,
+                                      certify::Status::Uncertified, certify::Status::Error};
+  const Minimizers mins[] = {Minimizers(), Minimizers::count(2, Minimizers::Proof::Exact),
+                             Minimizers::continuum(Minimizers::Proof::Interval),
+                             Minimizers::undecided(3)};
+  long checked = 0;
+  for (int t = 0; t < 400; ++t) {
+    auto bit = [&](int k) { return ((rng() >> k) & 1u) != 0; };
+    DistanceResult r;
+    r.status = statuses[rng() % 4];
+    r.note = notes[rng() % 5];
+    r.budget_exhausted = bit(1);
+    if (bit(2)) {
+      algebra::Ball d;
+      arb_set_d(d.v, doubles[rng() % 9]);
+      arb_abs(d.v, d.v);
+      arb_add_error_2exp_si(d.v, -60 + static_cast<long>(rng() % 50));
+      certify::set_distance_enclosure(r, d.v, 15);
+    }
+    if (bit(3)) r.estimate = certify::Estimate{doubles[rng() % 9]};
+    r.minimizers = mins[rng() % 4];
+    for (unsigned k = rng() % 3; k > 0; --k) {
+      std::array<std::array<double, 3>, 2> pr{};
+      for (auto& p : pr)
+        for (double& x : p)
+          x = doubles[rng() % 9];
+      if (rng() % 5 == 0) pr[1][2] = rng() % 2 ? INFINITY : NAN; // left out
+      r.pairs.push_back(pr);
+    }
+    r.critical_candidates = static_cast<int>(rng() % 7);
+    r.eliminated_degree = static_cast<int>(rng() % 40);
+    if (bit(4)) {
+      r.system_degrees = {2, 2, 2};
+      r.bivariate_degrees = {16, 16};
+      r.univariate_degrees = {};
+      r.squarefree_degrees = {12};
+    }
+    r.solid = bit(5);
+    r.mode = kModes[rng() % 3];
+    if (bit(6)) r.method = certify::Method::ConvexDuality;
+    if (bit(7)) r.reduced_by = certify::Method::NestedConvexDuality;
+    r.ties = bit(8)   ? certify::Ties::Proven
+             : bit(9) ? certify::Ties::Unproven
+                      : certify::Ties::None;
+    for (certify::Detail d : {certify::Detail::Full, certify::Detail::Value}) {
+      const long digits = 1 + static_cast<long>(rng() % 60);
+      std::string text;
+      certify::append_distance_envelope(text, r, digits, d);
+      ASSERT_EQ(text, core::io::dump(reference_distance_envelope(r, digits, d))) << t;
+      ASSERT_EQ(core::io::dump(certify::distance_envelope_json(r, digits, d)), text) << t;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 800);
 }

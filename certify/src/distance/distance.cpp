@@ -121,35 +121,79 @@ DistanceResult surface_distance(const core::Surface& a, const core::Surface& b, 
                              digits);
 }
 
-Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail) {
-  Json o = Json::object();
-  o.set("status", Json::string(to_string(r.status)));
-  if (r.budget_exhausted) o.set("reason", Json::string("budget"));
-  if (!r.note.empty()) o.set("note", Json::string(r.note));
+void append_distance_envelope(std::string& out, const DistanceResult& r, long digits,
+                              Detail detail) {
+  using core::io::append_json_string;
+  // Members in the order distance_envelope_json has always set them.
+  auto key = [&out](const char* k) {
+    out += '"';
+    out += k; // plain ASCII keys: nothing to escape
+    out += "\":";
+  };
+  auto str = [&out](std::string_view v) { append_json_string(out, v); };
+  auto boolean = [&out](bool b) { out += b ? "true" : "false"; };
+  out += '{';
+  key("status");
+  str(to_string(r.status));
+  if (r.budget_exhausted) {
+    out += ',';
+    key("reason");
+    str("budget");
+  }
+  if (!r.note.empty()) {
+    out += ',';
+    key("note");
+    str(r.note);
+  }
   // A lean answer says so (Full, the default, adds nothing: the contract's bytes).
   const bool full = detail == Detail::Full;
-  if (!full) o.set("detail", Json::string(to_string(Detail::Value)));
-  Json res = Json::object();
+  if (!full) {
+    out += ',';
+    key("detail");
+    str(to_string(Detail::Value));
+  }
+  out += ',';
+  key("result");
+  out += '{';
   if (r.distance) { // a proven enclosure (certified, or what an undecided answer established)
-    Json d = Json::object();
-    d.set("lower", Json::string(r.distance->lower()));
-    d.set("upper", Json::string(r.distance->upper()));
-    d.set("approx", Json::string(g17(r.distance->approx())));
-    res.set("distance", std::move(d));
+    key("distance");
+    out += '{';
+    key("lower");
+    str(r.distance->lower());
+    out += ',';
+    key("upper");
+    str(r.distance->upper());
+    out += ',';
+    key("approx");
+    str(g17(r.distance->approx()));
+    out += "},";
   }
   if (r.estimate) { // a float answer: never in "distance"
-    Json e = Json::object();
-    e.set("value", Json::string(g17(r.estimate->value)));
-    e.set("certified", Json::boolean(false));
-    res.set("estimate", std::move(e));
+    key("estimate");
+    out += '{';
+    key("value");
+    str(g17(r.estimate->value));
+    out += ',';
+    key("certified");
+    boolean(false);
+    out += "},";
   }
   if (!r.minimizers.empty()) {
-    res.set("minimizers", Json::string(r.minimizers.str()));
-    res.set("minimizers_proof", Json::string(r.minimizers.proof_str()));
+    key("minimizers");
+    str(r.minimizers.str());
+    out += ',';
+    key("minimizers_proof");
+    str(r.minimizers.proof_str());
+    out += ',';
   }
-  if (r.minimizer_candidates() > 0)
-    res.set("minimizer_candidates", Json::number(r.minimizer_candidates()));
-  Json pairs = Json::array();
+  if (r.minimizer_candidates() > 0) {
+    key("minimizer_candidates");
+    out += std::to_string(r.minimizer_candidates());
+    out += ',';
+  }
+  key("pairs");
+  out += '[';
+  bool first_pair = true;
   for (const auto& pr : r.pairs) {
     // Display points: one that is not finite (an overflowing double) is left out, never
     // written as "nan" (not JSON) or allowed to fail the answer.
@@ -158,43 +202,87 @@ Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail)
       for (double x : p)
         finite = finite && std::isfinite(x);
     if (!finite) continue;
-    Json pj = Json::array();
-    for (const auto& p : pr) {
-      Json a3 = Json::array();
-      for (double x : p)
-        a3.push_back(Json::number_text(g17(x)));
-      pj.push_back(std::move(a3));
+    out += first_pair ? "[" : ",[";
+    first_pair = false;
+    for (size_t i = 0; i < pr.size(); ++i) {
+      out += i ? ",[" : "[";
+      for (size_t j = 0; j < pr[i].size(); ++j) {
+        if (j) out += ',';
+        out += g17(pr[i][j]); // finite: a JSON number
+      }
+      out += ']';
     }
-    pairs.push_back(std::move(pj));
+    out += ']';
   }
-  res.set("pairs", std::move(pairs));
-  res.set("pair_points_approximate", Json::boolean(true));
+  out += "],";
+  key("pair_points_approximate");
+  boolean(true);
   if (full) { // the certificate data: how many critical points, the eliminated system's degrees
-    res.set("critical_candidates", Json::number(r.critical_candidates));
-    res.set("eliminated_degree", Json::number(r.eliminated_degree));
+    out += ',';
+    key("critical_candidates");
+    out += std::to_string(r.critical_candidates);
+    out += ',';
+    key("eliminated_degree");
+    out += std::to_string(r.eliminated_degree);
   }
   if (full && !r.system_degrees.empty()) {
-    Json deg = Json::object();
-    auto arr = [](const std::vector<long>& v) {
-      Json a = Json::array();
-      for (long x : v)
-        a.push_back(Json::number(x));
-      return a;
+    auto arr = [&out](const std::vector<long>& v) {
+      out += '[';
+      for (size_t i = 0; i < v.size(); ++i) {
+        if (i) out += ',';
+        out += std::to_string(v[i]);
+      }
+      out += ']';
     };
-    deg.set("system", arr(r.system_degrees));
-    deg.set("bivariate", arr(r.bivariate_degrees));
-    deg.set("univariate", arr(r.univariate_degrees));
-    deg.set("squarefree", arr(r.squarefree_degrees));
-    res.set("degrees", std::move(deg));
+    out += ',';
+    key("degrees");
+    out += '{';
+    key("system");
+    arr(r.system_degrees);
+    out += ',';
+    key("bivariate");
+    arr(r.bivariate_degrees);
+    out += ',';
+    key("univariate");
+    arr(r.univariate_degrees);
+    out += ',';
+    key("squarefree");
+    arr(r.squarefree_degrees);
+    out += '}';
   }
-  res.set("digits", Json::number(digits));
-  res.set("solid", Json::boolean(r.solid));
-  res.set("mode", Json::string(to_string(r.mode)));
-  if (r.method != Method::None) res.set("method", Json::string(to_string(r.method)));
-  if (r.reduced_by != Method::None) res.set("reduced_by", Json::string(to_string(r.reduced_by)));
-  if (r.ties != Ties::None) res.set("ties", Json::string(to_string(r.ties)));
-  o.set("result", std::move(res));
-  return o;
+  out += ',';
+  key("digits");
+  out += std::to_string(digits);
+  out += ',';
+  key("solid");
+  boolean(r.solid);
+  out += ',';
+  key("mode");
+  str(to_string(r.mode));
+  if (r.method != Method::None) {
+    out += ',';
+    key("method");
+    str(to_string(r.method));
+  }
+  if (r.reduced_by != Method::None) {
+    out += ',';
+    key("reduced_by");
+    str(to_string(r.reduced_by));
+  }
+  if (r.ties != Ties::None) {
+    out += ',';
+    key("ties");
+    str(to_string(r.ties));
+  }
+  out += "}}";
+}
+
+Json distance_envelope_json(const DistanceResult& r, long digits, Detail detail) {
+  // One writer of the envelope: its text, read back (the document and the batch's direct text
+  // are the same bytes by construction).
+  std::string text;
+  append_distance_envelope(text, r, digits, detail);
+  return core::io::parse_json(text, "distance envelope");
 }
 
 } // namespace surfcert::certify

@@ -139,4 +139,9 @@ void set_distance_enclosure(DistanceResult& out, const arb_t d, long digits);
 core::io::Json distance_envelope_json(const DistanceResult& r, long digits,
                                       Detail detail = Detail::Full);
 
+/// Appends that envelope as compact JSON text, the bytes dump(distance_envelope_json(...))
+/// writes (the batch writes it directly; distance_envelope_json reads this text back).
+void append_distance_envelope(std::string& out, const DistanceResult& r, long digits,
+                              Detail detail = Detail::Full);
+
 } // namespace surfcert::certify
