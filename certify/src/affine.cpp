@@ -943,6 +943,29 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     out.unbounded_branches = static_cast<int>(curve.size()) + 1;
     return out;
   }
+  if (c == 10 || c == 11 || c == 12) {
+    // A twisted cubic and a line: counted from their exact parametrisations (the points at
+    // infinity alone cannot tell which component passes where), checked against the
+    // enumeration below when that decides too.
+    CubicAndLine cl = cubic_and_line(a.matrix(), b.matrix());
+    if (cl.found) {
+      const int unbounded = cl.cubic_points_at_infinity + (cl.line_at_infinity ? 0 : 1);
+      auto comps = components_of(c);
+      std::set<std::pair<int, int>> res;
+      if (comps) res = enumerate(*comps, curve);
+      if (res.size() == 1 && *res.begin() != std::pair<int, int>{0, unbounded}) {
+        undecide_all("inconsistent: the exact cubic and line disagree with the points at "
+                     "infinity");
+        return out;
+      }
+      out.route = "cubic_line";
+      out.loops = 0;
+      out.unbounded_branches = unbounded;
+      out.lines = cl.line_at_infinity ? 0 : 1;
+      out.cubic_line = std::move(cl);
+      return out;
+    }
+  }
   auto comps = components_of(c);
   if (!comps || ((node_at_infinity || other_special) && !all_components_real(c))) {
     out.loops.reset();

@@ -415,14 +415,77 @@ bool trace_section_lines(const core::QuadricMatrix& a, const core::QuadricMatrix
   return true;
 }
 
+// A twisted cubic and a line (cases 10-12): both from their exact parametrisations
+// (certify/cubic_line.hpp), never marched: the line in closed form, the cubic's arcs sampled
+// from its rational parametrisation, clipped to the box and checked like any box (the
+// automatic box holds the special points, the line's point nearest the origin and a point of
+// every arc of the cubic, doubled while it shows fewer open pieces than unbounded branches).
+void trace_cubic_line(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
+                      const TraceOptions& opt) {
+  const QsicResult& t = out.topology;
+  const certify::AffineTopology& af = out.affine;
+  const certify::CubicAndLine cl =
+      af.cubic_line ? *af.cubic_line : certify::cubic_and_line(a.matrix(), b.matrix());
+  if (!cl.found) {
+    out.status = Status::Undecided;
+    out.note = "the twisted cubic and the line were not found exactly: " + cl.reason;
+    return;
+  }
+  std::vector<V> sizing;
+  const std::vector<Point3> singular = split_special_points(t, out.isolated_points);
+  sizing = out.isolated_points;
+  sizing.insert(sizing.end(), singular.begin(), singular.end());
+  Point3 lp{}, ld{};
+  if (!cl.line_at_infinity) {
+    double dd = 0, pd = 0;
+    for (size_t k = 0; k < 3; ++k) {
+      lp[k] = cl.line_point[k].to_double_approx();
+      ld[k] = cl.line_direction[k].to_double_approx();
+      dd += ld[k] * ld[k];
+      pd += lp[k] * ld[k];
+    }
+    V near = lp;
+    for (size_t k = 0; k < 3; ++k)
+      near[k] -= pd / dd * ld[k];
+    sizing.push_back(near);
+  }
+  for (const auto& p : cubic_arc_points(cl))
+    sizing.push_back(p);
+  auto trace_at = [&](const Box& in) {
+    out.branches.clear();
+    if (!cl.line_at_infinity)
+      if (auto br = line_in_box(lp, ld, in)) out.branches.push_back(std::move(*br));
+    for (auto& br : cubic_in_box(cl, in, opt.tolerance * in.diagonal(), opt.max_points_per_branch))
+      out.branches.push_back(std::move(br));
+  };
+  out.box_automatic = !opt.box;
+  Box box = opt.box ? *opt.box : box_around(sizing);
+  for (int attempt = 0; attempt < 7; ++attempt) {
+    trace_at(box);
+    if (opt.box || !af.unbounded_branches ||
+        static_cast<int>(out.branches.size()) >= *af.unbounded_branches)
+      break;
+    for (size_t k = 0; k < 3; ++k) {
+      const double c = 0.5 * (box.min[k] + box.max[k]), h = box.max[k] - box.min[k];
+      box.min[k] = c - h;
+      box.max[k] = c + h;
+    }
+  }
+  settle_box(a, b, out, box, !opt.box, trace_at, t.special_points_complete);
+}
+
 // Non-ellipsoid pairs: the curve inside a box, checked against the affine topology.
 void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
                   const TraceOptions& opt) {
   const QsicResult& t = out.topology;
   const certify::AffineTopology& af = out.affine;
+  const Morphology& m = *t.morphology;
+  if (m.cubics > 0) {
+    trace_cubic_line(a, b, out, opt);
+    return;
+  }
   QuadricPair q(a, b);
   std::vector<Point3> singular = split_special_points(t, out.isolated_points);
-  const Morphology& m = *t.morphology;
   const bool curve_by_conics = m.conics > 0 || m.lines > 0 || m.cubics > 0;
   std::vector<Branch> conics;
   std::vector<V> sizing = out.isolated_points;

@@ -32,10 +32,14 @@
 // (parallel), or coincide (not computed); the plane at infinity they share as quadrics is not
 // listed. Two cones with one common affine apex p (a degenerate pencil, route "common_apex"):
 // the curve is the lines p + t d over the real points d at infinity (p alone when there is
-// none). Requires a certified topology, except on these plane and apex routes.
+// none). A twisted cubic and a line (cases 10-12, route "cubic_line"): the counts come from
+// their exact parametrisations (certify/cubic_line.hpp): one unbounded branch per distinct
+// real point at infinity of the cubic, one for the line. Requires a certified topology,
+// except on these plane and apex routes.
 #pragma once
 
 #include "surfcert/algebra/upoly.hpp"
+#include "surfcert/certify/cubic_line.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 
@@ -69,7 +73,8 @@ struct ComponentAtInfinity {
 
 struct AffineTopology {
   bool computed = false; ///< false: nothing established (see reason)
-  std::string route;     ///< "pencil", "plane_section" or "pencil_plane"
+  std::string route;     ///< "pencil", "plane_section", "pencil_plane", "plane_plane",
+                         ///< "common_apex" or "cubic_line"
   std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
   std::vector<PointAtInfinity> points_at_infinity;
   bool points_at_infinity_complete = false;
@@ -83,6 +88,8 @@ struct AffineTopology {
   /// Route "common_apex" (a degenerate pencil of two cones with one affine apex): the apex;
   /// the curve is the lines from it along the points at infinity (the apex alone if none).
   std::optional<std::array<core::Rational, 3>> apex;
+  /// Route "cubic_line": the exact line and cubic.
+  std::optional<CubicAndLine> cubic_line;
   bool certified() const {
     return computed && loops && unbounded_branches && isolated_points && lines && conics &&
            points_at_infinity_complete;

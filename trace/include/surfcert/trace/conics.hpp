@@ -1,6 +1,7 @@
 // surfcert::trace::conic_branches: the conic components of a QSIC, produced as plane ∩ quadric
 // from the factored singular members of the pencil, never traced. Also the lines of a
-// degenerate plane section (section_lines, read exactly) and a line clipped to a box.
+// degenerate plane section (section_lines, read exactly), a line clipped to a box, and the
+// arcs of an exact twisted cubic in a box (cubic_in_box).
 //
 // At a multiple root theta of f with rank(theta*A - B) <= 2 the member is a pair of planes
 // (rank 2, real when its inertia is (1,1)) or a double plane (rank 1). Each real plane meets
@@ -12,6 +13,7 @@
 #pragma once
 
 #include "surfcert/algebra/pencil.hpp"
+#include "surfcert/certify/cubic_line.hpp"
 #include "surfcert/trace/curve.hpp"
 
 #include <optional>
@@ -35,6 +37,16 @@ std::optional<SectionComponents> section_lines(const core::Mat4& plane, const co
 /// The part of the line p + t d inside the box as an open branch (kind "line", both ends on
 /// faces), or nullopt when the line misses the box.
 std::optional<Branch> line_in_box(const Point3& p, const Point3& d, const Box& box);
+
+/// The arcs of the exact twisted cubic of cases 10-12 (certify/cubic_line.hpp) inside the
+/// box: open branches (kind "cubic") sampled from its rational parametrisation with chord
+/// error about `chord` (at most ~max_points points each), both ends on faces (snapped onto
+/// the face plane). An arc touching a face from inside is cut there (two pieces).
+std::vector<Branch> cubic_in_box(const certify::CubicAndLine& cl, const Box& box, double chord,
+                                 int max_points);
+
+/// One point of each affine arc of that cubic (a sample near the origin), for sizing a box.
+std::vector<Point3> cubic_arc_points(const certify::CubicAndLine& cl);
 
 /// Conic branches (kind "conic" or "double_conic", closed) for the exact pencil facts of a
 /// pair whose morphology has conic components. Empty when there are none.

@@ -23,7 +23,8 @@ using Point3 = std::array<double, 3>;
 
 /// One connected piece of curve as a polyline.
 struct Branch {
-  std::string kind; ///< "loop", "figure_eight", "loop_with_cusp", "conic", "line", "double_conic"
+  std::string kind; ///< "loop", "figure_eight", "loop_with_cusp", "conic", "line", "double_conic",
+                    ///< "cubic"
   bool closed = true;
   std::vector<Point3> points; ///< for closed branches the first point is not repeated at the end
   /// Open pieces in a box: the indices, in the exact box crossings (certify/box_exits.hpp),

@@ -25,7 +25,9 @@
 // Degenerate pencils and two planes whose affine curve is lines (certify/affine.hpp routes
 // plane_section / pencil_plane with a degenerate section, plane_plane, common_apex) are
 // answered with those lines in closed form, clipped to the box and checked the same way;
-// other degenerate pencils are not traced (undecided).
+// other degenerate pencils are not traced (undecided). A twisted cubic and a line (cases
+// 10-12) come from their exact parametrisations (certify/cubic_line.hpp): the line in closed
+// form, the cubic's arcs sampled from its rational map, checked against the box the same way.
 #pragma once
 
 #include "surfcert/certify/affine.hpp"
