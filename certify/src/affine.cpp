@@ -1,6 +1,8 @@
 // affine_topology: the affine reading of a certified QSIC topology (see affine.hpp).
 #include "surfcert/certify/affine.hpp"
 
+#include "surfcert/certify/cone_ovals.hpp"
+
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/algebra/plane_chart.hpp"
@@ -985,6 +987,17 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     out.undecided.push_back({"loops", why});
     out.undecided.push_back({"unbounded_branches", why});
     return out;
+  }
+  if (res.size() > 1 && m.loops > 0 && m.conics == 0 && m.lines == 0 && m.cubics == 0 &&
+      t.special_points.empty()) {
+    // Smooth ovals: when one quadric is a cone with an affine apex, its generators tell which
+    // oval each point at infinity lies on (certify/cone_ovals.hpp). Two cones: both readings
+    // must agree.
+    const int n = static_cast<int>(roots.size());
+    const auto la = cone_oval_counts(a.matrix(), b.matrix(), m.loops, n);
+    const auto lb = cone_oval_counts(b.matrix(), a.matrix(), m.loops, n);
+    const auto lu = la ? la : lb;
+    if (lu && (!la || !lb || *la == *lb) && res.count(*lu)) res = {*lu};
   }
   std::set<int> lv, uv;
   for (const auto& [l, u] : res) {

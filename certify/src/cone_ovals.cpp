@@ -1,0 +1,209 @@
+// surfcert::certify::cone_oval_counts (see cone_ovals.hpp).
+#include "surfcert/certify/cone_ovals.hpp"
+
+#include "surfcert/algebra/real_roots.hpp"
+#include "surfcert/algebra/upoly.hpp"
+
+#include <flint/fmpz.h>
+#include <flint/fmpz_poly.h>
+
+#include <vector>
+
+namespace surfcert::certify {
+
+using core::Integer;
+using core::Mat4;
+using core::Rational;
+
+namespace {
+
+using V4 = std::array<Rational, 4>;
+using algebra::UPolyQ;
+using algebra::UPolyZ;
+
+Rational form(const Mat4& q, const V4& x, const V4& y) {
+  Rational s;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      s += x[i] * q[i][j] * y[j];
+  return s;
+}
+
+std::optional<Rational> rational_sqrt(const Rational& r) {
+  if (r.sign() < 0) return std::nullopt;
+  Integer n = r.num(), d = r.den();
+  if (!fmpz_is_square(n.raw()) || !fmpz_is_square(d.raw())) return std::nullopt;
+  Integer sn, sd;
+  fmpz_sqrt(sn.raw_mut(), n.raw());
+  fmpz_sqrt(sd.raw_mut(), d.raw());
+  return Rational(sn, sd);
+}
+
+// A rational point (x : y : z) != 0 of the conic x^T m x = 0 (3x3 block of k), by a bounded
+// search: one coordinate 1, one a small fraction p/q, the last solved (a rational square root).
+std::optional<std::array<Rational, 3>> conic_point(const Mat4& k) {
+  for (size_t one = 0; one < 3; ++one)
+    for (size_t free = 0; free < 3; ++free) {
+      if (free == one) continue;
+      const size_t solve = 3 - one - free;
+      for (long q = 1; q <= 40; ++q)
+        for (long p = -60; p <= 60; ++p) {
+          std::array<Rational, 3> x;
+          x[one] = Rational(1);
+          x[free] = Rational(p, static_cast<unsigned long>(q));
+          // m_ss y^2 + 2 (m_s,one + m_s,free x_free) y + (rest) = 0
+          const Rational a2 = k[solve][solve];
+          const Rational a1 = k[solve][one] + k[solve][free] * x[free];
+          const Rational a0 = k[one][one] + Rational(2) * k[one][free] * x[free] +
+                              k[free][free] * x[free] * x[free];
+          if (a2.is_zero()) {
+            if (a1.is_zero()) continue;
+            x[solve] = -a0 / (Rational(2) * a1);
+            return x;
+          }
+          const auto r = rational_sqrt(a1 * a1 - a2 * a0);
+          if (!r) continue;
+          x[solve] = (-a1 + *r) / a2;
+          return x;
+        }
+    }
+  return std::nullopt;
+}
+
+// The square-free part, primitive, positive leading coefficient.
+UPolyZ squarefree(const UPolyQ& p) {
+  UPolyZ z = p.primitive_integer(), dz = z.derivative(), g, sq;
+  fmpz_poly_gcd(g.raw_mut(), z.raw(), dz.raw());
+  fmpz_poly_div(sq.raw_mut(), z.raw(), g.raw());
+  return sq.primitive_part();
+}
+
+int sign_at(const UPolyQ& p, const Rational& x) {
+  return p.evaluate(x).sign();
+}
+
+} // namespace
+
+std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q, int ovals,
+                                                    int points_at_infinity) {
+  // Apex: top-left block invertible and (v, 1) in the kernel of k.
+  Mat4 top = k;
+  for (size_t i = 0; i < 4; ++i)
+    top[i][3] = top[3][i] = Rational(i == 3 ? 1 : 0);
+  if (core::det(top).is_zero()) return std::nullopt;
+  // Solve top v = -(k03, k13, k23) by Cramer's rule on the 3x3 block (det(top) = det3).
+  const Rational d3 = core::det(top);
+  V4 v;
+  for (size_t c = 0; c < 3; ++c) {
+    Mat4 m = top;
+    for (size_t r = 0; r < 3; ++r)
+      m[r][c] = -k[r][3];
+    v[c] = core::det(m) / d3;
+  }
+  v[3] = Rational(1);
+  for (size_t i = 0; i < 4; ++i) {
+    Rational s;
+    for (size_t j = 0; j < 4; ++j)
+      s += k[i][j] * v[j];
+    if (!s.is_zero()) return std::nullopt; // not a cone with this apex
+  }
+  const Rational a = form(q, v, v);
+  if (a.is_zero()) return std::nullopt; // the apex lies on the curve
+  const auto p0 = conic_point(k);
+  if (!p0) return std::nullopt;
+  const V4 d0{(*p0)[0], (*p0)[1], (*p0)[2], Rational(0)};
+  // A complement e1, e2 of d0 in the plane at infinity (unit vectors), sheared until no form
+  // has a root at t = infinity.
+  size_t big = 0;
+  while (d0[big].is_zero())
+    ++big;
+  std::vector<V4> units;
+  for (size_t i = 0; i < 3; ++i)
+    if (i != big) {
+      V4 e{};
+      e[i] = Rational(1);
+      units.push_back(e);
+    }
+  for (long shear = 0; shear <= 6; ++shear) {
+    V4 e1 = units[0], e2 = units[1];
+    for (size_t i = 0; i < 4; ++i)
+      e2[i] += Rational(shear) * e1[i];
+    // e(t) = e1 + t e2; d(t) = -(e.K.e) d0 + 2 (d0.K.e) e: a point of K's conic, quadratic in t.
+    std::array<UPolyQ, 4> dt;
+    const Rational k11 = form(k, e1, e1), k12 = form(k, e1, e2), k22 = form(k, e2, e2);
+    const UPolyQ eke = UPolyQ::from_coeffs({k11, Rational(2) * k12, k22});
+    const UPolyQ dke = UPolyQ::from_coeffs({form(k, d0, e1), form(k, d0, e2)});
+    for (size_t i = 0; i < 4; ++i) {
+      const UPolyQ ei = UPolyQ::from_coeffs({e1[i], e2[i]});
+      dt[i] = UPolyQ(Rational(0)) - eke * UPolyQ(d0[i]) + UPolyQ(2) * dke * ei;
+    }
+    UPolyQ b, c;
+    for (size_t i = 0; i < 4; ++i) {
+      Rational vq;
+      for (size_t j = 0; j < 4; ++j)
+        vq += v[j] * q[j][i];
+      b = b + UPolyQ(vq) * dt[i];
+      for (size_t j = 0; j < 4; ++j)
+        if (!q[i][j].is_zero()) c = c + UPolyQ(q[i][j]) * dt[i] * dt[j];
+    }
+    const UPolyQ disc = b * b - UPolyQ(a) * c;
+    if (b.degree() != 2 || c.degree() != 4 || disc.degree() != 4) continue;
+    const UPolyZ sb = squarefree(b), sc = squarefree(c), sd = squarefree(disc);
+    auto coprime = [](const UPolyZ& x, const UPolyZ& y) {
+      UPolyZ g;
+      fmpz_poly_gcd(g.raw_mut(), x.raw(), y.raw());
+      return g.degree() == 0;
+    };
+    if (!coprime(sb, sc) || !coprime(sb, sd) || !coprime(sc, sd))
+      return std::nullopt; // a common root of b, c, disc: a singular point
+    UPolyZ prod, tmp;
+    fmpz_poly_mul(tmp.raw_mut(), sb.raw(), sc.raw());
+    fmpz_poly_mul(prod.raw_mut(), tmp.raw(), sd.raw());
+    const algebra::RootSeparation sep = algebra::isolate_real_roots(prod.primitive_part());
+    const auto& s = sep.separators;
+    const size_t n = sep.num_roots();
+    // Each root attributed to the factor changing sign across its gap.
+    enum Kind { D, C, B };
+    std::vector<Kind> kind(n);
+    for (size_t i = 0; i < n; ++i) {
+      const bool in_d = sd.sign_at(s[i]) * sd.sign_at(s[i + 1]) < 0;
+      const bool in_c = sc.sign_at(s[i]) * sc.sign_at(s[i + 1]) < 0;
+      const bool in_b = sb.sign_at(s[i]) * sb.sign_at(s[i + 1]) < 0;
+      if (in_d + in_c + in_b != 1) return std::nullopt;
+      kind[i] = in_d ? D : in_c ? C : B;
+    }
+    int croots = 0;
+    for (Kind x : kind)
+      croots += x == C ? 1 : 0;
+    if (croots != points_at_infinity) return std::nullopt;
+    std::vector<size_t> droots;
+    for (size_t i = 0; i < n; ++i)
+      if (kind[i] == D) droots.push_back(i);
+    int found_ovals = 0, through_infinity = 0;
+    if (droots.empty()) {
+      if (sign_at(disc, s[0]) <= 0) return std::nullopt; // no real curve
+      found_ovals = 2;
+      bool plus = false, minus = false;
+      for (size_t i = 0; i < n; ++i)
+        if (kind[i] == C) (sign_at(b, s[i]) < 0 ? plus : minus) = true;
+      through_infinity = (plus ? 1 : 0) + (minus ? 1 : 0);
+    } else {
+      // Arcs of P^1 between consecutive roots of disc (cyclically, through infinity).
+      const size_t m = droots.size();
+      for (size_t j = 0; j < m; ++j) {
+        const size_t from = droots[j], to = droots[(j + 1) % m];
+        if (sign_at(disc, s[from + 1]) <= 0) continue; // disc < 0 just after this root
+        ++found_ovals;
+        bool any = false;
+        for (size_t i = (from + 1) % n; i != to; i = (i + 1) % n)
+          any = any || kind[i] == C;
+        through_infinity += any ? 1 : 0;
+      }
+    }
+    if (found_ovals != ovals) return std::nullopt;
+    return std::pair<int, int>{ovals - through_infinity, points_at_infinity};
+  }
+  return std::nullopt;
+}
+
+} // namespace surfcert::certify
