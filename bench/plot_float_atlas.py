@@ -1,11 +1,14 @@
 """Plots and tabulates the float-failure atlas (bench/float_atlas.cpp's CSV).
 
 Usage (Debian's python3, which has matplotlib):
-  build/bench/float_atlas 20 1 60 > bench/results/float_atlas.csv
+  build/bench/float_atlas 20 1 60 2 > bench/results/float_atlas.csv
   /usr/bin/python3 bench/plot_float_atlas.py bench/results/float_atlas.csv bench/results/float_atlas
 
-Writes PREFIX.svg (error rate against k, one panel per degeneracy family and encoding, one
-line per tolerance; both sides of the degeneracy pooled) and PREFIX.md (the table).
+Writes PREFIX.svg: the rate of wrong answers against k, both sides of the degeneracy pooled.
+Rows 1-2: the classify families (double and exact input), one line per float-mode tolerance,
+the default tolerance's give-ups (undecided) dashed, Open CASCADE's wrong branch counts in
+black (double input only). Row 3: the distance families, surfcert's float distance mode and
+FCL. Prints the tables (markdown) on stdout.
 """
 import collections
 import csv
@@ -17,61 +20,109 @@ matplotlib.use("svg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 FAMILIES = ["tangency", "node", "acnode", "cusp", "double_conic"]
+DISTANCE_FAMILIES = ["touching", "nested"]
 ENCODINGS = ["double", "exact"]
+DEFAULT = "surfcert_float tol=1e-08"
 
 
 def main(path, prefix):
-    # (family, encoding, k, tol) -> [wrong, total], k = 0 for the degenerate point itself
-    cells = collections.defaultdict(lambda: [0, 0])
-    tols = set()
+    # (family, encoding, k, method) -> [wrong, gave_up, total], k = 0 at the degeneracy
+    cells = collections.defaultdict(lambda: [0, 0, 0])
+    methods = set()
     for row in csv.DictReader(open(path)):
-        key = (row["family"], row["encoding"], int(row["k"]), float(row["tolerance"]))
-        cells[key][0] += int(row["wrong"])
-        cells[key][1] += int(row["total"])
-        tols.add(float(row["tolerance"]))
-    tols = sorted(tols, reverse=True)
+        key = (row["family"], row["encoding"], int(row["k"]), row["method"])
+        for i, f in enumerate(("wrong", "gave_up", "total")):
+            cells[key][i] += int(row[f])
+        methods.add(row["method"])
+    tols = sorted((m for m in methods if m.startswith("surfcert_float tol=")),
+                  key=lambda m: -float(m.split("=")[1]))
     ks = sorted({k for (_, _, k, _) in cells if k > 0})
 
-    fig, axes = plt.subplots(len(ENCODINGS), len(FAMILIES), figsize=(17, 6.5), sharex=True,
-                             sharey=True)
+    def rate(fam, enc, method, what=0):
+        xs, ys = [], []
+        for k in ks:
+            c = cells.get((fam, enc, k, method))
+            if c and c[2]:
+                xs.append(k)
+                ys.append(c[what] / c[2])
+        return xs, ys
+
+    fig, axes = plt.subplots(3, len(FAMILIES), figsize=(18, 9.5), sharex=True, sharey=True)
     for i, enc in enumerate(ENCODINGS):
         for j, fam in enumerate(FAMILIES):
             ax = axes[i][j]
-            for tol in tols:
-                rate = [cells[(fam, enc, k, tol)][0] / max(1, cells[(fam, enc, k, tol)][1])
-                        for k in ks]
-                ax.plot(ks, rate, marker=".", linewidth=1.2,
-                        label=f"tol {tol:g}" + (" (default)" if tol == 1e-8 else ""))
+            for m in tols:
+                tol = m.split("=")[1]
+                ax.plot(*rate(fam, enc, m), marker=".", linewidth=1.2,
+                        label=f"float tol {tol}" + (" (default)" if m == DEFAULT else ""))
+            ax.plot(*rate(fam, enc, DEFAULT, 1), linestyle="--", color="grey", linewidth=1,
+                    label="float tol 1e-08: gave up (undecided)")
+            if enc == "double" and (fam, enc, ks[0], "occt_intss") in cells:
+                ax.plot(*rate(fam, enc, "occt_intss"), color="black", marker="s",
+                        markersize=3, linewidth=1.5, label="Open CASCADE IntSS branches")
             ax.set_ylim(-0.03, 1.03)
             ax.grid(alpha=0.3)
             if i == 0:
                 ax.set_title(fam)
-            if i == len(ENCODINGS) - 1:
-                ax.set_xlabel("k (gap ±2^-k to the degeneracy)")
             if j == 0:
-                ax.set_ylabel(f"{enc} input\nwrong Tu case (rate)")
-    axes[0][-1].legend(fontsize=8, loc="lower right")
-    fig.suptitle("surfcert float mode against the certified label, per degeneracy family "
+                ax.set_ylabel(f"{enc} input\nwrong (rate)")
+    for j in range(len(FAMILIES)):
+        ax = axes[2][j]
+        if j >= len(DISTANCE_FAMILIES):
+            ax.axis("off")
+            if j == len(DISTANCE_FAMILIES):  # the classify rows' legend, in the free space
+                ax.legend(*axes[0][0].get_legend_handles_labels(), fontsize=9,
+                          loc="center left", title="rows 1-2 (classify families)")
+            continue
+        fam = DISTANCE_FAMILIES[j]
+        ax.plot(*rate(fam, "double", "surfcert_float"), marker=".", label="surfcert float")
+        ax.plot(*rate(fam, "double", "surfcert_float", 1), linestyle="--", color="grey",
+                label="surfcert float: gave up")
+        if (fam, "double", ks[0], "fcl_libccd") in cells:
+            ax.plot(*rate(fam, "double", "fcl_libccd"), color="tab:red", marker="s",
+                    markersize=3, label="FCL distance (libccd)")
+        ax.set_title(f"distance: {fam}")
+        ax.grid(alpha=0.3)
+        ax.set_xlabel("k (gap ±2^-k to the degeneracy)")
+        if j == 0:
+            ax.set_ylabel("double input\nwrong verdict or\ndistance off > 1%")
+        ax.legend(fontsize=7, loc="center right")
+    for j in range(len(FAMILIES)):
+        axes[1][j].set_xlabel("k (gap ±2^-k to the degeneracy)")
+        axes[1][j].xaxis.set_tick_params(labelbottom=True)
+    fig.suptitle("Float methods against the certified label near degeneracies "
                  "(surfcert generate --family F; both sides pooled)")
     fig.tight_layout()
     fig.savefig(prefix + ".svg")
 
     bands = [(2, 10), (12, 20), (22, 30), (32, 40), (42, 50), (52, 60)]
-    lines = ["| family | input | tolerance | at g = 0 | "
-             + " | ".join(f"k {a}–{b}" for a, b in bands) + " |",
-             "|---|---|---|---|" + "---|" * len(bands)]
+
+    def row_of(fam, enc, m, label):
+        zero = cells.get((fam, enc, 0, m), [0, 0, 0])
+        row = [fam, enc, label, f"{zero[0]}+{zero[1]}/{zero[2]}"]
+        for a, b in bands:
+            w = sum(cells.get((fam, enc, k, m), [0, 0, 0])[0] for k in ks if a <= k <= b)
+            g = sum(cells.get((fam, enc, k, m), [0, 0, 0])[1] for k in ks if a <= k <= b)
+            t = sum(cells.get((fam, enc, k, m), [0, 0, 0])[2] for k in ks if a <= k <= b)
+            row.append(f"{100 * w / t:.0f}% + {100 * g / t:.0f}%" if t else "")
+        return "| " + " | ".join(row) + " |"
+
+    head = ("| family | input | method | at g = 0 | "
+            + " | ".join(f"k {a}–{b}" for a, b in bands) + " |\n|---|---|---|---|"
+            + "---|" * len(bands))
+    lines = [head]
     for fam in FAMILIES:
         for enc in ENCODINGS:
-            for tol in tols:
-                zero = cells[(fam, enc, 0, tol)]
-                row = [fam, enc, f"{tol:g}", f"{zero[0]}/{zero[1]}"]
-                for a, b in bands:
-                    w = sum(cells[(fam, enc, k, tol)][0] for k in ks if a <= k <= b)
-                    t = sum(cells[(fam, enc, k, tol)][1] for k in ks if a <= k <= b)
-                    row.append(f"{100 * w / t:.0f}%" if t else "")
-                lines.append("| " + " | ".join(row) + " |")
-    with open(prefix + ".md", "w") as out:
-        out.write("\n".join(lines) + "\n")
+            for m in tols:
+                lines.append(row_of(fam, enc, m, "float " + m.split("=")[1]))
+            if (fam, enc, 0, "occt_intss") in cells:
+                lines.append(row_of(fam, enc, "occt_intss", "Open CASCADE"))
+    lines += ["", head]
+    for fam in DISTANCE_FAMILIES:
+        for m, label in (("surfcert_float", "surfcert float"), ("fcl_libccd", "FCL")):
+            if (fam, "double", 0, m) in cells:
+                lines.append(row_of(fam, "double", m, label))
+    print("\n".join(lines))
 
 
 if __name__ == "__main__":
