@@ -3,6 +3,7 @@
 
 #include <fcl/config.h>
 #include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
 #include <chrono>
@@ -54,6 +55,25 @@ FclResult fcl_distance(const EllipsoidParams& e1, const EllipsoidParams& e2,
     r.error = x.what();
   } catch (...) {
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.error = "unknown exception";
+  }
+  return r;
+}
+
+FclCollideResult fcl_collide(const EllipsoidParams& e1, const EllipsoidParams& e2) {
+  FclCollideResult r;
+  const fcl::Ellipsoidd s1(e1.radii[0], e1.radii[1], e1.radii[2]);
+  const fcl::Ellipsoidd s2(e2.radii[0], e2.radii[1], e2.radii[2]);
+  const fcl::Transform3d tf1 = placement(e1), tf2 = placement(e2);
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  try {
+    fcl::collide(&s1, tf1, &s2, tf2, request, result);
+    r.collide = result.isCollision();
+    r.ok = true;
+  } catch (const std::exception& x) {
+    r.error = x.what();
+  } catch (...) {
     r.error = "unknown exception";
   }
   return r;

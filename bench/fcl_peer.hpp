@@ -48,6 +48,16 @@ struct FclResult {
 FclResult fcl_distance(const EllipsoidParams& e1, const EllipsoidParams& e2,
                        const FclOptions& options = {});
 
+/// fcl::collide(geometry1, tf1, geometry2, tf2, request, result) with a default CollisionRequest
+/// (one contact, GJK solver libccd): do the SOLIDS overlap (touching counts as colliding within
+/// libccd's tolerance)? ok = false (error set) when FCL threw.
+struct FclCollideResult {
+  bool collide = false;
+  bool ok = false;
+  std::string error;
+};
+FclCollideResult fcl_collide(const EllipsoidParams& e1, const EllipsoidParams& e2);
+
 /// "FCL 0.7.0" (the version compiled against).
 std::string fcl_version();
 

@@ -13,9 +13,13 @@
 //     isolated points: an isolated point is no curve to return).
 //   distance families: the verdict (surfaces meet: certified upper bound 0) and, when apart,
 //     the distance within 1% of the certified one; surfcert's float distance mode (batch line,
-//     mode float) and FCL's distance (libccd GJK, default tolerance 1e-6; FCL reads the shapes
-//     as solids: for the nested family the solids overlap although the surfaces do not meet,
-//     so FCL answers another question there).
+//     mode float); FCL's distance (libccd GJK, default tolerance 1e-6) and FCL's collide (its
+//     verdict against "the surfaces meet"). FCL reads the shapes as solids: for the nested
+//     family the solids overlap although the surfaces do not meet, so FCL answers another
+//     question there (every answer of collide and distance is then wrong for the surfaces).
+//     Each family point's two FCL calls run in a child process (fork + pipe): libccd aborts
+//     on some touching pairs (assertion in doSimplex2), counted as *crashed*, apart from
+//     wrong and gave up.
 // Encodings: double (every number a binary64 with its exact value: the float mode reads exactly
 // the labelled surface) and exact (general rational poses rounded to doubles). The peers read
 // the double encoding only; they get each ellipsoid as centre, radii and rotation computed in
@@ -24,7 +28,7 @@
 // families: exact).
 // Usage: float_atlas [poses=20] [seed=1] [kmax=60] [peer_poses=5]
 //   > bench/results/float_atlas.csv
-// (one CSV row per family, encoding, side, k, method: wrong, gave_up, total).
+// (one CSV row per family, encoding, side, k, method: wrong, gave_up, crashed, total).
 #include "surfcert/algebra/eigen4.hpp"
 #include "surfcert/app/generate.hpp"
 #include "surfcert/app/scene.hpp"
@@ -42,9 +46,11 @@
 #include "fcl_peer.hpp"
 #endif
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -52,13 +58,16 @@
 #include <tuple>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 using namespace surfcert;
 using core::io::Json;
 
 namespace {
 
 struct Cell {
-  long wrong = 0, gave_up = 0, total = 0;
+  long wrong = 0, gave_up = 0, crashed = 0, total = 0;
 };
 // (family, encoding, side sign, k, method) -> counts
 using Cells = std::map<std::tuple<std::string, std::string, int, int, std::string>, Cell>;
@@ -143,6 +152,61 @@ std::optional<bench::EllipsoidParams> ellipsoid_of(const Json& shape) {
   return e;
 }
 
+#ifdef SURFCERT_HAVE_FCL
+// FCL's distance and collide on one pair, run in a child process: libccd answers some touching
+// pairs with a failed assertion (doSimplex2) that aborts the process, and one abort must cost
+// one family point, not the run. The child writes the two results through a pipe; a child that
+// dies by a signal or exits without writing the whole record is "crashed".
+struct FclOutcome {
+  bool crashed = false;
+  bool distance_ok = false, collide_ok = false, collide = false;
+  double distance = 0;
+};
+
+FclOutcome fcl_in_child(const bench::EllipsoidParams& a, const bench::EllipsoidParams& b) {
+  struct Record {
+    int distance_ok, collide_ok, collide;
+    double distance;
+  };
+  int fd[2];
+  if (pipe(fd) != 0) throw std::runtime_error("float_atlas: pipe failed");
+  std::fflush(stdout);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("float_atlas: fork failed");
+  if (pid == 0) {
+    close(fd[0]);
+    const bench::FclResult d = bench::fcl_distance(a, b);
+    const bench::FclCollideResult c = bench::fcl_collide(a, b);
+    const Record rec{d.ok ? 1 : 0, c.ok ? 1 : 0, c.collide ? 1 : 0, d.distance};
+    const bool all = write(fd[1], &rec, sizeof rec) == static_cast<ssize_t>(sizeof rec);
+    _exit(all ? 0 : 1);
+  }
+  close(fd[1]);
+  Record rec{};
+  size_t got = 0;
+  while (got < sizeof rec) {
+    const ssize_t n = read(fd[0], reinterpret_cast<char*>(&rec) + got, sizeof rec - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got += static_cast<size_t>(n);
+  }
+  close(fd[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  FclOutcome o;
+  if (got != sizeof rec || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    o.crashed = true;
+    return o;
+  }
+  o.distance_ok = rec.distance_ok != 0;
+  o.collide_ok = rec.collide_ok != 0;
+  o.collide = rec.collide != 0;
+  o.distance = rec.distance;
+  return o;
+}
+#endif
+
 // Is `got` (a float distance, <= 0 meaning "they meet") right against the certified label?
 bool distance_right(double got, bool meet, double want) {
   if (meet) return got <= 0;
@@ -161,6 +225,7 @@ void classify_families(const std::vector<int>& gaps, long poses, long peer_poses
       r.seed = seed;
       r.encoding = enc;
       r.threads = 2;
+      std::fprintf(stderr, "float_atlas: %s %s\n", family, app::to_string(enc)); // progress
       for (const Json& line : app::generate(r)) {
         const Json& label = *line.find("label");
         if (label.find("status")->text() != "certified") continue;
@@ -218,6 +283,7 @@ void distance_families(const std::vector<int>& gaps, long poses, unsigned long s
     r.seed = seed;
     r.encoding = app::Encoding::Double;
     r.threads = 2;
+    std::fprintf(stderr, "float_atlas: %s\n", family); // progress
     for (const Json& line : app::generate(r)) {
       const Json& label = *line.find("label");
       if (label.find("status")->text() != "certified") continue;
@@ -248,13 +314,26 @@ void distance_families(const std::vector<int>& gaps, long poses, unsigned long s
 #ifdef SURFCERT_HAVE_FCL
       const auto ea = ellipsoid_of(*line.find("a")), eb = ellipsoid_of(*line.find("b"));
       if (!ea || !eb) continue;
-      auto& cell = cells[{family, "double", sign, k, "fcl_libccd"}];
-      ++cell.total;
-      const bench::FclResult f = bench::fcl_distance(*ea, *eb);
-      if (!f.ok)
-        ++cell.gave_up;
+      auto& dist_cell = cells[{family, "double", sign, k, "fcl_distance"}];
+      auto& coll_cell = cells[{family, "double", sign, k, "fcl_collide"}];
+      ++dist_cell.total;
+      ++coll_cell.total;
+      const FclOutcome f = fcl_in_child(*ea, *eb);
+      if (f.crashed) {
+        // libccd asserts (doSimplex2) on some touching pairs: the abort takes both calls of
+        // this family point with it, so both count as crashed.
+        ++dist_cell.crashed;
+        ++coll_cell.crashed;
+        continue;
+      }
+      if (!f.distance_ok)
+        ++dist_cell.gave_up;
       else
-        cell.wrong += distance_right(f.distance, meet, want) ? 0 : 1;
+        dist_cell.wrong += distance_right(f.distance, meet, want) ? 0 : 1;
+      if (!f.collide_ok)
+        ++coll_cell.gave_up;
+      else
+        coll_cell.wrong += f.collide == meet ? 0 : 1;
 #endif
     }
   }
@@ -270,6 +349,19 @@ int main(int argc, char** argv) {
   std::vector<int> gaps;
   for (int k = 2; k <= kmax; k += 2)
     gaps.push_back(k);
+  {
+    // The run's circumstances, on stderr (stdout is the CSV): command, date, machine, load.
+    std::string cmd;
+    for (int i = 0; i < argc; ++i)
+      cmd += std::string(i ? " " : "") + argv[i];
+    const std::time_t now = std::time(nullptr);
+    char date[64];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
+    double load[3] = {0, 0, 0};
+    if (getloadavg(load, 3) < 0) load[0] = load[1] = load[2] = -1;
+    std::fprintf(stderr, "float_atlas: %s; %s; %ld cpus; load %.2f %.2f %.2f\n", cmd.c_str(), date,
+                 sysconf(_SC_NPROCESSORS_ONLN), load[0], load[1], load[2]);
+  }
   Cells cells;
   classify_families(gaps, poses, peer_poses, seed, cells);
   // The touching family's double encoding holds 3/2 + 2^-k only up to k = 51.
@@ -277,14 +369,14 @@ int main(int argc, char** argv) {
   for (int k : gaps)
     if (k <= 50) dgaps.push_back(k);
   distance_families(dgaps, poses, seed, cells);
-  std::printf("family,encoding,side,k,method,wrong,gave_up,total\n");
+  std::printf("family,encoding,side,k,method,wrong,gave_up,crashed,total\n");
   for (const auto& [key, v] : cells) {
     const auto& [family, enc, sign, k, method] = key;
-    std::printf("%s,%s,%s,%d,%s,%ld,%ld,%ld\n", family.c_str(), enc.c_str(),
+    std::printf("%s,%s,%s,%d,%s,%ld,%ld,%ld,%ld\n", family.c_str(), enc.c_str(),
                 sign < 0   ? "minus"
                 : sign > 0 ? "plus"
                            : "zero",
-                k, method.c_str(), v.wrong, v.gave_up, v.total);
+                k, method.c_str(), v.wrong, v.gave_up, v.crashed, v.total);
   }
   return 0;
 }
