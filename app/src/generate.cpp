@@ -709,12 +709,60 @@ void distance_family_jobs(const std::string& name, const GenerateRequest& r,
   }
 }
 
-// --case distance: K random instances each of two separated spheres, nested spheres and
-// ellipsoids touching at a gap 2^-k (k in 10..40).
+// A nested pair with 4 or a circle family of symmetric minimizers, from a point Q on the outer
+// ellipsoid O = {sum x_i^2 / o_i^2 = 1} (o = (2, 3, 4) or (3, 3, 4)): P = Q - s grad(Q)/2
+// and the inner ellipsoid {sum w_i x_i^2 = 1} through P with its normal along grad(Q) there
+// (w_i = lambda g_i / P_i, g = grad(Q)/2, lambda = 1 / (P . g); w_i = 1 / c1^2 where P_i = 0).
+// When P is the closest point of the inner surface to O (checked by the label, not assumed),
+// the distance is s |g| and the symmetries of O and the inner ellipsoid (the coordinate
+// reflections) give the other minimizers: 4 points for Q = (6/5, 12/5, 0) on o = (2, 3, 4),
+// two circles for Q = (1, 2, 8/3) on the spheroid o = (3, 3, 4). Integer matrices (the
+// rational w's times a common denominator), so the double encoding holds them.
+struct SymmetricPair {
+  Mat4 inner, outer;
+  Rational distance_squared;
+};
+SymmetricPair symmetric_pair(const std::array<Rational, 3>& o, const std::array<Rational, 3>& q,
+                             const Rational& s, const Rational& c1) {
+  std::array<Rational, 3> g, p, w;
+  Rational pg, g2;
+  for (size_t i = 0; i < 3; ++i) {
+    g[i] = q[i] / (o[i] * o[i]);
+    p[i] = q[i] - s * g[i];
+    pg = pg + p[i] * g[i];
+    g2 = g2 + g[i] * g[i];
+  }
+  const Rational lambda = Rational(1) / pg;
+  for (size_t i = 0; i < 3; ++i)
+    w[i] = p[i].sign() == 0 ? Rational(1) / (c1 * c1) : lambda * g[i] / p[i];
+  // Scale each diagonal to integers: diag(w, -1) and diag(1/o^2, -1) times their denominators'
+  // product (the surface is unchanged).
+  auto integral = [](std::array<Rational, 4> d) {
+    Rational den(1);
+    for (const Rational& x : d)
+      den = den * Rational(x.den(), core::Integer(1));
+    Mat4 m{};
+    for (size_t i = 0; i < 4; ++i)
+      m[i][i] = d[i] * den;
+    return m;
+  };
+  SymmetricPair out;
+  out.inner = integral({w[0], w[1], w[2], Rational(-1)});
+  out.outer = integral({Rational(1) / (o[0] * o[0]), Rational(1) / (o[1] * o[1]),
+                        Rational(1) / (o[2] * o[2]), Rational(-1)});
+  out.distance_squared = s * s * g2;
+  return out;
+}
+
+// --case distance: K random instances each of two separated spheres, nested spheres,
+// ellipsoids touching at a gap 2^-k (k in 10..40), and nested pairs whose minimizers are k
+// symmetric points or continua: a sphere centred in a triaxial ellipsoid (2 points), in a
+// spheroid around its axis (a circle), and symmetric_pair's 4 points and two circles.
 void distance_jobs(const GenerateRequest& r, std::vector<Job>& out) {
   const Encoding enc = r.encoding == Encoding::Exact ? r.encoding : Encoding::Shape;
   const bool exact = r.encoding == Encoding::Exact;
-  for (const char* kind : {"two_spheres", "nested_spheres", "touching_ellipsoids"})
+  for (const char* kind : {"two_spheres", "nested_spheres", "touching_ellipsoids", "minimizers_2",
+                           "minimizers_circle", "minimizers_4", "minimizers_two_circles"})
     for (long i = 0; i < r.count; ++i) {
       Rng rng(stream_seed(r.seed, kind, i));
       Json c = base_construction("distance", r, i);
@@ -751,6 +799,47 @@ void distance_jobs(const GenerateRequest& r, std::vector<Job>& out) {
         b = shape_surf(ShapeType::Sphere, vec(r2, r2, r2), c0);
         c.set("how", Json::string("concentric spheres: distance r2 - r1, every point a minimizer"));
         c.set("expected_distance", Json::string((r2 - r1).to_string()));
+      } else if (k == "minimizers_2" || k == "minimizers_circle") {
+        // A sphere of radius rs at the centre of an ellipsoid with semi-axes e0 < e1 < e2 (or
+        // e0 = e1 < e2): the closest points are the ends of the shortest axis, (+-e0, 0, 0)
+        // (2 points), or the circle of radius e0 in the plane z = 0; distance e0 - rs.
+        const Rational rs(rng.uniform(1, 4), 4);
+        const Rational e0 = rs + Rational(rng.uniform(1, 8), 8);
+        const Rational e1 = k == "minimizers_2" ? e0 + Rational(rng.uniform(1, 8), 8) : e0;
+        const Rational e2 = e1 + Rational(rng.uniform(1, 8), 8);
+        std::array<Rational, 3> c0;
+        for (Rational& x : c0)
+          x = rng.small_dyadic(16, 2);
+        a = shape_surf(ShapeType::Sphere, vec(rs, rs, rs), c0);
+        b = shape_surf(ShapeType::Ellipsoid, vec(e0, e1, e2), c0);
+        c.set("how", Json::string(k == "minimizers_2"
+                                      ? "a sphere centred in a triaxial ellipsoid: distance "
+                                        "shortest semi-axis - radius, at the 2 ends of that axis"
+                                      : "a sphere centred in a spheroid (two equal short "
+                                        "semi-axes): distance short semi-axis - radius, along a "
+                                        "circle"));
+        c.set("expected_distance", Json::string((e0 - rs).to_string()));
+        c.set("expected_minimizers", Json::string(k == "minimizers_2" ? "2" : "infinite"));
+      } else if (k == "minimizers_4" || k == "minimizers_two_circles") {
+        const bool four = k == "minimizers_4";
+        const Rational s(rng.uniform(1, 2), 2); // 1/2 or 1
+        const SymmetricPair sp =
+            four ? symmetric_pair(vec(Rational(2), Rational(3), Rational(4)),
+                                  vec(Rational(6, 5), Rational(12, 5), Rational(0)), s, Rational(1))
+                 : symmetric_pair(vec(Rational(3), Rational(3), Rational(4)),
+                                  vec(Rational(1), Rational(2), Rational(8, 3)), s, Rational(1));
+        a = Surf{sp.inner, std::nullopt};
+        b = Surf{sp.outer, std::nullopt};
+        c.set("how", Json::string(
+                         four ? "an ellipsoid inside the ellipsoid (2, 3, 4), touching its offset "
+                                "at distance d at the 4 points (+-9/10, +-32/15, 0) (s = 1) or "
+                                "(+-21/20, +-34/15, 0) (s = 1/2): d^2 = expected_distance_squared"
+                              : "an ellipsoid of revolution inside the spheroid (3, 3, 4), "
+                                "closest along two circles (z = +-(8/3 - s/6)): d^2 = "
+                                "expected_distance_squared"));
+        c.set("s", Json::string(s.to_string()));
+        c.set("expected_distance_squared", Json::string(sp.distance_squared.to_string()));
+        c.set("expected_minimizers", Json::string(four ? "4" : "infinite"));
       } else {
         const int kk = static_cast<int>(rng.uniform(10, 40));
         const Rational g = pow2(-kk);
