@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
 # Installs surfcert's build and test dependencies (Debian 12 packages only) and builds it.
 # Usage: scripts/setup.sh [build-dir] [extra cmake args...]   (run as root on a fresh machine)
+# Benchmark peers (Open CASCADE: libocct-*-dev; FCL: libfcl-dev) are not installed here: the
+# library and the tests never need them; bench/install_peers.sh installs them for the benchmarks
+# that compare against them (trace_bench, distance_peers_bench, float_atlas), which build when
+# CMake finds them (SURFCERT_BENCH_OCCT / SURFCERT_BENCH_FCL).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pkgs="build-essential cmake libgmp-dev libmpfr-dev libmpfi-dev libflint-dev libflint-arb-dev
