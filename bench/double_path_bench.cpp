@@ -23,8 +23,8 @@
 //        [--surfcert PATH (default: the build's app/surfcert)] [--tmp DIR=/tmp]
 //        [--sections LIST=12345 (the figures to run, e.g. 45; the pairs stay the same)]
 //        [--thread-runs N=5 (figure 2: runs of each thread count, in turn)]
-//        [--keep 1 (keep the classify, threads and distance JSONL files in DIR, for profiling and
-//        A/B runs)]
+//        [--keep 1 (keep the classify, threads, intersect and distance JSONL files in DIR, for
+//        profiling and A/B runs)]
 // (about two minutes on 2 cores; the JSONL files are written to DIR and removed).
 #include "ellipsoid_params.hpp"
 
@@ -239,7 +239,7 @@ Answer parse_answer(const std::string& l) {
 
 std::string g_surfcert = SURFCERT_CLI_PATH;
 std::string g_tmp = "/tmp";
-bool g_keep = false; // keep the threads and distance JSONL files
+bool g_keep = false; // keep the classify, threads, intersect and distance JSONL files
 
 Run run_batch(const std::string& input_path, const std::vector<std::string>& args, size_t lines) {
   std::string out_path = input_path + ".out", err_path = input_path + ".err";
@@ -471,7 +471,7 @@ void intersect_figures(const std::vector<Pair>& pairs, size_t occt_pairs) {
   std::string path = write_file("intersect.jsonl", text);
   progress("intersect");
   Run r = run_batch(path, {"--threads", "1"}, n);
-  std::remove(path.c_str());
+  if (!g_keep) std::remove(path.c_str());
   std::printf("## 3. intersect: topology + every curve (tolerance 2e-4), vs Open CASCADE\n\n");
   double ours_us = r.wall_s / static_cast<double>(n) * 1e6;
   long match = 0;

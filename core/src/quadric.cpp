@@ -42,8 +42,22 @@ Mat4 operator*(const Mat4& a, const Mat4& b) {
     for (size_t j = 0; j < 4; ++j) {
       Rational s;
       for (size_t k = 0; k < 4; ++k)
-        s += a[i][k] * b[k][j];
+        if (!a[i][k].is_zero() && !b[k][j].is_zero()) s += a[i][k] * b[k][j];
       r[i][j] = s;
+    }
+  return r;
+}
+
+Mat4 congruence(const Mat4& p, const Mat4& m) {
+  const Mat4 mp = m * p;
+  Mat4 r;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j) {
+      Rational s;
+      for (size_t k = 0; k < 4; ++k)
+        if (!p[k][i].is_zero() && !mp[k][j].is_zero()) s += p[k][i] * mp[k][j];
+      r[i][j] = s;
+      if (j != i) r[j][i] = s;
     }
   return r;
 }
@@ -167,7 +181,28 @@ Poly3 QuadricMatrix::to_poly() const {
 }
 
 QuadricMatrix QuadricMatrix::congruent(const Mat4& p) const {
-  return QuadricMatrix(transpose(p) * matrix() * p);
+  return QuadricMatrix(congruence(p, matrix()));
+}
+
+QuadricMatrix QuadricMatrix::translated(const std::array<double, 3>& c) const {
+  if (const ShapeSpec* sp = shape()) {
+    // The same exact surface as the congruence below when every centre coordinate minus c
+    // is exact in double; its exact matrix (hundreds of digits for a double quaternion) is
+    // then still not formed.
+    ShapeSpec moved = *sp;
+    bool exact = true;
+    for (size_t k = 0; k < 3 && exact; ++k) {
+      moved.center[k] = sp->center[k] - c[k];
+      exact = std::isfinite(moved.center[k]) &&
+              Rational::exact_from_double(moved.center[k]) ==
+                  Rational::exact_from_double(sp->center[k]) - Rational::exact_from_double(c[k]);
+    }
+    if (exact) return QuadricMatrix(moved);
+  }
+  Mat4 p = identity4();
+  for (size_t i = 0; i < 3; ++i)
+    p[i][3] = Rational::exact_from_double(c[i]);
+  return congruent(p);
 }
 
 bool QuadricMatrix::is_plane() const {

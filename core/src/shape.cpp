@@ -60,7 +60,7 @@ Mat4 posed_quadric_matrix(ShapeType t, const std::array<Rational, 3>& radii,
     tm[i][3] = -s;
   }
   tm[3][3] = Rational(1);
-  return transpose(tm) * local * tm;
+  return congruence(tm, local);
 }
 
 Mat4 exact_matrix(const ShapeSpec& s) {

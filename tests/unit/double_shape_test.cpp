@@ -120,6 +120,50 @@ TEST(DoubleShape, LazyMatrixEqualsTheExactReading) {
   }
 }
 
+// congruence(p, m) (upper triangle, zeros skipped) against the plain products, on random
+// symmetric matrices and random p with zero entries; and QuadricMatrix::translated against
+// the congruence by the translation: a shape whose centre minus c is a double stays a lazy
+// shape with the same exact matrix, otherwise the matrix is the congruence's.
+TEST(DoubleShape, TranslatedAndCongruenceEqualThePlainProducts) {
+  std::mt19937_64 rng(test_seed());
+  std::uniform_int_distribution<long> small(-7, 7);
+  for (int it = 0; it < 40; ++it) {
+    core::Mat4 m, p;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j)
+        m[i][j] = m[j][i] = Rational(small(rng), 1 + std::abs(small(rng)));
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        if (rng() % 3 != 0) p[i][j] = Rational(small(rng), 1 + std::abs(small(rng)));
+    const core::Mat4 want = core::transpose(p) * m * p, got = core::congruence(p, m);
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        EXPECT_EQ(got[i][j], want[i][j]) << it << " entry " << i << j;
+  }
+  for (int it = 0; it < 48; ++it) {
+    const Shape s = random_shape(rng, kTypes[it % 8], 1.0);
+    const auto q = read(s.json(false));
+    // Dyadic shifts (the tracer's: multiples of 2^-24) keep the shape; 1/3 (a double with
+    // 53 significant bits) against centres with bits down to 2^-54 does not.
+    std::array<double, 3> c{};
+    const bool dyadic = it % 2 == 0;
+    for (size_t k = 0; k < 3; ++k)
+      c[k] =
+          dyadic ? std::ldexp(static_cast<double>(small(rng)), -24) + small(rng) : (k + 1.0) / 3.0;
+    const auto moved = q.translated(c);
+    core::Mat4 t = core::identity4();
+    for (size_t k = 0; k < 3; ++k)
+      t[k][3] = Rational::exact_from_double(c[k]);
+    const core::Mat4 want = core::transpose(t) * q.matrix() * t;
+    if (dyadic) {
+      EXPECT_NE(moved.shape(), nullptr) << s.json(false);
+    }
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        EXPECT_EQ(moved.matrix()[i][j], want[i][j]) << s.json(false) << " entry " << i << j;
+  }
+}
+
 TEST(DoubleShape, EnclosureHoldsTheExactMatrixAtEveryScale) {
   std::mt19937_64 rng(test_seed() + 1);
   int finite = 0, total = 0;

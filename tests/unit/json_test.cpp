@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 using surfcert::core::InputError;
@@ -311,4 +313,28 @@ TEST(JsonPath, ChildAndIndex) {
   EXPECT_EQ(json_path_child("$", "a\"b"), "$[\"a\\\"b\"]");
   EXPECT_EQ(json_path_child("$", "a.b"), "$[\"a.b\"]");
   EXPECT_EQ(json_path_index("$", 0), "$[0]");
+}
+
+// number_double writes exactly the characters of printf("%.17g") (the reports' format), at
+// every magnitude, and refuses non-finite values.
+TEST(Json, NumberDoubleIsPrintfs17g) {
+  for (double x : {0.0, -0.0, 1.0, -1.5, 0.1, 1.0 / 3.0, 1e-5, 1e-4, 123456789012345678.0, 1e16,
+                   1e17, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308, -3.25e-200}) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    EXPECT_EQ(Json::number_double(x).text(), std::string(buf)) << buf;
+    EXPECT_TRUE(Json::number_double(x).is_number());
+  }
+  EXPECT_THROW(Json::number_double(HUGE_VAL), InternalError);
+  EXPECT_THROW(Json::number_double(NAN), InternalError);
+}
+
+TEST(Json, ReserveKeepsTheArrayAndRefusesOtherTypes) {
+  Json a = Json::array();
+  a.reserve(3);
+  EXPECT_EQ(a.size(), 0u);
+  a.push_back(Json::number(1));
+  EXPECT_EQ(dump(a), "[1]");
+  Json o = Json::object();
+  EXPECT_THROW(o.reserve(2), InternalError);
 }

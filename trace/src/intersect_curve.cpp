@@ -686,12 +686,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     // certified answer, the special points and singular members in the new coordinates), the
     // points moved back (adding c in double: an error ~1e-16 |c|) and corrected on the
     // original exact pair; topology and affine reading stay those of the original pair.
-    core::Mat4 p;
-    for (size_t i = 0; i < 4; ++i)
-      p[i][i] = core::Rational(1);
-    for (size_t i = 0; i < 3; ++i)
-      p[i][3] = core::Rational::exact_from_double((*c)[i]);
-    const auto a2 = a.congruent(p), b2 = b.congruent(p);
+    const auto a2 = a.translated(*c), b2 = b.translated(*c);
     TraceOptions o2 = opt;
     if (o2.box)
       for (size_t k = 0; k < 3; ++k)
@@ -822,13 +817,10 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
   env.set("status", Json::string(to_string(r.status)));
   if (!r.note.empty()) env.set("note", Json::string(r.note));
   Json res = *env.find("result");
-  auto num = [](double x) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return Json::number_text(buf);
-  };
+  auto num = [](double x) { return Json::number_double(x); };
   auto point = [&](const Point3& p) {
     Json a3 = Json::array();
+    a3.reserve(3);
     for (double x : p)
       a3.push_back(num(x));
     return a3;
@@ -845,16 +837,17 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
       o.set("exits", ex);
     }
     Json pts = Json::array();
+    pts.reserve(br.points.size());
     for (const auto& p : br.points)
       pts.push_back(point(p));
-    o.set("points", pts);
-    branches.push_back(o);
+    o.set("points", std::move(pts));
+    branches.push_back(std::move(o));
   }
-  res.set("branches", branches);
+  res.set("branches", std::move(branches));
   Json iso = Json::array();
   for (const auto& p : r.isolated_points)
     iso.push_back(point(p));
-  res.set("isolated_points", iso);
+  res.set("isolated_points", std::move(iso));
   res.set("branches_match_topology", Json::boolean(r.matches_topology));
   res.set("branch_points_approximate", Json::boolean(true));
   res.set("max_residual", num(r.max_residual));
@@ -884,7 +877,7 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
     }
     res.set("box", bx);
   }
-  env.set("result", res);
+  env.set("result", std::move(res));
   return env;
 }
 

@@ -3,9 +3,12 @@
 #include "surfcert/core/error.hpp"
 
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <string_view>
+#include <system_error>
 
 namespace surfcert::core::io {
 
@@ -551,6 +554,17 @@ Json Json::number_text(std::string text) {
   return v;
 }
 
+Json Json::number_double(double x) {
+  char buf[40];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
+  if (!std::isfinite(x) || r.ec != std::errc())
+    throw InternalError("Json::number_double: not a finite double");
+  Json v;
+  v.type_ = Type::Number;
+  v.text_.assign(buf, r.ptr);
+  return v;
+}
+
 Json Json::number(long n) {
   Json v;
   v.type_ = Type::Number;
@@ -613,6 +627,11 @@ std::size_t Json::size() const {
 void Json::push_back(Json v) {
   if (type_ != Type::Array) misuse("push_back", type_);
   items_.push_back(std::move(v));
+}
+
+void Json::reserve(std::size_t n) {
+  if (type_ != Type::Array) misuse("reserve", type_);
+  items_.reserve(n);
 }
 
 void Json::set(const std::string& key, Json v) {

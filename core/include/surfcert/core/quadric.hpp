@@ -62,6 +62,10 @@ public:
   Poly3 to_poly() const;
   /// P^T A P (a change of homogeneous coordinates X = P X').
   QuadricMatrix congruent(const Mat4& p) const;
+  /// The quadric moved by -c, exactly: its equation in y is this one's at x = y + c (the
+  /// congruence by the translation P = [[I, c], [0, 1]]). A shape whose centre minus c is
+  /// again exactly a double stays a (lazy) shape; otherwise the exact congruence is formed.
+  QuadricMatrix translated(const std::array<double, 3>& c) const;
   QuadricKind kind() const;
   /// True when the quadratic block is zero (a plane written as a degenerate quadric).
   bool is_plane() const;
@@ -87,6 +91,10 @@ bool is_zero(const Mat4& m);
 Mat4 identity4();
 Mat4 transpose(const Mat4& m);
 Mat4 operator*(const Mat4& a, const Mat4& b);
+/// p^T m p for a symmetric m (not checked; the result is then symmetric), exactly: the same
+/// value as transpose(p) * m * p, computed on the upper triangle with the zero entries skipped
+/// (a translation or a posed diagonal form costs a fraction of the full products).
+Mat4 congruence(const Mat4& p, const Mat4& m);
 Mat4 operator+(const Mat4& a, const Mat4& b);
 Mat4 scaled(const Mat4& a, const Rational& c);
 Rational det(const Mat4& m);
