@@ -143,19 +143,25 @@ TEST(DoubleShape, TranslatedAndCongruenceEqualThePlainProducts) {
   for (int it = 0; it < 48; ++it) {
     const Shape s = random_shape(rng, kTypes[it % 8], 1.0);
     const auto q = read(s.json(false));
-    // Dyadic shifts (the tracer's: multiples of 2^-24) keep the shape; 1/3 (a double with
-    // 53 significant bits) against centres with bits down to 2^-54 does not.
+    // Small dyadic shifts (multiples of 2^-24 below 2^-21, like the tracer's) of centres of
+    // magnitude >= 2^-20 are exact in double, so the shape stays; 1/3 (a double with 53
+    // significant bits) against centres with bits down to 2^-54 is not, nor an integer shift
+    // (the centre's low bits are lost): the congruence is formed, with the same matrix.
     std::array<double, 3> c{};
-    const bool dyadic = it % 2 == 0;
-    for (size_t k = 0; k < 3; ++k)
-      c[k] =
-          dyadic ? std::ldexp(static_cast<double>(small(rng)), -24) + small(rng) : (k + 1.0) / 3.0;
+    const int route = it % 3;
+    bool keeps = route == 0;
+    for (size_t k = 0; k < 3; ++k) {
+      c[k] = route == 0   ? std::ldexp(static_cast<double>(small(rng)), -24)
+             : route == 1 ? (k + 1.0) / 3.0
+                          : static_cast<double>(small(rng)) + 0.5;
+      keeps = keeps && std::fabs(s.center[k]) >= std::ldexp(1.0, -20);
+    }
     const auto moved = q.translated(c);
     core::Mat4 t = core::identity4();
     for (size_t k = 0; k < 3; ++k)
       t[k][3] = Rational::exact_from_double(c[k]);
     const core::Mat4 want = core::transpose(t) * q.matrix() * t;
-    if (dyadic) {
+    if (keeps) {
       EXPECT_NE(moved.shape(), nullptr) << s.json(false);
     }
     for (size_t i = 0; i < 4; ++i)
