@@ -300,6 +300,65 @@ TEST(NestedDistance, RigidMotionsAndSwapping) {
   }
 }
 
+// The Lagrangian certificate (one Krawczyk box instead of the branch and bound) against a
+// closed form: a sphere of radius 1 centred at (0, 0, t) inside the ellipsoid of semi-axes
+// (5, 4, 3). The nearest boundary point of the ellipsoid to (0, 0, t), t > 0, is the vertex
+// (0, 0, 3): for |v| = 1, 25 v0^2 + 16 v1^2 + (3 v2 - t)^2 >= 9 - 6 t v2 + t^2 >= (3 - t)^2,
+// with equality only at v = e3; so d = 3 - t - 1, reached once. Gaps d = 2 - t probed from
+// both sides: nested by d > 0 (certified with d, or not answered by this route), poking out by
+// d < 0 (never answered). Moved by exact rigid motions and swapped.
+TEST(NestedDistance, LagrangianCertificateClosedForm) {
+  const std::array<std::array<long, 4>, 3> quats{{{1, 0, 0, 0}, {1, 2, 2, 1}, {3, -1, 4, 2}}};
+  const std::array<std::array<core::Rational, 3>, 3> moves{
+      {{core::Rational(0), core::Rational(0), core::Rational(0)},
+       {core::Rational(1, 3), core::Rational(-2, 7), core::Rational(5, 4)},
+       {core::Rational(0), core::Rational(11, 2), core::Rational(-3)}}};
+  const auto outer = q("x^2/25 + y^2/16 + z^2/9 = 1");
+  // Gaps 1/2, 2^-10, 2^-20, 2^-34 (~1e-10) and their negatives.
+  for (long e : {1L, 10L, 20L, 34L})
+    for (int sign : {1, -1}) {
+      core::Rational gap(1);
+      for (long i = 0; i < e; ++i)
+        gap = gap / core::Rational(2);
+      gap = gap * core::Rational(sign);
+      const core::Rational t = core::Rational(2) - gap;
+      core::Mat4 m;
+      m[0][0] = m[1][1] = m[2][2] = core::Rational(1);
+      m[2][3] = m[3][2] = -t;
+      m[3][3] = t * t - core::Rational(1);
+      const core::QuadricMatrix sphere(m);
+      mpfr_t d;
+      mpfr_init2(d, 256);
+      mpfr_set_ui(d, 1, MPFR_RNDN);
+      mpfr_div_2si(d, d, e, MPFR_RNDN); // exact
+      for (size_t k = 0; k < quats.size(); ++k) {
+        auto p = motion(quats[k][0], quats[k][1], quats[k][2], quats[k][3], moves[k]);
+        for (bool swap : {false, true}) {
+          const auto a = swap ? outer.congruent(p) : sphere.congruent(p);
+          const auto b = swap ? sphere.congruent(p) : outer.congruent(p);
+          auto r = nested(a, b, 15);
+          if (sign < 0) {
+            EXPECT_FALSE(r.has_value()) << e << " " << k;
+            continue;
+          }
+          if (e == 1) {
+            ASSERT_TRUE(r.has_value()) << k;
+          }
+          if (!r) continue;
+          EXPECT_TRUE(contains(*r, d))
+              << e << " " << k << ": [" << r->lower() << ", " << r->upper() << "]";
+          EXPECT_TRUE(width_ok(*r, 15)) << e << " " << k;
+          EXPECT_EQ(r->minimizers, "1") << e << " " << k;
+          if (e == 1) {
+            EXPECT_NE(r->note.find("Lagrangian"), std::string::npos) << r->note;
+          }
+          ASSERT_EQ(r->pairs.size(), 1u);
+        }
+      }
+      mpfr_clear(d);
+    }
+}
+
 TEST(NestedDistance, AnswersOnlyWhatItProves) {
   // Continua of minimizers: concentric spheres, coaxial ellipsoids of revolution.
   EXPECT_FALSE(nested(q("x^2+y^2+z^2=1"), q("x^2+y^2+z^2=4"), 15).has_value());

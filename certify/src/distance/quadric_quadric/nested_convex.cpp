@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace surfcert::certify {
@@ -356,6 +357,7 @@ template <class I> struct ChartPoly { I Qo[6], Qi[6], N[6], l[3]; };
 template <class I> struct Ctx {
   int D = 3, k = 2;
   I E[3][3];
+  I Wi[3][3], Wo[3][3], dc[3]; // the support matrices and c_out - c_in (the Lagrangian bound)
   std::array<ChartPoly<I>, 6> cp;
 };
 
@@ -377,6 +379,13 @@ Ctx<Ball> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const
       Wo[i][l] = from_rational(outer.W[i][l]);
     }
     dc[i] = from_rational(outer.c[i] - inner.c[i]); // a common translation cancels exactly
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    C.dc[i] = dc[i];
+    for (size_t l = 0; l < 3; ++l) {
+      C.Wi[i][l] = Wi[i][l];
+      C.Wo[i][l] = Wo[i][l];
+    }
   }
   for (int a = 0; a < C.D; ++a)
     for (int s : {1, -1}) {
@@ -436,9 +445,14 @@ Ctx<DI> to_di(const Ctx<Ball>& A) {
   Ctx<DI> C;
   C.D = A.D;
   C.k = A.k;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t l = 0; l < 3; ++l)
+  for (size_t i = 0; i < 3; ++i) {
+    C.dc[i] = to_di(A.dc[i]);
+    for (size_t l = 0; l < 3; ++l) {
       C.E[i][l] = to_di(A.E[i][l]);
+      C.Wi[i][l] = to_di(A.Wi[i][l]);
+      C.Wo[i][l] = to_di(A.Wo[i][l]);
+    }
+  }
   for (size_t c = 0; c < 6; ++c) {
     for (size_t i = 0; i < 6; ++i) {
       C.cp[c].Qo[i] = to_di(A.cp[c].Qo[i]);
@@ -950,6 +964,170 @@ bool branch_and_bound(const Ctx<DI>& C, const std::vector<Chart>& charts, DI& U,
   return true;
 }
 
+// ---- the Lagrangian localisation (ellipsoid inside ellipsoid): one proven box instead of the
+// branch and bound ----
+//
+// With p = c_in + W_in x and q = c_out + W_out y (W the support matrices, so p lies in the
+// inner solid iff x^T W_in x <= 1 and q outside the interior of the outer one iff
+// y^T W_out y >= 1), for any lambda, mu >= 0
+//   Lag(x, y) = |p - q|^2 + lambda (x^T W_in x - 1) - mu (y^T W_out y - 1) <= |p - q|^2
+// on every such pair (an S-lemma / Lagrangian-duality bound). Lag is a quadratic in
+// z = (x, y); when its Hessian 2 Q satisfies Q >= s I with s > 0 (proven by an interval
+// Cholesky of Q - s I), Lag(z) >= Lag(z0) + 2 r.(z - z0) + s |z - z0|^2 at any point z0 (r the
+// half gradient at z0). Every direction n with G(n) <= U gives such a pair with
+// |p - q| = G(n) <= U (p the inner support point, x = n / h_in(n), and q = p + G(n) n on the
+// outer support plane), so its z lies within Delta of z0, where s Delta^2 - 2 |r| Delta
+// <= U^2 - Lag(z0): x, a positive multiple of n, lies in a tiny box, hence n in a tiny chart
+// box. The multipliers and z0 come from the float minimizer n0 (x0 = n0 / h_in, y0 = n0 /
+// h_out, lambda = G0 h_in, mu = G0 h_out: the KKT point, where Lag(z0) = G0^2); they only
+// propose. When Q >= s I holds (the relaxation is tight: one global minimum, ~99% of random
+// nested pairs), every direction with G <= U, the minimizer among them, lies in one box X that
+// the Krawczyk test proves to hold exactly one critical point of G: that point is the unique
+// minimizing direction, and its value is d. A positive lower bound also proves the nesting
+// (p = q would give Lag <= 0). False (the caller runs the branch and bound) when a step fails:
+// a non-tight relaxation (Q indefinite at the KKT multipliers), several minima (Q singular),
+// or a box that does not prove.
+bool lagrangian_box(const Ctx<DI>& C, const FloatPair& P, const Point& best, const DI& U,
+                    std::vector<Critical>& crit) {
+  if (C.D != 3) return false;
+  // The float proposal: the unit direction, the KKT point and the multipliers.
+  double n[3] = {0, 0, 0};
+  n[best.ch.a] = best.ch.s;
+  for (int j = 0; j < 2; ++j)
+    n[free_index(best.ch, j)] = best.u[j];
+  const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (double& x : n)
+    x /= nn;
+  auto quad = [&](const std::array<std::array<double, 3>, 3>& W) {
+    double q = 0;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t l = 0; l < 3; ++l)
+        q += n[i] * W[i][l] * n[l];
+    return std::sqrt(q);
+  };
+  const double hi = quad(P.Win), ho = quad(P.Wout);
+  const double G0 = ho - hi + n[0] * P.dc[0] + n[1] * P.dc[1] + n[2] * P.dc[2];
+  if (!(G0 > 0) || !(hi > 0) || !(ho > 0)) return false;
+  double z[6];
+  for (size_t i = 0; i < 3; ++i) {
+    z[i] = n[i] / hi;
+    z[i + 3] = n[i] / ho;
+  }
+  const double lam = G0 * hi, mu = G0 * ho;
+
+  // Rigorous: Lag(z0) and the half gradient r at z0, Q, all in double intervals.
+  const DI Lam(lam), Mu(mu);
+  DI w[3], ax[3], by[3]; // w = p - q, ax = W_in x, by = W_out y
+  for (size_t i = 0; i < 3; ++i) {
+    ax[i] = by[i] = DI(0);
+    for (size_t l = 0; l < 3; ++l) {
+      ax[i] += C.Wi[i][l] * DI(z[l]);
+      by[i] += C.Wo[i][l] * DI(z[l + 3]);
+    }
+    w[i] = ax[i] - by[i] - C.dc[i];
+  }
+  DI lag = DI(0), xax(0), yby(0);
+  for (size_t i = 0; i < 3; ++i) {
+    lag += square(w[i]);
+    xax += DI(z[i]) * ax[i];
+    yby += DI(z[i + 3]) * by[i];
+  }
+  lag += Lam * (xax - DI(1)) - Mu * (yby - DI(1));
+  DI r2(0); // |r|^2, r = (W_in (w + lambda x), -W_out (w + mu y))
+  for (size_t i = 0; i < 3; ++i) {
+    DI gx(0), gy(0);
+    for (size_t l = 0; l < 3; ++l) {
+      gx += C.Wi[i][l] * (w[l] + Lam * DI(z[l]));
+      gy += C.Wo[i][l] * (w[l] + Mu * DI(z[l + 3]));
+    }
+    r2 += square(gx) + square(gy);
+  }
+  // Q = [[W_in W_in + lambda W_in, -W_in W_out], [-W_out W_in, W_out W_out - mu W_out]].
+  DI Q[6][6];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t l = 0; l < 3; ++l) {
+      DI xx(0), xy(0), yy(0);
+      for (size_t m = 0; m < 3; ++m) {
+        xx += C.Wi[i][m] * C.Wi[m][l];
+        xy += C.Wi[i][m] * C.Wo[m][l];
+        yy += C.Wo[i][m] * C.Wo[m][l];
+      }
+      Q[i][l] = xx + Lam * C.Wi[i][l];
+      Q[i + 3][l + 3] = yy - Mu * C.Wo[i][l];
+      Q[i][l + 3] = -xy;
+      Q[l + 3][i] = -xy;
+    }
+  // s: the largest of scale 4^-k (k = 1..12) at which a float Cholesky of Q - s I succeeds,
+  // halved, then proven by an interval Cholesky (Q - s I positive definite => Q >= s I).
+  auto cholesky = [&](auto one, double s) {
+    using T = decltype(one);
+    auto entry = [&](int i, int j) -> T {
+      if constexpr (std::is_same_v<T, DI>)
+        return Q[i][j];
+      else
+        return 0.5 * (Q[i][j].inf() + Q[i][j].sup()); // a float proposal only
+    };
+    T L[6][6];
+    for (int j = 0; j < 6; ++j) {
+      T sum = entry(j, j) - T(s);
+      for (int k = 0; k < j; ++k)
+        sum = sum - L[j][k] * L[j][k];
+      if constexpr (std::is_same_v<T, DI>) {
+        if (!pos(sum)) return false;
+        L[j][j] = sqrt_(sum);
+      } else {
+        if (!(sum > 0)) return false;
+        L[j][j] = std::sqrt(sum);
+      }
+      for (int i = j + 1; i < 6; ++i) {
+        T t = entry(i, j);
+        for (int k = 0; k < j; ++k)
+          t = t - L[i][k] * L[j][k];
+        L[i][j] = t / L[j][j];
+      }
+    }
+    return true;
+  };
+  double scale = 0;
+  for (int j = 0; j < 6; ++j)
+    scale = std::max(scale, Q[j][j].sup());
+  double s = 0;
+  for (int k = 1; k <= 12 && s == 0; ++k)
+    if (cholesky(0.0, scale * std::ldexp(1.0, -2 * k))) s = scale * std::ldexp(1.0, -2 * k - 1);
+  if (s == 0 || !cholesky(DI(0), s)) return false;
+  // Delta <= (|r| + sqrt(|r|^2 + s e)) / s, e = U^2 - Lag(z0).
+  const DI S(s), e = square(U) - lag, disc = r2 + S * e;
+  if (!(disc.sup() >= 0)) return false; // no pair at <= U: impossible (G(n0) <= U)
+  const DI delta = (sqrt_(DI(0, r2.sup())) + sqrt_(DI(0, disc.sup()))) / S;
+  const double D = delta.sup();
+  // The chart of n0's largest coordinate; x in the box x0 +- Delta.
+  int a = 0;
+  for (int l = 1; l < 3; ++l)
+    if (std::fabs(n[l]) > std::fabs(n[a])) a = l;
+  const Chart ch{a, n[a] > 0 ? 1 : -1};
+  DI xb[3];
+  for (size_t i = 0; i < 3; ++i)
+    xb[i] = DI(z[i]) + DI(-D, D);
+  const DI base = xb[a] * DI(ch.s);
+  if (!pos(base)) return false;
+  DI X[2];
+  for (int j = 0; j < 2; ++j) {
+    const DI u = xb[free_index(ch, j)] / base;              // every direction with G <= U
+    const double u0 = n[free_index(ch, j)] / (ch.s * n[a]); // a float centre
+    const double rho = 2 * std::max(u.sup() - u0, u0 - u.inf()) + 0x1p-40;
+    if (!(rho < 1.0 / 64)) return false;
+    X[j] = DI(u0) + DI(-rho, rho);
+    if (!contains(X[j], u)) return false;
+  }
+  DI K[2];
+  BoxForms<DI> B;
+  if (!krawczyk_box(K, B, C, ch, X)) return false;
+  for (int j = 0; j < 2; ++j)
+    if (!interior(X[j], K[j])) return false;
+  crit.push_back(Critical{ch, {X[0], X[1]}, value_enclosure(B, monomials(2))});
+  return true;
+}
+
 // ---- contraction and the report (Arb, final precision) ----
 
 // A proven box at the final precision: E contracts onto its critical point, V encloses G there.
@@ -1070,6 +1248,42 @@ bool tighten(Tight& c, const Ctx<Ball>& C, const Ball& tol) {
       c.E[j] = Z[j];
   }
   return false;
+}
+
+// The value at the critical point held by E (a contracted box) by the mean-value form
+//   G(E) in G(m) + grad G(E) . (E - m),
+// G(m) in Arb at the final precision (a point: no Taylor model), the gradient over E in double
+// intervals. E comes from contract_di at ~1e-15 and the gradient nearly vanishes on it, so the
+// form is ~1e-30 wide: the requested width up to ~25 digits with no Arb contraction. False
+// when the width is not met (the caller contracts in Arb).
+bool mean_value(Tight& t, const Ctx<Ball>& C, const Ctx<DI>& Cd, const DI* E, const Ball& tol) {
+  const int k = C.k;
+  const Monomials& M = monomials(k);
+  Ball m[2] = {Ball(0), Ball(0)}, dG[2];
+  {
+    CGAL::Protect_FPU_rounding<true> guard; // the double intervals round outward
+    TP<DI> TX;
+    if (!g_taylor(TX, Cd, t.ch, E, 1)) return false;
+    for (int j = 0; j < k; ++j) {
+      const DI mj = midpoint(E[j]);
+      m[j] = Ball(mj.inf());
+      const DI term = TX.c[unit_index(M, j)] * (E[j] - mj);
+      if (!finite(term)) return false;
+      dG[j] = to_ab(term);
+    }
+  }
+  TP<Ball> T;
+  if (!g_taylor(T, C, t.ch, m, 0)) return false;
+  Ball V = T.c[0];
+  for (int j = 0; j < k; ++j)
+    V += dG[j];
+  Ball w;
+  arb_get_rad_arb(w.v, V.v);
+  if (!finite(V) || !gt(lower_point(V) * tol, w * Ball(8))) return false;
+  for (int j = 0; j < k; ++j)
+    t.E[j] = to_ab(E[j]);
+  t.V = V;
+  return true;
 }
 
 // True when the enclosure E of chart `from` lies inside the box X of chart `to` (then the
@@ -1199,6 +1413,7 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   const Ctx<DI> Cd = to_di(C);
   DI U;
   std::vector<Critical> crit;
+  bool by_lagrangian = false; // one box from the Lagrangian bound, else the branch and bound
   {
     CGAL::Protect_FPU_rounding<true> guard; // the double intervals round outward
     TP<DI> T;
@@ -1206,7 +1421,11 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
     if (!g_taylor(T, Cd, best.ch, m, 0)) return std::nullopt;
     U = upper_point(T.c[0]);
     if (!pos(U)) return std::nullopt; // F <= 0 somewhere: not strictly nested
-    if (!branch_and_bound(Cd, charts, U, crit) || crit.empty()) return std::nullopt;
+    by_lagrangian = lagrangian_box(Cd, P, best, U, crit);
+    if (!by_lagrangian) {
+      crit.clear();
+      if (!branch_and_bound(Cd, charts, U, crit) || crit.empty()) return std::nullopt;
+    }
   }
 
   // Contract the candidates that can hold the minimum, best first, at the final precision.
@@ -1232,7 +1451,7 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
     contract_di(E, Cd, c.ch);
     for (int j = 0; j < k; ++j)
       t.E[j] = to_ab(E[j]);
-    if (!tighten(t, C, tol)) return std::nullopt;
+    if (!mean_value(t, C, Cd, E, tol) && !tighten(t, C, tol)) return std::nullopt;
     if (arb_lt(upper_point(t.V).v, Ua.v)) Ua = upper_point(t.V);
     done.push_back(std::move(t));
   }
@@ -1271,8 +1490,12 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   out.eliminated_degree = 0;
   out.note = "nested convex solids: the " + std::string(inner_is_a ? "first" : "second") +
              " surface lies strictly inside the other; d = min over unit directions of h_outer "
-             "- h_inner (support functions), certified by a branch and bound with "
-             "Krawczyk-proven critical directions; no elimination needed";
+             "- h_inner (support functions), certified by " +
+             (by_lagrangian ? std::string("a Lagrangian (S-lemma) lower bound that puts every "
+                                          "near-minimal direction in one Krawczyk-proven box")
+                            : std::string("a branch and bound with Krawczyk-proven critical "
+                                          "directions")) +
+             "; no elimination needed";
   note_unproven_ties(out, mins.size());
   // Tie regions (symmetry.hpp): the unit directions of the proven boxes, pairwise disjoint
   // (`distinct` above), each holding one critical direction; every minimizing direction lies in
