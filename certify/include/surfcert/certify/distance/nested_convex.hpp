@@ -16,14 +16,24 @@
 //   G(u) = F(n(u)) / |n(u)| = (l(u) + sqrt(Qo(u)) - sqrt(Qi(u))) / sqrt(N(u))
 // with l affine and Qo, Qi, N exact quadratic polynomials of the chart coordinates u:
 // - a float grid and Newton search only picks a direction; G there is a certified upper bound;
+// - an ellipsoid inside an ellipsoid first tries a Lagrangian (S-lemma) certificate: with the
+//   float minimizer's KKT multipliers, Lag = |p - q|^2 + lambda g_in(p) - mu g_out(q) <=
+//   |p - q|^2 on every pair with p in the inner solid and q outside the outer one; an interval
+//   Cholesky proving its Hessian >= 2 s I confines every pair at distance <= the upper bound,
+//   hence every direction with G <= it, to one tiny chart box, which the Krawczyk test proves
+//   to hold a single critical point: the unique minimizer (about 99% of random nested pairs;
+//   the others, where the relaxation is not tight or there are several minima, go on to the
+//   branch and bound);
 // - branch and bound in outward-rounded double intervals (CGAL::Interval_nt): per box a cubic
 //   Taylor model of G at the box centre with a rigorous remainder drops boxes above the upper
 //   bound (the children of a split box first by their parent's model, valid on them too),
 //   derivative enclosures drop boxes without critical point, and the Krawczyk test proves the
 //   boxes left to hold exactly one critical point;
 // - each proven box that can hold the minimum is contracted (Krawczyk / interval Newton,
-//   quadratic convergence), first in double intervals, then in Arb at bits_for(digits + 10)
-//   until G there is enclosed to the relative width 10^-digits.
+//   quadratic convergence), first in double intervals, then its value enclosed by the mean-value
+//   form (G at a point in Arb at bits_for(digits + 10), the gradient over the box in double
+//   intervals) or, when that is not within the relative width 10^-digits, contracted in Arb
+//   until it is.
 // d is the least of those critical values: every minimizer is a critical point, and every
 // dropped box has G above a genuine value of G on it, or no critical point. Every critical
 // direction whose enclosure meets the optimal one is a reported minimizer (their equality is not
