@@ -412,6 +412,17 @@ TEST(NestedDistance, BoxesProvenWithLittleMarginStillContract) {
       EXPECT_TRUE(width_ok(*r, 15)) << c.a;
       EXPECT_TRUE(overlap(*r, c.offset)) << c.a << ": [" << r->lower() << ", " << r->upper() << "]";
       EXPECT_EQ(r->minimizers, "1");
+      // The same shapes with their support matrices enclosed straight from the doubles (the
+      // batch's route for posed ellipsoids): the same certified answer.
+      const auto p = swap ? certify::nested_posed_ellipsoids(*b.shape(), *a.shape(), 15)
+                          : certify::nested_posed_ellipsoids(*a.shape(), *b.shape(), 15);
+      ASSERT_TRUE(p.has_value()) << c.a;
+      EXPECT_EQ(p->lower(), r->lower());
+      EXPECT_EQ(p->upper(), r->upper());
+      EXPECT_EQ(p->minimizers, r->minimizers);
+      ASSERT_EQ(p->pairs.size(), r->pairs.size());
+      for (size_t i = 0; i < 3; ++i)
+        EXPECT_NEAR(p->pairs[0][0][i], r->pairs[0][0][i], 1e-12);
     }
   }
 }

@@ -195,19 +195,29 @@ Outcome convex_run(Query& q) {
   return answer_or_not(
       separated_convex_distance(*convex_quadric(qa(q)), *convex_quadric(qb(q)), q.digits));
 }
+// Solid distance when one solid contains the other: 0, reached on a continuum.
+DistanceResult solid_nested() {
+  DistanceResult out;
+  out.status = Status::Certified;
+  out.distance = Enclosure::zero();
+  out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+  out.note = "solid distance: one solid contains the other";
+  return out;
+}
 // Nested (an ellipsoid strictly inside the other solid): the same duality, minimized.
 Outcome nested_run(Query& q) {
+  // Two ellipsoids posed in doubles: their support matrices in Arb from the doubles.
+  const core::ShapeSpec *sa = posed_ellipsoid(qa(q)), *sb = posed_ellipsoid(qb(q));
+  if (sa != nullptr && sb != nullptr) {
+    auto r = nested_posed_ellipsoids(*sa, *sb, q.digits);
+    if (!r) return Outcome::not_applicable();
+    if (q.solid) return Outcome::answer(solid_nested());
+    return Outcome::answer(std::move(*r));
+  }
   const auto ca = convex_quadric(qa(q)), cb = convex_quadric(qb(q));
   auto r = nested_convex_distance(*ca, *cb, q.digits);
   if (!r) return Outcome::not_applicable();
-  if (q.solid && ca->is_ellipsoid() && cb->is_ellipsoid()) {
-    DistanceResult out;
-    out.status = Status::Certified;
-    out.distance = Enclosure::zero();
-    out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
-    out.note = "solid distance: one solid contains the other";
-    return Outcome::answer(std::move(out));
-  }
+  if (q.solid && ca->is_ellipsoid() && cb->is_ellipsoid()) return Outcome::answer(solid_nested());
   return Outcome::answer(std::move(*r));
 }
 

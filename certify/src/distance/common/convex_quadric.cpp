@@ -97,17 +97,17 @@ Rational to_rational(const algebra::Arf& x) {
 // radii: the same exact numbers the general route derives from the matrix (there W = k M^-1
 // with k = 1), but without forming the matrix or inverting it. Every numerator is a dyadic
 // number computed exactly in arf arithmetic; one rational division per entry.
-ConvexQuadric posed_ellipsoid(const core::ShapeSpec& sp) {
+// The exact dyadic numerators acc[i][j] of W[i][j] = acc[i][j] / n2 (upper triangle) and n2.
+void posed_numerators(std::array<std::array<algebra::Arf, 3>, 3>& acc, algebra::Arf& n2,
+                      const core::ShapeSpec& sp) {
   using algebra::Arf;
-  ConvexQuadric out;
   std::array<Arf, 3> r2;
   for (size_t i = 0; i < 3; ++i) {
-    out.c[i] = Rational::exact_from_double(sp.center[i]);
     const Arf r = dyadic(sp.radii[i]);
     r2[i] = r * r;
   }
   std::array<std::array<Arf, 3>, 3> rq;
-  Arf n2 = dyadic(1);
+  n2 = dyadic(1);
   if (sp.rotated) {
     const Arf w = dyadic(sp.quaternion[0]), x = dyadic(sp.quaternion[1]),
               y = dyadic(sp.quaternion[2]), z = dyadic(sp.quaternion[3]);
@@ -123,14 +123,25 @@ ConvexQuadric posed_ellipsoid(const core::ShapeSpec& sp) {
       for (size_t j = 0; j < 3; ++j)
         rq[i][j] = dyadic(i == j ? 1 : 0);
   }
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = i; j < 3; ++j) {
+      acc[i][j] = dyadic(0);
+      for (size_t k = 0; k < 3; ++k)
+        acc[i][j] = acc[i][j] + rq[i][k] * rq[j][k] * r2[k];
+    }
+}
+
+ConvexQuadric posed_ellipsoid(const core::ShapeSpec& sp) {
+  ConvexQuadric out;
+  std::array<std::array<algebra::Arf, 3>, 3> acc;
+  algebra::Arf n2;
+  posed_numerators(acc, n2, sp);
   const Rational den = to_rational(n2);
   for (size_t i = 0; i < 3; ++i) {
+    out.c[i] = Rational::exact_from_double(sp.center[i]);
     out.cd[i] = sp.center[i];
     for (size_t j = i; j < 3; ++j) {
-      Arf acc = dyadic(0);
-      for (size_t k = 0; k < 3; ++k)
-        acc = acc + rq[i][k] * rq[j][k] * r2[k];
-      out.W[i][j] = to_rational(acc) / den;
+      out.W[i][j] = to_rational(acc[i][j]) / den;
       if (j != i) out.W[j][i] = out.W[i][j];
     }
   }
@@ -384,6 +395,22 @@ void support_ball(arb_t h, Ball (*p)[3], const ConvexQuadric& s, const Ball (&n)
     arb_set_fmpq(t.v, s.c[i].raw(), prec);
     arb_add((*p)[i].v, (*p)[i].v, t.v, prec);
   }
+}
+
+void posed_support_balls(Ball (&W)[3][3], std::array<std::array<double, 3>, 3>& Wd,
+                         const core::ShapeSpec& sp, long prec) {
+  std::array<std::array<algebra::Arf, 3>, 3> acc;
+  algebra::Arf n2;
+  posed_numerators(acc, n2, sp);
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = i; j < 3; ++j) {
+      arb_set_arf(W[i][j].v, acc[i][j].v);
+      arb_div_arf(W[i][j].v, W[i][j].v, n2.v, prec);
+      if (j != i) arb_set(W[j][i].v, W[i][j].v);
+    }
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      Wd[i][j] = arf_get_d(arb_midref(W[i][j].v), ARF_RND_NEAR);
 }
 
 } // namespace surfcert::certify

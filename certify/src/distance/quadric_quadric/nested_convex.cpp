@@ -151,8 +151,16 @@ bool contains(const Ball& X, const Ball& Y) {
 
 // Outward conversions.
 DI to_di(const Ball& x) {
-  return DI(arf_get_d(arb_midref(lower_point(x).v), ARF_RND_FLOOR),
-            arf_get_d(arb_midref(upper_point(x).v), ARF_RND_CEIL));
+  // The bounds in stack arfs (no Ball temporaries: a context converts ~150 balls).
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, x.v, ball_precision());
+  arb_get_ubound_arf(hi, x.v, ball_precision());
+  const DI r(arf_get_d(lo, ARF_RND_FLOOR), arf_get_d(hi, ARF_RND_CEIL));
+  arf_clear(lo);
+  arf_clear(hi);
+  return r;
 }
 Ball to_ab(const DI& x) {
   Ball r;
@@ -362,7 +370,14 @@ template <class I> struct Ctx {
 };
 
 // The chart polynomials in Arb at the current precision (exact rationals rounded once).
-Ctx<Ball> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const Frame& f) {
+// The support matrices as balls at the working precision, from a posed ellipsoid's doubles
+// (posed_support_balls) instead of the exact rationals of ConvexQuadric::W.
+struct PosedW {
+  Ball in[3][3], out[3][3];
+};
+
+Ctx<Ball> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const Frame& f,
+                   const PosedW* pw) {
   Ctx<Ball> C;
   C.D = f.D;
   C.k = f.D - 1;
@@ -375,8 +390,8 @@ Ctx<Ball> make_ctx(const ConvexQuadric& inner, const ConvexQuadric& outer, const
         Wo[i][l] = Wo[l][i];
         continue;
       }
-      Wi[i][l] = from_rational(inner.W[i][l]);
-      Wo[i][l] = from_rational(outer.W[i][l]);
+      Wi[i][l] = pw != nullptr ? pw->in[i][l] : from_rational(inner.W[i][l]);
+      Wo[i][l] = pw != nullptr ? pw->out[i][l] : from_rational(outer.W[i][l]);
     }
     dc[i] = from_rational(outer.c[i] - inner.c[i]); // a common translation cancels exactly
   }
@@ -1325,8 +1340,9 @@ bool distinct(const Tight& x, const Tight& y, const Ctx<Ball>& C) {
 }
 
 // One order: `inner` (an ellipsoid) strictly inside `outer`.
+// (pw: the support matrices from posed doubles; inner.W and outer.W are then not read.)
 std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const ConvexQuadric& outer,
-                                        bool inner_is_a, long digits) {
+                                        bool inner_is_a, long digits, const PosedW* pw) {
   Frame f;
   if (outer.is_cylinder()) {
     const auto& ax = *outer.axis;
@@ -1409,7 +1425,7 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   // intervals for the branch and bound.
   const long pf = bits_for(digits + 10);
   const PrecisionScope scope(pf);
-  const Ctx<Ball> C = make_ctx(inner, outer, f);
+  const Ctx<Ball> C = make_ctx(inner, outer, f, pw);
   const Ctx<DI> Cd = to_di(C);
   DI U;
   std::vector<Critical> crit;
@@ -1514,10 +1530,17 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
     for (int j = 0; j < k; ++j)
       m[j] = midpoint(t->E[j]);
     unit_direction(n, C, t->ch, m);
-    Ball nb[3], hb, pb[3];
+    // The inner support point c + W n / sqrt(n^T W n), W from the context (approximate output).
+    Ball wn[3], nwn(0), pb[3];
+    for (size_t l = 0; l < 3; ++l) {
+      wn[l] = Ball(0);
+      for (size_t j = 0; j < 3; ++j)
+        wn[l] += C.Wi[l][j] * n[j];
+      nwn += n[l] * wn[l];
+    }
+    const Ball root = sqrt_(nwn);
     for (size_t l = 0; l < 3; ++l)
-      arb_set(nb[l].v, n[l].v);
-    support_ball(hb.v, &pb, inner, nb, pf);
+      pb[l] = wn[l] / root + from_rational(inner.c[l]);
     // The closest pair: the inner support point and the point at distance d along n.
     std::array<double, 3> pi{}, po{};
     const double dd = arf_get_d(arb_midref(t->V.v), ARF_RND_NEAR);
@@ -1540,10 +1563,34 @@ std::optional<DistanceResult> nested_convex_distance(const ConvexQuadric& a, con
   // convex kinds (paraboloids) are not handled here.
   auto outer_ok = [](const ConvexQuadric& q) { return q.is_ellipsoid() || q.is_cylinder(); };
   if (a.is_ellipsoid() && outer_ok(b))
-    if (auto r = nested_in(a, b, true, digits)) return r;
+    if (auto r = nested_in(a, b, true, digits, nullptr)) return r;
   if (b.is_ellipsoid() && outer_ok(a))
-    if (auto r = nested_in(b, a, false, digits)) return r;
+    if (auto r = nested_in(b, a, false, digits, nullptr)) return r;
   return std::nullopt;
+}
+
+std::optional<DistanceResult> nested_posed_ellipsoids(const core::ShapeSpec& a,
+                                                      const core::ShapeSpec& b, long digits) {
+  // Descriptions without the exact W (never read: nested_in takes the balls of pw).
+  const long pf = bits_for(digits + 10);
+  ConvexQuadric ca, cb;
+  PosedW ab;
+  posed_support_balls(ab.in, ca.Wd, a, pf);
+  posed_support_balls(ab.out, cb.Wd, b, pf);
+  for (size_t i = 0; i < 3; ++i) {
+    ca.c[i] = Rational::exact_from_double(a.center[i]);
+    cb.c[i] = Rational::exact_from_double(b.center[i]);
+    ca.cd[i] = a.center[i];
+    cb.cd[i] = b.center[i];
+  }
+  if (auto r = nested_in(ca, cb, true, digits, &ab)) return r;
+  PosedW ba;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      ba.in[i][j] = ab.out[i][j];
+      ba.out[i][j] = ab.in[i][j];
+    }
+  return nested_in(cb, ca, false, digits, &ba);
 }
 
 } // namespace surfcert::certify

@@ -67,4 +67,11 @@ std::array<double, 3> support_point_float(const ConvexQuadric& s, const std::arr
 /// h is set to an indeterminate (non-finite) ball unless n is certified admissible.
 void support_ball(arb_t h, Ball (*p)[3], const ConvexQuadric& s, const Ball (&n)[3], long prec);
 
+/// For an ellipsoid posed in doubles: its exact support matrix W = R D^2 R^T (the W of
+/// convex_quadric) enclosed in Arb balls at prec straight from the doubles (exact dyadic
+/// numerators, one rounded division each: no canonical rationals, whose gcds dominate
+/// convex_quadric's cost), and Wd, its doubles (the balls' midpoints).
+void posed_support_balls(Ball (&W)[3][3], std::array<std::array<double, 3>, 3>& Wd,
+                         const core::ShapeSpec& sp, long prec);
+
 } // namespace surfcert::certify

@@ -56,4 +56,10 @@ namespace surfcert::certify {
 std::optional<DistanceResult> nested_convex_distance(const ConvexQuadric& a, const ConvexQuadric& b,
                                                      long digits);
 
+/// The same for two ellipsoids posed in doubles (spheres included), with their support
+/// matrices enclosed in Arb straight from the doubles (posed_support_balls): the same exact
+/// surfaces and the same certificate, without forming the exact rational W.
+std::optional<DistanceResult> nested_posed_ellipsoids(const core::ShapeSpec& a,
+                                                      const core::ShapeSpec& b, long digits);
+
 } // namespace surfcert::certify
