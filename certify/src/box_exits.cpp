@@ -1,6 +1,8 @@
 // box_exits: exact crossings of the curve with the faces of a box (see box_exits.hpp).
 #include "surfcert/certify/box_exits.hpp"
 
+#include "box_exits_double_line.hpp"
+
 #include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/real_roots.hpp"
@@ -145,6 +147,7 @@ Where against(const Ball& v, const Rational& lo, const Rational& hi, long prec) 
 
 BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Rational, 3>& lo,
                    const std::array<Rational, 3>& hi) {
+  if (auto dl = detail::double_line_exits(a, b, lo, hi)) return std::move(*dl);
   BoxExits out;
   Rational scale;
   for (size_t k = 0; k < 3; ++k)

@@ -19,6 +19,12 @@
 // when every chart leaves R with a multiple real root (a tangency, a singular point, two
 // components meeting on the face, a double component crossing it), or when a crossing lies on an
 // edge of the box (or within 2^-200 of one, relative to the box).
+//
+// One exception is read differently, exactly: a plane tangent to the other quadric along a line
+// (the plane's section is a rank-1 conic: a plane along a cylinder's ruling at distance r, a
+// cone's tangent plane). The curve is then that rational line counted twice; as a set it is a
+// line, and its crossings with the faces (rational points, transversal unless the line lies in a
+// face's plane, which is not certified) are the points, with an edge crossing not certified.
 #pragma once
 
 #include "surfcert/core/quadric.hpp"
