@@ -352,16 +352,11 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
   return out;
 }
 
-void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width) {
-  int slo = p.sign_at(lo);
-  if (slo == 0) {
-    hi = lo;
-    return;
-  }
-  if (p.sign_at(hi) == 0) {
-    lo = hi;
-    return;
-  }
+namespace {
+
+// Exact bisection of (lo, hi) (p(lo) has sign slo != 0, p(hi) the opposite) until
+// hi - lo <= width or a midpoint is a root.
+void bisect_root(const UPolyZ& p, int slo, Rational& lo, Rational& hi, const Rational& width) {
   const Rational half(1, 2);
   while (hi - lo > width) {
     Rational mid = (lo + hi) * half;
@@ -375,6 +370,158 @@ void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& wi
     else
       hi = mid;
   }
+}
+
+// log2 of |x| rounded up (x != 0), from the sizes of its numerator and denominator (+-1).
+slong log2_upper(const Rational& x) {
+  return static_cast<slong>(fmpz_bits(fmpq_numref(x.raw()))) -
+         static_cast<slong>(fmpz_bits(fmpq_denref(x.raw()))) + 1;
+}
+
+// A float estimate of the root of p in (lo, hi) to about `width` / 16: safeguarded Newton on
+// the midpoints of Arb evaluations at `prec` bits (a bisection step on float signs whenever
+// Newton leaves the float bracket). Only a proposal: no sign here decides anything;
+// refine_root_near checks it with exact signs. nullopt when it does not settle.
+std::optional<Rational> newton_guess(const UPolyZ& p, int slo, const Rational& lo,
+                                     const Rational& hi, const Rational& width) {
+  const Rational big = core::abs(lo) > core::abs(hi) ? core::abs(lo) : core::abs(hi);
+  const slong wexp = log2_upper(width) - 1; // 2^wexp <= ~width
+  const slong span = big.is_zero() ? wexp : std::max(log2_upper(big), wexp);
+  const slong prec = std::max<slong>(64, span - wexp + 32 + 4 * p.degree());
+  if (prec > 20000) return std::nullopt;
+  arb_poly_t f, df;
+  arb_poly_init(f);
+  arb_poly_init(df);
+  arb_poly_set_fmpz_poly(f, p.raw(), prec);
+  arb_poly_derivative(df, f, prec);
+  Ball a, b, x, y, dy, step, tmp;
+  arb_set_fmpq(a.v, lo.raw(), prec);
+  arb_set_fmpq(b.v, hi.raw(), prec);
+  arb_get_mid_arb(a.v, a.v);
+  arb_get_mid_arb(b.v, b.v);
+  arb_add(x.v, a.v, b.v, prec);
+  arb_mul_2exp_si(x.v, x.v, -1);
+  std::optional<Rational> out;
+  for (int it = 0; it < 4 * prec + 64; ++it) {
+    arb_poly_evaluate2(y.v, dy.v, f, x.v, prec);
+    const int sy = arf_sgn(arb_midref(y.v));
+    if (sy == 0) {
+      out.emplace();
+      arf_get_fmpq(out->raw_mut(), arb_midref(x.v));
+      break;
+    }
+    // Keep the float bracket (a, b) with the sign slo at a.
+    if (sy == slo)
+      arb_set(a.v, x.v);
+    else
+      arb_set(b.v, x.v);
+    bool newton = !arf_is_zero(arb_midref(dy.v));
+    if (newton) {
+      arf_div(arb_midref(step.v), arb_midref(y.v), arb_midref(dy.v), prec, ARF_RND_NEAR);
+      mag_zero(arb_radref(step.v));
+      arb_sub(tmp.v, x.v, step.v, prec);
+      arb_get_mid_arb(tmp.v, tmp.v);
+      const bool a_first = arf_cmp(arb_midref(a.v), arb_midref(b.v)) < 0;
+      const arf_struct* fl = a_first ? arb_midref(a.v) : arb_midref(b.v);
+      const arf_struct* fh = a_first ? arb_midref(b.v) : arb_midref(a.v);
+      newton = arf_cmp(arb_midref(tmp.v), fl) > 0 && arf_cmp(arb_midref(tmp.v), fh) < 0;
+    }
+    if (!newton) {
+      arb_add(tmp.v, a.v, b.v, prec);
+      arb_mul_2exp_si(tmp.v, tmp.v, -1);
+      arb_sub(step.v, x.v, tmp.v, prec);
+    }
+    arb_swap(x.v, tmp.v);
+    // Settled: the last move (or the float bracket) below width / 16.
+    arb_sub(tmp.v, b.v, a.v, prec);
+    const bool small_step =
+        !arf_is_zero(arb_midref(step.v)) && arf_cmpabs_2exp_si(arb_midref(step.v), wexp - 4) < 0;
+    if (small_step || arf_cmpabs_2exp_si(arb_midref(tmp.v), wexp - 4) < 0) {
+      out.emplace();
+      arf_get_fmpq(out->raw_mut(), arb_midref(x.v));
+      break;
+    }
+  }
+  arb_poly_clear(f);
+  arb_poly_clear(df);
+  return out;
+}
+
+} // namespace
+
+void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width,
+                      const Rational& guess) {
+  int slo = p.sign_at(lo);
+  if (slo == 0) {
+    hi = lo;
+    return;
+  }
+  if (p.sign_at(hi) == 0) {
+    lo = hi;
+    return;
+  }
+  if (hi - lo <= width) return;
+  // The proposed bracket: guess -+ width / 4, its ends rounded outwards to about width / 16
+  // (short dyadics), clipped to (lo, hi). Each end inside (lo, hi) is an exact sign evaluation;
+  // whatever it says narrows (lo, hi) correctly, so a wrong guess costs two evaluations and
+  // the bisection below does the rest.
+  const slong wexp = log2_upper(width) - 1;
+  const Rational quarter = width * Rational(1, 4);
+  auto rounded = [&](const Rational& q, bool up) {
+    // q rounded to a multiple of 2^e, e = wexp - 4, downwards or upwards.
+    const slong e = wexp - 4;
+    const auto ue = static_cast<ulong>(e >= 0 ? e : -e);
+    Rational t;
+    if (e >= 0)
+      fmpq_div_2exp(t.raw_mut(), q.raw(), ue);
+    else
+      fmpq_mul_2exp(t.raw_mut(), q.raw(), ue);
+    core::Integer n;
+    if (up)
+      fmpz_cdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
+    else
+      fmpz_fdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
+    Rational r(n);
+    if (e >= 0)
+      fmpq_mul_2exp(r.raw_mut(), r.raw(), ue);
+    else
+      fmpq_div_2exp(r.raw_mut(), r.raw(), ue);
+    return r;
+  };
+  const Rational ends[2] = {rounded(guess - quarter, false), rounded(guess + quarter, true)};
+  for (const Rational& e : ends) {
+    if (!(lo < e && e < hi)) continue;
+    const int se = p.sign_at(e);
+    if (se == 0) {
+      lo = hi = e;
+      return;
+    }
+    if (se == slo)
+      lo = e;
+    else
+      hi = e;
+  }
+  bisect_root(p, slo, lo, hi, width);
+}
+
+void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width) {
+  int slo = p.sign_at(lo);
+  if (slo == 0) {
+    hi = lo;
+    return;
+  }
+  if (p.sign_at(hi) == 0) {
+    lo = hi;
+    return;
+  }
+  if (hi - lo <= width) return;
+  // Far from the width (more than a few bisections), a Newton estimate proposes the bracket.
+  if (p.degree() >= 1 && hi - lo > width * Rational(16))
+    if (auto g = newton_guess(p, slo, lo, hi, width)) {
+      refine_root_near(p, lo, hi, width, *g);
+      return;
+    }
+  bisect_root(p, slo, lo, hi, width);
 }
 
 } // namespace surfcert::algebra

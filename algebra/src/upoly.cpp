@@ -20,9 +20,37 @@ Integer UPolyZ::coeff(long i) const {
 }
 
 int UPolyZ::sign_at(const Rational& x) const {
-  Rational r;
-  fmpz_poly_evaluate_fmpq(r.raw_mut(), v_, x.raw());
-  return r.sign();
+  // sign p(n/d) = sign(d^deg p(n/d)) (d > 0): the homogenised value sum a_i n^i d^(deg-i) by
+  // Horner in integers, exact and without the gcds of rational Horner.
+  const slong len = fmpz_poly_length(v_);
+  if (len == 0) return 0;
+  const fmpz* n = fmpq_numref(x.raw());
+  const fmpz* d = fmpq_denref(x.raw());
+  if (fmpz_is_one(d)) {
+    fmpz_t s;
+    fmpz_init(s);
+    fmpz_poly_evaluate_fmpz(s, v_, n);
+    const int sg = fmpz_sgn(s);
+    fmpz_clear(s);
+    return sg;
+  }
+  fmpz_t s, pw, t;
+  fmpz_init_set(s, v_->coeffs + len - 1);
+  fmpz_init_set(pw, d);
+  fmpz_init(t);
+  for (slong i = len - 2; i >= 0; --i) {
+    fmpz_mul(s, s, n);
+    if (!fmpz_is_zero(v_->coeffs + i)) {
+      fmpz_mul(t, v_->coeffs + i, pw);
+      fmpz_add(s, s, t);
+    }
+    if (i > 0) fmpz_mul(pw, pw, d);
+  }
+  const int sg = fmpz_sgn(s);
+  fmpz_clear(s);
+  fmpz_clear(pw);
+  fmpz_clear(t);
+  return sg;
 }
 
 UPolyZ UPolyZ::primitive_part() const {

@@ -171,6 +171,108 @@ TEST(RealRoots, RefineNarrowsToTheRoot) {
   EXPECT_GT(hi * hi, Rational(2));
 }
 
+// Exact signs from the homogenised integer Horner against FLINT's rational evaluation.
+TEST(RealRoots, SignAtMatchesRationalEvaluation) {
+  std::mt19937_64 rng(test_seed() + 7);
+  std::uniform_int_distribution<long> c(-50, 50), num(-1000, 1000), den(1, 4096);
+  for (int it = 0; it < 2000; ++it) {
+    std::vector<Integer> co;
+    const int deg = static_cast<int>(rng() % 6);
+    for (int i = 0; i <= deg; ++i)
+      co.emplace_back(c(rng));
+    const UPolyZ p = UPolyZ::from_coeffs(co);
+    const Rational x(num(rng), static_cast<unsigned long>(it % 3 == 0 ? 1 : den(rng)));
+    Rational v;
+    fmpz_poly_evaluate_fmpq(v.raw_mut(), p.raw(), x.raw());
+    ASSERT_EQ(p.sign_at(x), v.sign()) << p.to_string() << " at " << x.to_string();
+  }
+}
+
+// The proposed bracket is a claim: refine_root_near must keep only what exact signs prove.
+// Wrong guesses (far off, the other root, just outside the width on either side, a root of
+// another factor) must still give an interval that brackets sqrt(2) with the width met; a
+// version that trusted the guess (bracket guess -+ width/4 without the two exact signs)
+// returns intervals missing the root here.
+TEST(RealRoots, RefineNearVerifiesTheProposedBracket) {
+  const UPolyZ p = UPolyZ::from_coeffs({Integer(-2), Integer(0), Integer(1)}); // x^2 - 2
+  // sqrt(2) to 2^-130 (lo^2 < 2 < hi^2 checked below), the independent route for "near".
+  Rational rlo(1), rhi(2);
+  while (rhi - rlo > core::pow2(-130)) {
+    Rational m = (rlo + rhi) * Rational(1, 2);
+    (m * m < Rational(2) ? rlo : rhi) = m;
+  }
+  for (long wbits : {10L, 30L, 60L, 100L}) {
+    const Rational width = core::pow2(-wbits);
+    std::vector<Rational> guesses = {Rational(0), Rational(5),       Rational(-3, 2),
+                                     Rational(1), Rational(2),       Rational(19, 10),
+                                     rlo,         Rational(141, 100)};
+    for (long off : {-10L, 10L}) // the true root moved by 2^off widths, either side
+      for (int sgn : {-1, 1})
+        guesses.push_back(rlo + Rational(sgn) * width * core::pow2(off));
+    for (double tiny : {1e-10, 1e-20, 1e-30}) // moved by less than the width, either side
+      for (int sgn : {-1, 1})
+        guesses.push_back(rlo + Rational(sgn) * Rational::exact_from_double(tiny));
+    guesses.push_back(rlo + core::pow2(-100));
+    guesses.push_back(rlo - core::pow2(-100));
+    for (const Rational& g : guesses) {
+      Rational lo(1), hi(2);
+      algebra::refine_root_near(p, lo, hi, width, g);
+      const std::string ctx = "width 2^-" + std::to_string(wbits) + " guess " + g.to_string();
+      EXPECT_LE(hi - lo, width) << ctx;
+      EXPECT_LT(lo * lo, Rational(2)) << ctx;
+      EXPECT_GT(hi * hi, Rational(2)) << ctx;
+      EXPECT_LE(Rational(1), lo) << ctx;
+      EXPECT_LE(hi, Rational(2)) << ctx;
+    }
+  }
+}
+
+// refine_root (Newton proposal + exact check) and refine_root_near with random guesses on
+// products of rational linear factors: every interval holds the known root, width met; an
+// exact root hit gives lo == hi == that root.
+TEST(RealRoots, RefineRootAgainstKnownRationalRoots) {
+  std::mt19937_64 rng(test_seed() + 8);
+  std::uniform_int_distribution<long> a(1, 40), b(-200, 200);
+  for (int it = 0; it < 200; ++it) {
+    const size_t n = 1 + rng() % 4;
+    UPolyZ p = UPolyZ::from_coeffs({Integer(1)});
+    std::vector<Rational> roots;
+    for (size_t i = 0; i < n; ++i) {
+      const long ai = a(rng), bi = b(rng);
+      const Rational r(bi, static_cast<unsigned long>(ai));
+      if (std::find(roots.begin(), roots.end(), r) != roots.end()) continue;
+      roots.push_back(r);
+      UPolyZ f = UPolyZ::from_coeffs({Integer(-bi), Integer(ai)});
+      fmpz_poly_mul(p.raw_mut(), p.raw(), f.raw());
+    }
+    std::sort(roots.begin(), roots.end());
+    const auto s = algebra::isolate_real_roots(p);
+    ASSERT_EQ(s.num_roots(), roots.size());
+    for (size_t r = 0; r < roots.size(); ++r)
+      for (long wbits : {5L, 40L, 90L}) {
+        const Rational width = core::pow2(-wbits);
+        for (int variant = 0; variant < 3; ++variant) {
+          Rational lo = s.separators[r], hi = s.separators[r + 1];
+          if (variant == 0)
+            algebra::refine_root(p, lo, hi, width);
+          else // a guess at another root, or a random point of the isolating interval
+            algebra::refine_root_near(
+                p, lo, hi, width,
+                variant == 1 ? roots[(r + 1) % roots.size()]
+                             : lo + (hi - lo) * Rational(static_cast<long>(rng() % 1000), 999));
+          EXPECT_LE(hi - lo, width);
+          EXPECT_LE(lo, roots[r]);
+          EXPECT_LE(roots[r], hi);
+          if (lo == hi) {
+            EXPECT_EQ(lo, roots[r]);
+          } else {
+            EXPECT_NE(p.sign_at(lo), p.sign_at(hi));
+          }
+        }
+      }
+  }
+}
+
 TEST(Inertia, DescartesLdltAndSylvesterAgree) {
   std::mt19937_64 rng(test_seed() + 1);
   std::uniform_int_distribution<long> e(-3, 3), dsign(-1, 1), den(1, 7);

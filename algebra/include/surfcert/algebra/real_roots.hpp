@@ -50,8 +50,20 @@ int approx_cubic_real_roots(double c3, double c2, double c1, double c0, double* 
 /// (Rolle). Empty when it cannot pick them. A guess: callers check it exactly.
 std::vector<double> critical_point_separators(const std::vector<double>& coeffs, size_t k);
 
-/// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, by exact
-/// bisection until hi - lo <= width (or the root is hit exactly, then lo == hi).
+/// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, until
+/// hi - lo <= width (or the root is hit exactly, then lo == hi). A float Newton estimate
+/// (Arb midpoints, no guarantee) proposes a bracket of the width around the root; its ends
+/// are kept only as far as exact signs at them confirm (refine_root_near), and exact
+/// bisection finishes whatever the proposal did not settle. The result is certified by exact
+/// signs alone: p(lo) and p(hi) have opposite signs (or lo == hi is an exact root).
 void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width);
+
+/// refine_root with the proposal given: `guess` (any rational; a claim, not trusted) is the
+/// centre of a proposed bracket of about width / 2. Each of its ends inside (lo, hi) is
+/// checked by an exact sign and narrows (lo, hi) on the side that sign proves; exact bisection
+/// then brings hi - lo to at most `width`. A wrong guess costs two sign evaluations, never
+/// a wrong interval.
+void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width,
+                      const Rational& guess);
 
 } // namespace surfcert::algebra

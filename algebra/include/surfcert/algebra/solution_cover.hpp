@@ -8,7 +8,7 @@
 // isolated exactly; a box is a choice of one isolating interval per coordinate. A box is
 // discarded only when a ball evaluation proves that some equation (or an (x, y) resultant)
 // has no zero in it, so the kept boxes always cover all real solutions. Refinement narrows
-// the kept boxes' intervals by exact bisection and discards again.
+// the kept boxes' intervals (refine_root: exact signs) and discards again.
 // Invariants: each interval holds exactly one root of its factor of the eliminant (intervals
 // of different factors may overlap); eliminants are nonzero when ok. ok == false (eliminant
 // identically zero in every tried combination: the system has a curve of solutions, or the
