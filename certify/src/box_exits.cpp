@@ -93,8 +93,12 @@ std::vector<std::array<V3, 3>> charts() {
 }
 
 ChartOutcome face_chart(const M3& ca, const M3& cb, FaceChart& out) {
-  for (const auto& t : charts()) {
-    InY a = in_y(algebra::restrict_form(ca, t)), b = in_y(algebra::restrict_form(cb, t));
+  static const std::vector<std::array<V3, 3>> all = charts();
+  for (size_t n = 0; n < all.size(); ++n) {
+    const auto& t = all[n];
+    // The first chart is the identity: the forms as they are (T^T C T == C, no arithmetic).
+    InY a = in_y(n == 0 ? ca : algebra::restrict_form(ca, t));
+    InY b = in_y(n == 0 ? cb : algebra::restrict_form(cb, t));
     if (a.c2.is_zero()) std::swap(a, b);
     if (a.c2.is_zero()) continue; // (0 : 1 : 0) on both conics: another chart
     const UPolyQ A2(a.c2), B2(b.c2);
@@ -115,6 +119,20 @@ ChartOutcome face_chart(const M3& ca, const M3& cb, FaceChart& out) {
     return ChartOutcome::Ok;
   }
   return ChartOutcome::Failed;
+}
+
+// The form restricted to the face x_k = c in the coordinates (u, v, 1) = (x_i, x_j, 1):
+// restrict_form(m, T) for T's columns e_i, e_j, c e_k + e_w, written out (the same exact
+// entries without the products by T's zeros).
+M3 face_form(const core::Mat4& m, size_t i, size_t j, size_t k, const Rational& c) {
+  M3 r;
+  r[0][0] = m[i][i];
+  r[0][1] = r[1][0] = m[i][j];
+  r[1][1] = m[j][j];
+  r[0][2] = r[2][0] = m[i][k] * c + m[i][3];
+  r[1][2] = r[2][1] = m[j][k] * c + m[j][3];
+  r[2][2] = (m[k][k] * c + m[k][3] + m[3][k]) * c + m[3][3];
+  return r;
 }
 
 Ball ball_of(const Rational& q, long prec) {
@@ -158,12 +176,7 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Ra
       const size_t i = (ku + 1) % 3, j = (ku + 2) % 3;
       const Rational& c = side ? hi[ku] : lo[ku];
       // (u, v, 1) -> (x, y, z, w): u along axis i, v along axis j, x_k = c.
-      std::array<std::array<Rational, 4>, 3> cols;
-      cols[0][i] = Rational(1);
-      cols[1][j] = Rational(1);
-      cols[2][ku] = c;
-      cols[2][3] = Rational(1);
-      const M3 ca = algebra::restrict_form(a, cols), cb = algebra::restrict_form(b, cols);
+      const M3 ca = face_form(a, i, j, ku, c), cb = face_form(b, i, j, ku, c);
       const std::string name =
           std::string(side ? "max" : "min") + " face of axis " + std::to_string(k);
       if (is_zero(ca) || is_zero(cb)) {
