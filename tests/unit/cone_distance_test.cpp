@@ -60,10 +60,9 @@ TEST(ConeDistance, SphereAgainstThePointQuadricSextic) {
   auto r = certify::surface_distance(q("(x-4)^2 + y^2 + z^2 = 1"), round, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.method, certify::Method::ConeGeneratorBound);
-  // the generators x = z and x = -z; that each arc of survivors holds one line only is not
-  // proven by this route: two candidates, the count undecided
-  EXPECT_EQ(r.minimizers, "undecided");
-  EXPECT_EQ(r.minimizer_candidates(), 2);
+  // the generators x = z and x = -z, one per arc (the squared distance is proven strictly
+  // convex over each arc of survivors)
+  EXPECT_EQ(r.minimizers, "2") << r.note;
   EXPECT_TRUE(overlap(r, sextic_minus({4, 0, 0}, round, 1, 1))) << r.lower();
   // a tilted elliptic cone with its vertex at (1/2, -1, 0)
   const auto tilted = q("x^2 + 2y^2 - z^2/3 + x*y/7 + y*z/5 = 0")
@@ -97,12 +96,10 @@ TEST(ConeDistance, RandomEllipsoidsAgainstTheOffsetMethod) {
     auto ex = certify::surface_distance(e, cone, 15, false, certify::Mode::Exact);
     ASSERT_EQ(ex.status, certify::Status::Certified) << ex.note;
     EXPECT_TRUE(overlap(r, ex)) << "case " << i << ": " << r.lower() << " vs " << ex.lower();
-    // Every arc of surviving generators holds a minimizing line; that it holds one only is not
-    // proven by this route: its count is "undecided", with as many candidates as the exact
-    // route proves minimizers.
-    EXPECT_EQ(r.minimizers, "undecided") << "case " << i;
+    // Every arc of surviving generators holds one minimizing line (strict convexity of the
+    // squared distance over the arc): the count equals the exact route's.
     ASSERT_TRUE(ex.minimizers.is_count()) << "case " << i;
-    EXPECT_EQ(r.minimizer_candidates(), ex.minimizers.value()) << "case " << i;
+    EXPECT_EQ(r.minimizers, ex.minimizers) << "case " << i << ": " << r.note;
     ++checked;
   }
   EXPECT_GE(checked, 2);

@@ -253,14 +253,9 @@ TEST(Symmetry, TorusRoutesProveTies) {
     ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
     EXPECT_LE(std::stod(r.lower()), 0.5);
     EXPECT_GE(std::stod(r.upper()), 0.5);
-    // The circle bound (filtered) proves the tie but not one minimizer per cluster: its count
-    // stays undecided with the two candidates; the offset system (exact) proves "2".
-    if (mode == certify::Mode::Filtered) {
-      EXPECT_EQ(r.minimizers, "undecided");
-      EXPECT_EQ(r.minimizer_candidates(), 2);
-    } else {
-      EXPECT_EQ(r.minimizers, "2");
-    }
+    // The circle bound (filtered; one minimizer per cluster by strict convexity) and the
+    // offset system (exact) both prove "2".
+    EXPECT_EQ(r.minimizers, "2") << r.note;
     EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
     expect_orbit(r, certify::common_symmetries(e, t));
   }
@@ -330,10 +325,8 @@ TEST(Symmetry, ConeRouteProvesTies) {
   const auto r = certify::surface_distance(cone, sphere, 15, false);
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.method, certify::Method::ConeGeneratorBound);
-  // The ties are proven; that each arc of survivors holds one generator only is not (the cone
-  // route has no uniqueness proof per arc), so the count stays undecided with two candidates.
-  EXPECT_EQ(r.minimizers, "undecided");
-  EXPECT_EQ(r.minimizer_candidates(), 2);
+  // The ties are proven, and one generator per arc (strict convexity over each arc).
+  EXPECT_EQ(r.minimizers, "2") << r.note;
   EXPECT_EQ(r.ties, certify::Ties::Proven) << r.note;
   EXPECT_NEAR(r.approx(), 5 / std::sqrt(2.0) - 1, 1e-14);
   expect_orbit(r, certify::common_symmetries(cone, sphere));

@@ -332,6 +332,8 @@ TEST(TorusFast, RandomPairsAgainstTheExactRoute) {
     EXPECT_TRUE(overlap(*f, x)) << "seed " << seed << " pair " << i << ": [" << f->lower() << ", "
                                 << f->upper() << "] vs [" << x.lower() << ", " << x.upper() << "]";
     EXPECT_EQ(f->minimizers, x.minimizers) << "seed " << seed << " pair " << i;
+    // one minimizer per cluster proven (strict convexity of the squared distance over it)
+    EXPECT_FALSE(f->count_unproven) << "seed " << seed << " pair " << i << ": " << f->note;
     ASSERT_FALSE(x.pairs.empty());
     for (size_t k = 0; k < 3; ++k) {
       EXPECT_NEAR(f->pairs[0][0][k], x.pairs[0][0][k], 1e-6) << "seed " << seed << " pair " << i;

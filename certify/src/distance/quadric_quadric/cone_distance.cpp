@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/cone_distance.hpp"
 
 #include "surfcert/algebra/arb.hpp"
+#include "surfcert/certify/distance/group_uniqueness.hpp"
 #include "surfcert/certify/distance/periodic_bnb.hpp"
 
 #include <cmath>
@@ -358,13 +359,65 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
              "line-ellipsoid distance, by branch and bound with slab (support-function) lower "
              "bounds (Arb)";
   note_unproven_ties(out, pm.minimizers.size());
-  // Every minimizing line lies in a group of survivors, but nothing here proves that a group
-  // holds only one: two minimizing lines closer than the surviving intervals (a bump between
-  // them below 10^-digits) make one group. The count is not proven (the enclosure is), also
-  // not by the ties' symmetry argument, which needs at most one minimizer per group.
-  out.count_unproven = true;
-  out.note += "; an arc of minimizing generator lines may hold more than one minimizer (not "
-              "proven otherwise)";
+  // Every minimizing line lies in a group of survivors; a group holds at most one when D(t) =
+  // dist(line(t), E)^2 (same minimizers) is strictly convex over its hull
+  // (group_uniqueness.hpp). Adjacent survivors alone prove nothing: two minimizing lines
+  // closer than the surviving intervals (a bump between them below 10^-digits) make one group.
+  // D(t) is the squared distance of P (v - c_E) to the ellipse P E in the plane normal to g(t)
+  // (P = I - g g^T / g.g), whose shape matrix is P W P.
+  auto second = [&](arb_t d2, const arb_t T) {
+    Series x, sn, cs, yv[3], gp[3], g[3], gg, t1, P[3][3], PW[3][3], Mp[3][3], y[3];
+    arb_poly_set_coeff_arb(x.p, 0, T);
+    arb_poly_set_coeff_si(x.p, 1, 1);
+    arb_poly_sin_cos_pi_series(sn.p, cs.p, x.p, 3, prec);
+    arb_poly_set_arb(yv[c->kneg].p, M.inv_neg.v);
+    arb_poly_scalar_mul(yv[c->ka].p, cs.p, M.inv_a.v, prec);
+    arb_poly_scalar_mul(yv[c->kb].p, sn.p, M.inv_b.v, prec);
+    arb_poly_set(gp[2].p, yv[2].p);
+    arb_poly_scalar_mul(t1.p, gp[2].p, M.l21.v, prec);
+    arb_poly_sub(gp[1].p, yv[1].p, t1.p, prec);
+    arb_poly_scalar_mul(t1.p, gp[1].p, M.l10.v, prec);
+    arb_poly_sub(gp[0].p, yv[0].p, t1.p, prec);
+    arb_poly_scalar_mul(t1.p, gp[2].p, M.l20.v, prec);
+    arb_poly_sub(gp[0].p, gp[0].p, t1.p, prec);
+    for (size_t k = 0; k < 3; ++k)
+      arb_poly_set(g[c->perm[k]].p, gp[k].p);
+    for (size_t i = 0; i < 3; ++i) {
+      arb_poly_mullow(t1.p, g[i].p, g[i].p, 3, prec);
+      arb_poly_add(gg.p, gg.p, t1.p, prec);
+    }
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        arb_poly_mullow(t1.p, g[i].p, g[j].p, 3, prec);
+        arb_poly_div_series(t1.p, t1.p, gg.p, 3, prec);
+        arb_poly_neg(P[i][j].p, t1.p);
+        if (i == j) {
+          Series one;
+          arb_poly_one(one.p);
+          arb_poly_add(P[i][j].p, P[i][j].p, one.p, prec);
+        }
+      }
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        for (size_t k = 0; k < 3; ++k) {
+          arb_poly_scalar_mul(t1.p, P[i][k].p, M.W[k][j].v, prec);
+          arb_poly_add(PW[i][j].p, PW[i][j].p, t1.p, prec);
+        }
+      }
+    for (size_t i = 0; i < 3; ++i) {
+      for (size_t j = 0; j < 3; ++j)
+        for (size_t k = 0; k < 3; ++k) {
+          arb_poly_mullow(t1.p, PW[i][k].p, P[k][j].p, 3, prec);
+          arb_poly_add(Mp[i][j].p, Mp[i][j].p, t1.p, prec);
+        }
+      for (size_t k = 0; k < 3; ++k) {
+        arb_poly_scalar_mul(t1.p, P[i][k].p, M.w[k].v, prec);
+        arb_poly_add(y[i].p, y[i].p, t1.p, prec);
+      }
+    }
+    return ellipsoid_dist2_second(d2, y, Mp, prec);
+  };
+  prove_one_per_group(out, pm.group_hulls, second, 1, "an arc of minimizing generator lines");
   // Tie regions (symmetry.hpp): per group the unit directions of its generator lines (up to
   // sign: a symmetry keeps the vertex and maps lines to lines); every minimizing line is in one.
   out.tie_lines = true;

@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/torus_fast.hpp"
 #include "surfcert/core/budget.hpp"
 
+#include "surfcert/certify/distance/group_uniqueness.hpp"
 #include "surfcert/certify/distance/mp_float.hpp"
 #include <flint/fmpq.h>
 
@@ -921,13 +922,46 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
              "pairs: support points and their exact distance to the torus); no elimination "
              "needed";
   note_unproven_ties(out, reps.size());
-  // Every minimizing tau lies in a cluster, but nothing here proves that a cluster holds only
-  // one: two minimizers closer than the surviving intervals (a bump between them below
-  // 10^-digits) make one cluster. The count is not proven (the enclosure is), also not by the
-  // ties' symmetry argument, which needs at most one minimizer per cluster.
-  out.count_unproven = true;
-  out.note += "; a minimizing arc of the core circle may hold more than one minimizer (not "
-              "proven otherwise)";
+  // Every minimizing tau lies in a cluster; a cluster holds at most one when D(tau) =
+  // dist(K(tau), E)^2 (same minimizers as the distance) is strictly convex over its hull
+  // (group_uniqueness.hpp). Adjacent survivors alone prove nothing: two minimizers closer
+  // than the surviving intervals (a bump between them below 10^-digits) make one cluster.
+  std::vector<Ball> hulls;
+  for (const auto& g : groups) {
+    Ball T, a, b;
+    bool first = true;
+    for (size_t i : g) {
+      arb_set_d(a.v, alive_[i].a);
+      arb_set_d(b.v, alive_[i].b);
+      arb_union(a.v, a.v, b.v, prec);
+      if (first)
+        arb_swap(T.v, a.v);
+      else
+        arb_union(T.v, T.v, a.v, prec);
+      first = false;
+    }
+    hulls.push_back(std::move(T));
+  }
+  // y(tau) = K(tau) - c = (o - c) + R (cos(pi tau) u + sin(pi tau) v) as series at T; W fixed.
+  auto second = [&](arb_t d2, const arb_t T) {
+    Series x, sn, cs, y[3], W[3][3];
+    arb_poly_set_coeff_arb(x.p, 0, T);
+    arb_poly_set_coeff_si(x.p, 1, 1);
+    arb_poly_sin_cos_pi_series(sn.p, cs.p, x.p, 3, prec);
+    for (size_t i = 0; i < 3; ++i) {
+      Series t1, t2, k;
+      arb_poly_scalar_mul(t1.p, cs.p, M.u[i].v, prec);
+      arb_poly_scalar_mul(t2.p, sn.p, M.v[i].v, prec);
+      arb_poly_add(t1.p, t1.p, t2.p, prec);
+      arb_poly_scalar_mul(t1.p, t1.p, M.R.v, prec);
+      arb_poly_set_arb(k.p, M.oc[i].v);
+      arb_poly_add(y[i].p, t1.p, k.p, prec);
+      for (size_t j = 0; j < 3; ++j)
+        arb_poly_set_arb(W[i][j].p, M.W[i][j].v);
+    }
+    return ellipsoid_dist2_second(d2, y, W, prec);
+  };
+  prove_one_per_group(out, hulls, second, 1, "a minimizing arc of the core circle");
   // Tie regions (symmetry.hpp): per cluster the core points K(tau) over its intervals, which
   // hold every minimizing tau (the branch and bound dropped the others); an isometry keeping
   // the torus maps its core circle onto itself.

@@ -2,6 +2,7 @@
 
 #include "surfcert/algebra/arb.hpp"
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/group_uniqueness.hpp"
 #include "surfcert/certify/distance/periodic_bnb.hpp"
 
 #include <cmath>
@@ -115,21 +116,14 @@ void circle_circle(Dual& f, Ball (*point)[3], const Circle& c1, const Circle& c2
 // arithmetic: arb_poly series of length 3 at T enclose f, f', f''/2 for every t in T. False
 // when not finite (rho or f may vanish in T).
 bool circle_circle_second(arb_t d2, const Circle& c1, const Circle& c2, const arb_t T, long prec) {
-  struct Poly {
-    arb_poly_t p;
-    Poly() { arb_poly_init(p); }
-    ~Poly() { arb_poly_clear(p); }
-    Poly(const Poly&) = delete;
-    Poly& operator=(const Poly&) = delete;
-  };
   const slong n = 3;
-  Poly x, s, c, w, h, w2, sq, rho2, rho, g, f;
+  Series x, s, c, w, h, w2, sq, rho2, rho, g, f;
   arb_poly_set_coeff_arb(x.p, 0, T);
   arb_poly_set_coeff_si(x.p, 1, 1);
   arb_poly_sin_cos_pi_series(s.p, c.p, x.p, n, prec);
   for (size_t i = 0; i < 3; ++i) {
     // w_i = R1 (cos u_i + sin v_i) + o1_i - o2_i
-    Poly t1, t2;
+    Series t1, t2;
     Ball k;
     arb_poly_scalar_mul(t1.p, c.p, c1.u[i].v, prec);
     arb_poly_scalar_mul(t2.p, s.p, c1.v[i].v, prec);
@@ -150,7 +144,7 @@ bool circle_circle_second(arb_t d2, const Circle& c1, const Circle& c2, const ar
   if (!arb_is_positive(c0.v)) return false;
   arb_poly_sqrt_series(rho.p, rho2.p, n, prec);
   {
-    Poly r2;
+    Series r2;
     arb_poly_set_arb(r2.p, c2.R.v);
     arb_poly_sub(rho.p, rho.p, r2.p, prec);
   }
@@ -164,26 +158,15 @@ bool circle_circle_second(arb_t d2, const Circle& c1, const Circle& c2, const ar
   return arb_is_finite(d2) != 0;
 }
 
-// The count of each group of survivors: every minimizing t lies in one of the groups' hulls;
-// a hull holds exactly one minimizer when f is strictly convex on it (sign +1: f'' > 0) or,
-// for a maximum of f, strictly concave (sign -1) and it holds one at all (a single group, or
-// the ties' symmetry argument, which needs at most one per hull). Adjacent survivors alone
-// prove nothing: two minimizers closer than the survivors' width (a bump between them below
-// 10^-digits) make one group.
+// The count of each group of survivors (group_uniqueness.hpp): every minimizing t lies in one
+// of the groups' hulls; a hull holds at most one minimizer when f is strictly convex on it
+// (sign +1) or, for a maximum of f, strictly concave (sign -1).
 void prove_groups(DistanceResult& res, const PeriodicMinimum& pm, const Circle& c1,
                   const Circle& c2, int sign, long prec) {
-  for (const Ball& hull : pm.group_hulls) {
-    Ball d2;
-    if (circle_circle_second(d2.v, c1, c2, hull.v, prec) &&
-        (sign > 0 ? arb_is_positive(d2.v) : arb_is_negative(d2.v)))
-      continue;
-    res.count_unproven = true;
-    res.note += std::string(res.note.empty() ? "" : "; ") +
-                "a minimizing arc of the circle may hold more than one minimizer (the distance "
-                "is not proven strictly " +
-                (sign > 0 ? "convex" : "concave") + " there)";
-    return;
-  }
+  prove_one_per_group(
+      res, pm.group_hulls,
+      [&](arb_t d2, const arb_t T) { return circle_circle_second(d2, c1, c2, T, prec); }, sign,
+      "a minimizing arc of the circle");
 }
 
 // Tie regions (symmetry.hpp): the points K1(t) over each group of survivors, which hold every
