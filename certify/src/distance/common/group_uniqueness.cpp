@@ -1,15 +1,45 @@
 #include "surfcert/certify/distance/group_uniqueness.hpp"
 
+#include <cmath>
+
 namespace surfcert::certify {
 
 namespace {
 
-// f'' of the sign over the ball T, or over both halves (a wide hull: the enclosure of f'' over
-// the whole ball may be too loose), up to `budget` evaluations in all.
-bool signed_over(const SecondDerivative& second, const arb_t T, int sign, int depth, int& budget) {
+// Halvings of a hull and evaluations per hull (a hull of width 1/8 reaches 2^-20), and the
+// doublings / halvings of s from 1 while bracketing s* (s* between 2^-400 and 2^400).
+constexpr int kGroupProofDepth = 17;
+constexpr int kGroupProofBudget = 4096;
+constexpr int kMaxScaleSteps = 400;
+// Bisection steps of the bracket of s*, and of each of its ends once the midpoint's sign is
+// not decided.
+constexpr int kBracketSteps = 80;
+constexpr int kBracketEndSteps = 8;
+
+// Labels of the pieces of the ball T, left to right, for g = sign f: '+' when g' > 0 over the
+// piece, '-' when g' < 0, 'C' when g'' > 0 (g strictly convex there); a piece with none of
+// these is halved, down to `depth` halvings and `budget` evaluations in all (false then).
+bool label_pieces(const Derivatives& derivs, const arb_t T, int sign, int depth, int& budget,
+                  std::string& labels) {
   if (--budget < 0) return false;
-  Ball d2;
-  if (second(d2.v, T) && (sign > 0 ? arb_is_positive(d2.v) : arb_is_negative(d2.v))) return true;
+  Ball d1, d2;
+  derivs(d1.v, d2.v, T);
+  if (sign < 0) {
+    arb_neg(d1.v, d1.v);
+    arb_neg(d2.v, d2.v);
+  }
+  if (arb_is_positive(d1.v)) {
+    labels += '+';
+    return true;
+  }
+  if (arb_is_negative(d1.v)) {
+    labels += '-';
+    return true;
+  }
+  if (arb_is_positive(d2.v)) {
+    labels += 'C';
+    return true;
+  }
   if (depth == 0) return false;
   // the halves [lo, mid] and [mid, hi] as balls (outward: their union covers T)
   Ball lo, hi, mid, a, b;
@@ -21,21 +51,46 @@ bool signed_over(const SecondDerivative& second, const arb_t T, int sign, int de
   arb_set_arf(hi.v, h.v);
   arb_union(a.v, lo.v, mid.v, ARF_PREC_EXACT);
   arb_union(b.v, mid.v, hi.v, ARF_PREC_EXACT);
-  return signed_over(second, a.v, sign, depth - 1, budget) &&
-         signed_over(second, b.v, sign, depth - 1, budget);
+  return label_pieces(derivs, a.v, sign, depth - 1, budget, labels) &&
+         label_pieces(derivs, b.v, sign, depth - 1, budget, labels);
+}
+
+// How many zeros g' may have over the labelled pieces (consecutive pieces share an endpoint,
+// g' is continuous): none in a '+' or '-' piece; at most one in a maximal run of 'C' pieces
+// (g' strictly increasing over the run), and none when the run is preceded by a '+' piece (g'
+// > 0 at the run's left end, so over it) or followed by a '-' piece (g' < 0 at its right end).
+int possible_zeros(const std::string& labels) {
+  int n = 0;
+  for (size_t i = 0; i < labels.size();) {
+    if (labels[i] != 'C') {
+      ++i;
+      continue;
+    }
+    size_t j = i;
+    while (j < labels.size() && labels[j] == 'C')
+      ++j;
+    const bool up_before = i > 0 && labels[i - 1] == '+';
+    const bool down_after = j < labels.size() && labels[j] == '-';
+    if (!up_before && !down_after) ++n;
+    i = j;
+  }
+  return n;
 }
 
 } // namespace
 
 bool prove_one_per_group(DistanceResult& res, const std::vector<Ball>& hulls,
-                         const SecondDerivative& second, int sign, const std::string& what) {
+                         const Derivatives& derivs, int sign, const std::string& what) {
   for (const Ball& hull : hulls) {
-    int budget = 512;
-    if (signed_over(second, hull.v, sign, 12, budget)) continue;
+    int budget = kGroupProofBudget;
+    std::string labels;
+    if (label_pieces(derivs, hull.v, sign, kGroupProofDepth, budget, labels) &&
+        possible_zeros(labels) <= 1)
+      continue;
     res.count_unproven = true;
     res.note += std::string(res.note.empty() ? "" : "; ") + what +
                 " may hold more than one minimizer (the distance is not proven strictly " +
-                (sign > 0 ? "convex" : "concave") + " there)";
+                (sign > 0 ? "convex" : "concave") + " near its critical points there)";
     return false;
   }
   return true;
@@ -120,45 +175,169 @@ int gs_sign(const Series (&y)[3], const Series (&M)[3][3], const arf_t s_exact, 
   return arb_is_positive(v.v) ? 1 : arb_is_negative(v.v) ? -1 : 0;
 }
 
+// The double estimate of s* at the middle of the series' ball: G_s = y^T M (M + s I)^-2 y -
+// 1 (decreasing in s) solved by bisection in log s; 0 when it fails (y inside E, not finite).
+double s_estimate(const Series (&y)[3], const Series (&M)[3][3]) {
+  double yd[3], Md[3][3];
+  for (size_t i = 0; i < 3; ++i) {
+    Ball c;
+    arb_poly_get_coeff_arb(c.v, y[i].p, 0);
+    yd[i] = arf_get_d(arb_midref(c.v), ARF_RND_NEAR);
+    for (size_t j = 0; j < 3; ++j) {
+      arb_poly_get_coeff_arb(c.v, M[i][j].p, 0);
+      Md[i][j] = arf_get_d(arb_midref(c.v), ARF_RND_NEAR);
+    }
+  }
+  auto gs = [&](double s) { // y^T M A^-2 y - 1 = x^T M x - 1 with x = A^-1 y (Cramer)
+    double A[3][3];
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        A[i][j] = Md[i][j] + (i == j ? s : 0.0);
+    const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                       A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                       A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    double x[3];
+    for (size_t c = 0; c < 3; ++c) {
+      double B[3][3];
+      for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j)
+          B[i][j] = j == c ? yd[i] : A[i][j];
+      x[c] = (B[0][0] * (B[1][1] * B[2][2] - B[1][2] * B[2][1]) -
+              B[0][1] * (B[1][0] * B[2][2] - B[1][2] * B[2][0]) +
+              B[0][2] * (B[1][0] * B[2][1] - B[1][1] * B[2][0])) /
+             det;
+    }
+    double v = -1;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        v += x[i] * Md[i][j] * x[j];
+    return v;
+  };
+  double a = 1, b = 1;
+  for (int k = 0; !(gs(b) < 0); ++k) {
+    if (k == 200) return 0;
+    b *= 2;
+  }
+  for (int k = 0; !(gs(a) > 0); ++k) {
+    if (k == 200) return 0;
+    a *= 0.5;
+  }
+  for (int k = 0; k < 200 && b - a > 0x1p-52 * b; ++k) {
+    const double m = 0.5 * (a + b);
+    if (m <= a || m >= b) break;
+    (gs(m) > 0 ? a : b) = m;
+  }
+  return 0.5 * (a + b);
+}
+
+// A certified bracket [lo, hi] of s*(t) for every t in the ball (G_s(lo) > 0 > G_s(hi))
+// around the estimate: s0 (1 -+ 2^k) for k = -48, -44, ... (the caller's bisection narrows
+// it); false when the estimate fails or a side is not found.
+bool guess_bracket(Arf& lo, Arf& hi, const Series (&y)[3], const Series (&M)[3][3], long prec) {
+  const double s0 = s_estimate(y, M);
+  if (!(s0 > 0) || !std::isfinite(s0)) return false;
+  Arf c;
+  arf_set_d(c.v, s0);
+  for (int side = -1; side <= 1; side += 2) {
+    Arf& end = side < 0 ? lo : hi;
+    bool found = false;
+    for (int k = -48; k <= 0 && !found; k += 4) {
+      // s = s0 (1 + side 2^k), exact (dyadic); at k = 0 the low side is 0: not tried
+      if (side < 0 && k == 0) break;
+      Arf e;
+      arf_mul_2exp_si(e.v, c.v, k);
+      if (side < 0)
+        arf_sub(end.v, c.v, e.v, ARF_PREC_EXACT, ARF_RND_DOWN);
+      else
+        arf_add(end.v, c.v, e.v, ARF_PREC_EXACT, ARF_RND_DOWN);
+      found = gs_sign(y, M, end.v, prec) == -side;
+    }
+    if (!found) {
+      // s0 itself is off, or far above / below: walk by doublings from the last try
+      for (int k = 0; k < 64 && !found; ++k) {
+        arf_mul_2exp_si(end.v, end.v, side);
+        found = gs_sign(y, M, end.v, prec) == -side;
+      }
+      if (!found) return false;
+    }
+  }
+  return true;
+}
+
 } // namespace
 
-bool ellipsoid_dist2_second(arb_t d2, const Series (&y)[3], const Series (&M)[3][3], long prec) {
+void ellipsoid_dist2_derivatives(arb_t d1, arb_t d2, const Series (&y)[3], const Series (&M)[3][3],
+                                 long prec) {
+  arb_indeterminate(d1);
+  arb_indeterminate(d2);
   Arf lo, hi, mid;
-  // G_s is decreasing in s > 0: bracket its zero for every t at once, by certified signs.
-  arf_one(hi.v);
+  // G_s is decreasing in s > 0: bracket its zero for every t at once, by certified signs,
+  // first around the double estimate s0 at the middle of T (it only proposes where to test),
+  // else from s = 1 outwards.
   int k = 0;
-  for (; gs_sign(y, M, hi.v, prec) >= 0; ++k) {
-    if (k == 400) return false;
-    arf_mul_2exp_si(hi.v, hi.v, 1);
+  if (!guess_bracket(lo, hi, y, M, prec)) {
+    arf_one(hi.v);
+    for (; gs_sign(y, M, hi.v, prec) >= 0; ++k) {
+      if (k == kMaxScaleSteps) return;
+      arf_mul_2exp_si(hi.v, hi.v, 1);
+    }
+    arf_one(lo.v);
+    for (k = 0; gs_sign(y, M, lo.v, prec) <= 0; ++k) {
+      if (k == kMaxScaleSteps) return;
+      arf_mul_2exp_si(lo.v, lo.v, -1);
+    }
   }
-  arf_one(lo.v);
-  for (k = 0; gs_sign(y, M, lo.v, prec) <= 0; ++k) {
-    if (k == 400) return false;
-    arf_mul_2exp_si(lo.v, lo.v, -1);
-  }
-  for (k = 0; k < 80; ++k) {
+  // Bisection while the midpoint's sign is decided; then, once a midpoint m falls where the
+  // sign is not decided (s*(t) for some t in T, or the enclosure too loose there), each end
+  // alone on its side ([lo, m] for lo, [m, hi] for hi): stopping at m would keep the whole
+  // previous bracket, however narrow the undecided region is.
+  Arf m_lo, m_hi;
+  bool split = false;
+  for (k = 0; k < kBracketSteps; ++k) {
     arf_add(mid.v, lo.v, hi.v, ARF_PREC_EXACT, ARF_RND_DOWN);
     arf_mul_2exp_si(mid.v, mid.v, -1);
     const int sg = gs_sign(y, M, mid.v, prec);
-    if (sg > 0)
+    if (sg > 0) {
       arf_swap(lo.v, mid.v);
-    else if (sg < 0)
+    } else if (sg < 0) {
+      arf_swap(hi.v, mid.v);
+    } else {
+      split = true;
+      arf_set(m_lo.v, mid.v);
+      arf_set(m_hi.v, mid.v);
+      break;
+    }
+  }
+  for (k = 0; split && k < kBracketEndSteps; ++k) {
+    // lo: G_s > 0 there; m_lo: not decided > 0
+    arf_add(mid.v, lo.v, m_lo.v, ARF_PREC_EXACT, ARF_RND_DOWN);
+    arf_mul_2exp_si(mid.v, mid.v, -1);
+    if (gs_sign(y, M, mid.v, prec) > 0)
+      arf_swap(lo.v, mid.v);
+    else
+      arf_swap(m_lo.v, mid.v);
+    // hi: G_s < 0 there; m_hi: not decided < 0
+    arf_add(mid.v, m_hi.v, hi.v, ARF_PREC_EXACT, ARF_RND_DOWN);
+    arf_mul_2exp_si(mid.v, mid.v, -1);
+    if (gs_sign(y, M, mid.v, prec) < 0)
       arf_swap(hi.v, mid.v);
     else
-      break; // as narrow as the t-ball allows
+      arf_swap(m_hi.v, mid.v);
   }
   Ball S, a, b;
   arb_set_arf(a.v, lo.v);
   arb_set_arf(b.v, hi.v);
   arb_union(S.v, a.v, b.v, prec);
   Forms f;
-  if (!forms(f, y, M, S.v, 3, prec)) return false;
+  if (!forms(f, y, M, S.v, 3, prec)) return;
   Ball q2, zz0, zz1, zw0, q1, Gtt, Gts, Gss;
+  // D' = G_t = s [q]_1 (envelope: G_s = 0 along s*)
+  arb_poly_get_coeff_arb(q1.v, f.q.p, 1);
+  arb_mul(d1, q1.v, S.v, prec);
   // G_tt = 2 s [q]_2; G_ts = [q]_1 - s [zz]_1; G_ss = 2 s [zw]_0 - 2 [zz]_0
   arb_poly_get_coeff_arb(q2.v, f.q.p, 2);
   arb_mul(Gtt.v, q2.v, S.v, prec);
   arb_mul_2exp_si(Gtt.v, Gtt.v, 1);
-  arb_poly_get_coeff_arb(q1.v, f.q.p, 1);
   arb_poly_get_coeff_arb(zz1.v, f.zz.p, 1);
   arb_set(Gts.v, q1.v);
   arb_submul(Gts.v, S.v, zz1.v, prec);
@@ -167,11 +346,10 @@ bool ellipsoid_dist2_second(arb_t d2, const Series (&y)[3], const Series (&M)[3]
   arb_mul(Gss.v, S.v, zw0.v, prec);
   arb_sub(Gss.v, Gss.v, zz0.v, prec);
   arb_mul_2exp_si(Gss.v, Gss.v, 1);
-  if (!arb_is_negative(Gss.v)) return false;
+  if (!arb_is_negative(Gss.v)) return;
   arb_sqr(d2, Gts.v, prec);
   arb_div(d2, d2, Gss.v, prec);
   arb_sub(d2, Gtt.v, d2, prec);
-  return arb_is_finite(d2) != 0;
 }
 
 } // namespace surfcert::certify

@@ -360,12 +360,12 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
              "bounds (Arb)";
   note_unproven_ties(out, pm.minimizers.size());
   // Every minimizing line lies in a group of survivors; a group holds at most one when D(t) =
-  // dist(line(t), E)^2 (same minimizers) is strictly convex over its hull
+  // dist(line(t), E)^2 (same minimizers) has at most one critical point on its hull
   // (group_uniqueness.hpp). Adjacent survivors alone prove nothing: two minimizing lines
   // closer than the surviving intervals (a bump between them below 10^-digits) make one group.
   // D(t) is the squared distance of P (v - c_E) to the ellipse P E in the plane normal to g(t)
   // (P = I - g g^T / g.g), whose shape matrix is P W P.
-  auto second = [&](arb_t d2, const arb_t T) {
+  auto derivs = [&](arb_t d1, arb_t d2, const arb_t T) {
     Series x, sn, cs, yv[3], gp[3], g[3], gg, t1, P[3][3], PW[3][3], Mp[3][3], y[3];
     arb_poly_set_coeff_arb(x.p, 0, T);
     arb_poly_set_coeff_si(x.p, 1, 1);
@@ -415,9 +415,9 @@ std::optional<DistanceResult> ellipsoid_cone_distance(const ConvexQuadric& e,
         arb_poly_add(y[i].p, y[i].p, t1.p, prec);
       }
     }
-    return ellipsoid_dist2_second(d2, y, Mp, prec);
+    ellipsoid_dist2_derivatives(d1, d2, y, Mp, prec);
   };
-  prove_one_per_group(out, pm.group_hulls, second, 1, "an arc of minimizing generator lines");
+  prove_one_per_group(out, pm.group_hulls, derivs, 1, "an arc of minimizing generator lines");
   // Tie regions (symmetry.hpp): per group the unit directions of its generator lines (up to
   // sign: a symmetry keeps the vertex and maps lines to lines); every minimizing line is in one.
   out.tie_lines = true;

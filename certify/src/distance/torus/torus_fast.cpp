@@ -923,8 +923,8 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
              "needed";
   note_unproven_ties(out, reps.size());
   // Every minimizing tau lies in a cluster; a cluster holds at most one when D(tau) =
-  // dist(K(tau), E)^2 (same minimizers as the distance) is strictly convex over its hull
-  // (group_uniqueness.hpp). Adjacent survivors alone prove nothing: two minimizers closer
+  // dist(K(tau), E)^2 (same minimizers as the distance) has at most one critical point on its
+  // hull (group_uniqueness.hpp). Adjacent survivors alone prove nothing: two minimizers closer
   // than the surviving intervals (a bump between them below 10^-digits) make one cluster.
   std::vector<Ball> hulls;
   for (const auto& g : groups) {
@@ -943,7 +943,7 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
     hulls.push_back(std::move(T));
   }
   // y(tau) = K(tau) - c = (o - c) + R (cos(pi tau) u + sin(pi tau) v) as series at T; W fixed.
-  auto second = [&](arb_t d2, const arb_t T) {
+  auto derivs = [&](arb_t d1, arb_t d2, const arb_t T) {
     Series x, sn, cs, y[3], W[3][3];
     arb_poly_set_coeff_arb(x.p, 0, T);
     arb_poly_set_coeff_si(x.p, 1, 1);
@@ -959,9 +959,9 @@ std::optional<DistanceResult> Search::finish(const ArbModel& M,
       for (size_t j = 0; j < 3; ++j)
         arb_poly_set_arb(W[i][j].p, M.W[i][j].v);
     }
-    return ellipsoid_dist2_second(d2, y, W, prec);
+    ellipsoid_dist2_derivatives(d1, d2, y, W, prec);
   };
-  prove_one_per_group(out, hulls, second, 1, "a minimizing arc of the core circle");
+  prove_one_per_group(out, hulls, derivs, 1, "a minimizing arc of the core circle");
   // Tie regions (symmetry.hpp): per cluster the core points K(tau) over its intervals, which
   // hold every minimizing tau (the branch and bound dropped the others); an isometry keeping
   // the torus maps its core circle onto itself.

@@ -112,10 +112,13 @@ void circle_circle(Dual& f, Ball (*point)[3], const Circle& c1, const Circle& c2
   arb_mul_2exp_si(f.d.v, f.d.v, -1);
 }
 
-// f''(t) over the ball T for f(t) = dist(K1(pi t), K2) (circle_circle's f), by Taylor
-// arithmetic: arb_poly series of length 3 at T enclose f, f', f''/2 for every t in T. False
-// when not finite (rho or f may vanish in T).
-bool circle_circle_second(arb_t d2, const Circle& c1, const Circle& c2, const arb_t T, long prec) {
+// f'(t) and f''(t) over the ball T for f(t) = dist(K1(pi t), K2) (circle_circle's f), by
+// Taylor arithmetic: arb_poly series of length 3 at T enclose f, f', f''/2 for every t in T.
+// Non-finite when rho or f may vanish in T.
+void circle_circle_derivatives(arb_t d1, arb_t d2, const Circle& c1, const Circle& c2,
+                               const arb_t T, long prec) {
+  arb_indeterminate(d1);
+  arb_indeterminate(d2);
   const slong n = 3;
   Series x, s, c, w, h, w2, sq, rho2, rho, g, f;
   arb_poly_set_coeff_arb(x.p, 0, T);
@@ -141,7 +144,7 @@ bool circle_circle_second(arb_t d2, const Circle& c1, const Circle& c2, const ar
   arb_poly_sub(rho2.p, w2.p, sq.p, prec);
   Ball c0;
   arb_poly_get_coeff_arb(c0.v, rho2.p, 0);
-  if (!arb_is_positive(c0.v)) return false;
+  if (!arb_is_positive(c0.v)) return;
   arb_poly_sqrt_series(rho.p, rho2.p, n, prec);
   {
     Series r2;
@@ -151,22 +154,24 @@ bool circle_circle_second(arb_t d2, const Circle& c1, const Circle& c2, const ar
   arb_poly_mullow(g.p, rho.p, rho.p, n, prec);
   arb_poly_add(g.p, g.p, sq.p, prec);
   arb_poly_get_coeff_arb(c0.v, g.p, 0);
-  if (!arb_is_positive(c0.v)) return false;
+  if (!arb_is_positive(c0.v)) return;
   arb_poly_sqrt_series(f.p, g.p, n, prec);
+  arb_poly_get_coeff_arb(d1, f.p, 1);
   arb_poly_get_coeff_arb(d2, f.p, 2);
   arb_mul_2exp_si(d2, d2, 1);
-  return arb_is_finite(d2) != 0;
 }
 
 // The count of each group of survivors (group_uniqueness.hpp): every minimizing t lies in one
-// of the groups' hulls; a hull holds at most one minimizer when f is strictly convex on it
-// (sign +1) or, for a maximum of f, strictly concave (sign -1).
+// of the groups' hulls; a hull holds at most one minimizer when f has at most one critical
+// point on it (sign +1; for a maximum of f, sign -1).
 void prove_groups(DistanceResult& res, const PeriodicMinimum& pm, const Circle& c1,
                   const Circle& c2, int sign, long prec) {
   prove_one_per_group(
       res, pm.group_hulls,
-      [&](arb_t d2, const arb_t T) { return circle_circle_second(d2, c1, c2, T, prec); }, sign,
-      "a minimizing arc of the circle");
+      [&](arb_t d1, arb_t d2, const arb_t T) {
+        circle_circle_derivatives(d1, d2, c1, c2, T, prec);
+      },
+      sign, "a minimizing arc of the circle");
 }
 
 // Tie regions (symmetry.hpp): the points K1(t) over each group of survivors, which hold every
