@@ -117,3 +117,81 @@ TEST(ConeDistance, AnswersOnlyWhatItProves) {
   EXPECT_NE(many.method, certify::Method::ConeGeneratorBound);
   EXPECT_EQ(many.status, certify::Status::Certified);
 }
+
+// The round cone x^2 + y^2 = z^2 and the ellipsoid centred at (2, 0, 4) with semi-axes 1/2, b,
+// 1/2 (inside the upper nappe). The mirror y -> -y makes D(phi) = dist(line(phi), E)^2 even
+// in the generator angle phi (line(phi) through the vertex along (cos phi, sin phi, 1)), and
+// at phi = 0 the nearest points lie in the plane y = 0: D(0) = (sqrt(2) - 1/2)^2 whatever b.
+// At b* = 1.29004401567275798467585054385318245260684251930365172072037218251070532960245...
+// D''(0) = 0 (D''''(0) = 29.698... > 0); for b = b* + delta, phi = 0 is a local maximum
+// between two minimizers +-phi1, for b = b* - delta the one minimizer phi = 0 (d = sqrt(2) -
+// 1/2). mpmath at 160 digits (dual formula D = max_s s y^T (M + s I)^-1 y - s in the plane
+// normal to the line, D'' and b* by findroot): delta = 3e-7, 3e-21, 3e-41, 2e-61 put the two
+// minimizers 1.069e-3, 1.069e-10, 1.069e-20, 7.889e-31 (about 2^-100) apart, the bump between
+// them 1.0e-13, 1.0e-41, 1.0e-81, 4.3e-122. Checked independently for delta = 3e-7 by the
+// primal distance (point-ellipsoid secular equation minimised along the line, mpmath at 50
+// digits): the same bump 1.0116e-13 and d.
+TEST(ConeDistance, TwoMinimaInOneArcAreNotCountedAsOne) {
+  const auto round = q("x^2 + y^2 - z^2 = 0");
+  struct Case {
+    const char* b; // b* +- delta, 100 digits
+    const char* d; // the distance (mpmath)
+    bool two;      // two minimizers (b > b*), else one
+  };
+  const Case cases[] = {
+      // 1e-3 apart: the bump 1e-13 is above 10^-15 d (two arcs)
+      {"1.29004431567275798467585054385318245260684251930365172072037218251070532960245362656403"
+       "2616104368355",
+       "0.91421356237303972066520418109359638371169817543307", true},
+      {"1.29004371567275798467585054385318245260684251930365172072037218251070532960245362656403"
+       "2616104368355",
+       "0.91421356237309504880168872420969807856967187537695", false},
+      // 1e-10, 1e-20, 2^-100 apart: one arc of survivors at 15 digits
+      {"1.29004401567275798467885054385318245260684251930365172072037218251070532960245362656403"
+       "2616104368355",
+       "0.91421356237309504880168872420969807856966634256156", true},
+      {"1.29004401567275798467285054385318245260684251930365172072037218251070532960245362656403"
+       "2616104368355",
+       "0.91421356237309504880168872420969807856967187537695", false},
+      {"1.29004401567275798467585054385318245260687251930365172072037218251070532960245362656403"
+       "2616104368355",
+       "0.91421356237309504880168872420969807856967187537695", true},
+      {"1.29004401567275798467585054385318245260681251930365172072037218251070532960245362656403"
+       "2616104368355",
+       "0.91421356237309504880168872420969807856967187537695", false},
+      {"1.29004401567275798467585054385318245260684251930365172072037238251070532960245362656403"
+       "2616104368355",
+       "0.91421356237309504880168872420969807856967187537695", true},
+      {"1.29004401567275798467585054385318245260684251930365172072037198251070532960245362656403"
+       "2616104368355",
+       "0.91421356237309504880168872420969807856967187537695", false},
+  };
+  // At 15 digits the cone route gives up on these flat minima (too many survivors) and the
+  // exact route answers; at 3 digits the cone route answers with one arc of survivors.
+  int cone_route = 0;
+  for (const Case& c : cases) {
+    const std::string b(c.b);
+    const auto e = q("4*(x-2)^2 + y^2/(" + b + ")^2 + 4*(z-4)^2 = 1");
+    for (long digits : {3L, 15L})
+      for (bool swap : {false, true}) {
+        if (swap && digits == 15) continue; // the exact route (slow): once
+        const auto r = swap ? certify::surface_distance(round, e, digits, false)
+                            : certify::surface_distance(e, round, digits, false);
+        ASSERT_EQ(r.status, certify::Status::Certified) << b << ": " << r.note;
+        if (r.method == certify::Method::ConeGeneratorBound) ++cone_route;
+        mpfr_t d;
+        mpfr_init2(d, 200);
+        mpfr_set_str(d, c.d, 10, MPFR_RNDN);
+        EXPECT_TRUE(surfcert::testing::contains(r, d))
+            << b << ": " << r.lower() << " " << r.upper();
+        mpfr_clear(d);
+        // two (b > b*) or one, else undecided: never the other count
+        if (r.minimizers.is_count())
+          EXPECT_EQ(r.minimizers.value(), c.two ? 2 : 1) << b << " at " << digits << ": " << r.note;
+        else
+          EXPECT_TRUE(r.minimizers.is_undecided()) << b << ": " << r.minimizers;
+      }
+  }
+  // the point: the generator route met every case (at 3 digits)
+  EXPECT_GE(cone_route, 16);
+}

@@ -9,7 +9,7 @@ namespace {
 // Halvings of a hull and evaluations per hull (a hull of width 1/8 reaches 2^-20), and the
 // doublings / halvings of s from 1 while bracketing s* (s* between 2^-400 and 2^400).
 constexpr int kGroupProofDepth = 17;
-constexpr int kGroupProofBudget = 4096;
+constexpr int kGroupProofBudget = 2048;
 constexpr int kMaxScaleSteps = 400;
 // Bisection steps of the bracket of s*, and of each of its ends once the midpoint's sign is
 // not decided.
