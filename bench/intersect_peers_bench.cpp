@@ -4,14 +4,14 @@
 // Each case is two surfaces in their own frames (exact rational parameters and rational
 // rigid motions), posed by a random rational rigid motion per repetition, and an axis-aligned
 // box (the same doubles for both sides). Our side: trace::intersect_curve (filtered
-// classification, certified affine topology, curves traced inside the box), timed whole.
-// OCCT: GeomAPI_IntSS on the analytic surfaces (occt_quadric_peer.hpp; surfaces trimmed to
-// cover the box), timed alone; its lines are clipped to the box and pieces that continue each
-// other joined (outside the timing). Reference: the certified affine topology (loops,
-// unbounded branches); named cases also carry a hand-derived answer, which the certified one
-// must equal. Counts compared in the box: loops + unbounded branches pieces (isolated points
-// apart), and how many of them close up.
-// Usage: intersect_peers_bench [repetitions=20] [random_pairs=300] [seed=2026] [tol=2e-4]
+// classification, certified affine topology, curves traced inside the box), timed whole (thread CPU
+// time, both sides: the machine is shared). OCCT: GeomAPI_IntSS on the analytic surfaces
+// (occt_quadric_peer.hpp; surfaces trimmed to cover the box), timed alone; its lines are clipped to
+// the box and pieces that continue each other joined (outside the timing). Reference: the certified
+// affine topology (loops, unbounded branches); named cases also carry a hand-derived answer, which
+// the certified one must equal. Counts compared in the box: loops + unbounded branches pieces
+// (isolated points apart), and how many of them close up. Usage: intersect_peers_bench
+// [repetitions=20] [random_pairs=300] [seed=2026] [tol=2e-4]
 //        [occt_tol=1e-7] [only: run the named cases whose name contains this]
 #include "occt_quadric_peer.hpp"
 #include "support/distance_checks.hpp"
@@ -24,9 +24,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <map>
 #include <random>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 using namespace surfcert;
@@ -36,6 +38,14 @@ using core::Rational;
 using K = PeerSurface::Kind;
 
 namespace {
+
+// This thread's CPU time in microseconds: the figures are CPU time per pair, both sides (the
+// 2 cores are shared, so wall time would count other people's work).
+double cpu_us() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
+}
 
 struct Pose {
   long w = 1, x = 0, y = 0, z = 0;
@@ -263,17 +273,15 @@ void run_pair(Row& row, const Surf& s1, const Surf& s2, const Pose& pair, double
   // Our side chooses the box (every bounded component, special point and a margin inside;
   // grown until every unbounded branch shows); OCCT gets the same box. Pairs with an ellipsoid
   // (bounded curves, no box) use the pair's translation +- half_width.
-  const auto t0 = std::chrono::steady_clock::now();
+  const double t0 = cpu_us();
   const auto r =
       trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Topology);
-  const double ours =
-      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  const double ours = cpu_us() - t0;
   row.ours_us.push_back(ours);
   { // The classification alone (not part of the figure above): where our time goes.
-    const auto c0 = std::chrono::steady_clock::now();
+    const double c0 = cpu_us();
     const auto t = certify::classify_qsic(a, b, certify::Mode::Filtered);
-    row.classify_us.push_back(
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - c0).count());
+    row.classify_us.push_back(cpu_us() - c0);
     row.exact_fallbacks += t.exact_fallback ? 1 : 0;
   }
   trace::Box box;
@@ -288,7 +296,7 @@ void run_pair(Row& row, const Surf& s1, const Surf& s2, const Pose& pair, double
   const auto o = bench::occt_intersect_in_box(peer_surface(s1, pair), peer_surface(s2, pair),
                                               box.min, box.max, occt_tol);
   if (o.ok) {
-    row.occt_us.push_back(o.seconds * 1e6);
+    row.occt_us.push_back(o.cpu_seconds * 1e6);
     ratios.push_back(o.seconds * 1e6 / ours);
   }
 
@@ -423,6 +431,27 @@ int main(int argc, char** argv) {
               total.occt_count, total.occt_closure, total.occt_failed);
   std::printf("(intersect_peers_bench %ld %ld %lu %g %g)\n", reps, random_pairs, seed, tol,
               occt_tol);
+  { // The run's circumstances: machine, date (UTC), load; times above are thread CPU time.
+    std::string cpu = "unknown CPU";
+    if (FILE* f = std::fopen("/proc/cpuinfo", "r")) {
+      char line[512];
+      while (std::fgets(line, sizeof line, f))
+        if (std::string l(line); l.rfind("model name", 0) == 0) {
+          cpu = l.substr(l.find(':') + 2);
+          cpu.erase(cpu.find_last_not_of(" \n") + 1);
+          break;
+        }
+      std::fclose(f);
+    }
+    double load[3] = {0, 0, 0};
+    getloadavg(load, 3);
+    char date[64];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    std::printf("Machine: %s, %ld cores online; %s; load average %.2f %.2f %.2f at the end; "
+                "times are thread CPU time per pair.\n",
+                cpu.c_str(), sysconf(_SC_NPROCESSORS_ONLN), date, load[0], load[1], load[2]);
+  }
   flint_cleanup();
   return 0;
 }

@@ -34,9 +34,10 @@ struct PeerSurface {
 
 struct OcctBoxResult {
   bool ok = false;
-  double seconds = 0; ///< GeomAPI_IntSS only (surfaces built before the clock starts)
-  int lines = 0;      ///< NbLines()
-  int pieces = 0;     ///< connected pieces inside the box, coincident ends joined
+  double seconds = 0;     ///< GeomAPI_IntSS only (surfaces built before the clock starts)
+  double cpu_seconds = 0; ///< the same span in this thread's CPU time (insensitive to load)
+  int lines = 0;          ///< NbLines()
+  int pieces = 0;         ///< connected pieces inside the box, coincident ends joined
   int closed_pieces = 0;
   std::string error;
 };
