@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdio>
 #include <sstream>
+#include <vector>
 
 namespace surfcert::certify {
 
@@ -267,6 +268,38 @@ Json qsic_envelope_json(const QsicResult& r, const core::QuadricMatrix& a,
   return o;
 }
 
+namespace {
+
+// The parts of a topology line fixed by the morphology, written once per morphology: a line
+// costs a few µs, and escaping the same sentences again was a sixth of it.
+struct MorphologyFragments {
+  std::string head;       ///< "morphology":…,"description":…,"tu_label_reconstructed":…
+  std::string components; ///< ,"components":{…}
+};
+
+const MorphologyFragments& morphology_fragments(const Morphology& m) {
+  static const std::vector<MorphologyFragments> table = [] {
+    std::vector<MorphologyFragments> t;
+    for (int c = 1; c <= 35; ++c) {
+      const Morphology& e = morphology_of_case(c);
+      MorphologyFragments f;
+      f.head = "\"morphology\":";
+      core::io::append_json_string(f.head, e.id);
+      f.head += ",\"description\":";
+      core::io::append_json_string(f.head, e.description);
+      f.head += ",\"tu_label_reconstructed\":";
+      f.head += e.label_reconstructed ? "true" : "false";
+      f.components = ",\"components\":";
+      f.components += core::io::dump(components_json(e));
+      t.push_back(std::move(f));
+    }
+    return t;
+  }();
+  return table.at(static_cast<size_t>(m.tu_case - 1));
+}
+
+} // namespace
+
 void append_qsic_topology_envelope(std::string& out, const QsicResult& r) {
   // The fields and order of qsic_envelope_json at Detail::Topology (the keys need no escaping).
   auto key = [&out](const char* k) {
@@ -318,14 +351,7 @@ void append_qsic_topology_envelope(std::string& out, const QsicResult& r) {
     if (r.morphology) {
       number(r.tu_case);
       out += ',';
-      key("morphology");
-      text(r.morphology->id);
-      out += ',';
-      key("description");
-      text(r.morphology->description);
-      out += ',';
-      key("tu_label_reconstructed");
-      boolean(r.morphology->label_reconstructed);
+      out += morphology_fragments(*r.morphology).head;
     } else {
       out += "null,";
       key("morphology");
@@ -337,27 +363,7 @@ void append_qsic_topology_envelope(std::string& out, const QsicResult& r) {
     out += ',';
     key("root_pattern");
     text(r.facts.root_pattern);
-    if (const Morphology* m = r.morphology) {
-      out += ',';
-      key("components");
-      const std::pair<const char*, int> counts[] = {
-          {"loops", m->loops},
-          {"isolated_points", m->isolated_points},
-          {"lines", m->lines},
-          {"conics", m->conics},
-          {"cubics", m->cubics},
-          {"double_components", m->double_components},
-          {"connected_components", m->connected_components}};
-      out += '{';
-      for (const auto& [k, n] : counts) {
-        key(k);
-        number(n);
-        out += ',';
-      }
-      key("space");
-      text(kComponentsSpace);
-      out += '}';
-    }
+    if (r.morphology) out += morphology_fragments(*r.morphology).components;
   }
   if (!r.ellipsoid_relation.empty()) {
     out += ',';
