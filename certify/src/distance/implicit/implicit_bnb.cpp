@@ -838,6 +838,9 @@ Box tight_hull(Tree& t, int root) {
   for (int d = 0; d < 90 && level.size() < 3000; ++d) {
     std::vector<int> next;
     for (int i : level) {
+      // A level holds up to 8 x 3000 boxes: tens of ms for a quartic, so the budget is
+      // checked per box (the tree owns everything: nothing leaks on the throw).
+      core::check_budget();
       t.split(i);
       for (int c : t.nodes[static_cast<size_t>(i)].child)
         if (c >= 0) next.push_back(c);
