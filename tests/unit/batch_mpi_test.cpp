@@ -356,7 +356,8 @@ TEST(BatchMpiResume, KilledRootResumesFromTheCheckpoint) {
 TEST(BatchMpiFaults, KilledComputeChildLosesOnlyItsLines) {
   const std::string in = tmp_path("fault_in"), out = tmp_path("fault_out"),
                     err = tmp_path("fault_err");
-  std::ofstream(in) << slow_input(8, 400);
+  // 1.5 s budgets (wall): the budget is kept, so a line's CPU is what the load leaves of it.
+  std::ofstream(in) << slow_input(8, 1500);
   const Outcome single = sh(std::string(SURFCERT_BINARY) + " batch --threads 2", in);
   const pid_t run =
       start(mpirun(3) + SURFCERT_BINARY + " batch --mpi <" + in + " >" + out + " 2>" + err);
@@ -370,9 +371,9 @@ TEST(BatchMpiFaults, KilledComputeChildLosesOnlyItsLines) {
           victim = c;
   }
   ASSERT_GT(victim, 0) << "no compute child found";
-  // Killed once it has computed for 0.3 s of CPU: inside its lines (most of its time goes to
-  // the 400 ms ones), long before the run's 3 s of work end.
-  for (int i = 0; i < 3000 && cpu_ticks(victim) < 30; ++i)
+  // Killed once it has computed for 0.2 s of CPU: inside its lines (most of its time goes to
+  // the 1.5 s ones), long before the run's 12 s of work end.
+  for (int i = 0; i < 3000 && cpu_ticks(victim) < 20; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_EQ(kill(victim, SIGKILL), 0);
   EXPECT_EQ(wait_exit(run), single.code) << slurp(err);
