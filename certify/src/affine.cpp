@@ -627,6 +627,72 @@ AffineTopology plane_plane_route(const core::QuadricMatrix& a, const core::Quadr
   return out;
 }
 
+// The real points at infinity of a twisted cubic X(s, t) (certify/cubic_line.hpp): the roots
+// (s : t) of X_3, directions (X_0 : X_1 : X_2) there (never all zero: X is a point of P^3);
+// multiplicity: the root's multiplicity in X_3. In the chart t = 1, plus (1 : 0) when
+// X_3's s^3 coefficient vanishes.
+std::vector<PointAtInfinity> cubic_points_at_infinity(const CubicAndLine& cl) {
+  std::vector<PointAtInfinity> out;
+  auto rational_point = [&](const V3& d0, int mult) {
+    const V3 d = normalise(d0);
+    PointAtInfinity p;
+    p.multiplicity = mult;
+    p.rational = true;
+    std::array<double, 3> ap{};
+    for (size_t k = 0; k < 3; ++k) {
+      p.direction[k] = d[k].to_string();
+      ap[k] = d[k].to_double_approx();
+    }
+    p.approx = unit_approx(ap);
+    out.push_back(std::move(p));
+  };
+  // X_i(s, 1) = sum_k cubic[i][k] s^(3 - k).
+  std::array<UPolyQ, 4> x;
+  for (size_t i = 0; i < 4; ++i)
+    x[i] = UPolyQ::from_coeffs({cl.cubic[i][3], cl.cubic[i][2], cl.cubic[i][1], cl.cubic[i][0]});
+  if (x[3].is_zero()) return {}; // the cubic in the plane at infinity: not a twisted cubic
+  if (x[3].degree() < 3)
+    rational_point({cl.cubic[0][0], cl.cubic[1][0], cl.cubic[2][0]},
+                   3 - static_cast<int>(x[3].degree()));
+  if (x[3].degree() < 1) return out;
+  UPolyZ rz = x[3].primitive_integer();
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor(fac, rz.raw());
+  for (slong i = 0; i < fac->num; ++i) {
+    UPolyZ g;
+    fmpz_poly_set(g.raw_mut(), fac->p + i);
+    g = g.primitive_part();
+    const int e = static_cast<int>(fac->exp[i]);
+    if (g.degree() < 1) continue;
+    if (g.degree() == 1) {
+      const Rational s0 = -Rational(g.coeff(0)) / Rational(g.coeff(1));
+      rational_point({x[0].evaluate(s0), x[1].evaluate(s0), x[2].evaluate(s0)}, e);
+      continue;
+    }
+    const algebra::RootSeparation sep = algebra::isolate_real_roots(g);
+    for (size_t j = 0; j + 1 < sep.separators.size(); ++j) {
+      PointAtInfinity p;
+      p.multiplicity = e;
+      p.rational = false;
+      p.lo = sep.separators[j];
+      p.hi = sep.separators[j + 1];
+      Rational lo = p.lo, hi = p.hi;
+      algebra::refine_root(g, lo, hi, Rational(1, 1UL << 60));
+      const double t0 = ((lo + hi) * Rational(1, 2)).to_double_approx();
+      std::array<double, 3> ap{};
+      for (size_t k = 0; k < 3; ++k)
+        ap[k] = eval_double(x[k], t0);
+      p.approx = unit_approx(ap);
+      p.polynomial = g;
+      p.dir_in_t = {x[0], x[1], x[2]};
+      out.push_back(std::move(p));
+    }
+  }
+  fmpz_poly_factor_clear(fac);
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------
 // Plane route: one quadric is a plane (its matrix has a zero quadratic block).
 
@@ -832,6 +898,39 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
         out.loops = out.unbounded_branches = out.isolated_points = out.lines = out.conics = 0;
         if (auto inf = conic_at_infinity(ai)) out.at_infinity_only.push_back(*inf);
         return out;
+      }
+    }
+    if (t.status == Status::Certified && t.morphology &&
+        (t.tu_case == 10 || t.tu_case == 11 || t.tu_case == 12)) {
+      // A twisted cubic and a line lying at infinity (the shared component of the conics at
+      // infinity): the affine curve is the cubic alone, one unbounded branch per distinct real
+      // point at infinity, read from its exact parametrisation; the line is listed apart.
+      CubicAndLine cl = cubic_and_line(a.matrix(), b.matrix());
+      if (!t.special_points_done) complete_special_points(t, a, b);
+      if (cl.found && cl.line_at_infinity && t.special_points_complete) {
+        std::vector<PointAtInfinity> pts = cubic_points_at_infinity(cl);
+        if (static_cast<int>(pts.size()) == cl.cubic_points_at_infinity) {
+          out.route = "cubic_line";
+          out.computed = true;
+          out.points_at_infinity = std::move(pts);
+          out.points_at_infinity_complete = true;
+          out.loops = out.lines = out.conics = 0;
+          out.isolated_points = t.morphology->isolated_points;
+          out.unbounded_branches = cl.cubic_points_at_infinity;
+          // The line at infinity: n . (x, y, z) = 0 (w = 0), n the cross product of its two
+          // spanning points (both with w = 0).
+          const auto& p = cl.line[0];
+          const auto& q2 = cl.line[1];
+          const V3 n = normalise({p[1] * q2[2] - p[2] * q2[1], p[2] * q2[0] - p[0] * q2[2],
+                                  p[0] * q2[1] - p[1] * q2[0]});
+          ComponentAtInfinity li;
+          li.kind = "line";
+          li.equation = n[0].to_string() + "*x + " + n[1].to_string() + "*y + " + n[2].to_string() +
+                        "*z = 0 (w = 0)";
+          out.at_infinity_only.push_back(li);
+          out.cubic_line = std::move(cl);
+          return out;
+        }
       }
     }
     out.reason = "the conics at infinity share a component: part of the curve lies at infinity "

@@ -184,3 +184,68 @@ TEST(CubicLine, ScrambledCharts) {
   std::printf("scrambled charts: %d of %d certified\n", certified, total);
   EXPECT_GE(certified, total / 2) << "certified " << certified << " of " << total;
 }
+
+// The line at infinity (issue 15: was undecided, "the conics at infinity share a component"):
+// y = x^2 and z = x y meet in the cubic (u, u^2, u^3) and the line x = w = 0 at infinity (by
+// hand: at w = 0 both conics contain x = 0). The affine curve is the cubic alone: one branch
+// (u over R), one point at infinity (0 : 0 : 1), no line, no loop; in the box [-2, 2]^3 it
+// leaves through z = +-2 at u = +-2^(1/3) (|y| = 2^(2/3) < 2): one piece, two exits. The
+// affine counts are the same under rational rigid motions and swapped; in the automatic box
+// (where a moved face, a plane, may cut the cubic up to three times), certified with open
+// pieces matching the exact exits, or undecided with a reason.
+TEST(CubicLine, LineAtInfinity) {
+  const auto a0 = surfcert::testing::q("y = x^2"), b0 = surfcert::testing::q("z = x*y");
+  const std::vector<Mat4> ms = {
+      motion(1, 0, 0, 0, {}), motion(1, 2, 2, -1, {Rational(3, 2), Rational(-1), Rational(5, 4)}),
+      motion(2, -1, 1, 1, {Rational(-1, 2), Rational(1), Rational(1, 4)})};
+  int idx = 0;
+  for (const auto& m : ms) {
+    ++idx;
+    for (bool swapped : {false, true}) {
+      const std::string ctx = "motion " + std::to_string(idx) + (swapped ? " swapped" : "");
+      auto a = a0.congruent(m), b = b0.congruent(m);
+      if (swapped) std::swap(a, b);
+      const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
+      ASSERT_TRUE(r.affine.certified()) << ctx << ": " << r.note;
+      EXPECT_EQ(r.affine.route, "cubic_line") << ctx;
+      EXPECT_EQ(*r.affine.loops, 0) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, 1) << ctx;
+      EXPECT_EQ(*r.affine.lines, 0) << ctx;
+      EXPECT_EQ(*r.affine.isolated_points, 0) << ctx;
+      ASSERT_EQ(r.affine.points_at_infinity.size(), 1u) << ctx;
+      ASSERT_EQ(r.affine.at_infinity_only.size(), 1u) << ctx;
+      EXPECT_EQ(r.affine.at_infinity_only[0].kind, "line") << ctx;
+      if (idx == 1) {
+        // (0 : 0 : 1) exactly.
+        const auto& d = r.affine.points_at_infinity[0].direction;
+        EXPECT_EQ(d[0], "0") << ctx;
+        EXPECT_EQ(d[1], "0") << ctx;
+        EXPECT_NE(d[2], "0") << ctx;
+        trace::TraceOptions opt;
+        trace::Box box;
+        box.min = {-2, -2, -2};
+        box.max = {2, 2, 2};
+        opt.box = box;
+        const auto rb = trace::intersect_curve(a, b, Mode::Exact, opt);
+        ASSERT_EQ(rb.status, certify::Status::Certified) << ctx << ": " << rb.note;
+        ASSERT_EQ(rb.branches.size(), 1u) << ctx;
+        EXPECT_FALSE(rb.branches[0].closed) << ctx;
+        ASSERT_TRUE(rb.box_exits && rb.box_exits->certified) << ctx;
+        ASSERT_EQ(rb.box_exits->points.size(), 2u) << ctx;
+        for (const auto& p : rb.box_exits->points) {
+          EXPECT_EQ(p.axis, 2) << ctx;
+          EXPECT_NEAR(std::fabs(p.approx[0]), std::cbrt(2.0), 1e-12) << ctx;
+        }
+      }
+      if (r.status == certify::Status::Certified) {
+        ASSERT_GE(r.branches.size(), 1u) << ctx;
+        ASSERT_TRUE(r.box_exits && r.box_exits->certified) << ctx;
+        EXPECT_EQ(r.box_exits->points.size(), 2 * r.branches.size()) << ctx;
+        for (const auto& br : r.branches)
+          EXPECT_FALSE(br.closed) << ctx;
+      } else {
+        EXPECT_FALSE(r.note.empty()) << ctx;
+      }
+    }
+  }
+}

@@ -34,7 +34,10 @@
 // the curve is the lines p + t d over the real points d at infinity (p alone when there is
 // none). A twisted cubic and a line (cases 10-12, route "cubic_line"): the counts come from
 // their exact parametrisations (certify/cubic_line.hpp): one unbounded branch per distinct
-// real point at infinity of the cubic, one for the line. Requires a certified topology,
+// real point at infinity of the cubic, one for the line; when the line lies at infinity (the
+// conics at infinity then share it) the affine curve is the cubic alone, its points at
+// infinity are the real roots of X_3, and the line is listed in at_infinity_only (kind
+// "line"). Requires a certified topology,
 // except on these plane and apex routes.
 #pragma once
 
@@ -66,7 +69,7 @@ struct PointAtInfinity {
 
 /// A real component lying entirely in the plane at infinity (never drawn).
 struct ComponentAtInfinity {
-  std::string kind;                     ///< "point", "conic", "line_pair", "double_line"
+  std::string kind;                     ///< "point", "conic", "line_pair", "double_line", "line"
   std::array<std::string, 3> direction; ///< for "point": exact direction
   std::string equation;                 ///< the conic x^T M x = 0 of the plane w = 0, as text
 };
