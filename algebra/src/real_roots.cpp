@@ -514,6 +514,19 @@ void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& wi
     lo = hi;
     return;
   }
+  bisect_root(p, slo, lo, hi, width);
+}
+
+void refine_root_newton(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width) {
+  int slo = p.sign_at(lo);
+  if (slo == 0) {
+    hi = lo;
+    return;
+  }
+  if (p.sign_at(hi) == 0) {
+    lo = hi;
+    return;
+  }
   if (hi - lo <= width) return;
   // Far from the width (more than a few bisections), a Newton estimate proposes the bracket.
   if (p.degree() >= 1 && hi - lo > width * Rational(16))

@@ -235,7 +235,8 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Ra
       // 2^-bits of the box (nullopt while s11 is not proved nonzero there).
       auto enclose = [&](Rational& l, Rational& h,
                          long bits) -> std::optional<std::array<Ball, 2>> {
-        algebra::refine_root(rz, l, h, scale * Rational::exact_from_double(std::ldexp(1.0, -bits)));
+        algebra::refine_root_newton(rz, l, h,
+                                    scale * Rational::exact_from_double(std::ldexp(1.0, -bits)));
         const long prec = bits + 64;
         Ball x = ball_of((l + h) * Rational(1, 2), prec);
         if (l != h) {

@@ -227,7 +227,8 @@ TEST(RealRoots, RefineNearVerifiesTheProposedBracket) {
   }
 }
 
-// refine_root (Newton proposal + exact check) and refine_root_near with random guesses on
+// refine_root (bisection), refine_root_newton (Newton proposal + exact check) and
+// refine_root_near with random guesses on
 // products of rational linear factors: every interval holds the known root, width met; an
 // exact root hit gives lo == hi == that root.
 TEST(RealRoots, RefineRootAgainstKnownRationalRoots) {
@@ -251,10 +252,12 @@ TEST(RealRoots, RefineRootAgainstKnownRationalRoots) {
     for (size_t r = 0; r < roots.size(); ++r)
       for (long wbits : {5L, 40L, 90L}) {
         const Rational width = core::pow2(-wbits);
-        for (int variant = 0; variant < 3; ++variant) {
+        for (int variant = 0; variant < 4; ++variant) {
           Rational lo = s.separators[r], hi = s.separators[r + 1];
           if (variant == 0)
             algebra::refine_root(p, lo, hi, width);
+          else if (variant == 3)
+            algebra::refine_root_newton(p, lo, hi, width);
           else // a guess at another root, or a random point of the isolating interval
             algebra::refine_root_near(
                 p, lo, hi, width,

@@ -50,15 +50,20 @@ int approx_cubic_real_roots(double c3, double c2, double c1, double c0, double* 
 /// (Rolle). Empty when it cannot pick them. A guess: callers check it exactly.
 std::vector<double> critical_point_separators(const std::vector<double>& coeffs, size_t k);
 
-/// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, until
-/// hi - lo <= width (or the root is hit exactly, then lo == hi). A float Newton estimate
-/// (Arb midpoints, no guarantee) proposes a bracket of the width around the root; its ends
-/// are kept only as far as exact signs at them confirm (refine_root_near), and exact
-/// bisection finishes whatever the proposal did not settle. The result is certified by exact
-/// signs alone: p(lo) and p(hi) have opposite signs (or lo == hi is an exact root).
+/// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, by exact
+/// bisection until hi - lo <= width (or the root is hit exactly, then lo == hi).
 void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width);
 
-/// refine_root with the proposal given: `guess` (any rational; a claim, not trusted) is the
+/// The same contract, faster far from the width: a float Newton estimate (Arb midpoints, no
+/// guarantee) proposes a bracket of the width around the root; its ends are kept only as far
+/// as exact signs at them confirm (refine_root_near), and exact bisection finishes whatever the
+/// proposal did not settle. Certified by exact signs alone. The interval differs from
+/// refine_root's (not nested halvings of the input): used where only its width matters
+/// (box_exits); the distance routes keep refine_root, whose intervals their budgets were
+/// tuned on (a cone two-minima case gave up at 15 digits with this one).
+void refine_root_newton(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width);
+
+/// refine_root_newton with the proposal given: `guess` (any rational; a claim, not trusted) is the
 /// centre of a proposed bracket of about width / 2. Each of its ends inside (lo, hi) is
 /// checked by an exact sign and narrows (lo, hi) on the side that sign proves; exact bisection
 /// then brings hi - lo to at most `width`. A wrong guess costs two sign evaluations, never
