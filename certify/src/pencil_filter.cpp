@@ -567,9 +567,23 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
       }
       for (int idx : out.indices)
         if (idx == 0 || idx == 4) out.definite_member = true;
+      // The float roots themselves (the report's real_roots[].approx): the clusters' when they
+      // read the pattern, else the k real-most float roots of the balanced polynomial.
+      std::vector<double> froots;
+      if (clusters.real.size() == static_cast<size_t>(k)) {
+        for (const auto& [centre, m] : clusters.real)
+          froots.push_back(centre);
+      } else if (k > 0) {
+        froots = algebra::approx_real_roots(std::vector<double>(fr.begin(), fr.end()),
+                                            static_cast<size_t>(k));
+        for (double& x : froots)
+          x /= sigma;
+        std::sort(froots.begin(), froots.end());
+      }
       for (int i = 0; i < k; ++i) {
         RootFacts r;
         auto ui = static_cast<size_t>(i);
+        if (ui < froots.size()) r.float_value = froots[ui];
         r.lo = out.samples[ui];
         r.hi = out.samples[ui + 1];
         r.index_left = out.indices[ui];
@@ -661,6 +675,7 @@ PencilFacts analyze_pencil_float(const core::QuadricMatrix& qa, const core::Quad
   for (size_t i = 0; i < roots.size(); ++i) {
     RootFacts rf;
     rf.multiplicity = best[i];
+    rf.float_value = roots[i];
     rf.lo = out.samples[i];
     rf.hi = out.samples[i + 1];
     rf.index_left = out.indices[i];

@@ -66,6 +66,7 @@ std::string root_exact_text(const algebra::RootFacts& r) {
 }
 
 std::string root_approx(const algebra::RootFacts& r, const algebra::PencilFacts& f) {
+  if (r.float_value) return dbl(*r.float_value); // float mode: the float root, an estimate
   if (r.rational_value) return r.rational_value->to_decimal_approx(17);
   if (r.quadratic) return dbl(r.quadratic->to_double_approx());
   algebra::UPolyZ p = r.factor;

@@ -11,11 +11,13 @@
 #include "surfcert/app/generate.hpp"
 #include "surfcert/certify/pencil_filter.hpp"
 #include "surfcert/certify/qsic.hpp"
+#include "surfcert/certify/report.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -121,6 +123,43 @@ TEST(FloatMode, ReportedInvariantsMatchTheExactOnes) {
     ++checked;
   }
   EXPECT_GE(checked, 4 * 10);
+}
+
+TEST(FloatMode, RealRootApproxIsTheFloatRoot) {
+  // real_roots[].approx in float mode is the float root (a multiple root's cluster centre), not
+  // the midpoint of the float separators around it (what it was: 2.75 for the root 3 below).
+  // The pencil diag(1,1,1,-1), diag(2,3,5,-7) (and one with a double root at 2) moved by an
+  // integer congruence P: det(l P^T A P - P^T B P) = det(P)^2 det(l A - B), the same roots.
+  core::Mat4 p{};
+  const long pv[4][4] = {{1, 1, 0, 0}, {0, 1, 2, 0}, {0, 0, 1, 1}, {1, 0, 0, 1}};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      p[i][j] = core::Rational(pv[i][j]);
+  struct Case {
+    long b[4];
+    std::vector<std::pair<double, int>> roots; // (root, multiplicity), increasing
+  };
+  const Case cases[] = {{{2, 3, 5, -7}, {{2, 1}, {3, 1}, {5, 1}, {7, 1}}},
+                        {{2, 2, 5, -7}, {{2, 2}, {5, 1}, {7, 1}}}};
+  for (const Case& c : cases) {
+    core::Mat4 a{}, b{};
+    for (size_t i = 0; i < 4; ++i) {
+      a[i][i] = core::Rational(i == 3 ? -1 : 1);
+      b[i][i] = core::Rational(c.b[i]);
+    }
+    const core::QuadricMatrix qa(core::transpose(p) * a * p), qb(core::transpose(p) * b * p);
+    certify::QsicResult r = certify::classify_qsic(qa, qb, certify::Mode::Float);
+    ASSERT_EQ(r.status, certify::Status::Uncertified);
+    certify::complete_report_data(r, qa, qb, certify::Detail::Certificate);
+    const Json res = certify::qsic_result_json(r, qa, qb, certify::Detail::Certificate);
+    const Json& roots = *res.find("real_roots");
+    ASSERT_EQ(roots.items().size(), c.roots.size()) << core::io::dump(res);
+    for (size_t i = 0; i < c.roots.size(); ++i) {
+      const double got = std::strtod(roots.items()[i].find("approx")->text().c_str(), nullptr);
+      EXPECT_NEAR(got, c.roots[i].first, 1e-9 * c.roots[i].first) << core::io::dump(res);
+      EXPECT_EQ(roots.items()[i].find("multiplicity")->text(), std::to_string(c.roots[i].second));
+    }
+  }
 }
 
 } // namespace

@@ -36,6 +36,10 @@ struct RootFacts {
   UPolyZ factor;       ///< square-free factor of f with this root (primitive, lead > 0)
   std::optional<Rational> rational_value;   ///< set when theta is rational
   std::optional<QuadraticNumber> quadratic; ///< set when theta = a + b sqrt(d), d not a square
+  /// Float mode only (certify::analyze_pencil_float): the float root (a cluster's centre for a
+  /// multiple root), an estimate that nothing certified reads; lo and hi are then float
+  /// separators, not an isolating interval.
+  std::optional<double> float_value;
   bool jump() const { return index_left != index_right; }
 };
 
