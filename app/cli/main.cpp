@@ -495,12 +495,14 @@ int cmd_batch_mpi(const Opts& o, int out_fd) {
   // Counts as key=value (docs/cli.md): from the checkpoint, sent again after their compute
   // process died, lost twice (internal error lines), run again with --retry-undecided, given
   // back unstarted by a worker whose threads were all on slow lines, worker ranks found dead;
-  // the exit code (mpirun under --enable-recovery exits 0 whatever rank 0 returns).
+  // the exit code (mpirun under --enable-recovery exits 0 whatever rank 0 returns); whether
+  // rank 0 answered lines itself, no worker being left. New keys go last (a contract).
   const int rc = batch_exit_code(st);
   std::cerr << "surfcert batch --mpi: resumed=" << rep.resumed << " retried=" << rep.retried
             << " lost_twice=" << rep.lost_twice << " second_pass=" << rep.second_pass
             << " returned=" << rep.returned << " dead_ranks=" << rep.dead_ranks
-            << " recovery=" << (rep.recovery ? 1 : 0) << " exit=" << rc << "\n";
+            << " recovery=" << (rep.recovery ? 1 : 0) << " exit=" << rc
+            << " local_fallback=" << (rep.local_fallback ? 1 : 0) << "\n";
   return rc;
 }
 

@@ -302,6 +302,8 @@ public:
 
   const BatchStats& stats() const { return stats_; }
   const MpiBatchReport& report() const { return report_; }
+  /// Rank 0 is about to answer the remaining lines itself, no worker being left.
+  void note_local_fallback() { report_.local_fallback = true; }
 
 private:
   static constexpr size_t kAhead = 4096;
@@ -666,6 +668,7 @@ void run_root(BatchMaster& master, int size, const MpiBatchOptions& o, bool reco
     // Every worker is dead: rank 0 answers the remaining lines through a compute child of
     // its own (as with one rank).
     std::cerr << "surfcert batch --mpi: no worker left: rank 0 answers the remaining lines\n";
+    master.note_local_fallback(); // the summary's local_fallback=1
     run_single(master, o);
   } else {
     master.finish(); // every answer written before the handshake

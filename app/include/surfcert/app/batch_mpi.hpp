@@ -28,7 +28,7 @@
 //     with a handshake (stop, goodbye) and without MPI_Finalize on every rank, since Open MPI
 //     4.1's MPI_Finalize waits for the dead ranks forever; mpirun then exits with status 0
 //     whatever rank 0 returns (Open MPI 4.1.4 under --enable-recovery), so the batch's status
-//     is in rank 0's summary on stderr (`status=N`, app/cli). Without recovery the death of
+//     is in rank 0's summary on stderr (`exit=N`, app/cli). Without recovery the death of
 //     any rank ends the job (mpirun kills the others); a restart with the same checkpoint
 //     resumes it. Open MPI 4.1 has no MPI-level fault tolerance (ULFM) to do better.
 //   - checkpoint (not empty): every answer is appended to that file as it arrives (one record
@@ -76,6 +76,9 @@ struct MpiBatchReport {
   long returned = 0;     ///< lines a worker gave back unstarted (its threads on slow lines)
   long dead_ranks = 0;   ///< worker ranks found dead (only with Open MPI's recovery)
   bool recovery = false; ///< the job ran with Open MPI's recovery (heartbeats, no MPI_Finalize)
+  /// Rank 0 answered lines through a compute child of its own because no worker was left
+  /// (only with Open MPI's recovery; not the one-rank job, where it always does).
+  bool local_fallback = false;
 };
 
 /// Whether this executable was built with MPI (CMake found it).
