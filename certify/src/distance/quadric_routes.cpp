@@ -695,8 +695,9 @@ void add_quadric_pair_routes(std::vector<Route>& t) {
                "disjoint convex solids: L(n) <= d <= U(n) at one exact direction", convex_apply,
                convex_run});
   t.push_back({Method::NestedConvexDuality, k, kFloatMode | kFilteredMode,
-               "an ellipsoid inside an ellipsoid or elliptic cylinder: min_n h_B - h_A by branch "
-               "and bound",
+               "an ellipsoid inside an ellipsoid or elliptic cylinder: a Lagrangian (S-lemma) "
+               "lower bound localising the minimizer in one Krawczyk box, else min_n h_B - h_A "
+               "by branch and bound",
                convex_apply, nested_run});
   t.push_back({Method::ConeGeneratorBound, k, kFloatMode | kFilteredMode,
                "an ellipsoid and a cone apart: min over the generator lines", cone_apply,
