@@ -447,19 +447,27 @@ std::optional<Rational> newton_guess(const UPolyZ& p, int slo, const Rational& l
   return out;
 }
 
+// The sign of p at lo, after checking both ends exactly: 0 when an end is a root (then the
+// interval is collapsed onto it: lo == hi).
+int end_sign(const UPolyZ& p, Rational& lo, Rational& hi) {
+  const int slo = p.sign_at(lo);
+  if (slo == 0) {
+    hi = lo;
+    return 0;
+  }
+  if (p.sign_at(hi) == 0) {
+    lo = hi;
+    return 0;
+  }
+  return slo;
+}
+
 } // namespace
 
 void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width,
                       const Rational& guess) {
-  int slo = p.sign_at(lo);
-  if (slo == 0) {
-    hi = lo;
-    return;
-  }
-  if (p.sign_at(hi) == 0) {
-    lo = hi;
-    return;
-  }
+  const int slo = end_sign(p, lo, hi);
+  if (slo == 0) return;
   if (hi - lo <= width) return;
   // The proposed bracket: guess -+ width / 4, its ends rounded outwards to about width / 16
   // (short dyadics), clipped to (lo, hi). Each end inside (lo, hi) is an exact sign evaluation;
@@ -505,28 +513,14 @@ void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rationa
 }
 
 void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width) {
-  int slo = p.sign_at(lo);
-  if (slo == 0) {
-    hi = lo;
-    return;
-  }
-  if (p.sign_at(hi) == 0) {
-    lo = hi;
-    return;
-  }
+  const int slo = end_sign(p, lo, hi);
+  if (slo == 0) return;
   bisect_root(p, slo, lo, hi, width);
 }
 
 void refine_root_newton(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width) {
-  int slo = p.sign_at(lo);
-  if (slo == 0) {
-    hi = lo;
-    return;
-  }
-  if (p.sign_at(hi) == 0) {
-    lo = hi;
-    return;
-  }
+  const int slo = end_sign(p, lo, hi);
+  if (slo == 0) return;
   if (hi - lo <= width) return;
   // Far from the width (more than a few bisections), a Newton estimate proposes the bracket.
   if (p.degree() >= 1 && hi - lo > width * Rational(16))
