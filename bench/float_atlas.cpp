@@ -78,7 +78,9 @@ double num(const Json& v) {
 
 // An ellipsoid {X : X^T M X = 0} (M from doubles) as centre, radii, rotation, in double;
 // nullopt when M is not an ellipsoid.
-std::optional<bench::EllipsoidParams> ellipsoid_of(const algebra::Mat4T<double>& m) {
+// [[maybe_unused]]: only the peer columns call these (builds without OCCT / FCL have none).
+[[maybe_unused]] std::optional<bench::EllipsoidParams>
+ellipsoid_of(const algebra::Mat4T<double>& m) {
   // Centre: Q c = -q (Cramer on the 3x3 block).
   auto det3 = [](const double q[3][3]) {
     return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) -
@@ -125,7 +127,7 @@ std::optional<bench::EllipsoidParams> ellipsoid_of(const algebra::Mat4T<double>&
 }
 
 // A generated ellipsoid / sphere shape (center, radii or radius, quaternion rotation).
-std::optional<bench::EllipsoidParams> ellipsoid_of(const Json& shape) {
+[[maybe_unused]] std::optional<bench::EllipsoidParams> ellipsoid_of(const Json& shape) {
   const std::string type = shape.find("type")->text();
   bench::EllipsoidParams e;
   const Json& c = *shape.find("center");
