@@ -1,6 +1,7 @@
 // surfcert::certify::cone_oval_counts (see cone_ovals.hpp).
 #include "surfcert/certify/cone_ovals.hpp"
 
+#include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"
 
@@ -20,14 +21,6 @@ namespace {
 using V4 = std::array<Rational, 4>;
 using algebra::UPolyQ;
 using algebra::UPolyZ;
-
-Rational form(const Mat4& q, const V4& x, const V4& y) {
-  Rational s;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      s += x[i] * q[i][j] * y[j];
-  return s;
-}
 
 std::optional<Rational> rational_sqrt(const Rational& r) {
   if (r.sign() < 0) return std::nullopt;
@@ -107,7 +100,7 @@ std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q
       s += k[i][j] * v[j];
     if (!s.is_zero()) return std::nullopt; // not a cone with this apex
   }
-  const Rational a = form(q, v, v);
+  const Rational a = algebra::bilinear(q, v, v);
   if (a.is_zero()) return std::nullopt; // the apex lies on the curve
   const auto p0 = conic_point(k);
   if (!p0) return std::nullopt;
@@ -130,9 +123,11 @@ std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q
       e2[i] += Rational(shear) * e1[i];
     // e(t) = e1 + t e2; d(t) = -(e.K.e) d0 + 2 (d0.K.e) e: a point of K's conic, quadratic in t.
     std::array<UPolyQ, 4> dt;
-    const Rational k11 = form(k, e1, e1), k12 = form(k, e1, e2), k22 = form(k, e2, e2);
+    const Rational k11 = algebra::bilinear(k, e1, e1), k12 = algebra::bilinear(k, e1, e2),
+                   k22 = algebra::bilinear(k, e2, e2);
     const UPolyQ eke = UPolyQ::from_coeffs({k11, Rational(2) * k12, k22});
-    const UPolyQ dke = UPolyQ::from_coeffs({form(k, d0, e1), form(k, d0, e2)});
+    const UPolyQ dke =
+        UPolyQ::from_coeffs({algebra::bilinear(k, d0, e1), algebra::bilinear(k, d0, e2)});
     for (size_t i = 0; i < 4; ++i) {
       const UPolyQ ei = UPolyQ::from_coeffs({e1[i], e2[i]});
       dt[i] = UPolyQ(Rational(0)) - eke * UPolyQ(d0[i]) + UPolyQ(2) * dke * ei;

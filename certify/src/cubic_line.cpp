@@ -1,20 +1,19 @@
 // surfcert::certify::cubic_and_line: exact line and cubic parametrisation (see cubic_line.hpp).
 #include "surfcert/certify/cubic_line.hpp"
 
-#include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/algebra/kernel.hpp"
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"
 
 #include <flint/fmpq_mat.h>
-#include <flint/fmpz_mat.h>
 #include <flint/fmpz_poly.h>
 
 #include <vector>
 
 namespace surfcert::certify {
 
-using core::Integer;
 using core::Mat4;
 using core::Rational;
 
@@ -39,14 +38,6 @@ Form sub(const Form& x, const Form& y) { // equal degrees
   return r;
 }
 
-Rational form(const Mat4& q, const Vec4& u, const Vec4& v) {
-  Rational s;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      s += u[i] * q[i][j] * v[j];
-  return s;
-}
-
 Mat4 mat_of(const fmpq_mat_t m) {
   Mat4 r;
   for (size_t i = 0; i < 4; ++i)
@@ -59,27 +50,6 @@ void set_mat(fmpq_mat_t out, const Mat4& m) {
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j)
       fmpq_set(fmpq_mat_entry(out, static_cast<slong>(i), static_cast<slong>(j)), m[i][j].raw());
-}
-
-std::vector<Vec4> kernel(const Mat4& m) {
-  fmpz_mat_t z, n;
-  fmpz_mat_init(z, 4, 4);
-  fmpz_mat_init(n, 4, 4);
-  algebra::scaled_integer_matrix(z, m);
-  const slong nullity = fmpz_mat_nullspace(n, z);
-  std::vector<Vec4> out;
-  for (slong c = 0; c < nullity; ++c) {
-    Vec4 v;
-    for (size_t i = 0; i < 4; ++i) {
-      Integer t;
-      fmpz_set(t.raw_mut(), fmpz_mat_entry(n, static_cast<slong>(i), c));
-      v[i] = Rational(t);
-    }
-    out.push_back(v);
-  }
-  fmpz_mat_clear(z);
-  fmpz_mat_clear(n);
-  return out;
 }
 
 // B A'^-1 B + p1 B + p0 A' (the kernel of p(A'^-1 B), p = l^2 + p1 l + p0).
@@ -148,7 +118,7 @@ CubicAndLine cubic_and_line(const Mat4& a, const Mat4& b) {
     out.reason = "det(l A - B) is not a constant times a square: not a cubic and a line";
     return out;
   }
-  const std::vector<Vec4> ker = kernel(line_matrix(ap, b, p1, p0));
+  const std::vector<Vec4> ker = algebra::kernel_basis(line_matrix(ap, b, p1, p0));
   if (ker.size() != 2) {
     out.reason = "ker p(A'^-1 B) is not two-dimensional: not a cubic and a line";
     return out;
@@ -156,7 +126,7 @@ CubicAndLine cubic_and_line(const Mat4& a, const Mat4& b) {
   for (const Mat4* q : {&a, &b})
     for (size_t i = 0; i < 2; ++i)
       for (size_t j = i; j < 2; ++j)
-        if (!form(*q, ker[i], ker[j]).is_zero()) {
+        if (!algebra::bilinear(*q, ker[i], ker[j]).is_zero()) {
           out.reason = "the kernel line does not lie on both quadrics";
           return out;
         }
@@ -186,9 +156,10 @@ CubicAndLine cubic_and_line(const Mat4& a, const Mat4& b) {
   auto coeffs = [&](const Mat4& q) {
     const Rational two(2);
     std::array<Form, 3> u;
-    u[0] = {two * form(q, ker[0], e3), two * form(q, ker[0], e4)};
-    u[1] = {two * form(q, ker[1], e3), two * form(q, ker[1], e4)};
-    u[2] = {form(q, e3, e3), two * form(q, e3, e4), form(q, e4, e4)};
+    u[0] = {two * algebra::bilinear(q, ker[0], e3), two * algebra::bilinear(q, ker[0], e4)};
+    u[1] = {two * algebra::bilinear(q, ker[1], e3), two * algebra::bilinear(q, ker[1], e4)};
+    u[2] = {algebra::bilinear(q, e3, e3), two * algebra::bilinear(q, e3, e4),
+            algebra::bilinear(q, e4, e4)};
     return u;
   };
   const auto u = coeffs(a), v = coeffs(b);

@@ -1,9 +1,10 @@
 #include "surfcert/certify/special_points.hpp"
 
+#include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/kernel.hpp"
 
 #include <flint/fmpq_mat.h>
-#include <flint/fmpz_mat.h>
 
 namespace surfcert::certify {
 
@@ -16,36 +17,6 @@ namespace {
 
 using Vec4 = std::array<Rational, 4>;
 using QVec4 = std::array<QuadraticNumber, 4>;
-
-// Basis of the kernel of a rational 4x4 matrix (FLINT nullspace over Z after scaling).
-std::vector<Vec4> kernel(const Mat4& m) {
-  fmpz_mat_t z, n;
-  fmpz_mat_init(z, 4, 4);
-  fmpz_mat_init(n, 4, 4);
-  algebra::scaled_integer_matrix(z, m);
-  slong nullity = fmpz_mat_nullspace(n, z);
-  std::vector<Vec4> out;
-  for (slong c = 0; c < nullity; ++c) {
-    Vec4 v;
-    for (size_t i = 0; i < 4; ++i) {
-      Integer t;
-      fmpz_set(t.raw_mut(), fmpz_mat_entry(n, static_cast<slong>(i), c));
-      v[i] = Rational(t);
-    }
-    out.push_back(v);
-  }
-  fmpz_mat_clear(z);
-  fmpz_mat_clear(n);
-  return out;
-}
-
-Rational form(const Mat4& a, const Vec4& u, const Vec4& v) {
-  Rational s;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      s += u[i] * a[i][j] * v[j];
-  return s;
-}
 
 QuadraticNumber qmul(const QuadraticNumber& x, const QuadraticNumber& y, const Integer& d) {
   Rational dd(d);
@@ -152,14 +123,15 @@ std::vector<SpecialPoint> special_points(const algebra::PencilFacts& f, int tu_c
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j)
         m[i][j] = *root.rational_value * f.a[i][j] - f.b[i][j];
-    auto ker = kernel(m);
+    auto ker = algebra::kernel_basis(m);
     if (ker.size() == 1) {
-      if (form(f.a, ker[0], ker[0]).is_zero())
+      if (algebra::bilinear(f.a, ker[0], ker[0]).is_zero())
         out.push_back(make_point(vertex_kind(tu_case), lift(ker[0], one), one));
     } else if (ker.size() == 2) {
       const Vec4& u = ker[0];
       const Vec4& v = ker[1];
-      Rational al = form(f.a, u, u), be = form(f.a, u, v), ga = form(f.a, v, v);
+      Rational al = algebra::bilinear(f.a, u, u), be = algebra::bilinear(f.a, u, v),
+               ga = algebra::bilinear(f.a, v, v);
       if (al.is_zero() && be.is_zero() && ga.is_zero()) continue; // the line is a component
       const char* kind = line_kind(tu_case);
       if (al.is_zero()) {
@@ -221,7 +193,7 @@ std::vector<SpecialPoint> special_points(const algebra::PencilFacts& f, int tu_c
       fmpq_mat_clear(qa);
       fmpq_mat_clear(qn);
       fmpq_mat_clear(qx);
-      if (form(f.a, p, p).is_zero())
+      if (algebra::bilinear(f.a, p, p).is_zero())
         out.push_back(make_point(tu_case == 33 ? "isolated_point" : "double_lines_crossing",
                                  lift(p, one), one));
     }

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <iterator>
+#include <utility>
+#include <vector>
 
 namespace surfcert::certify {
 
@@ -234,20 +237,19 @@ void append_distance_envelope(std::string& out, const DistanceResult& r, long di
       }
       out += ']';
     };
+    const std::pair<const char*, const std::vector<long>*> degrees[] = {
+        {"system", &r.system_degrees},
+        {"bivariate", &r.bivariate_degrees},
+        {"univariate", &r.univariate_degrees},
+        {"squarefree", &r.squarefree_degrees}};
     out += ',';
     key("degrees");
     out += '{';
-    key("system");
-    arr(r.system_degrees);
-    out += ',';
-    key("bivariate");
-    arr(r.bivariate_degrees);
-    out += ',';
-    key("univariate");
-    arr(r.univariate_degrees);
-    out += ',';
-    key("squarefree");
-    arr(r.squarefree_degrees);
+    for (size_t k = 0; k < std::size(degrees); ++k) {
+      if (k) out += ',';
+      key(degrees[k].first);
+      arr(*degrees[k].second);
+    }
     out += '}';
   }
   out += ',';

@@ -5,6 +5,10 @@
 // plane (exact, over core::Rational, in certify), a quadric's trace on a box face (exact in
 // certify/box_exits, in doubles in the tracer's float face proposals) and on the plane of a
 // conic component (doubles). Exact for exact scalar types; for doubles, plain rounding.
+//
+// surfcert::algebra::bilinear: the bilinear form u^T Q v itself (a single entry of such a
+// restriction), for the exact evaluations of a quadric's form at given points and directions
+// (certify's cubic and line, special points, cone ovals, the 3x3 forms of the distance routes).
 #pragma once
 
 #include <array>
@@ -29,6 +33,16 @@ std::array<std::array<T, M>, M> restrict_form(const std::array<std::array<T, N>,
       r[j][i] = s;
     }
   return r;
+}
+
+template <class T, size_t N>
+T bilinear(const std::array<std::array<T, N>, N>& q, const std::array<T, N>& u,
+           const std::array<T, N>& v) {
+  T s{};
+  for (size_t i = 0; i < N; ++i)
+    for (size_t j = 0; j < N; ++j)
+      s += u[i] * q[i][j] * v[j];
+  return s;
 }
 
 } // namespace surfcert::algebra

@@ -15,14 +15,6 @@ RMat3 quadratic_block(const core::QuadricMatrix& q) {
   return m;
 }
 
-Rational bilinear(const RMat3& a, const RVec3& u, const RVec3& v) {
-  Rational s;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      s += u[i] * a[i][j] * v[j];
-  return s;
-}
-
 Rational restricted_resultant(const RMat3& a, const RMat3& b, const RVec3& u, const RVec3& v) {
   // Res(a11 s^2 + 2 a12 s t + a22 t^2, b11 s^2 + 2 b12 s t + b22 t^2) by the 2 x 2 Bezout
   // formula (a11 b22 - a22 b11)^2 - (a11 b12' - a12' b11)(a12' b22 - a22 b12'), ' = doubled.

@@ -2,7 +2,7 @@
 // points at infinity, ruling directions and common apices share.
 // - quadratic_block: the quadratic part A of a quadric x^T A x + 2 b.x + c (its conic at
 //   infinity, or the cone of directions about a singular point);
-// - bilinear: u^T A v;
+// - bilinear: u^T A v (algebra::bilinear, form_restriction.hpp);
 // - restricted_resultant: the resultant of the two binary forms x^T A x, x^T B x restricted to
 //   the plane span{u, v} (zero iff they share a root there, real or complex, counted on the
 //   projective line: both forms may be evaluated at u and v themselves);
@@ -12,6 +12,7 @@
 // Invariants: everything exact; bases are integer vectors (FLINT's nullspace, as rationals).
 #pragma once
 
+#include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/rational.hpp"
 
@@ -25,7 +26,7 @@ using RMat3 = std::array<RVec3, 3>;
 
 RMat3 quadratic_block(const core::QuadricMatrix& q);
 
-core::Rational bilinear(const RMat3& a, const RVec3& u, const RVec3& v);
+using algebra::bilinear;
 
 core::Rational restricted_resultant(const RMat3& a, const RMat3& b, const RVec3& u, const RVec3& v);
 
