@@ -7,10 +7,35 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <utility>
 
 namespace surfcert::algebra {
 
 using Mat4d = std::array<std::array<double, 4>, 4>;
+
+namespace detail {
+
+/// One Jacobi rotation J in the plane (p, q), p < q, that zeroes a[p][q] (nonzero):
+/// a <- J^T a J. Returns J's cosine and sine (for the eigenvectors).
+inline std::pair<double, double> jacobi_rotate(Mat4d& a, size_t p, size_t q) {
+  double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+  double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
+  double c = 1 / std::sqrt(t * t + 1), s = t * c;
+  for (size_t k = 0; k < 4; ++k) { // a <- a J (columns p, q)
+    double akp = a[k][p], akq = a[k][q];
+    a[k][p] = c * akp - s * akq;
+    a[k][q] = s * akp + c * akq;
+  }
+  for (size_t k = 0; k < 4; ++k) { // a <- J^T a (rows p, q)
+    double apk = a[p][k], aqk = a[q][k];
+    a[p][k] = c * apk - s * aqk;
+    a[q][k] = s * apk + c * aqk;
+  }
+  return {c, s};
+}
+
+} // namespace detail
 
 inline void jacobi4(Mat4d a, std::array<double, 4>& w, Mat4d& v) {
   for (size_t i = 0; i < 4; ++i)
@@ -27,19 +52,7 @@ inline void jacobi4(Mat4d a, std::array<double, 4>& w, Mat4d& v) {
     for (size_t p = 0; p < 3; ++p)
       for (size_t q = p + 1; q < 4; ++q) {
         if (a[p][q] == 0) continue;
-        double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-        double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
-        double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (size_t k = 0; k < 4; ++k) { // a <- a J (columns p, q)
-          double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - s * akq;
-          a[k][q] = s * akp + c * akq;
-        }
-        for (size_t k = 0; k < 4; ++k) { // a <- J^T a (rows p, q)
-          double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - s * aqk;
-          a[q][k] = s * apk + c * aqk;
-        }
+        const auto [c, s] = detail::jacobi_rotate(a, p, q);
         for (size_t k = 0; k < 4; ++k) {
           double vkp = v[k][p], vkq = v[k][q];
           v[k][p] = c * vkp - s * vkq;
@@ -73,19 +86,7 @@ inline std::array<double, 4> jacobi4_eigenvalues(Mat4d a) {
           continue;
         }
         if (a[p][q] == 0) continue;
-        double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-        double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
-        double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (size_t k = 0; k < 4; ++k) { // a <- a J (columns p, q)
-          double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - s * akq;
-          a[k][q] = s * akp + c * akq;
-        }
-        for (size_t k = 0; k < 4; ++k) { // a <- J^T a (rows p, q)
-          double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - s * aqk;
-          a[q][k] = s * apk + c * aqk;
-        }
+        detail::jacobi_rotate(a, p, q);
       }
   }
   return {a[0][0], a[1][1], a[2][2], a[3][3]};
