@@ -387,6 +387,36 @@ void append_members(std::string& out, const Json& env) {
   }
 }
 
+// Runs compute() within a budget of budget_ms and continues the answer object in out with its
+// answer's members: write(o, r) appends the whole answer object, whose '{' becomes the ','
+// continuing out's object and whose '}' is dropped; status is the answer's. When the budget
+// runs out, the budget's undecided envelope instead. The result is built in place in the
+// optional (a QsicResult holds dozens of exact numbers: no default and move).
+template <class Compute, class Write>
+void append_within_budget(std::string& out, std::string& status, double budget_ms, Compute compute,
+                          Write write) {
+  using Result = decltype(compute());
+  const std::optional<Result> r = [&]() -> std::optional<Result> {
+    try {
+      core::BudgetScope budget(budget_ms);
+      return compute();
+    } catch (const core::BudgetExceeded&) {
+      return std::nullopt;
+    }
+  }();
+  if (r) {
+    status = certify::to_string(r->status);
+    const size_t start = out.size();
+    write(out, *r);
+    out[start] = ','; // its members continue the answer object
+    out.pop_back();
+  } else {
+    const Json env = budget_undecided_envelope(budget_ms);
+    status = env.find("status")->text();
+    append_members(out, env);
+  }
+}
+
 // The readings as dump(readings_json(rs)) writes them, without building the document (the
 // deviation names of a reading are distinct, as readings_json needs).
 void append_readings(std::string& out, const core::io::Readings& rs) {
@@ -430,49 +460,20 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
     if (q.op == "classify" && q.detail == certify::Detail::Topology) {
       const auto& a = std::get<core::QuadricMatrix>(*fl->a);
       const auto& b = std::get<core::QuadricMatrix>(*fl->b);
-      // Built in place (a QsicResult holds dozens of exact numbers: no default and move).
-      const std::optional<certify::QsicResult> r = [&]() -> std::optional<certify::QsicResult> {
-        try {
-          core::BudgetScope budget(q.budget_ms);
-          return batch_classify(q, a, b);
-        } catch (const core::BudgetExceeded&) {
-          return std::nullopt;
-        }
-      }();
-      if (r) {
-        ans.fallback = r->exact_fallback;
-        ans.status = certify::to_string(r->status);
-        const size_t start = out.size();
-        certify::append_qsic_topology_envelope(out, *r);
-        out[start] = ','; // its members continue the answer object
-        out.pop_back();
-      } else {
-        const Json env = budget_undecided_envelope(q.budget_ms);
-        ans.status = env.find("status")->text();
-        append_members(out, env);
-      }
+      append_within_budget(
+          out, ans.status, q.budget_ms, [&] { return batch_classify(q, a, b); },
+          [&](std::string& o, const certify::QsicResult& r) {
+            ans.fallback = r.exact_fallback;
+            certify::append_qsic_topology_envelope(o, r);
+          });
     } else if (q.op == "distance") {
       // Written directly as well (batch_envelope's bytes: tests compare the two).
-      const std::optional<certify::DistanceResult> r =
-          [&]() -> std::optional<certify::DistanceResult> {
-        try {
-          core::BudgetScope budget(q.budget_ms);
-          return certify::surface_distance(*fl->a, *fl->b, q.digits, q.solid, q.mode);
-        } catch (const core::BudgetExceeded&) {
-          return std::nullopt;
-        }
-      }();
-      if (r) {
-        ans.status = certify::to_string(r->status);
-        const size_t start = out.size();
-        certify::append_distance_envelope(out, *r, q.digits, q.detail);
-        out[start] = ','; // its members continue the answer object
-        out.pop_back();
-      } else {
-        const Json env = budget_undecided_envelope(q.budget_ms);
-        ans.status = env.find("status")->text();
-        append_members(out, env);
-      }
+      append_within_budget(
+          out, ans.status, q.budget_ms,
+          [&] { return certify::surface_distance(*fl->a, *fl->b, q.digits, q.solid, q.mode); },
+          [&](std::string& o, const certify::DistanceResult& r) {
+            certify::append_distance_envelope(o, r, q.digits, q.detail);
+          });
     } else {
       const Json env = batch_envelope(q, *fl->a, *fl->b, &ans.fallback);
       if (const Json* s = env.find("status")) ans.status = s->text();
