@@ -10,6 +10,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace surfcert::fixtures {
 
@@ -19,6 +20,15 @@ inline core::io::Json load_json(const std::string& rel) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return core::io::parse_json(ss.str(), path);
+}
+
+/// A 4x4 rational matrix from its entries' exact texts, row by row ("3/2", "-7").
+inline core::Mat4 mat4_from_strings(const std::vector<std::vector<const char*>>& rows) {
+  core::Mat4 m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = *core::Rational::from_string(rows[i][j]);
+  return m;
 }
 
 inline core::Mat4 mat4_from_json(const core::io::Json& m) {

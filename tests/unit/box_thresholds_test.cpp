@@ -10,6 +10,7 @@
 // undecided with a reason: never a certified wrong count. (Boxes x in [-1.5, 1.5]: the top
 // face z = 1 meets the curves at x = +-1, inside the face.)
 #include "support/distance_checks.hpp"
+#include "support/trace_boxes.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -19,18 +20,10 @@
 
 using namespace surfcert;
 using certify::Mode;
+using surfcert::testing::given_box;
 using surfcert::testing::q;
 
 namespace {
-
-trace::TraceOptions given_box(trace::Point3 lo, trace::Point3 hi) {
-  trace::TraceOptions opt;
-  trace::Box box;
-  box.min = lo;
-  box.max = hi;
-  opt.box = box;
-  return opt;
-}
 
 const std::vector<double>& deltas() {
   static const std::vector<double> d = {1e-10, 1e-20, 1e-30, std::ldexp(1.0, -100)};

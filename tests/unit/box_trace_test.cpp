@@ -5,6 +5,7 @@
 // planes x = +-y, the hyperbola y^2 - z^2 = 3/4 leaving the unit box at y = +-1, z = +-1/2),
 // a/b swapped and rational rigid motions.
 #include "support/distance_checks.hpp"
+#include "support/trace_boxes.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -16,6 +17,7 @@
 using namespace surfcert;
 using certify::Mode;
 using core::Rational;
+using surfcert::testing::given_box;
 using surfcert::testing::motion;
 using surfcert::testing::q;
 
@@ -244,15 +246,6 @@ TEST(BoxTrace, ScaledAndTranslatedCurvesStayOnBothSurfaces) {
 }
 
 namespace {
-
-trace::TraceOptions given_box(trace::Point3 lo, trace::Point3 hi) {
-  trace::TraceOptions opt;
-  trace::Box box;
-  box.min = lo;
-  box.max = hi;
-  opt.box = box;
-  return opt;
-}
 
 trace::Point3 plus(const trace::Point3& p, const trace::Point3& t) {
   return {p[0] + t[0], p[1] + t[1], p[2] + t[2]};

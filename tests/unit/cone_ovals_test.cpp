@@ -8,6 +8,7 @@
 // bench/natural_box_pairs.py --seed 1. Checked swapped, under a rational rigid motion, each
 // cone as the one swept, and against the traced pieces and exact box exits.
 #include "support/distance_checks.hpp"
+#include "support/fixtures.hpp"
 
 #include "surfcert/certify/cone_ovals.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
@@ -18,36 +19,29 @@ using namespace surfcert;
 using certify::Mode;
 using core::Mat4;
 using core::Rational;
+using surfcert::fixtures::mat4_from_strings;
 using surfcert::testing::motion;
 
 namespace {
 
-Mat4 mat(const std::vector<std::vector<const char*>>& rows) {
-  Mat4 m;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      m[i][j] = *Rational::from_string(rows[i][j]);
-  return m;
-}
-
 std::vector<std::pair<Mat4, Mat4>> pairs() {
   return {
-      {mat({{"1", "0", "0", "2"},
-            {"0", "1", "0", "0"},
-            {"0", "0", "-4", "2"},
-            {"2", "0", "2", "3"}}),
-       mat({{"49/81", "64/81", "-8/81", "5/18"},
-            {"64/81", "-47/81", "16/81", "-37/18"},
-            {"-8/81", "16/81", "79/81", "4/9"},
-            {"5/18", "-37/18", "4/9", "-7/2"}})},
-      {mat({{"1", "0", "0", "0"},
-            {"0", "1", "0", "-3/2"},
-            {"0", "0", "-25/4", "25/2"},
-            {"0", "-3/2", "25/2", "-91/4"}}),
-       mat({{"1", "0", "0", "3/2"},
-            {"0", "-1/4", "0", "-1/8"},
-            {"0", "0", "1", "3/2"},
-            {"3/2", "-1/8", "3/2", "71/16"}})},
+      {mat4_from_strings({{"1", "0", "0", "2"},
+                          {"0", "1", "0", "0"},
+                          {"0", "0", "-4", "2"},
+                          {"2", "0", "2", "3"}}),
+       mat4_from_strings({{"49/81", "64/81", "-8/81", "5/18"},
+                          {"64/81", "-47/81", "16/81", "-37/18"},
+                          {"-8/81", "16/81", "79/81", "4/9"},
+                          {"5/18", "-37/18", "4/9", "-7/2"}})},
+      {mat4_from_strings({{"1", "0", "0", "0"},
+                          {"0", "1", "0", "-3/2"},
+                          {"0", "0", "-25/4", "25/2"},
+                          {"0", "-3/2", "25/2", "-91/4"}}),
+       mat4_from_strings({{"1", "0", "0", "3/2"},
+                          {"0", "-1/4", "0", "-1/8"},
+                          {"0", "0", "1", "3/2"},
+                          {"3/2", "-1/8", "3/2", "71/16"}})},
   };
 }
 
