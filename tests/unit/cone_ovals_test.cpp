@@ -91,14 +91,14 @@ TEST(ConeOvals, BothOvalsReachInfinity) {
 // c on it (e.g. both ovals counted through infinity whenever disc > 0 everywhere), which the
 // two-unbounded-ovals pairs above cannot tell apart.
 TEST(ConeOvals, OneLoopAndOneUnboundedOval) {
-  const Mat4 a0 = mat({{"1", "0", "0", "1/2"},
-                       {"0", "1", "0", "-3/2"},
-                       {"0", "0", "-4", "6"},
-                       {"1/2", "-3/2", "6", "-13/2"}});
-  const Mat4 b0 = mat({{"7/36", "-29/18", "-29/18", "211/72"},
-                       {"-29/18", "-20/9", "-29/9", "247/36"},
-                       {"-29/18", "-29/9", "-20/9", "319/36"},
-                       {"211/72", "247/36", "319/36", "-2609/144"}});
+  const Mat4 a0 = mat4_from_strings({{"1", "0", "0", "1/2"},
+                                     {"0", "1", "0", "-3/2"},
+                                     {"0", "0", "-4", "6"},
+                                     {"1/2", "-3/2", "6", "-13/2"}});
+  const Mat4 b0 = mat4_from_strings({{"7/36", "-29/18", "-29/18", "211/72"},
+                                     {"-29/18", "-20/9", "-29/9", "247/36"},
+                                     {"-29/18", "-29/9", "-20/9", "319/36"},
+                                     {"211/72", "247/36", "319/36", "-2609/144"}});
   const Mat4 m = motion(2, -1, 1, 1, {Rational(-1, 2), Rational(2), Rational(1, 4)});
   for (bool moved : {false, true})
     for (bool swapped : {false, true}) {

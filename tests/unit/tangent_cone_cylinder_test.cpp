@@ -11,6 +11,7 @@
 //    line and one conic; otherwise undecided with a reason.
 // Never a wrong certified count.
 #include "support/distance_checks.hpp"
+#include "support/trace_boxes.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -19,6 +20,7 @@
 using namespace surfcert;
 using certify::Mode;
 using core::Rational;
+using surfcert::testing::given_box;
 using surfcert::testing::motion;
 using surfcert::testing::q;
 
@@ -31,15 +33,6 @@ std::vector<core::Mat4> poses() {
           motion(1, 1, 1, 1, {Rational(1, 3), Rational(0), Rational(-1)}),
           motion(3, 0, 4, 0, {Rational(0), Rational(1, 2), Rational(0)}),
           motion(0, 1, 2, 2, {Rational(1), Rational(1), Rational(1)})};
-}
-
-trace::TraceOptions given_box(trace::Point3 lo, trace::Point3 hi) {
-  trace::TraceOptions opt;
-  trace::Box box;
-  box.min = lo;
-  box.max = hi;
-  opt.box = box;
-  return opt;
 }
 
 } // namespace
