@@ -472,3 +472,67 @@ TEST(TorusFast, TwoMinimaInOneArcAreNotCountedAsOne) {
     EXPECT_NE(r.minimizers, "1") << r.note; // two, or undecided
   }
 }
+
+TEST(TorusFast, TwoMinimaThresholds) {
+  // The ellipsoid of TwoMinimaInOneArcAreNotCountedAsOne at X = X* -+ delta, delta = 1e-3,
+  // 1e-10, 1e-20, 2^-100 (the centre's decimal to 70 digits, read exactly). X* is exact:
+  // a = 3 - X* is the root in (0, 3) of 4 a^4 - 24 a^3 - 173 a^2 - 96 a + 144 (D''(0) = 0
+  // with D by duality: at tau = 0, s* + 1/4 = sqrt(a^2 + 4) / 2 and D''(0) = 2 s* (9 / (4 + s*)
+  // - 3 a / (1/4 + s*))). Below X* (a larger) tau = 0 is a local maximum between two mirror
+  // minimizers tau = +-0.796 sqrt(delta); above it the one minimizer tau = 0, d = sqrt(a^2 + 4)
+  // - 1. Every d below by mpmath at 250 digits (the point-ellipsoid secular equation, dD/dtau
+  // = 0 by findroot). The count is never wrong: two minima never "1", one never "2"
+  // (undecided allowed: the bump between two minima is 2e-7 at 1e-3, 2e-21 at 1e-10, ~1e-61
+  // at 2^-100); a certified enclosure holds d.
+  auto t = core::io::read_surface(
+      core::io::parse_json(
+          R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":"1/2"})",
+          "b"),
+      "b", "$");
+  struct Case {
+    const char* name;
+    int minima;
+    const char *X, *d;
+  };
+  const Case cases[] = {
+      {"1e-3 two", 2, "2.341452065972807085341076879425354629419484549747365417327023365408554",
+       "1.10563161619725040651158210063367627642163747204867335863797"},
+      {"1e-3 one", 1, "2.343452065972807085341076879425354629419484549747365417327023365408554",
+       "1.10500717093205534283513173768818211154599260775569321457044"},
+      {"1e-10 two", 2, "2.342452065872807085341076879425354629419484549747365417327023365408554",
+       "1.10531928354702038826454583186257406312680155686366129620258"},
+      {"1e-10 one", 1, "2.342452066072807085341076879425354629419484549747365417327023365408554",
+       "1.10531928348455499984069013749745661381952756940223479119907"},
+      {"1e-20 two", 2, "2.342452065972807085331076879425354629419484549747365417327023365408554",
+       "1.10531928351578769405464090197747203196610453550483360076987"},
+      {"1e-20 one", 1, "2.342452065972807085351076879425354629419484549747365417327023365408554",
+       "1.1053192835157876940483943631348778797385491887721387383405"},
+      {"2^-100 two", 2, "2.342452065972807085341076879424565768514263537941953688761740579178881",
+       "1.10531928351578769405151763255642133836660921033230439000506"},
+      {"2^-100 one", 1, "2.342452065972807085341076879426143490324705561552777145892306151638227",
+       "1.10531928351578769405151763255592857333802250690219141460667"}};
+  for (const Case& c : cases) {
+    auto e = core::io::read_surface(
+        core::io::parse_json(std::string(R"({"type":"ellipsoid","center":[")") + c.X +
+                                 R"(",0,2],"radii":["0.5",2,"0.5"]})",
+                             "a"),
+        "a", "$");
+    for (bool swap : {false, true}) {
+      const std::string ctx = std::string(c.name) + (swap ? " swapped" : "");
+      const auto r = swap ? certify::surface_distance(t, e, 15, false)
+                          : certify::surface_distance(e, t, 15, false);
+      mpfr_t d;
+      mpfr_init2(d, 200);
+      mpfr_set_str(d, c.d, 10, MPFR_RNDN);
+      if (r.distance) {
+        EXPECT_TRUE(contains(r, d)) << ctx << ": " << r.lower() << " " << r.upper();
+      }
+      mpfr_clear(d);
+      if (c.minima == 2) { // (a count is a claim whatever the status)
+        EXPECT_NE(r.minimizers, "1") << ctx << ": " << r.note;
+      } else {
+        EXPECT_NE(r.minimizers, "2") << ctx << ": " << r.note;
+      }
+    }
+  }
+}
