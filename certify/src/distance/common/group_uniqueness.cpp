@@ -1,5 +1,6 @@
 #include "surfcert/certify/distance/group_uniqueness.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace surfcert::certify {
@@ -44,9 +45,14 @@ bool label_pieces(const Derivatives& derivs, const arb_t T, int sign, int depth,
   // the halves [lo, mid] and [mid, hi] as balls (outward: their union covers T)
   Ball lo, hi, mid, a, b;
   arb_set_arf(mid.v, arb_midref(T));
+  // The ends rounded outward (floor, ceiling) at any precision keep the cover; the precision
+  // only keeps the halves tight. arb_rel_accuracy_bits is -ARF_PREC_EXACT (= -WORD_MAX) for a
+  // hull centred at t = 0 exactly (a minimizer at t = 0 written around 0): doubling it
+  // overflowed a slong (undefined behaviour), so it is clamped first.
+  const slong acc = std::clamp<slong>(arb_rel_accuracy_bits(T), 0, 1L << 20);
   Arf l, h;
-  arb_get_lbound_arf(l.v, T, 2 * arb_rel_accuracy_bits(T) + 64);
-  arb_get_ubound_arf(h.v, T, 2 * arb_rel_accuracy_bits(T) + 64);
+  arb_get_lbound_arf(l.v, T, 2 * acc + 64);
+  arb_get_ubound_arf(h.v, T, 2 * acc + 64);
   arb_set_arf(lo.v, l.v);
   arb_set_arf(hi.v, h.v);
   arb_union(a.v, lo.v, mid.v, ARF_PREC_EXACT);

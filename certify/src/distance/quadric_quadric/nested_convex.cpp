@@ -989,9 +989,10 @@ bool branch_and_bound(const Ctx<DI>& C, const std::vector<Chart>& charts, DI& U,
 // on every such pair (an S-lemma / Lagrangian-duality bound). Lag is a quadratic in
 // z = (x, y); when its Hessian 2 Q satisfies Q >= s I with s > 0 (proven by an interval
 // Cholesky of Q - s I), Lag(z) >= Lag(z0) + 2 r.(z - z0) + s |z - z0|^2 at any point z0 (r the
-// half gradient at z0). Every direction n with G(n) <= U gives such a pair with
-// |p - q| = G(n) <= U (p the inner support point, x = n / h_in(n), and q = p + G(n) n on the
-// outer support plane), so its z lies within Delta of z0, where s Delta^2 - 2 |r| Delta
+// half gradient at z0). Every direction n with |G(n)| <= U gives such a pair with
+// |p - q| = |G(n)| <= U (p the inner support point, x = n / h_in(n), and q = p + G(n) n on the
+// outer support plane; G < -U is excluded by the sign of G at one direction outside the box,
+// see below), so its z lies within Delta of z0, where s Delta^2 - 2 |r| Delta
 // <= U^2 - Lag(z0): x, a positive multiple of n, lies in a tiny box, hence n in a tiny chart
 // box. The multipliers and z0 come from the float minimizer n0 (x0 = n0 / h_in, y0 = n0 /
 // h_out, lambda = G0 h_in, mu = G0 h_out: the KKT point, where Lag(z0) = G0^2); they only
@@ -1133,6 +1134,20 @@ bool lagrangian_box(const Ctx<DI>& C, const FloatPair& P, const Point& best, con
     if (!(rho < 1.0 / 64)) return false;
     X[j] = DI(u0) + DI(-rho, rho);
     if (!contains(X[j], u)) return false;
+  }
+  // The pair of a direction n is at distance |G(n)|, not G(n): the bound above confines the
+  // directions with -U <= G <= U to X, not those with G < -U (the inner solid poking out).
+  // Outside X (on the sphere, the complement of a small closed disk: connected) |G| > U, so G
+  // has there the sign it has at one point outside X; at -n0 (chart (a, -s), coordinates
+  // -u0) G > 0 proves G > U outside X: every direction with G <= U, the minimizers among
+  // them, lies in X. (Without it only the float grid, which found no clearly negative value,
+  // stood for the directions with G < -U.)
+  {
+    DI far[2];
+    for (int j = 0; j < 2; ++j)
+      far[j] = -DI(n[free_index(ch, j)] / (ch.s * n[a])); // any point of the chart would do
+    TP<DI> T;
+    if (!g_taylor(T, C, Chart{a, -ch.s}, far, 0) || !pos(T.c[0])) return false;
   }
   DI K[2];
   BoxForms<DI> B;
