@@ -12,6 +12,7 @@
 // - two symmetric closest pairs at an exactly known distance (a tie is reported as such);
 // - what it must refuse: crossing the tube, inside the tube, the torus inside the ellipsoid,
 //   coaxial ellipsoids of revolution (a circle of minimizers); the dispatcher still answers.
+#include "surfcert/certify/distance/group_uniqueness.hpp"
 #include "surfcert/certify/distance/torus_distance.hpp"
 #include "surfcert/certify/distance/torus_fast.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
@@ -535,4 +536,34 @@ TEST(TorusFast, TwoMinimaThresholds) {
       }
     }
   }
+}
+
+// A group hull centred at t = 0 exactly (a minimizer at t = 0 between symmetric survivors):
+// halving it took 2 * arb_rel_accuracy_bits(T) = 2 * -WORD_MAX, a signed overflow (undefined
+// behaviour; this test fails under -fsanitize=undefined before the fix). f = t^2 / 2 + t^4:
+// f' = t + 4 t^3 has no certified sign on the hull and f'' = 1 + 12 t^2 (enclosed loosely)
+// is proven positive on its halves only: one convex run, one critical point.
+TEST(GroupUniqueness, HullCentredAtZero) {
+  std::vector<certify::Ball> hulls(1);
+  mag_set_ui_2exp_si(arb_radref(hulls[0].v), 1, 0); // [-1, 1]: midpoint exactly 0
+  auto derivs = [](arb_t d1, arb_t d2, const arb_t t) {
+    arb_t t2;
+    arb_init(t2);
+    arb_sqr(t2, t, 128);
+    arb_mul_ui(d1, t2, 4, 128); // t + 4 t^3
+    arb_add_ui(d1, d1, 1, 128);
+    arb_mul(d1, d1, t, 128);
+    arb_mul_ui(d2, t2, 12, 128); // 1 + 12 t^2, widened by 3/2 the radius of t (still an
+    arb_add_ui(d2, d2, 1, 128);  // enclosure): not positive over [-1, 1], positive on halves
+    mag_t e;
+    mag_init(e);
+    mag_mul_ui(e, arb_radref(t), 3);
+    mag_mul_2exp_si(e, e, -1);
+    arb_add_error_mag(d2, e);
+    mag_clear(e);
+    arb_clear(t2);
+  };
+  certify::DistanceResult res;
+  EXPECT_TRUE(certify::prove_one_per_group(res, hulls, derivs, 1, "test")) << res.note;
+  EXPECT_FALSE(res.count_unproven);
 }

@@ -1494,6 +1494,10 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   // F > 0 everywhere (the inner solid lies in the interior of the outer one) and the requested
   // relative width.
   if (!pos(lo) || !arb_le((Ua - lo).v, (lo * tol).v)) return std::nullopt;
+  // lo <= min G <= Ua whenever every enclosure above holds; lo > Ua would be a contradiction
+  // (a defect, not a property of the pair), which arb_set_interval_arf answers with abort():
+  // refuse instead (the width test above passes it, Ua - lo being negative).
+  if (arf_cmp(arb_midref(lo.v), arb_midref(Ua.v)) > 0) return std::nullopt;
   Ball d;
   arb_set_interval_arf(d.v, arb_midref(lo.v), arb_midref(Ua.v), pf);
 
