@@ -98,9 +98,13 @@ Ball upper_point(const Ball& x) {
   arb_get_ubound_arf(arb_midref(r.v), x.v, ball_precision());
   return r;
 }
+// A point of x, whatever the rounding mode (upward under the guards): inf + sup rounds to a
+// value between 2 inf and 2 sup (both representable; chart boxes are far from overflow),
+// halving is exact, so the result lies in x; only a point is needed (the forms enclose G and
+// its derivatives at that point).
 DI midpoint(const DI& x) {
   return DI(0.5 * (x.inf() + x.sup()));
-} // a point of x
+}
 Ball midpoint(const Ball& x) {
   Ball r;
   arb_get_mid_arb(r.v, x.v);
@@ -1468,6 +1472,8 @@ std::optional<DistanceResult> nested_in(const ConvexQuadric& inner, const Convex
   Ball Ua = to_ab(U);
   std::vector<Tight> done;
   for (const Critical& c : crit) {
+    // Ua is always a point (radius 0: to_ab of the point U, or an upper_point), so its
+    // midpoint is its value and the ceiling a double above it: the comparison is certain.
     if (c.value.inf() > arf_get_d(arb_midref(Ua.v), ARF_RND_CEIL))
       continue; // above a genuine value
     Tight t;
