@@ -1,6 +1,7 @@
 # `cmake --install`: the static libraries of the five layers, their public headers (the API
 # header <surfcert/surfcert.hpp> includes the engine's typed results), the `surfcert`
-# executable, and a CMake package (lib/cmake/surfcert) exporting surfcert::surfcert.
+# executable (and surfcert-mpi, in a build with MPI), and a CMake package (lib/cmake/surfcert)
+# exporting surfcert::surfcert.
 include(CMakePackageConfigHelpers)
 install(TARGETS surfcert_core surfcert_algebra surfcert_certify surfcert_trace surfcert_app
                 surfcert_api
@@ -12,6 +13,10 @@ foreach(layer core algebra certify trace)
 endforeach()
 set_target_properties(surfcert_app PROPERTIES EXPORT_NAME app)
 install(TARGETS surfcert RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# `surfcert batch --mpi` execs the surfcert-mpi next to it (app/CMakeLists.txt): same directory.
+if(TARGET surfcert-mpi)
+  install(TARGETS surfcert-mpi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
 foreach(layer core algebra certify trace app)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${layer}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()

@@ -20,9 +20,11 @@
 #include <CLI/CLI.hpp>
 #include <flint/flint.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -457,6 +459,37 @@ std::vector<std::string> mpi_child_command(const Opts& o) {
           budget};
 }
 
+// main's arguments, for exec_mpi_executable.
+char** g_argv = nullptr;
+
+// batch --mpi in an executable that does not run it (app::mpi_executable(), batch_mpi.hpp):
+// replaces this process's image by that executable, in this one's directory, with the same
+// arguments (execv keeps the pid, the open descriptors and the environment mpirun set up, so
+// MPI_Init runs there as it would have here). Returns only if it could not: exit code 2, with
+// the file named (an installation without surfcert-mpi cannot run --mpi).
+int exec_mpi_executable(const char* name) {
+  char self[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) throw std::runtime_error("batch --mpi: cannot find its own executable");
+  self[n] = '\0';
+  std::string path(self);
+  const size_t slash = path.rfind('/');
+  path = (slash == std::string::npos ? std::string() : path.substr(0, slash + 1)) + name;
+  std::vector<char*> args;
+  args.push_back(const_cast<char*>(path.c_str()));
+  for (char** a = g_argv + 1; *a; ++a)
+    args.push_back(*a);
+  args.push_back(nullptr);
+  std::cout.flush();
+  std::fflush(stdout);
+  ::execv(path.c_str(), args.data());
+  const int err = errno;
+  std::cerr << "surfcert: error: batch --mpi runs in " << path << " (built and installed next to "
+            << "this surfcert when MPI is found), which cannot be executed: " << std::strerror(err)
+            << "\n";
+  return 2;
+}
+
 int batch_exit_code(const app::BatchStats& st) {
   // Every line is answered whatever happens; the exit code summarises the worst outcome so
   // that a caller's script notices: internal failures, then bad input lines, then undecided.
@@ -512,6 +545,9 @@ int cmd_batch(const Opts& o) {
     if (!app::mpi_available())
       throw UsageError("--mpi: this surfcert was built without MPI (install openmpi-bin and "
                        "libopenmpi-dev, e.g. with scripts/setup.sh, and build again)");
+    // `surfcert` of a build with MPI: the MPI code is in surfcert-mpi (app/CMakeLists.txt).
+    if (o.mpi)
+      if (const char* exe = app::mpi_executable()) return exec_mpi_executable(exe);
   } else if (!o.checkpoint.empty() || o.retry_undecided > 0 || o.rank_timeout_set) {
     throw UsageError(std::string(!o.checkpoint.empty() ? "--checkpoint"
                                  : o.rank_timeout_set  ? "--rank-timeout"
@@ -621,6 +657,7 @@ const char* kQsicDetailHelp =
 
 int main(int argc, char** argv) {
   app::install_flint_abort_handler(); // a FLINT abort becomes an internal error (exit code 1)
+  g_argv = argv;
   int rc = 1;
   Opts o;
   CLI::App cli{"surfcert: certified topology of the intersection of two quadrics", "surfcert"};

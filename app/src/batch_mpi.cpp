@@ -796,6 +796,10 @@ void run_worker(const MpiBatchOptions& o, bool recovery) {
 
 } // namespace mpi_batch
 
+const char* mpi_executable() {
+  return nullptr; // this executable (surfcert-mpi) runs batch --mpi itself
+}
+
 bool mpi_available() {
   return true;
 }

@@ -10,6 +10,10 @@ bool mpi_available() {
   return false;
 }
 
+const char* mpi_executable() {
+  return nullptr;
+}
+
 BatchStats run_batch_mpi(int, const MpiBatchOptions&, bool*, MpiBatchReport*) {
   throw std::runtime_error("this surfcert was built without MPI");
 }

@@ -5,12 +5,15 @@
 // combinations exit 2; resume after SIGKILL of rank 0 from the checkpoint; a killed compute
 // child (lines retried; a line lost twice is an internal error line); a killed worker rank
 // under `mpirun --enable-recovery` (its lines retried by the other worker, or by rank 0 once no
-// worker is left); --retry-undecided.
+// worker is left); --retry-undecided. The `surfcert` these tests run does not load libmpi:
+// its batch --mpi execs the surfcert-mpi next to it (app/CMakeLists.txt), so every test here
+// goes through that exec; without surfcert-mpi, --mpi exits 2 naming the missing file.
 #include "surfcert/core/io/json.hpp"
 
 #include <gtest/gtest.h>
 
 #include <dirent.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -522,4 +525,44 @@ TEST(BatchMpiFaults, KilledWorkerRankUnderRecoveryLosesOnlyItsLines) {
 
 TEST(BatchMpiFaults, LastWorkerRankKilledUnderRecoveryRankZeroFinishes) {
   kill_worker_rank(2);
+}
+
+// `surfcert` does not load Open MPI (libmpi, libopen-rte, libopen-pal: ~85 page faults at every
+// start); surfcert-mpi does (the check sees them where they are).
+TEST(BatchMpiExec, SurfcertDoesNotLoadLibmpi) {
+  const Outcome plain = sh(std::string("ldd ") + SURFCERT_BINARY, "/dev/null");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  ASSERT_NE(plain.out.find("libflint"), std::string::npos) << plain.out; // ldd listed them
+  EXPECT_EQ(plain.out.find("libmpi"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("libopen-"), std::string::npos) << plain.out;
+  const Outcome mpi = sh(std::string("ldd ") + SURFCERT_MPI_BINARY, "/dev/null");
+  ASSERT_EQ(mpi.code, 0) << mpi.err;
+  EXPECT_NE(mpi.out.find("libmpi"), std::string::npos) << mpi.out;
+  EXPECT_NE(mpi.out.find("libopen-pal"), std::string::npos) << mpi.out;
+}
+
+// A `surfcert` without surfcert-mpi next to it: batch --mpi exits 2 naming the missing file,
+// with no answer written; the single-process batch still runs.
+TEST(BatchMpiExec, WithoutSurfcertMpiBatchMpiNamesTheMissingFile) {
+  const std::string dir = tmp_path("alone");
+  ASSERT_EQ(mkdir(dir.c_str(), 0700), 0);
+  const std::string bin = dir + "/surfcert";
+  ASSERT_EQ(std::system(("cp " + std::string(SURFCERT_BINARY) + " " + bin).c_str()), 0);
+  const std::string in = tmp_path("alone_in");
+  std::ofstream(in) << R"({"id":"d","op":"distance","a":"x^2+y^2+z^2=1","b":"(x-3)^2+y^2+z^2=1"})"
+                    << "\n";
+  const Outcome r = sh(mpirun(1) + bin + " batch --mpi", in);
+  EXPECT_NE(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find(dir + "/surfcert-mpi"), std::string::npos) << r.err;
+  const Outcome direct = sh(bin + " batch --mpi", in);
+  EXPECT_EQ(direct.code, 2) << direct.err;
+  EXPECT_NE(direct.err.find(dir + "/surfcert-mpi"), std::string::npos) << direct.err;
+  EXPECT_EQ(direct.out, "");
+  const Outcome single = sh(bin + " batch", in);
+  EXPECT_EQ(single.code, 0) << single.err;
+  EXPECT_NE(single.out.find("\"status\":\"certified\""), std::string::npos) << single.out;
+  std::remove(bin.c_str());
+  std::remove(in.c_str());
+  rmdir(dir.c_str());
 }

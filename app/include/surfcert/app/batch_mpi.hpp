@@ -39,9 +39,15 @@
 //   - retry_budget_ms > 0: lines answered undecided with reason "budget" are run again, after
 //     every first-pass line, with "budget_ms" set to retry_budget_ms; their answer is the
 //     second pass's.
-// These functions are defined by the optional component surfcert_batch_mpi that the `surfcert`
-// executable links (app/CMakeLists.txt): with MPI when CMake finds it, else as stubs
-// (mpi_available() false, the others throw std::runtime_error).
+// These functions are defined by the optional component the executables link
+// (app/CMakeLists.txt). When CMake finds MPI, the build makes two executables from the same
+// main (app/cli): `surfcert-mpi`, linked with MPI (surfcert_batch_mpi), and `surfcert`, linked
+// without it (surfcert_batch_mpi_exec: libmpi and its chain cost every process ~85 page
+// faults, 5-8 ms at startup), whose `batch --mpi` replaces its own image with the
+// `surfcert-mpi` next to it (execv, same pid, same arguments and environment, so MPI_Init runs
+// in that image under mpirun as it would have in this one): mpi_executable() names it there,
+// and run_batch_mpi is never called. Without MPI, stubs: mpi_available() false,
+// mpi_executable() null, the others throw std::runtime_error.
 #pragma once
 
 #include "surfcert/app/scene.hpp"
@@ -81,8 +87,13 @@ struct MpiBatchReport {
   bool local_fallback = false;
 };
 
-/// Whether this executable was built with MPI (CMake found it).
+/// Whether this build has MPI (CMake found it): `batch --mpi` runs, here or in mpi_executable().
 bool mpi_available();
+
+/// The file name of the executable, in this executable's directory, that runs `batch --mpi`
+/// in place of this one (execv with the same arguments): "surfcert-mpi" in the `surfcert`
+/// of a build with MPI; null where run_batch_mpi runs here (surfcert-mpi) or nowhere (no MPI).
+const char* mpi_executable();
 
 /// Initializes MPI, runs rank 0 or a worker (see above), finalizes MPI. On rank 0 the stats of
 /// the run; on workers all zero with *is_root = false (they write nothing).
