@@ -127,24 +127,27 @@ private:
 // buffer that the input is idle (so answers already computed are written, not held).
 class FdLineReader {
 public:
-  FdLineReader(int fd, OutputBuffer& out) : fd_(fd), out_(out), buf_(1 << 16) {}
+  // The buffer is not zeroed (a vector<char> would be): its pages are touched only as input
+  // arrives (16 page faults of ~40 µs each on an empty input, otherwise).
+  FdLineReader(int fd, OutputBuffer& out)
+      : fd_(fd), out_(out), buf_(new char[kInitialSize]), size_(kInitialSize) {}
 
   // The next line; without may_wait, only a line whose bytes have already arrived (else
   // WouldBlock: the caller hands over the lines it holds before it waits).
   detail::NextLine next(std::string& line, bool may_wait) {
     for (;;) {
-      if (const void* nl = std::memchr(buf_.data() + begin_, '\n', end_ - begin_)) {
-        const size_t e = static_cast<size_t>(static_cast<const char*>(nl) - buf_.data());
+      if (const void* nl = std::memchr(buf_.get() + begin_, '\n', end_ - begin_)) {
+        const size_t e = static_cast<size_t>(static_cast<const char*>(nl) - buf_.get());
         // Room behind the line for a parser's padding (the fast line reader, batch_line.cpp,
         // reads 64 bytes past the end): no copy there.
         line.reserve(e - begin_ + 64);
-        line.assign(buf_.data() + begin_, e - begin_);
+        line.assign(buf_.get() + begin_, e - begin_);
         begin_ = e + 1;
         return detail::NextLine::Line;
       }
       if (eof_) {
         if (begin_ == end_) return detail::NextLine::End;
-        line.assign(buf_.data() + begin_, end_ - begin_); // the last line has no '\n'
+        line.assign(buf_.get() + begin_, end_ - begin_); // the last line has no '\n'
         begin_ = end_;
         return detail::NextLine::Line;
       }
@@ -157,18 +160,23 @@ private:
   bool fill(bool may_wait) {
     // Keep the partial line, make room behind it.
     if (begin_ > 0) {
-      std::memmove(buf_.data(), buf_.data() + begin_, end_ - begin_);
+      std::memmove(buf_.get(), buf_.get() + begin_, end_ - begin_);
       end_ -= begin_;
       begin_ = 0;
     }
-    if (end_ == buf_.size()) buf_.resize(2 * buf_.size());
+    if (end_ == size_) {
+      std::unique_ptr<char[]> bigger(new char[2 * size_]);
+      std::memcpy(bigger.get(), buf_.get(), end_);
+      buf_ = std::move(bigger);
+      size_ *= 2;
+    }
     pollfd p{fd_, POLLIN, 0};
     const bool ready = ::poll(&p, 1, 0) > 0;
     if (!ready && !may_wait) return false;
     if (!ready) out_.set_input_idle(true);
     ssize_t n;
     do
-      n = ::read(fd_, buf_.data() + end_, buf_.size() - end_);
+      n = ::read(fd_, buf_.get() + end_, size_ - end_);
     while (n < 0 && errno == EINTR);
     if (!ready) out_.set_input_idle(false);
     if (n <= 0) {
@@ -182,7 +190,9 @@ private:
 
   int fd_;
   OutputBuffer& out_;
-  std::vector<char> buf_;
+  static constexpr size_t kInitialSize = 1 << 16;
+  std::unique_ptr<char[]> buf_; // [0, size_): [begin_, end_) read and not yet returned
+  size_t size_;
   size_t begin_ = 0, end_ = 0;
   bool eof_ = false;
 };
@@ -388,6 +398,71 @@ run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait
                    bool ordered, const std::function<void(const BatchStats&)>& progress) {
   install_flint_abort_handler();
   if (threads < 1) threads = 1;
+  ChunkPool pool;
+  Writer writer(write, ordered, progress);
+  long next_no = 1, next_seq = 0;
+  bool ended = false;
+  // Stage 1, in input order: the next chunk of lines, or null at the end of input.
+  auto read_chunk = [&]() -> Chunk* {
+    if (ended) return nullptr;
+    Chunk* c = pool.take();
+    size_t bytes = 0;
+    while (c->n < kChunkLines && bytes < kChunkBytes) {
+      if (c->items.size() == c->n) {
+        c->items.emplace_back();
+        c->complete.push_back(0);
+      }
+      BatchItem& item = c->items[c->n];
+      // The first line may wait for input; later ones only if already there.
+      const NextLine r = next_line(item.line, c->n == 0);
+      if (r == NextLine::End) ended = true;
+      if (r != NextLine::Line) break;
+      item.line_no = next_no++;
+      bytes += item.line.size();
+      ++c->n;
+    }
+    if (c->n == 0) {
+      pool.give(c);
+      return nullptr;
+    }
+    c->seq = next_seq++;
+    writer.enter(c);
+    return c;
+  };
+  // Stage 2: answer i of c, written as soon as it may be.
+  auto answer_line = [default_mode, &answer, &writer](Chunk* c, size_t i) {
+    BatchItem& item = c->items[i];
+    try { // the per-line guard: nothing escapes into the pipeline
+      item.answer = answer(item.line, item.line_no, default_mode);
+    } catch (const std::exception& e) {
+      item.answer = {core::io::dump(internal_error_line(core::io::Json::null(), e.what())), "error",
+                     "internal", false};
+    } catch (...) {
+      item.answer = {
+          core::io::dump(internal_error_line(core::io::Json::null(), "unknown exception")), "error",
+          "internal", false};
+    }
+    c->completed(i);
+    writer.answered(c, i);
+  };
+  // Stage 3, in input order (ordered): c is done.
+  auto leave = [&](Chunk* c) {
+    writer.leave(c);
+    pool.give(c);
+  };
+  if (threads == 1) {
+    // One thread: the stages in turn on this thread, as TBB's pipeline runs them with one
+    // thread (a chunk read, answered line by line, left; then the next), without starting
+    // TBB's scheduler and allocator (~85 page faults, ~3 ms of every process's start: the
+    // common `surfcert batch --threads 1` of short runs; bench/results/double_path.md).
+    // Nothing below the app layer uses TBB, so nothing else is held to one thread here.
+    while (Chunk* c = read_chunk()) {
+      for (size_t i = c->next.fetch_add(1); i < c->n; i = c->next.fetch_add(1))
+        answer_line(c, i);
+      leave(c);
+    }
+    return writer.stats();
+  }
   // --threads N: at most N threads answer lines, and at most 4 N chunks are in flight (read,
   // being answered, or waiting for an earlier chunk to be written).
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -397,92 +472,44 @@ run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait
   // reachable.
   static FlintCleanupObserver* const cleanup = new FlintCleanupObserver();
   (void)cleanup;
-  ChunkPool pool;
-  Writer writer(write, ordered, progress);
-  long next_no = 1, next_seq = 0;
-  bool ended = false;
   tbb::parallel_pipeline(
       static_cast<size_t>(4 * threads),
       tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order,
                                      [&](tbb::flow_control& fc) -> Chunk* {
-                                       if (ended) {
-                                         fc.stop();
-                                         return nullptr;
-                                       }
-                                       Chunk* c = pool.take();
-                                       size_t bytes = 0;
-                                       while (c->n < kChunkLines && bytes < kChunkBytes) {
-                                         if (c->items.size() == c->n) {
-                                           c->items.emplace_back();
-                                           c->complete.push_back(0);
-                                         }
-                                         BatchItem& item = c->items[c->n];
-                                         // The first line may wait for input; later ones only if
-                                         // already there.
-                                         const NextLine r = next_line(item.line, c->n == 0);
-                                         if (r == NextLine::End) ended = true;
-                                         if (r != NextLine::Line) break;
-                                         item.line_no = next_no++;
-                                         bytes += item.line.size();
-                                         ++c->n;
-                                       }
-                                       if (c->n == 0) {
-                                         pool.give(c);
-                                         fc.stop();
-                                         return nullptr;
-                                       }
-                                       c->seq = next_seq++;
-                                       writer.enter(c);
+                                       Chunk* c = read_chunk();
+                                       if (!c) fc.stop();
                                        return c;
                                      }) &
-          tbb::make_filter<Chunk*, Chunk*>(
-              tbb::filter_mode::parallel,
-              [default_mode, &answer, &writer](Chunk* c) {
-                auto answer_line = [&](size_t i) {
-                  BatchItem& item = c->items[i];
-                  try { // the per-line guard: nothing escapes into the pipeline
-                    item.answer = answer(item.line, item.line_no, default_mode);
-                  } catch (const std::exception& e) {
-                    item.answer = {
-                        core::io::dump(internal_error_line(core::io::Json::null(), e.what())),
-                        "error", "internal", false};
-                  } catch (...) {
-                    item.answer = {core::io::dump(internal_error_line(core::io::Json::null(),
-                                                                      "unknown exception")),
-                                   "error", "internal", false};
-                  }
-                  c->completed(i);
-                  writer.answered(c, i);
-                };
-                // The lines are answered in turn by this thread; a helper task, stolen only by
-                // an idle thread, answers lines of the chunk too (and leaves another helper
-                // behind each line it takes), so a slow line does not hold back the lines
-                // after it in its chunk while a thread is free (unordered output writes them
-                // at once).
-                tbb::task_group helpers;
-                std::function<void()> help = [&] {
-                  for (;;) {
-                    const size_t i = c->next.fetch_add(1);
-                    if (i >= c->n) return;
-                    if (i + 1 < c->n) helpers.run([&] { help(); });
-                    answer_line(i);
-                  }
-                };
-                if (c->n > 1) helpers.run([&] { help(); });
-                for (;;) {
-                  const size_t i = c->next.fetch_add(1);
-                  if (i >= c->n) break;
-                  answer_line(i);
-                }
-                helpers.wait();
-                return c;
-              }) &
+          tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel,
+                                           [&answer_line](Chunk* c) {
+                                             // The lines are answered in turn by this thread; a
+                                             // helper task, stolen only by an idle thread, answers
+                                             // lines of the chunk too (and leaves another helper
+                                             // behind each line it takes), so a slow line does not
+                                             // hold back the lines after it in its chunk while a
+                                             // thread is free (unordered output writes them at
+                                             // once).
+                                             tbb::task_group helpers;
+                                             std::function<void()> help = [&] {
+                                               for (;;) {
+                                                 const size_t i = c->next.fetch_add(1);
+                                                 if (i >= c->n) return;
+                                                 if (i + 1 < c->n) helpers.run([&] { help(); });
+                                                 answer_line(c, i);
+                                               }
+                                             };
+                                             if (c->n > 1) helpers.run([&] { help(); });
+                                             for (;;) {
+                                               const size_t i = c->next.fetch_add(1);
+                                               if (i >= c->n) break;
+                                               answer_line(c, i);
+                                             }
+                                             helpers.wait();
+                                             return c;
+                                           }) &
           tbb::make_filter<Chunk*, void>(ordered ? tbb::filter_mode::serial_in_order
                                                  : tbb::filter_mode::serial_out_of_order,
-                                         [&](Chunk* c) {
-                                           writer.leave(c);
-                                           pool.give(c);
-                                         }));
+                                         leave));
   return writer.stats();
 }
 

@@ -1,7 +1,8 @@
 // Batch streaming (app/batch_stream.hpp): a batch killed by SIGTERM has written every answer it
 // completed (through `timeout` on the real executable, and with answers held back by a long
 // write delay so that only the signal path can write them); a caller that sends a line and
-// waits gets its answer while the input stays open.
+// waits gets its answer while the input stays open; --threads 1 (the stages in turn, without
+// TBB) answers like the TBB pipeline, long lines included, and does not start TBB.
 #include "surfcert/app/batch_stream.hpp"
 #include "surfcert/core/io/json.hpp"
 
@@ -14,6 +15,7 @@
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -207,4 +209,78 @@ TEST(BatchStream, AnswersArriveWhileTheInputStaysOpen) {
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
     close(out[0]);
   }
+}
+
+namespace {
+
+// The command's output with every "time_ms" removed (the one field that differs between runs).
+std::string untimed(const std::string& out) {
+  static const std::regex time_field(R"(,"time_ms":[0-9.eE+-]+)");
+  return std::regex_replace(out, time_field, "");
+}
+
+std::string run_batch(const std::string& args, const std::string& in) {
+  const std::string out = tmp_path("run_out");
+  const std::string cmd =
+      std::string(SURFCERT_BINARY) + " batch " + args + " <" + in + " >" + out + " 2>/dev/null";
+  const int st = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << cmd;
+  std::string text = slurp(out);
+  std::remove(out.c_str());
+  return text;
+}
+
+} // namespace
+
+// --threads 1 runs the pipeline's stages in turn without TBB (batch_stream.cpp); --threads 2
+// through TBB's pipeline: the same answers in the same order, over several chunks (64 lines
+// each), a line of 200 KB (the reader's buffer, 64 KB, grows: the line's answer is the one
+// of the same line without its padding) and a last line without '\n'.
+TEST(BatchStream, OneThreadAnswersLikeTheTbbPipeline) {
+  std::string text;
+  const int kLines = 300;
+  for (int i = 0; i < kLines; ++i) {
+    std::string l = fast_line(i);
+    if (i == 150) l.insert(1, std::string(200000, ' ')); // JSON whitespace
+    text += l + (i + 1 < kLines ? "\n" : "");
+  }
+  const std::string in = tmp_path("same_in");
+  std::ofstream(in) << text;
+  const std::string one = untimed(run_batch("--threads 1", in));
+  const std::string two = untimed(run_batch("--threads 2", in));
+  const std::string one_unordered = untimed(run_batch("--threads 1 --unordered", in));
+  std::remove(in.c_str());
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(one_unordered, one); // one thread: completion order is input order
+  const auto ids = ids_of(one);
+  ASSERT_EQ(ids.size(), static_cast<size_t>(kLines));
+  for (int i = 0; i < kLines; ++i)
+    EXPECT_EQ(ids[static_cast<size_t>(i)], std::to_string(i));
+  std::vector<std::string> lines;
+  std::istringstream ls(one);
+  for (std::string l; std::getline(ls, l);)
+    lines.push_back(l);
+  const std::string padded = lines[150], plain = lines[149];
+  EXPECT_EQ(padded.substr(padded.find(',')), plain.substr(plain.find(','))); // bar the id
+}
+
+// --threads 1 does not start TBB's scheduler: its allocator (libtbbmalloc, loaded by libtbb when
+// the scheduler starts) stays unloaded; --threads 2 loads it (the check sees it).
+TEST(BatchStream, OneThreadDoesNotStartTbb) {
+  const std::string in = tmp_path("tbb_in"), err = tmp_path("tbb_err");
+  std::ofstream(in) << fast_line(1) << "\n" << fast_line(2) << "\n";
+  for (int threads : {1, 2}) {
+    const std::string cmd = "LD_DEBUG=files " + std::string(SURFCERT_BINARY) + " batch --threads " +
+                            std::to_string(threads) + " <" + in + " >/dev/null 2>" + err;
+    const int st = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << cmd;
+    const std::string loaded = slurp(err);
+    ASSERT_NE(loaded.find("libtbb.so"), std::string::npos) << loaded; // LD_DEBUG reported
+    if (threads == 1)
+      EXPECT_EQ(loaded.find("libtbbmalloc"), std::string::npos) << loaded;
+    else
+      EXPECT_NE(loaded.find("libtbbmalloc"), std::string::npos) << loaded;
+  }
+  std::remove(in.c_str());
+  std::remove(err.c_str());
 }

@@ -1,5 +1,6 @@
 // surfcert::app batch streaming: JSON lines in, one answer line out per input line, through a
-// TBB pipeline (serial read -> parallel answer -> serial write), on streams or on raw file
+// TBB pipeline (serial read -> parallel answer -> serial write; with one thread the same
+// stages in turn on the calling thread, without starting TBB), on streams or on raw file
 // descriptors.
 //
 // What it represents: the machinery of `surfcert batch` around the answer of one line
