@@ -5,6 +5,7 @@
 #include <flint/fmpz_poly_factor.h>
 
 #include <algorithm>
+#include <atomic>
 #include <climits>
 #include <cmath>
 #include <optional>
@@ -512,10 +513,80 @@ void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rationa
   bisect_root(p, slo, lo, hi, width);
 }
 
+namespace {
+
+std::atomic<RootPlacement> g_placement{RootPlacement::Bisect};
+
+// q rounded to the nearest multiple of 2^e (ties up).
+Rational round_to_2exp(const Rational& q, slong e) {
+  const auto ue = static_cast<ulong>(e >= 0 ? e : -e);
+  Rational t;
+  if (e >= 0)
+    fmpq_div_2exp(t.raw_mut(), q.raw(), ue);
+  else
+    fmpq_mul_2exp(t.raw_mut(), q.raw(), ue);
+  t = t + Rational(1, 2);
+  core::Integer n;
+  fmpz_fdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
+  Rational r(n);
+  if (e >= 0)
+    fmpq_mul_2exp(r.raw_mut(), r.raw(), ue);
+  else
+    fmpq_div_2exp(r.raw_mut(), r.raw(), ue);
+  return r;
+}
+
+// The testing placements (RootPlacement): the root first pinned by bisection to `fine`, then
+// an interval of width <= width around it, clipped to the input (lo, hi). Its new ends lie in
+// the input interval outside the pinned one, so they are not roots and keep the input's signs
+// (one simple root in the input): valid by construction, no further sign needed.
+void place_root(const UPolyZ& p, int slo, Rational& lo, Rational& hi, const Rational& width,
+                RootPlacement pl) {
+  const Rational olo = lo, ohi = hi;
+  Rational fine = width;
+  fmpq_div_2exp(fine.raw_mut(), fine.raw(), pl == RootPlacement::Tiny ? 20 : 16);
+  bisect_root(p, slo, lo, hi, fine);
+  if (lo == hi || pl == RootPlacement::Tiny) return;
+  Rational half = width * Rational(1, 2);
+  Rational a, b;
+  if (pl == RootPlacement::RootNearLo) {
+    a = lo;
+    b = lo + width;
+  } else if (pl == RootPlacement::RootNearHi) {
+    a = hi - width;
+    b = hi;
+  } else { // Centred: the midpoint snapped to a grid of about width / 64
+    const Rational m = round_to_2exp((lo + hi) * Rational(1, 2), log2_upper(width) - 7);
+    a = m - half * Rational(63, 64);
+    b = m + half * Rational(63, 64);
+    if (!(a < lo && hi < b)) return; // the grid moved the centre too far: keep the pinned one
+  }
+  lo = olo < a ? a : olo;
+  hi = b < ohi ? b : ohi;
+}
+
+} // namespace
+
+void set_root_placement(RootPlacement placement) {
+  g_placement.store(placement);
+}
+RootPlacement root_placement() {
+  return g_placement.load(std::memory_order_relaxed);
+}
+
 void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width) {
+  const RootPlacement pl = root_placement();
+  if (pl == RootPlacement::Newton) {
+    refine_root_newton(p, lo, hi, width);
+    return;
+  }
   const int slo = end_sign(p, lo, hi);
   if (slo == 0) return;
-  bisect_root(p, slo, lo, hi, width);
+  if (pl == RootPlacement::Bisect || hi - lo <= width) {
+    bisect_root(p, slo, lo, hi, width);
+    return;
+  }
+  place_root(p, slo, lo, hi, width, pl);
 }
 
 void refine_root_newton(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width) {

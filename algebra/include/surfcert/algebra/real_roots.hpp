@@ -52,7 +52,20 @@ std::vector<double> critical_point_separators(const std::vector<double>& coeffs,
 
 /// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, by exact
 /// bisection until hi - lo <= width (or the root is hit exactly, then lo == hi).
+/// With a placement other than Bisect set (set_root_placement, a testing hook) the interval
+/// is another valid one: inside (lo, hi), of width <= width, p(lo)p(hi) < 0 (exact signs).
 void refine_root(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width);
+
+/// Where refine_root puts its interval among the valid ones. A testing hook: a certified route
+/// must not depend on which valid interval it is handed (the same certified answer for every
+/// placement). Bisect (nested halvings) is the default; Newton is refine_root_newton's bracket
+/// (the root near its centre, on a dyadic grid); Centred the root within width / 2^16 of a
+/// grid-snapped centre (mirror-symmetric roots get mirror-symmetric intervals); RootNearLo /
+/// RootNearHi the root within width / 2^16 of an end; Tiny width / 2^20 (far narrower than asked).
+enum class RootPlacement { Bisect, Newton, Centred, RootNearLo, RootNearHi, Tiny };
+/// Process-wide (every thread; tests set it around a call and restore Bisect).
+void set_root_placement(RootPlacement placement);
+RootPlacement root_placement();
 
 /// The same contract, faster far from the width: a float Newton estimate (Arb midpoints, no
 /// guarantee) proposes a bracket of the width around the root; its ends are kept only as far

@@ -35,9 +35,11 @@ std::array<const arb_struct*, 3> ball_point(const Ball (&x)[3]);
 /// |v| of a vector of balls.
 void ball_norm(arb_t out, const Ball (&v)[3], long prec);
 
-/// Real roots of a2 t^2 + a1 t + a0 = 0 (balls; a2 may be exactly 0). Returns false when
-/// their reality (or count) is not certain at this precision; n = number of roots written.
-/// r[0] is the root of smallest magnitude when a1 != 0.
+/// Real roots of a2 t^2 + a1 t + a0 = 0 (balls; a2 may be 0). Each of r[0 .. n) encloses a
+/// real root of the exact equation. true with n = 0: no real root (proven); n = 1: r[0] (the
+/// root of smallest magnitude when a1 != 0) - the only one when a2 = 0, and when a2's ball
+/// contains 0 the other root, which may not exist, is not written; n = 2: both. false when
+/// no root is certain at this precision (disc or the denominator not away from 0).
 bool ball_quadratic_roots(const arb_t a2, const arb_t a1, const arb_t a0, Ball (&r)[2], int& n,
                           long prec);
 
