@@ -17,6 +17,21 @@ long count_real_roots(const UPolyZ& p) {
   return static_cast<long>(fmpz_poly_num_real_roots_sturm(p.raw()));
 }
 
+bool has_real_root(const UPolyZ& p) {
+  if (p.degree() <= 0) return false;
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor_squarefree(fac, p.raw());
+  bool real = false;
+  for (slong i = 0; i < fac->num && !real; ++i) {
+    UPolyZ f;
+    fmpz_poly_set(f.raw_mut(), fac->p + i);
+    real = f.degree() >= 1 && count_real_roots(f) > 0;
+  }
+  fmpz_poly_factor_clear(fac);
+  return real;
+}
+
 std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>& c) {
   using cd = std::complex<double>;
   const size_t n = c.size() - 1;

@@ -176,6 +176,9 @@ struct Root {
 std::vector<Root> roots_of(const Chart& ch) {
   std::vector<Root> out;
   UPolyZ rz = ch.r.primitive_integer();
+  // No real point at infinity (every bounded curve): a Sturm count settles it; the full
+  // factorisation below (FLINT's Zassenhaus on large coefficients) cost most of this route.
+  if (!algebra::has_real_root(rz)) return out;
   fmpz_poly_factor_t fac;
   fmpz_poly_factor_init(fac);
   fmpz_poly_factor(fac, rz.raw());

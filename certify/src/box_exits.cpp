@@ -3,10 +3,13 @@
 
 #include "box_exits_double_line.hpp"
 
+#include "surfcert/certify/enclosure.hpp"
+
 #include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 
+#include <CGAL/FPU.h>
 #include <flint/fmpz_poly.h>
 #include <flint/fmpz_poly_factor.h>
 
@@ -59,20 +62,6 @@ struct FaceChart {
   UPolyQ s11, s10;
 };
 
-bool has_real_root(const UPolyZ& p) {
-  fmpz_poly_factor_t fac;
-  fmpz_poly_factor_init(fac);
-  fmpz_poly_factor_squarefree(fac, p.raw());
-  bool real = false;
-  for (slong i = 0; i < fac->num && !real; ++i) {
-    UPolyZ f;
-    fmpz_poly_set(f.raw_mut(), fac->p + i);
-    real = f.degree() >= 1 && algebra::count_real_roots(f) > 0;
-  }
-  fmpz_poly_factor_clear(fac);
-  return real;
-}
-
 enum class ChartOutcome { Ok, SharedComponent, Failed };
 
 // The charts tried, in order: shears of (u, v) and of (v, u) by small fixed rationals.
@@ -112,7 +101,7 @@ ChartOutcome face_chart(const M3& ca, const M3& cb, FaceChart& out) {
       // that misses the face); a multiple real root is not read: another chart.
       UPolyZ g;
       fmpz_poly_gcd(g.raw_mut(), rz.raw(), rz.derivative().raw());
-      if (has_real_root(g)) continue;
+      if (algebra::has_real_root(g)) continue;
       fmpz_poly_div(rz.raw_mut(), rz.raw(), g.raw());
     }
     out = FaceChart{t, r, rz, B2 * a.c1 - A2 * b.c1, B2 * a.c0 - A2 * b.c0};
@@ -159,6 +148,64 @@ Where against(const Ball& v, const Rational& lo, const Rational& hi, long prec) 
   if (arb_lt(v.v, l.v) || arb_gt(v.v, h.v)) return Where::Outside;
   if (arb_gt(v.v, l.v) && arb_lt(v.v, h.v)) return Where::Inside;
   return Where::Unknown;
+}
+
+// A face conic in interval arithmetic (entries enclosing the exact ones).
+struct IConic {
+  Interval c00, c01, c11, c02, c12, c22;
+  explicit IConic(const M3& m)
+      : c00(enclose(m[0][0])), c01(enclose(m[0][1])), c11(enclose(m[1][1])), c02(enclose(m[0][2])),
+        c12(enclose(m[1][2])), c22(enclose(m[2][2])) {}
+  // An enclosure of the form over the cell mu + du, mv + dv (centred form: exact Taylor
+  // expansion at the midpoint, tight on small cells).
+  Interval over(double mu, double mv, const Interval& du, const Interval& dv) const {
+    const Interval u(mu), v(mv);
+    const Interval fu = c00 * u + c01 * v + c02, fv = c01 * u + c11 * v + c12;
+    const Interval f = (fu + c02) * u + (fv + c12) * v + c22; // the form at the midpoint
+    return f + Interval(2) * (fu * du + fv * dv + c01 * du * dv) + c00 * CGAL::square(du) +
+           c11 * CGAL::square(dv);
+  }
+};
+
+// The float filter's proof that the two face conics have no common point in the closed
+// rectangle [u_lo, u_hi] x [v_lo, v_hi]: rigorous interval enclosures (rounding upwards) over
+// the cells of a subdivision, each cell excluded when one form's enclosure misses 0. False
+// (nothing proved: the exact route decides) when `budget` cells did not suffice — a crossing,
+// or conics passing close, on this face.
+bool no_common_point(const M3& ca, const M3& cb, const Rational& u_lo, const Rational& u_hi,
+                     const Rational& v_lo, const Rational& v_hi, int budget) {
+  CGAL::Protect_FPU_rounding<true> guard;
+  const IConic a(ca), b(cb);
+  struct Cell {
+    double u0, u1, v0, v1;
+  };
+  // The rectangle grown outwards to doubles (the cells cover it).
+  const Interval iu0 = enclose(u_lo), iu1 = enclose(u_hi), iv0 = enclose(v_lo), iv1 = enclose(v_hi);
+  std::vector<Cell> todo{{iu0.inf(), iu1.sup(), iv0.inf(), iv1.sup()}};
+  while (!todo.empty()) {
+    if (budget-- <= 0) return false;
+    const Cell c = todo.back();
+    todo.pop_back();
+    // Any midpoint will do: du, dv enclose [u0, u1] - mu and [v0, v1] - mv (rounded outwards).
+    const double mu = 0.5 * c.u0 + 0.5 * c.u1, mv = 0.5 * c.v0 + 0.5 * c.v1;
+    const Interval du = Interval(c.u0, c.u1) - Interval(mu),
+                   dv = Interval(c.v0, c.v1) - Interval(mv);
+    if (!std::isfinite(du.inf()) || !std::isfinite(du.sup()) || !std::isfinite(dv.inf()) ||
+        !std::isfinite(dv.sup()))
+      return false;
+    if (!a.over(mu, mv, du, dv).do_overlap(Interval(0)) ||
+        !b.over(mu, mv, du, dv).do_overlap(Interval(0)))
+      continue;
+    if (!(c.u0 < mu && mu < c.u1) || !(c.v0 < mv && mv < c.v1)) return false; // no split left
+    if (c.u1 - c.u0 >= c.v1 - c.v0) {
+      todo.push_back({c.u0, mu, c.v0, c.v1});
+      todo.push_back({mu, c.u1, c.v0, c.v1});
+    } else {
+      todo.push_back({c.u0, c.u1, c.v0, mv});
+      todo.push_back({c.u0, c.u1, mv, c.v1});
+    }
+  }
+  return true;
 }
 
 } // namespace
@@ -216,6 +263,9 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Ra
         }
         continue;
       }
+      // The float filter first: a face the curve provably misses needs no exact work (most
+      // faces: every face of a box around bounded loops).
+      if (no_common_point(ca, cb, lo[i], hi[i], lo[j], hi[j], 256)) continue;
       FaceChart fc;
       switch (face_chart(ca, cb, fc)) {
       case ChartOutcome::SharedComponent:

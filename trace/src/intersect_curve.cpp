@@ -529,13 +529,17 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   };
   // An automatic box is doubled (at most 6 times) while it shows fewer open pieces than the
   // certified number of unbounded branches: a branch may pass outside the first box.
+  const bool all_closed =
+      curve_by_conics && !conics.empty() &&
+      std::all_of(conics.begin(), conics.end(), [](const Branch& br) { return br.closed; });
   auto trace_at = [&](const Box& in) {
     TraceOptions bopt = opt;
     bopt.box = in;
     out.branches.clear();
     if (curve_by_conics) {
-      // Open conics sampled far enough to leave this box.
-      conics = conic_branches(a, b, t.facts, bopt);
+      // Open conics sampled far enough to leave this box. (Closed ones do not depend on the
+      // box: the conics sampled for the sizing are reused when all are closed.)
+      if (!all_closed) conics = conic_branches(a, b, t.facts, bopt);
       for (const auto& br : conics) {
         if (br.closed) {
           out.branches.push_back(br);

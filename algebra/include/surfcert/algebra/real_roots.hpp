@@ -28,6 +28,10 @@ struct RootSeparation {
 /// Exact number of distinct real roots of a square-free polynomial (Sturm, FLINT).
 long count_real_roots(const UPolyZ& squarefree);
 
+/// Whether p (any nonzero polynomial, square-free or not) has a real root: the Sturm counts of
+/// its square-free factors (FLINT), exact. Far cheaper than a full factorisation.
+bool has_real_root(const UPolyZ& p);
+
 /// Separators for a square-free, nonzero polynomial (degree >= 0). Exact.
 RootSeparation isolate_real_roots(const UPolyZ& squarefree);
 

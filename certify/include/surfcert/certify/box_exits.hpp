@@ -7,6 +7,12 @@
 // inside the box is a set of closed loops and exactly points.size() / 2 arcs, each arc ending
 // on two of these points (a traced picture must show that many open pieces, ending there).
 //
+// A filter first: a face is skipped when interval arithmetic (directed rounding, over a
+// subdivision of at most 256 cells) proves that the two face conics have no common point in the
+// closed face rectangle — a proof, not an estimate; a face it cannot clear goes the exact route.
+// (Such a face then carries no crossing even when the face's plane holds a component of the
+// curve outside the rectangle, which the exact route reports as not certified.)
+//
 // How (exact): on the face x_k = c both quadrics restrict to conics in the face's coordinates
 // (u, v); in a chart (x, y) sheared from (u, v) by a fixed rational matrix, chosen so that
 // conic A has a nonzero y^2 coefficient and every real root of R(x) = Res_y(A, B) (degree <= 4,
