@@ -32,6 +32,28 @@ std::optional<Rational> rational_sqrt(const Rational& r) {
   return Rational(sn, sd);
 }
 
+// The first (p, q) of the search order below (q = 1..40, p = -60..60) at which the integer
+// quadratic form d(p, q) = A p^2 + B p q + C q^2 is a perfect square (>= 0), or nullopt. The
+// discriminant of the search below is d(p, q) / (L q)^2 with integer A, B, C (the entries
+// times a common denominator L), so it is a rational square exactly when d(p, q) is an
+// integer one: the same first hit as testing the rational discriminants, in machine-integer
+// and fmpz arithmetic instead of a Rational square root per candidate (most candidates of a
+// randomly rotated cone fail, and that search cost a tenth of a cone pair's time).
+std::optional<std::pair<long, long>> first_square(const Integer& a, const Integer& b,
+                                                  const Integer& c) {
+  Integer d, t;
+  for (long q = 1; q <= 40; ++q)
+    for (long p = -60; p <= 60; ++p) {
+      fmpz_mul_si(d.raw_mut(), a.raw(), p * p);
+      fmpz_mul_si(t.raw_mut(), b.raw(), p * q);
+      fmpz_add(d.raw_mut(), d.raw(), t.raw());
+      fmpz_mul_si(t.raw_mut(), c.raw(), q * q);
+      fmpz_add(d.raw_mut(), d.raw(), t.raw());
+      if (fmpz_sgn(d.raw()) >= 0 && fmpz_is_square(d.raw())) return std::make_pair(p, q);
+    }
+  return std::nullopt;
+}
+
 // A rational point (x : y : z) != 0 of the conic x^T m x = 0 (3x3 block of k), by a bounded
 // search: one coordinate 1, one a small fraction p/q, the last solved (a rational square root).
 std::optional<std::array<Rational, 3>> conic_point(const Mat4& k) {
@@ -39,26 +61,50 @@ std::optional<std::array<Rational, 3>> conic_point(const Mat4& k) {
     for (size_t free = 0; free < 3; ++free) {
       if (free == one) continue;
       const size_t solve = 3 - one - free;
-      for (long q = 1; q <= 40; ++q)
-        for (long p = -60; p <= 60; ++p) {
-          std::array<Rational, 3> x;
-          x[one] = Rational(1);
-          x[free] = Rational(p, static_cast<unsigned long>(q));
-          // m_ss y^2 + 2 (m_s,one + m_s,free x_free) y + (rest) = 0
-          const Rational a2 = k[solve][solve];
-          const Rational a1 = k[solve][one] + k[solve][free] * x[free];
-          const Rational a0 = k[one][one] + Rational(2) * k[one][free] * x[free] +
-                              k[free][free] * x[free] * x[free];
-          if (a2.is_zero()) {
-            if (a1.is_zero()) continue;
-            x[solve] = -a0 / (Rational(2) * a1);
-            return x;
-          }
-          const auto r = rational_sqrt(a1 * a1 - a2 * a0);
-          if (!r) continue;
-          x[solve] = (-a1 + *r) / a2;
+      const Rational& a2 = k[solve][solve];
+      // The candidate x_one = 1, x_free = p/q; nullopt when it gives no rational point.
+      auto at = [&](long p, long q) -> std::optional<std::array<Rational, 3>> {
+        std::array<Rational, 3> x;
+        x[one] = Rational(1);
+        x[free] = Rational(p, static_cast<unsigned long>(q));
+        // m_ss y^2 + 2 (m_s,one + m_s,free x_free) y + (rest) = 0
+        const Rational a1 = k[solve][one] + k[solve][free] * x[free];
+        const Rational a0 =
+            k[one][one] + Rational(2) * k[one][free] * x[free] + k[free][free] * x[free] * x[free];
+        if (a2.is_zero()) {
+          if (a1.is_zero()) return std::nullopt;
+          x[solve] = -a0 / (Rational(2) * a1);
           return x;
         }
+        const auto r = rational_sqrt(a1 * a1 - a2 * a0);
+        if (!r) return std::nullopt;
+        x[solve] = (-a1 + *r) / a2;
+        return x;
+      };
+      if (!a2.is_zero()) {
+        // (a1^2 - a2 a0) (L q)^2 as an integer form in p, q (L: the entries' common
+        // denominator): a1 L q = s1 q + sf p, a0 L q^2 = o1 q^2 + 2 of p q + ff p^2.
+        Integer l(1);
+        for (const Rational* e : {&k[solve][solve], &k[solve][one], &k[solve][free], &k[one][one],
+                                  &k[one][free], &k[free][free]})
+          fmpz_lcm(l.raw_mut(), l.raw(), e->den().raw());
+        auto integer = [&l](const Rational& e) {
+          Integer r;
+          fmpz_divexact(r.raw_mut(), l.raw(), e.den().raw());
+          fmpz_mul(r.raw_mut(), r.raw(), e.num().raw());
+          return r;
+        };
+        const Integer ss = integer(k[solve][solve]), s1 = integer(k[solve][one]),
+                      sf = integer(k[solve][free]), o1 = integer(k[one][one]),
+                      of = integer(k[one][free]), ff = integer(k[free][free]);
+        const auto hit =
+            first_square(sf * sf - ss * ff, Integer(2) * (s1 * sf - ss * of), s1 * s1 - ss * o1);
+        if (!hit) continue;
+        if (auto x = at(hit->first, hit->second)) return x;
+      }
+      for (long q = 1; q <= 40; ++q)
+        for (long p = -60; p <= 60; ++p)
+          if (auto x = at(p, q)) return x;
     }
   return std::nullopt;
 }
