@@ -75,9 +75,11 @@ RootPlacement root_placement();
 /// guarantee) proposes a bracket of the width around the root; its ends are kept only as far
 /// as exact signs at them confirm (refine_root_near), and exact bisection finishes whatever the
 /// proposal did not settle. Certified by exact signs alone. The interval differs from
-/// refine_root's (not nested halvings of the input): used where only its width matters
-/// (box_exits); the distance routes keep refine_root, whose intervals their budgets were
-/// tuned on (a cone two-minima case gave up at 15 digits with this one).
+/// refine_root's (not nested halvings of the input): used by box_exits, where it halved the
+/// instructions. The distance routes keep refine_root's bisection: there root refinement is
+/// 0.1-5% of an exact-mode distance (15-1000 digits), nothing to gain. (A cone two-minima case
+/// once gave up with this bracket: the offset route depended on interval placement, since
+/// fixed; root_placement_test runs the routes under both and other placements.)
 void refine_root_newton(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width);
 
 /// refine_root_newton with the proposal given: `guess` (any rational; a claim, not trusted) is the
