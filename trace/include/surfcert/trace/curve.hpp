@@ -127,8 +127,9 @@ bool face_crossing(const QuadricPair& q, const Box& box, const Point3& in, const
 /// Marches along the smooth parts of the curve from the start points, with a step adapted to
 /// curvature and Newton correction, passing through the given singular points along their
 /// tangent directions; closes loops. Each start point lying on an already traced branch is
-/// skipped. With opt.box, walks end on the box's faces (open branches, closed = false) and
-/// start points outside the box are ignored.
+/// skipped, and so is each start within 1e-7 of the scene of a given singular point (isolated
+/// points, acnodes, may be given too: no walk starts at them). With opt.box, walks end on the
+/// box's faces (open branches, closed = false) and start points outside the box are ignored.
 std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& starts,
                           const std::vector<Point3>& singular_points, const TraceOptions& opt);
 
