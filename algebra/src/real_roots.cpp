@@ -120,10 +120,8 @@ int approx_cubic_real_roots(double c3, double c2, double c1, double c0, double* 
   return n;
 }
 
-std::vector<double> critical_point_separators(const std::vector<double>& c, size_t k) {
-  std::vector<double> out;
-  size_t n = c.size() - 1;
-  if (k <= 1 || n < 2 || n > 4 || c[n] == 0) return out;
+size_t critical_point_separators(const double* c, size_t n, size_t k, double* out) {
+  if (k <= 1 || n < 2 || n > 4 || c[n] == 0) return 0;
   // Real roots of p' (degree n - 1 <= 3).
   double crit[3];
   int ncrit = 0;
@@ -150,8 +148,10 @@ std::vector<double> critical_point_separators(const std::vector<double>& c, size
     return v;
   };
   if (static_cast<size_t>(ncrit) == k - 1) {
-    out.assign(crit, crit + ncrit);
-  } else if (k == 2 && ncrit == 3) {
+    std::copy(crit, crit + ncrit, out);
+    return static_cast<size_t>(ncrit);
+  }
+  if (k == 2 && ncrit == 3) {
     // Between the two roots p has the sign opposite to its leading coefficient: take the
     // critical point where sign(lead) * p is lowest.
     int best = 0;
@@ -159,9 +159,17 @@ std::vector<double> critical_point_separators(const std::vector<double>& c, size
       if ((c[n] > 0 ? value(crit[i]) : -value(crit[i])) <
           (c[n] > 0 ? value(crit[best]) : -value(crit[best])))
         best = i;
-    out.push_back(crit[best]);
+    out[0] = crit[best];
+    return 1;
   }
-  return out;
+  return 0;
+}
+
+std::vector<double> critical_point_separators(const std::vector<double>& c, size_t k) {
+  if (c.empty()) return {};
+  double out[3];
+  const size_t m = critical_point_separators(c.data(), c.size() - 1, k, out);
+  return std::vector<double>(out, out + m);
 }
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
+#include <boost/container/small_vector.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -200,11 +201,13 @@ void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core:
   // Two ellipsoids: det A != 0, so the facts are in the given basis (never re-based).
   const int sa = corner_sign(a, ea), sb = corner_sign(b, eb);
   const int eps = sa * sb;
-  std::vector<int> signs;
+  // At most four roots: held inline (no allocation per pair on the filtered path).
+  boost::container::small_vector<int, 4> signs;
   if (r.mode == Mode::Float) {
     if (!r.float_invariants) return;
-    signs = float_root_signs(r);
-    if (signs.size() != r.facts.real_roots.size()) return; // no estimate
+    const std::vector<int> fs = float_root_signs(r);
+    if (fs.size() != r.facts.real_roots.size()) return; // no estimate
+    signs.assign(fs.begin(), fs.end());
   } else {
     // Exact facts of two ellipsoids are never re-based (det A != 0).
     if (r.facts.rebased) return;

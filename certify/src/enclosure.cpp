@@ -45,12 +45,18 @@ IMat4 enclose_shape(const core::ShapeSpec& s) {
   std::array<std::array<I, 3>, 3> inv;
   if (s.rotated) {
     const I w(s.quaternion[0]), x(s.quaternion[1]), y(s.quaternion[2]), z(s.quaternion[3]);
-    const I n = w * w + x * x + y * y + z * z;
+    // Each product and partial sum once: the same operations on the same operands as the
+    // textbook formula (w*w + x*x - y*y - z*z and so on, left to right), so the same intervals
+    // (the compiler cannot share them itself: interval operations are opaque to it).
+    const I ww = w * w, xx = x * x, yy = y * y, zz = z * z;
+    const I xy = x * y, wz = w * z, xz = x * z, wy = w * y, yz = y * z, wx = w * x;
+    const I ww_p_xx = ww + xx, ww_m_xx = ww - xx;
+    const I n = ww_p_xx + yy + zz;
     const I two(2);
     const std::array<std::array<I, 3>, 3> r = {
-        {{w * w + x * x - y * y - z * z, two * (x * y - w * z), two * (x * z + w * y)},
-         {two * (x * y + w * z), w * w - x * x + y * y - z * z, two * (y * z - w * x)},
-         {two * (x * z - w * y), two * (y * z + w * x), w * w - x * x - y * y + z * z}}};
+        {{ww_p_xx - yy - zz, two * (xy - wz), two * (xz + wy)},
+         {two * (xy + wz), ww_m_xx + yy - zz, two * (yz - wx)},
+         {two * (xz - wy), two * (yz + wx), ww_m_xx - yy + zz}}};
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j)
         inv[i][j] = r[j][i] / n;

@@ -43,17 +43,17 @@ size_t separator_candidates(const double* fd, int k, double* seps) {
     seps[0] = 0.0;
     return 1;
   }
-  std::vector<double> c(fd, fd + 5);
-  auto inner = algebra::critical_point_separators(c, static_cast<size_t>(k));
-  if (inner.size() != static_cast<size_t>(k - 1)) return 0;
+  double inner[3];
+  const size_t ninner = algebra::critical_point_separators(fd, 4, static_cast<size_t>(k), inner);
+  if (ninner != static_cast<size_t>(k - 1)) return 0;
   double bound = 0;
   for (int i = 0; i < 4; ++i)
     bound = std::max(bound, std::fabs(fd[i] / fd[4]));
   bound = 2 * (1 + bound);
   size_t n = 0;
   seps[n++] = -bound;
-  for (double x : inner)
-    seps[n++] = x;
+  for (size_t i = 0; i < ninner; ++i)
+    seps[n++] = inner[i];
   seps[n++] = bound;
   return n;
 }
@@ -82,14 +82,15 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   const Mat4T<I> a = enclose(qa), b = enclose(qb);
   auto f = algebra::pencil_char_coeffs(a, b);
   if (isign(f[4]) == 2 || isign(f[4]) == 0) return false; // det A ~ 0: exact path re-bases
-  auto q = algebra::quartic_invariants(f);
-  int s4 = isign(q.d4);
+  // D4 first: D3 and D2 matter only when D4 > 0 (E never here).
+  const algebra::detail::QuarticTerms<I> q(f);
+  int s4 = isign(q.D4());
   if (s4 == 0 || s4 == 2) return false; // possibly a multiple root: exact path
   int k;
   if (s4 < 0) {
     k = 2;
   } else {
-    int s3 = isign(q.d3), s2 = isign(q.d2);
+    int s3 = isign(q.D3()), s2 = isign(q.D2());
     if (s3 == 2 || s2 == 2) return false;
     k = (s3 > 0 && s2 > 0) ? 4 : 0;
   }

@@ -159,6 +159,45 @@ TEST(RealRoots, RootsOfHugeDynamicRange) {
   }
 }
 
+// The allocation-free critical_point_separators (the interval filter's) against the exact
+// roots: each point strictly between two consecutive roots (p changes sign across it), and the
+// vector overload gives the same points. Quartics with 4 and with 2 real roots (then the
+// cubic p' has 3 real roots, of which the one between the two roots is taken).
+TEST(RealRoots, CriticalPointSeparatorsLieBetweenRoots) {
+  struct Case {
+    std::vector<double> roots; // real roots; a factor x^2 + 1 when only two
+  };
+  const Case cases[] = {{{-3, -1, 1, 2}}, {{-0.5, 0.25, 0.75, 4}}, {{-2, 3}}, {{0.125, 0.5}}};
+  for (const Case& cs : cases) {
+    std::vector<double> c = {1};            // constant term first
+    auto times = [&c](double a, double b) { // c *= (x^2 + a x + b)
+      std::vector<double> r(c.size() + 2, 0.0);
+      for (size_t i = 0; i < c.size(); ++i) {
+        r[i] += b * c[i];
+        r[i + 1] += a * c[i];
+        r[i + 2] += c[i];
+      }
+      c = r;
+    };
+    for (size_t i = 0; i + 1 < cs.roots.size(); i += 2)
+      times(-(cs.roots[i] + cs.roots[i + 1]), cs.roots[i] * cs.roots[i + 1]);
+    if (cs.roots.size() == 2) times(0, 1);
+    ASSERT_EQ(c.size(), 5u);
+    const size_t k = cs.roots.size();
+    double out[3];
+    const size_t n = algebra::critical_point_separators(c.data(), 4, k, out);
+    ASSERT_EQ(n, k - 1);
+    const std::vector<double> v = algebra::critical_point_separators(c, k);
+    ASSERT_EQ(v.size(), n);
+    for (size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(v[i], out[i]);
+      EXPECT_GT(out[i], cs.roots[i]);
+      EXPECT_LT(out[i], cs.roots[i + 1]);
+    }
+    EXPECT_EQ(algebra::critical_point_separators(c.data(), 4, 1, out), 0u); // k <= 1: none
+  }
+}
+
 TEST(RealRoots, RefineNarrowsToTheRoot) {
   UPolyZ p = UPolyZ::from_coeffs({Integer(-2), Integer(0), Integer(1)}); // x^2 - 2
   auto s = algebra::isolate_real_roots(p);

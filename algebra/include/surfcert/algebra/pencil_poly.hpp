@@ -81,24 +81,39 @@ template <class T> std::array<T, 5> pencil_char_coeffs(const Mat4T<T>& a, const 
 /// D2, D3, D4, E of f = a l^4 + b l^3 + c l^2 + d l + e (seed 002 Lemma 1, repaired).
 template <class T> struct QuarticInvariants { T d2, d3, d4, e; };
 
+namespace detail {
+// The squares D2, D3, D4 and E share, and each of the four on demand: the interval filter needs
+// D3 and D2 only when D4 > 0 (the same expressions, so the same values, as when all are taken).
+template <class T> struct QuarticTerms {
+  const T &a, &b, &c, &d, &e;
+  T b2, c2, d2, e2, a2;
+  explicit QuarticTerms(const std::array<T, 5>& f)
+      : a(f[4]), b(f[3]), c(f[2]), d(f[1]), e(f[0]), b2(b * b), c2(c * c), d2(d * d), e2(e * e),
+        a2(a * a) {}
+  T D2() const { return T(3) * b2 - T(8) * a * c; }
+  T D3() const {
+    return b2 * c2 - T(3) * b2 * b * d - T(6) * a * b2 * e + T(14) * a * b * c * d -
+           T(4) * a * c2 * c + T(16) * a2 * c * e - T(18) * a2 * d2;
+  }
+  T D4() const {
+    return b2 * c2 * d2 - T(4) * b2 * c2 * c * e + T(18) * b2 * b * c * d * e +
+           T(144) * a * b2 * c * e2 - T(6) * a * b2 * d2 * e - T(4) * b2 * b * d2 * d -
+           T(27) * b2 * b2 * e2 - T(80) * a * b * c2 * d * e + T(18) * a * b * c * d2 * d -
+           T(192) * a2 * b * d * e2 - T(4) * a * c2 * c * d2 - T(128) * a2 * c2 * e2 +
+           T(16) * a * c2 * c2 * e + T(144) * a2 * c * d2 * e - T(27) * a2 * d2 * d2 +
+           T(256) * a2 * a * e2 * e;
+  }
+  T E() const { return T(8) * a2 * d + b2 * b - T(4) * a * b * c; }
+};
+} // namespace detail
+
 template <class T> QuarticInvariants<T> quartic_invariants(const std::array<T, 5>& f) {
-  const T& a = f[4];
-  const T& b = f[3];
-  const T& c = f[2];
-  const T& d = f[1];
-  const T& e = f[0];
-  T b2 = b * b, c2 = c * c, d2 = d * d, e2 = e * e, a2 = a * a;
+  const detail::QuarticTerms<T> t(f);
   QuarticInvariants<T> q;
-  q.d2 = T(3) * b2 - T(8) * a * c;
-  q.d3 = b2 * c2 - T(3) * b2 * b * d - T(6) * a * b2 * e + T(14) * a * b * c * d -
-         T(4) * a * c2 * c + T(16) * a2 * c * e - T(18) * a2 * d2;
-  q.d4 = b2 * c2 * d2 - T(4) * b2 * c2 * c * e + T(18) * b2 * b * c * d * e +
-         T(144) * a * b2 * c * e2 - T(6) * a * b2 * d2 * e - T(4) * b2 * b * d2 * d -
-         T(27) * b2 * b2 * e2 - T(80) * a * b * c2 * d * e + T(18) * a * b * c * d2 * d -
-         T(192) * a2 * b * d * e2 - T(4) * a * c2 * c * d2 - T(128) * a2 * c2 * e2 +
-         T(16) * a * c2 * c2 * e + T(144) * a2 * c * d2 * e - T(27) * a2 * d2 * d2 +
-         T(256) * a2 * a * e2 * e;
-  q.e = T(8) * a2 * d + b2 * b - T(4) * a * b * c;
+  q.d2 = t.D2();
+  q.d3 = t.D3();
+  q.d4 = t.D4();
+  q.e = t.E();
   return q;
 }
 

@@ -54,6 +54,11 @@ int approx_cubic_real_roots(double c3, double c2, double c1, double c0, double* 
 /// (Rolle). Empty when it cannot pick them. A guess: callers check it exactly.
 std::vector<double> critical_point_separators(const std::vector<double>& coeffs, size_t k);
 
+/// The same for the n + 1 coefficients c[0..n] (constant first): writes the points to out
+/// (room for 3) and returns their number (0 when it cannot pick them). No allocation: the
+/// interval filter calls it once per pair.
+size_t critical_point_separators(const double* c, size_t n, size_t k, double* out);
+
 /// Narrows (lo, hi), which holds exactly one root of p with p(lo)p(hi) < 0, by exact
 /// bisection until hi - lo <= width (or the root is hit exactly, then lo == hi).
 /// With a placement other than Bisect set (set_root_placement, a testing hook) the interval
