@@ -84,12 +84,6 @@ bool real_ellipsoid(const core::QuadricMatrix& q, const Enclosed& e) {
   return q.kind() == core::QuadricKind::Ellipsoid;
 }
 
-// Sign of det q: intervals first, exact when they hold 0.
-int det_sign(const core::QuadricMatrix& q, const Enclosed& e) {
-  if (int s = certain_sign(det4(e.m))) return s;
-  return core::det(q.matrix()).sign();
-}
-
 // Sign of the real root i of f from the facts alone; 0 when they do not decide it.
 // sd_a = sign det A (the leading coefficient of f), sf0 = sign f(0) = sign det(-B) (nonzero:
 // B is an ellipsoid). Root i is the only root of f in (samples[i], samples[i+1]) and every
@@ -211,7 +205,12 @@ void ellipsoid_relation(QsicResult& r, const core::QuadricMatrix& a, const core:
   } else {
     // Exact facts of two ellipsoids are never re-based (det A != 0).
     if (r.facts.rebased) return;
-    const int sd_a = det_sign(a, ea), sf0 = det_sign(b, eb);
+    // sign det A (f's leading coefficient) and sign f(0) = sign det(-B) = sign det B: both -1,
+    // exactly. A real ellipsoid's matrix, normalised so that its quadratic block Q is positive
+    // definite, has det = det Q (c - b^T Q^-1 b) with det Q > 0 and c - b^T Q^-1 b < 0 (the
+    // centre inside); the normalisation (a factor -1) leaves a 4x4 determinant unchanged. (Two
+    // interval determinants and their exact fallback decided this before, always the same.)
+    const int sd_a = -1, sf0 = -1;
     bool need_exact = false;
     for (size_t i = 0; i < r.facts.real_roots.size(); ++i) {
       int s = root_sign_from_facts(r.facts, i, sd_a, sf0);
