@@ -64,11 +64,7 @@ public:
       flush_locked();
     } else if (was_empty) {
       oldest_ = std::chrono::steady_clock::now();
-      // Only a flusher waiting without a deadline needs waking: one in a timed wait wakes by
-      // its deadline (for an older answer, so not later than this one's) and waits again for
-      // this one. A stream of answers then wakes it every max_delay, not at every flush (a
-      // futex wake and two context switches per 64 KiB of output).
-      if (flusher_idle_) cv_.notify_all();
+      cv_.notify_all();
     }
   }
 
@@ -105,9 +101,7 @@ private:
     std::unique_lock<std::mutex> lock(m_);
     while (!stop_) {
       if (buf_.empty()) {
-        flusher_idle_ = true;
         cv_.wait(lock, [this] { return stop_ || !buf_.empty(); });
-        flusher_idle_ = false;
         continue;
       }
       const auto due = oldest_ + max_delay_;
@@ -126,7 +120,6 @@ private:
   std::string buf_;
   std::chrono::steady_clock::time_point oldest_;
   bool input_idle_ = false, stop_ = false, ok_ = true;
-  bool flusher_idle_ = false; ///< the flusher waits for an answer (no deadline)
   std::thread flusher_; // last: started once the members above exist
 };
 
