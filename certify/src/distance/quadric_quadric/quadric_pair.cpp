@@ -42,6 +42,17 @@ struct Offset {
 // Two generic integer combinations of three equations (fixed, so runs are reproducible).
 constexpr std::array<std::array<long, 3>, 2> kGenericMix{{{3, -5, 7}, {2, 7, -11}}};
 
+// Two generic combinations l . w (l in kGenericMix) of the components of w: with a third
+// equation they cut out, generically, the points where w = 0 (for w a cross product: where
+// two vectors are parallel).
+std::array<Poly3, 2> generic_mixes(const V3& w) {
+  std::array<Poly3, 2> s;
+  for (size_t k = 0; k < 2; ++k)
+    for (size_t i = 0; i < 3; ++i)
+      s[k] = s[k] + Poly3(kGenericMix[k][i]) * w[i];
+  return s;
+}
+
 Offset build_offset_poly(Poly3 f, const core::QuadricMatrix& tgt, const std::array<long, 3>& l) {
   Offset o;
   o.target = &tgt;
@@ -845,6 +856,25 @@ bool contact_answered(const CriticalSigns& cs, const std::string& h, const std::
   return true;
 }
 
+// The offset system of f (the source) against the quadric q (the target), in the first generic
+// position where its real solutions are finitely many: the minimum over them into `out`.
+// Otherwise `out` says the system has a curve of solutions in every tried position.
+void offset_route(const core::Poly3& f, const core::QuadricMatrix& q, SourceQuadric& src,
+                  long digits, bool implicit_first, DistanceResult& out) {
+  for (const auto& l : kGenericMix) {
+    Offset o = build_offset_poly(f, q, l);
+    o.source_is_a = implicit_first;
+    algebra::SolutionCover cover = algebra::cover_real_solutions(o.system, Rational(1, 16));
+    if (!cover.ok) continue;
+    QuadricTarget tgt(src, o, digits);
+    minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
+    return;
+  }
+  out.status = Status::Undecided;
+  out.offset_curve_of_solutions = true;
+  out.note = "not supported yet: the offset system has a curve of solutions";
+}
+
 // A bounded implicit surface f = 0 (definite leading form) against any quadric g = 0 (planes
 // included). Contact: the extreme values of g on each compact component of {f = 0} are
 // critical values (f = 0, grad f x grad g = 0; singular points of f satisfy it too), so
@@ -863,7 +893,6 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::Quadri
     return out;
   }
   const Poly3 g = algebra::quadric_poly(q.matrix());
-  const auto& ls = kGenericMix;
   SourceQuadric src(f);
   if (contact_answered(critical_signs(src, g), "the quadric's equation",
                        "the bounded implicit surface", out))
@@ -872,13 +901,8 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::Quadri
     const std::array<Rational, 3> n{q(0, 3), q(1, 3), q(2, 3)};
     const Rational delta = -q(3, 3) * Rational(1, 2);
     const V3 nv{Poly3(n[0]), Poly3(n[1]), Poly3(n[2])};
-    const V3 w = cross(src.N, nv);
-    Poly3 s1, s2;
-    for (size_t i = 0; i < 3; ++i) {
-      s1 = s1 + Poly3(ls[0][i]) * w[i];
-      s2 = s2 + Poly3(ls[1][i]) * w[i];
-    }
-    algebra::SolutionCover cover = algebra::cover_real_solutions({f, s1, s2}, Rational(1, 16));
+    const auto s = generic_mixes(cross(src.N, nv));
+    algebra::SolutionCover cover = algebra::cover_real_solutions({f, s[0], s[1]}, Rational(1, 16));
     if (!cover.ok) {
       out.status = Status::Undecided;
       out.note = "not supported yet: a curve of points whose normal is parallel to the plane's";
@@ -888,18 +912,7 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::Quadri
     minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
     return out;
   }
-  for (const auto& l : ls) {
-    Offset o = build_offset_poly(f, q, l);
-    o.source_is_a = implicit_first;
-    algebra::SolutionCover cover = algebra::cover_real_solutions(o.system, Rational(1, 16));
-    if (!cover.ok) continue;
-    QuadricTarget tgt(src, o, digits);
-    minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
-    return out;
-  }
-  out.status = Status::Undecided;
-  out.offset_curve_of_solutions = true;
-  out.note = "not supported yet: the offset system has a curve of solutions";
+  offset_route(f, q, src, digits, implicit_first, out);
   return out;
 }
 
@@ -913,7 +926,6 @@ DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::Quadr
     return bounded_implicit_quadric(f, q, digits, implicit_first);
   // Contact: the sign of f at the critical points of f on the ellipsoid (connected, bounded:
   // f takes its extreme values there). Both signs at certified points: they cross.
-  const auto& ls = kGenericMix;
   SourceQuadric ell(q);
   if (contact_answered(critical_signs(ell, f), "f", "the ellipsoid", out)) return out;
   if (q.is_sphere()) {
@@ -930,13 +942,8 @@ DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::Quadr
     for (size_t i = 0; i < 3; ++i)
       w[i] = Poly3::variable(static_cast<int>(i)) - Poly3(c[i]);
     const V3 gfv{f.derivative(0), f.derivative(1), f.derivative(2)};
-    const V3 wx = cross(w, gfv);
-    Poly3 s1, s2;
-    for (size_t i = 0; i < 3; ++i) {
-      s1 = s1 + Poly3(ls[0][i]) * wx[i];
-      s2 = s2 + Poly3(ls[1][i]) * wx[i];
-    }
-    algebra::SolutionCover cover = algebra::cover_real_solutions({f, s1, s2}, Rational(1, 16));
+    const auto s = generic_mixes(cross(w, gfv));
+    algebra::SolutionCover cover = algebra::cover_real_solutions({f, s[0], s[1]}, Rational(1, 16));
     if (!cover.ok) {
       out.status = Status::Undecided;
       out.note = "not supported yet: a curve of normal lines through the sphere's centre";
@@ -948,19 +955,8 @@ DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::Quadr
     return out;
   }
   // The offset system with the implicit surface as the source, the ellipsoid as the target.
-  for (const auto& l : ls) {
-    Offset o = build_offset_poly(f, q, l);
-    o.source_is_a = implicit_first;
-    algebra::SolutionCover cover = algebra::cover_real_solutions(o.system, Rational(1, 16));
-    if (!cover.ok) continue;
-    SourceQuadric src(f);
-    QuadricTarget tgt(src, o, digits);
-    minimize_over_cover(cover, src, tgt, digits, implicit_first, true, out);
-    return out;
-  }
-  out.status = Status::Undecided;
-  out.offset_curve_of_solutions = true;
-  out.note = "not supported yet: the offset system has a curve of solutions";
+  SourceQuadric src(f);
+  offset_route(f, q, src, digits, implicit_first, out);
   return out;
 }
 
