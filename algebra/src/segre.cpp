@@ -1,6 +1,5 @@
 #include "surfcert/algebra/segre.hpp"
 
-#include <flint/fmpz_poly_factor.h>
 
 #include <algorithm>
 
@@ -132,13 +131,9 @@ std::string segre_by_invariant_factors(const core::Mat4& a, const core::Mat4& b)
     fmpq_poly_div(inv[k].raw_mut(), d[k].raw(), d[k - 1].raw());
   // Irreducible factors of f = d_4 (up to a constant).
   UPolyZ fz = d[4].primitive_integer();
-  fmpz_poly_factor_t fac;
-  fmpz_poly_factor_init(fac);
-  fmpz_poly_factor(fac, fz.raw());
   std::vector<std::vector<int>> groups;
-  for (slong i = 0; i < fac->num; ++i) {
-    UPolyZ p;
-    fmpz_poly_set(p.raw_mut(), fac->p + i);
+  for (const IrreducibleFactor& fac : irreducible_factors(fz)) {
+    const UPolyZ& p = fac.poly;
     std::vector<int> g;
     for (int k = 4; k >= 1; --k) {
       int e = multiplicity_in(inv[k], p);
@@ -147,7 +142,6 @@ std::string segre_by_invariant_factors(const core::Mat4& a, const core::Mat4& b)
     for (long r = 0; r < p.degree(); ++r)
       groups.push_back(g); // every root of p alike
   }
-  fmpz_poly_factor_clear(fac);
   // The degree of f may be < 4 (root at infinity): the missing blocks belong to l = infinity,
   // with exponents given by the degree drops of the invariant factors (reversed pencil).
   long deg = fz.degree();

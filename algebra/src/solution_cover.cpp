@@ -3,7 +3,6 @@
 
 #include "surfcert/algebra/real_roots.hpp"
 
-#include <flint/fmpz_poly_factor.h>
 
 #include <algorithm>
 #include <cmath>
@@ -30,16 +29,9 @@ double factor_cost_ms(const UPolyZ& p) {
 std::vector<UPolyZ> distinct_factors(const UPolyZ& p) {
   // One FLINT call that cannot be interrupted: started only when the budget can cover it.
   core::check_budget_for(factor_cost_ms(p));
-  fmpz_poly_factor_t f;
-  fmpz_poly_factor_init(f);
-  fmpz_poly_factor(f, p.raw());
   std::vector<UPolyZ> out;
-  for (slong i = 0; i < f->num; ++i) {
-    UPolyZ u;
-    fmpz_poly_set(u.raw_mut(), f->p + i);
-    if (u.degree() > 0) out.push_back(std::move(u));
-  }
-  fmpz_poly_factor_clear(f);
+  for (IrreducibleFactor& f : irreducible_factors(p))
+    out.push_back(std::move(f.poly));
   return out;
 }
 

@@ -143,19 +143,31 @@ std::string UPolyQ::to_string(const char* var) const {
 std::vector<Rational> rational_roots(const UPolyQ& p) {
   std::vector<Rational> out;
   if (p.degree() < 1) return out;
-  const UPolyZ z = p.primitive_integer();
-  fmpz_poly_factor_t fac;
-  fmpz_poly_factor_init(fac);
-  fmpz_poly_factor(fac, z.raw());
-  for (slong i = 0; i < fac->num; ++i)
-    if (fmpz_poly_degree(fac->p + i) == 1) { // a x + b: root -b / a
-      Integer a, b;
-      fmpz_poly_get_coeff_fmpz(a.raw_mut(), fac->p + i, 1);
-      fmpz_poly_get_coeff_fmpz(b.raw_mut(), fac->p + i, 0);
-      out.push_back(Rational(-b, a));
-    }
-  fmpz_poly_factor_clear(fac);
+  for (const IrreducibleFactor& f : irreducible_factors(p.primitive_integer()))
+    if (f.poly.degree() == 1) // a x + b: root -b / a
+      out.push_back(-Rational(f.poly.coeff(0)) / Rational(f.poly.coeff(1)));
   std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<IrreducibleFactor> irreducible_factors(const UPolyZ& p) {
+  // RAII for FLINT's factor structure (cleared on every path, exceptions included).
+  struct Fac {
+    fmpz_poly_factor_t f;
+    Fac() { fmpz_poly_factor_init(f); }
+    ~Fac() { fmpz_poly_factor_clear(f); }
+    Fac(const Fac&) = delete;
+    Fac& operator=(const Fac&) = delete;
+  } fac;
+  fmpz_poly_factor(fac.f, p.raw());
+  std::vector<IrreducibleFactor> out;
+  out.reserve(static_cast<size_t>(fac.f->num));
+  for (slong i = 0; i < fac.f->num; ++i) {
+    IrreducibleFactor x;
+    fmpz_poly_set(x.poly.raw_mut(), fac.f->p + i);
+    x.exponent = static_cast<int>(fac.f->exp[i]);
+    if (x.poly.degree() >= 1) out.push_back(std::move(x));
+  }
   return out;
 }
 

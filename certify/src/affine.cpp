@@ -8,8 +8,6 @@
 #include "surfcert/algebra/plane_chart.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 
-#include <flint/fmpz_poly_factor.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -175,19 +173,13 @@ struct Root {
 
 std::vector<Root> roots_of(const Chart& ch) {
   std::vector<Root> out;
-  UPolyZ rz = ch.r.primitive_integer();
+  const UPolyZ rz = ch.r.primitive_integer();
   // No real point at infinity (every bounded curve): a Sturm count settles it; the full
   // factorisation below (FLINT's Zassenhaus on large coefficients) cost most of this route.
   if (!algebra::has_real_root(rz)) return out;
-  fmpz_poly_factor_t fac;
-  fmpz_poly_factor_init(fac);
-  fmpz_poly_factor(fac, rz.raw());
-  for (slong i = 0; i < fac->num; ++i) {
-    UPolyZ g;
-    fmpz_poly_set(g.raw_mut(), fac->p + i);
-    g = g.primitive_part();
-    const int e = static_cast<int>(fac->exp[i]);
-    if (g.degree() < 1) continue;
+  for (const algebra::IrreducibleFactor& fac : algebra::irreducible_factors(rz)) {
+    const UPolyZ g = fac.poly.primitive_part();
+    const int e = fac.exponent;
     if (g.degree() == 1) {
       Rational u0 = -Rational(g.coeff(0)) / Rational(g.coeff(1));
       Rational v0 = ch.v_at(u0);
@@ -243,7 +235,6 @@ std::vector<Root> roots_of(const Chart& ch) {
       out.push_back(std::move(r));
     }
   }
-  fmpz_poly_factor_clear(fac);
   return out;
 }
 
@@ -658,16 +649,10 @@ std::vector<PointAtInfinity> cubic_points_at_infinity(const CubicAndLine& cl) {
     rational_point({cl.cubic[0][0], cl.cubic[1][0], cl.cubic[2][0]},
                    3 - static_cast<int>(x[3].degree()));
   if (x[3].degree() < 1) return out;
-  UPolyZ rz = x[3].primitive_integer();
-  fmpz_poly_factor_t fac;
-  fmpz_poly_factor_init(fac);
-  fmpz_poly_factor(fac, rz.raw());
-  for (slong i = 0; i < fac->num; ++i) {
-    UPolyZ g;
-    fmpz_poly_set(g.raw_mut(), fac->p + i);
-    g = g.primitive_part();
-    const int e = static_cast<int>(fac->exp[i]);
-    if (g.degree() < 1) continue;
+  for (const algebra::IrreducibleFactor& fac :
+       algebra::irreducible_factors(x[3].primitive_integer())) {
+    const UPolyZ g = fac.poly.primitive_part();
+    const int e = fac.exponent;
     if (g.degree() == 1) {
       const Rational s0 = -Rational(g.coeff(0)) / Rational(g.coeff(1));
       rational_point({x[0].evaluate(s0), x[1].evaluate(s0), x[2].evaluate(s0)}, e);
@@ -692,7 +677,6 @@ std::vector<PointAtInfinity> cubic_points_at_infinity(const CubicAndLine& cl) {
       out.push_back(std::move(p));
     }
   }
-  fmpz_poly_factor_clear(fac);
   return out;
 }
 

@@ -122,4 +122,13 @@ private:
 /// FLINT factorisation over Z.
 std::vector<Rational> rational_roots(const UPolyQ& p);
 
+/// One irreducible factor over Z and its multiplicity.
+struct IrreducibleFactor {
+  UPolyZ poly; ///< primitive, irreducible over Q, degree >= 1
+  int exponent = 1;
+};
+/// The factorisation of p (nonzero) over Z by FLINT (fmpz_poly_factor): its irreducible factors
+/// with their exponents, in FLINT's order; the content (a constant) is left out.
+std::vector<IrreducibleFactor> irreducible_factors(const UPolyZ& p);
+
 } // namespace surfcert::algebra

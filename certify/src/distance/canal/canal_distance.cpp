@@ -404,19 +404,12 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
       // ends carry the value; every t is a minimizer.
       out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     } else if (e.degree() > 0) {
-      algebra::UPolyZ z = e.primitive_integer();
-      fmpz_poly_factor_t f;
-      fmpz_poly_factor_init(f);
-      fmpz_poly_factor(f, z.raw());
-      for (slong i = 0; i < f->num; ++i) {
-        algebra::UPolyZ w;
-        fmpz_poly_set(w.raw_mut(), f->p + i);
-        algebra::RootSeparation s = algebra::isolate_real_roots(w);
+      for (algebra::IrreducibleFactor& f : algebra::irreducible_factors(e.primitive_integer())) {
+        algebra::RootSeparation s = algebra::isolate_real_roots(f.poly);
         for (size_t k = 0; k + 1 < s.separators.size(); ++k)
           tints.push_back({s.separators[k], s.separators[k + 1], tfactors.size()});
-        tfactors.push_back(std::move(w));
+        tfactors.push_back(std::move(f.poly));
       }
-      fmpz_poly_factor_clear(f);
     }
   } else {
     auto [F, G, Dalpha] = canal_system(q, c);

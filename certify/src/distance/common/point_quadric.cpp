@@ -18,7 +18,6 @@
 #include "surfcert/algebra/upoly.hpp"
 
 #include <flint/fmpz_poly.h>
-#include <flint/fmpz_poly_factor.h>
 #include <mpfr.h>
 
 #include <algorithm>
@@ -311,17 +310,9 @@ PointQuadricResult point_quadric_critical(const std::array<core::Rational, 3>& x
   fmpz_poly_gcd(G.raw_mut(), sqf.raw(), Dz.raw());
   G = G.primitive_part();
   std::vector<UPolyZ> gfactors;
-  if (G.degree() >= 1) {
-    fmpz_poly_factor_t fac;
-    fmpz_poly_factor_init(fac);
-    fmpz_poly_factor(fac, G.raw());
-    for (slong i = 0; i < fac->num; ++i) {
-      UPolyZ f;
-      fmpz_poly_set(f.raw_mut(), fac->p + i);
-      gfactors.push_back(f);
-    }
-    fmpz_poly_factor_clear(fac);
-  }
+  if (G.degree() >= 1)
+    for (algebra::IrreducibleFactor& f : algebra::irreducible_factors(G))
+      gfactors.push_back(std::move(f.poly));
 
   algebra::RootSeparation sep = algebra::isolate_real_roots(sqf);
   bool all_ok = true;
