@@ -471,6 +471,30 @@ std::optional<Rational> newton_guess(const UPolyZ& p, int slo, const Rational& l
   return out;
 }
 
+enum class Round { Down, Up, Nearest }; // Nearest: ties up
+
+// q rounded to a multiple of 2^e (exact dyadic arithmetic).
+Rational round_to_2exp(const Rational& q, slong e, Round how) {
+  const auto ue = static_cast<ulong>(e >= 0 ? e : -e);
+  Rational t;
+  if (e >= 0)
+    fmpq_div_2exp(t.raw_mut(), q.raw(), ue);
+  else
+    fmpq_mul_2exp(t.raw_mut(), q.raw(), ue);
+  if (how == Round::Nearest) t = t + Rational(1, 2);
+  core::Integer n;
+  if (how == Round::Up)
+    fmpz_cdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
+  else
+    fmpz_fdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
+  Rational r(n);
+  if (e >= 0)
+    fmpq_mul_2exp(r.raw_mut(), r.raw(), ue);
+  else
+    fmpq_div_2exp(r.raw_mut(), r.raw(), ue);
+  return r;
+}
+
 // The sign of p at lo, after checking both ends exactly: 0 when an end is a root (then the
 // interval is collapsed onto it: lo == hi).
 int end_sign(const UPolyZ& p, Rational& lo, Rational& hi) {
@@ -499,28 +523,9 @@ void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rationa
   // the bisection below does the rest.
   const slong wexp = log2_upper(width) - 1;
   const Rational quarter = width * Rational(1, 4);
-  auto rounded = [&](const Rational& q, bool up) {
-    // q rounded to a multiple of 2^e, e = wexp - 4, downwards or upwards.
-    const slong e = wexp - 4;
-    const auto ue = static_cast<ulong>(e >= 0 ? e : -e);
-    Rational t;
-    if (e >= 0)
-      fmpq_div_2exp(t.raw_mut(), q.raw(), ue);
-    else
-      fmpq_mul_2exp(t.raw_mut(), q.raw(), ue);
-    core::Integer n;
-    if (up)
-      fmpz_cdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
-    else
-      fmpz_fdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
-    Rational r(n);
-    if (e >= 0)
-      fmpq_mul_2exp(r.raw_mut(), r.raw(), ue);
-    else
-      fmpq_div_2exp(r.raw_mut(), r.raw(), ue);
-    return r;
-  };
-  const Rational ends[2] = {rounded(guess - quarter, false), rounded(guess + quarter, true)};
+  // The ends rounded outwards to multiples of 2^(wexp - 4).
+  const Rational ends[2] = {round_to_2exp(guess - quarter, wexp - 4, Round::Down),
+                            round_to_2exp(guess + quarter, wexp - 4, Round::Up)};
   for (const Rational& e : ends) {
     if (!(lo < e && e < hi)) continue;
     const int se = p.sign_at(e);
@@ -539,25 +544,6 @@ void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rationa
 namespace {
 
 std::atomic<RootPlacement> g_placement{RootPlacement::Bisect};
-
-// q rounded to the nearest multiple of 2^e (ties up).
-Rational round_to_2exp(const Rational& q, slong e) {
-  const auto ue = static_cast<ulong>(e >= 0 ? e : -e);
-  Rational t;
-  if (e >= 0)
-    fmpq_div_2exp(t.raw_mut(), q.raw(), ue);
-  else
-    fmpq_mul_2exp(t.raw_mut(), q.raw(), ue);
-  t = t + Rational(1, 2);
-  core::Integer n;
-  fmpz_fdiv_q(n.raw_mut(), fmpq_numref(t.raw()), fmpq_denref(t.raw()));
-  Rational r(n);
-  if (e >= 0)
-    fmpq_mul_2exp(r.raw_mut(), r.raw(), ue);
-  else
-    fmpq_div_2exp(r.raw_mut(), r.raw(), ue);
-  return r;
-}
 
 // The testing placements (RootPlacement): the root first pinned by bisection to `fine`, then
 // an interval of width <= width around it, clipped to the input (lo, hi). Its new ends lie in
@@ -579,7 +565,8 @@ void place_root(const UPolyZ& p, int slo, Rational& lo, Rational& hi, const Rati
     a = hi - width;
     b = hi;
   } else { // Centred: the midpoint snapped to a grid of about width / 64
-    const Rational m = round_to_2exp((lo + hi) * Rational(1, 2), log2_upper(width) - 7);
+    const Rational m =
+        round_to_2exp((lo + hi) * Rational(1, 2), log2_upper(width) - 7, Round::Nearest);
     a = m - half * Rational(63, 64);
     b = m + half * Rational(63, 64);
     if (!(a < lo && hi < b)) return; // the grid moved the centre too far: keep the pinned one
