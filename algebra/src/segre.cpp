@@ -1,6 +1,5 @@
 #include "surfcert/algebra/segre.hpp"
 
-
 #include <algorithm>
 
 namespace surfcert::algebra {

@@ -3,7 +3,6 @@
 
 #include "surfcert/algebra/real_roots.hpp"
 
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
