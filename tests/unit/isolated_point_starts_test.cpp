@@ -19,6 +19,7 @@
 //    natural_box_pairs.py does): 4, 0, 0.
 // Checked in the automatic box and the given box, swapped and under a rational rigid motion.
 #include "support/distance_checks.hpp"
+#include "support/trace_boxes.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -148,11 +149,7 @@ TEST(IsolatedPointStarts, AutomaticBoxMovedAndSwapped) {
 }
 
 TEST(IsolatedPointStarts, GivenBoxCrossingsAgainstSympy) {
-  trace::TraceOptions opt;
-  trace::Box box;
-  box.min = {-8, -8, -8};
-  box.max = {8, 8, 8};
-  opt.box = box;
+  const trace::TraceOptions opt = surfcert::testing::given_box({-8, -8, -8}, {8, 8, 8});
   for (const Case& c : cases())
     for (bool swapped : {false, true}) {
       const std::string ctx = std::string(c.name) + (swapped ? " swapped" : "") + ", box [-8, 8]^3";

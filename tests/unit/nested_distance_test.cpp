@@ -37,6 +37,15 @@ using surfcert::testing::q;
 
 namespace {
 
+// The unit sphere centred at (0, 0, t): x^2 + y^2 + (z - t)^2 = 1, exactly.
+core::QuadricMatrix unit_sphere_on_z(const core::Rational& t) {
+  core::Mat4 m;
+  m[0][0] = m[1][1] = m[2][2] = core::Rational(1);
+  m[2][3] = m[3][2] = -t;
+  m[3][3] = t * t - core::Rational(1);
+  return core::QuadricMatrix(m);
+}
+
 std::optional<certify::DistanceResult> nested(const core::QuadricMatrix& a,
                                               const core::QuadricMatrix& b, long digits) {
   auto ca = certify::convex_quadric(a), cb = certify::convex_quadric(b);
@@ -322,11 +331,7 @@ TEST(NestedDistance, LagrangianCertificateClosedForm) {
         gap = gap / core::Rational(2);
       gap = gap * core::Rational(sign);
       const core::Rational t = core::Rational(2) - gap;
-      core::Mat4 m;
-      m[0][0] = m[1][1] = m[2][2] = core::Rational(1);
-      m[2][3] = m[3][2] = -t;
-      m[3][3] = t * t - core::Rational(1);
-      const core::QuadricMatrix sphere(m);
+      const core::QuadricMatrix sphere = unit_sphere_on_z(t);
       mpfr_t d;
       mpfr_init2(d, 256);
       mpfr_set_ui(d, 1, MPFR_RNDN);
@@ -384,11 +389,7 @@ TEST(NestedDistance, LagrangianCertificateTinyGaps) {
     for (int sign : {1, -1}) {
       const core::Rational gap = g.d * core::Rational(sign);
       const core::Rational t = core::Rational(2) - gap;
-      core::Mat4 m;
-      m[0][0] = m[1][1] = m[2][2] = core::Rational(1);
-      m[2][3] = m[3][2] = -t;
-      m[3][3] = t * t - core::Rational(1);
-      const core::QuadricMatrix sphere(m);
+      const core::QuadricMatrix sphere = unit_sphere_on_z(t);
       for (size_t k = 0; k < quats.size(); ++k) {
         auto p = motion(quats[k][0], quats[k][1], quats[k][2], quats[k][3], moves[k]);
         for (bool swap : {false, true}) {
@@ -439,11 +440,7 @@ TEST(NestedDistance, TwoMinimaAtTheThreshold) {
       if (off == core::Rational(0) && sign < 0) continue;
       const core::Rational t = off * core::Rational(sign);
       const core::Rational d = core::Rational(2) - off;
-      core::Mat4 m;
-      m[0][0] = m[1][1] = m[2][2] = core::Rational(1);
-      m[2][3] = m[3][2] = -t;
-      m[3][3] = t * t - core::Rational(1);
-      const core::QuadricMatrix sphere(m);
+      const core::QuadricMatrix sphere = unit_sphere_on_z(t);
       for (size_t k = 0; k < quats.size(); ++k) {
         auto p = motion(quats[k][0], quats[k][1], quats[k][2], quats[k][3], moves[k]);
         for (bool swap : {false, true}) {
