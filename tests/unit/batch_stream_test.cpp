@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -283,4 +284,141 @@ TEST(BatchStream, OneThreadDoesNotStartTbb) {
   }
   std::remove(in.c_str());
   std::remove(err.c_str());
+}
+
+// A completed answer is written by its deadline (max_delay) while a later line of the same
+// chunk still runs and the reader is not waiting for input (the flusher's timed path, not the
+// idle-input path). Line 1 alone first (written as the reader waits for input), then, once the
+// flusher has had time to wait for an answer again, lines 2 and 3 in one chunk: line 2 answers
+// at once, line 3 blocks until the test has seen answer 2.
+TEST(BatchStream, AnswerIsWrittenByItsDeadlineWhileALaterLineRuns) {
+  for (int threads : {1, 2}) {
+    int in[2], out[2], go[2];
+    ASSERT_EQ(pipe(in), 0);
+    ASSERT_EQ(pipe(out), 0);
+    ASSERT_EQ(pipe(go), 0);
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      close(in[1]);
+      close(out[0]);
+      close(go[1]);
+      BatchStreamOptions opt;
+      opt.threads = threads;
+      opt.max_delay = std::chrono::milliseconds(20);
+      surfcert::app::process_batch_fd(
+          in[0], out[1], surfcert::certify::Mode::Filtered,
+          [&](const std::string& line, long no, surfcert::certify::Mode) {
+            if (line == "wait") {
+              char c;
+              (void)!read(go[0], &c, 1);
+            }
+            return BatchLineAnswer{"{\"id\":" + std::to_string(no) + "}", "certified", "", false};
+          },
+          opt);
+      _exit(0);
+    }
+    close(in[0]);
+    close(out[1]);
+    close(go[0]);
+    std::string got;
+    auto read_line = [&] {
+      const size_t lines = static_cast<size_t>(std::count(got.begin(), got.end(), '\n'));
+      while (static_cast<size_t>(std::count(got.begin(), got.end(), '\n')) == lines) {
+        pollfd p{out[0], POLLIN, 0};
+        if (poll(&p, 1, 60000) <= 0) return false; // a hang, not a timing
+        char buf[256];
+        const ssize_t n = read(out[0], buf, sizeof buf);
+        if (n <= 0) return false;
+        got.append(buf, static_cast<size_t>(n));
+      }
+      return true;
+    };
+    ASSERT_EQ(write(in[1], "x\n", 2), 2);
+    ASSERT_TRUE(read_line());
+    usleep(100000); // the flusher waits for an answer again (else this test checks less)
+    // Both lines in one write: one chunk. The input stays open, so the reader does not see the
+    // end of input (which would write the answers) before the test has looked.
+    ASSERT_EQ(write(in[1], "y\nwait\n", 7), 7);
+    ASSERT_TRUE(read_line()) << "answer 2 not written while line 3 runs";
+    EXPECT_EQ(got, "{\"id\":1}\n{\"id\":2}\n") << threads;
+    ASSERT_EQ(write(go[1], "g", 1), 1);
+    close(in[1]);
+    char buf[256];
+    ssize_t n;
+    while ((n = read(out[0], buf, sizeof buf)) > 0)
+      got.append(buf, static_cast<size_t>(n));
+    EXPECT_EQ(got, "{\"id\":1}\n{\"id\":2}\n{\"id\":3}\n") << threads;
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    close(out[0]);
+    close(go[1]);
+  }
+}
+
+// Output of many full buffers (2,000 answers of 2 KB: 4 MB, the buffer is 256 KB) through a
+// pipe read slowly, so that the flusher is still writing one buffer while the next fills and
+// the writes that callers wait for (the input turning idle, the end) come after it: every
+// answer arrives whole, once, in input order, for one and two threads.
+TEST(BatchStream, ManyFullBuffersThroughASlowPipeKeepTheirOrder) {
+  const int kLines = 2000;
+  std::string expected;
+  for (int i = 1; i <= kLines; ++i)
+    expected +=
+        "{\"id\":" + std::to_string(i) + ",\"pad\":\"" + std::string(2000, 'a' + i % 26) + "\"}\n";
+  for (int threads : {1, 2}) {
+    int in[2], out[2];
+    ASSERT_EQ(pipe(in), 0);
+    ASSERT_EQ(pipe(out), 0);
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      close(in[1]);
+      close(out[0]);
+      BatchStreamOptions opt;
+      opt.threads = threads;
+      surfcert::app::process_batch_fd(
+          in[0], out[1], surfcert::certify::Mode::Filtered,
+          [](const std::string&, long no, surfcert::certify::Mode) {
+            return BatchLineAnswer{"{\"id\":" + std::to_string(no) + ",\"pad\":\"" +
+                                       std::string(2000, 'a' + no % 26) + "\"}",
+                                   "certified", "", false};
+          },
+          opt);
+      _exit(0);
+    }
+    close(in[0]);
+    close(out[1]);
+    // The input in a few bursts (the reader turns idle between them: writes callers wait for).
+    const pid_t feeder = fork();
+    ASSERT_GE(feeder, 0);
+    if (feeder == 0) {
+      close(out[0]);
+      for (int burst = 0; burst < 4; ++burst) {
+        std::string text;
+        for (int i = 0; i < kLines / 4; ++i)
+          text += "x\n";
+        if (write(in[1], text.data(), text.size()) != static_cast<ssize_t>(text.size())) _exit(1);
+        usleep(20000);
+      }
+      _exit(0);
+    }
+    close(in[1]);
+    std::string got;
+    char buf[8192];
+    ssize_t n;
+    int reads = 0;
+    while ((n = read(out[0], buf, sizeof buf)) > 0) {
+      got.append(buf, static_cast<size_t>(n));
+      if (++reads % 16 == 0) usleep(1000); // a slow reader: the pipe fills, write(2) blocks
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(feeder, &status, 0), feeder);
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    close(out[0]);
+    EXPECT_EQ(got.size(), expected.size()) << threads;
+    EXPECT_TRUE(got == expected) << threads; // not printed: 4 MB
+  }
 }

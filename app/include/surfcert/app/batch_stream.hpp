@@ -16,11 +16,13 @@
 //     more data immediately available (so a caller that sends a line and waits for its answer
 //     gets it at once), when the oldest unwritten completed answer is `max_delay` old, when the
 //     buffer is large, and at the end: a completed answer never waits longer than max_delay
-//     for its write. With flush_on_signal, SIGTERM, SIGINT and SIGHUP first write every
-//     completed answer, then end the process by that signal (a `timeout`-killed batch has
-//     written every line it completed). The signals are taken by a dedicated thread
-//     (sigwait), not an asynchronous handler, so the buffer is written under its lock, never
-//     concurrently with the writing stage.
+//     for its write. A full buffer (256 KB) is written by the buffer's flusher thread while the
+//     answering threads go on (they wait only if the next buffer fills before that write
+//     ends); the writes keep the answers' order. With flush_on_signal, SIGTERM, SIGINT and
+//     SIGHUP first write every completed answer, then end the process by that signal (a
+//     `timeout`-killed batch has written every line it completed). The signals are taken by a
+//     dedicated thread (sigwait), not an asynchronous handler, so the buffer is written under
+//     its lock, never concurrently with the writing stage.
 #pragma once
 
 #include "surfcert/app/scene.hpp"
