@@ -768,11 +768,12 @@ private:
   Rational delta_;
 };
 
-// The leading form of f is definite on the unit cube's faces (certified by bisection in Arb):
-// then |f| grows like |x|^deg at infinity and the zero set is bounded.
-bool leading_form_definite(const core::Poly3& f) {
+// The sign (+1 or -1) of f's leading form when it is definite on the unit cube's faces
+// (certified by bisection in Arb): then f has that sign far out (|f| grows like |x|^deg) and the
+// zero set is bounded. 0: not proven definite.
+int leading_form_sign(const core::Poly3& f) {
   const int d = f.total_degree();
-  if (d < 2 || d % 2 != 0) return false;
+  if (d < 2 || d % 2 != 0) return 0;
   core::Poly3 top;
   for (const auto& [e, c] : f.terms())
     if (e[0] + e[1] + e[2] == d) top.add_term(e, c);
@@ -813,7 +814,7 @@ bool leading_form_definite(const core::Poly3& f) {
       }
       const int sg = arb_is_positive(v.v) ? 1 : arb_is_negative(v.v) ? -1 : 0;
       if (sg != 0) {
-        if (sign != 0 && sg != sign) return false;
+        if (sign != 0 && sg != sign) return 0;
         sign = sg;
         continue;
       }
@@ -823,13 +824,46 @@ bool leading_form_definite(const core::Poly3& f) {
       next.push_back({q.axis, q.side, q.a0, am, bm, q.b1});
       next.push_back({q.axis, q.side, am, q.a1, bm, q.b1});
     }
-    if (next.size() > 20000) return false;
+    if (next.size() > 20000) return 0;
     live = std::move(next);
   }
-  return live.empty() && sign != 0;
+  return live.empty() ? sign : 0;
 }
 
-// Contact from the signs of h at its critical points on a connected bounded surface S
+// Every real component of q is unbounded: its quadratic block is not definite (a definite block
+// gives an ellipsoid, a single point or no real point; otherwise q is a cone, a hyperboloid, a
+// paraboloid, a cylinder or planes, each component running off to infinity).
+bool components_unbounded(const core::QuadricMatrix& q) {
+  const RMat3 A = quadratic_block(q);
+  const Rational m1 = A[0][0], m2 = A[0][0] * A[1][1] - A[0][1] * A[0][1];
+  const Rational m3 = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[1][2]) -
+                      A[0][1] * (A[0][1] * A[2][2] - A[1][2] * A[0][2]) +
+                      A[0][2] * (A[0][1] * A[1][2] - A[1][1] * A[0][2]);
+  const bool definite = m2.sign() > 0 && m1.sign() != 0 && m3.sign() == m1.sign();
+  return !definite;
+}
+
+// Contact of q and the bounded surface f = 0 (s: the sign of f's definite leading form), from
+// q's side: on each component of q, s f grows at infinity, so its least value there is
+// attained at a critical point of f on q (singular points of q are critical too). Hence a
+// strict sign s of f at every critical point proves q apart from f = 0 (Apart), and a certified
+// point of q where s f < 0 proves a crossing (Meet) when that point's component of q is
+// unbounded (components_unbounded): f has the sign s far out along it.
+enum class QuadricSide { Meet, Apart, Unknown };
+
+QuadricSide quadric_side_contact(const core::QuadricMatrix& q, const core::Poly3& f, int s) {
+  const SourceQuadric qs(q);
+  const auto inside = [s](const CriticalSigns& c) { return s > 0 ? c.neg_point : c.pos_point; };
+  const auto outside_only = [s](const CriticalSigns& c) {
+    return c.finite && c.all_signed && c.boxes > 0 && (s > 0 ? !c.any_neg : !c.any_pos);
+  };
+  const CriticalSigns cs =
+      critical_signs(qs, f, [&](const CriticalSigns& c) { return inside(c) || outside_only(c); });
+  if (outside_only(cs)) return QuadricSide::Apart;
+  return inside(cs) && components_unbounded(q) ? QuadricSide::Meet : QuadricSide::Unknown;
+}
+
+// Contact from the signs of h at its critical points on a CONNECTED bounded surface S
 // (critical_signs): h takes its extreme values there, so both signs at certified points prove
 // the surfaces meet, one sign everywhere proves h never vanishes on S. True when `out` holds
 // the answer (they meet, or undecided); false when they are proven apart.
@@ -876,16 +910,19 @@ void offset_route(const core::Poly3& f, const core::QuadricMatrix& q, SourceQuad
 }
 
 // A bounded implicit surface f = 0 (definite leading form) against any quadric g = 0 (planes
-// included). Contact: the extreme values of g on each compact component of {f = 0} are
-// critical values (f = 0, grad f x grad g = 0; singular points of f satisfy it too), so
-// certified points of both signs mean they cross and one strict sign at every critical point
-// means g never vanishes there. Disjoint: the offset system with f as the source (a plane: the
-// points of f = 0 whose normal is parallel to the plane's) over the exact solution cover; the
-// minimum is attained since f = 0 is bounded.
+// included; not an ellipsoid). Contact: the extreme values of g on each compact component of
+// {f = 0} are critical values (f = 0, grad f x grad g = 0; singular points of f satisfy it
+// too), so one strict sign at every critical point means g never vanishes there. Both signs
+// prove nothing: f = 0 may be disconnected (x^4 + y^4 + z^4 - 8 x^2 + 15 = 0 is two blobs
+// about x = +-2, and g = x is positive on one, negative on the other, 1.73 away from both);
+// a crossing is proven from the quadric's side (quadric_side_contact). Disjoint: the offset
+// system with f as the source (a plane: the points of f = 0 whose normal is parallel to the
+// plane's) over the exact solution cover; the minimum is attained since f = 0 is bounded.
 DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::QuadricMatrix& q,
                                         long digits, bool implicit_first) {
   DistanceResult out;
-  if (!leading_form_definite(f)) {
+  const int lead = leading_form_sign(f);
+  if (lead == 0) {
     out.status = Status::Undecided;
     out.note = "not supported yet: an implicit surface of degree > 2 against a quadric other "
                "than an ellipsoid, unless the implicit surface is proven bounded (definite "
@@ -894,9 +931,26 @@ DistanceResult bounded_implicit_quadric(const core::Poly3& f, const core::Quadri
   }
   const Poly3 g = algebra::quadric_poly(q.matrix());
   SourceQuadric src(f);
-  if (contact_answered(critical_signs(src, g), "the quadric's equation",
-                       "the bounded implicit surface", out))
+  const CriticalSigns cs = critical_signs(src, g);
+  const bool apart = cs.finite && cs.all_signed && !(cs.any_pos && cs.any_neg) && cs.boxes > 0;
+  const QuadricSide side = apart ? QuadricSide::Apart : quadric_side_contact(q, f, lead);
+  if (side != QuadricSide::Apart) {
+    if (side == QuadricSide::Meet) {
+      out.status = Status::Certified;
+      out.distance = Enclosure::zero();
+      out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
+      out.note = "the surfaces meet (a certified point of the quadric lies inside the bounded "
+                 "implicit surface, and its component of the quadric is unbounded)";
+      return out;
+    }
+    out.status = Status::Undecided;
+    out.note = !cs.finite ? "contact not decided: the critical points of the quadric's equation "
+                            "on the bounded implicit surface form a curve"
+                          : "contact not decided: a critical value of the quadric's equation on "
+                            "the bounded implicit surface is not separated from 0 (touching?), "
+                            "or it takes both signs on a surface not proven connected";
     return out;
+  }
   if (q.is_plane()) {
     const std::array<Rational, 3> n{q(0, 3), q(1, 3), q(2, 3)};
     const Rational delta = -q(3, 3) * Rational(1, 2);

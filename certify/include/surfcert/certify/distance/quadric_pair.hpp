@@ -33,7 +33,12 @@ DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::Q
 /// An implicit surface f = 0 of degree 3 to 6 against an ellipsoid: contact from the sign of
 /// f at its critical points on the ellipsoid (certified points of both signs: they cross;
 /// one sign everywhere: disjoint), then the same offset system with f as the source
-/// (degrees n, 2n - 1, 4n - 2: practical for cubics, slow beyond). Other quadrics: undecided.
+/// (degrees n, 2n - 1, 4n - 2: practical for cubics, slow beyond). Other quadrics only when
+/// f = 0 is proven bounded (definite leading form): disjoint when the quadric's equation has
+/// one strict sign at its critical points on f = 0, or f the sign of its leading form at its
+/// critical points on the quadric; a crossing from a certified point of the quadric inside
+/// f = 0 (f = 0 may be disconnected, so both signs of the quadric's equation on it prove
+/// nothing); otherwise undecided.
 DistanceResult implicit_quadric_distance(const core::Poly3& f, const core::QuadricMatrix& q,
                                          long digits, bool implicit_first);
 
