@@ -8,6 +8,13 @@
 //   form: the distance is sqrt 3 - |c| (the blob's nearest point to x = c is its tip), or 0
 //   when |c| > sqrt 3. The same blobs against the paraboloid x = y^2 + z^2 - 1 through the
 //   offset system itself (mpmath, 250 digits: 0.51655606676886980078...).
+// - an ellipsoid of revolution about the x axis against the cylinder x^2 + y^2 = 1 (exact
+//   offset route): at the ellipsoid's top and bottom, exact rational solutions of the offset
+//   system, the normal line runs along the cylinder's axis (the target's coefficients of mu
+//   are exactly 0 there), which once made the lower bound an Arb indeterminate (NaN) that
+//   kept both phantom boxes, so the single minimizer was reported as 3 undecided candidates.
+//   Closed form: the distance is x0 - 2 (the ellipsoid's leftmost point (x0 - 1, 0, 0) to the
+//   cylinder), gaps 1, 1e-10, 1e-20, 1e-30, 2^-100; x0 < 2: they cross.
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/core/io/json.hpp"
@@ -121,4 +128,34 @@ TEST(OffsetAudit, ParaboloidBetweenTwoBlobsOffsetRoute) {
   EXPECT_TRUE(surfcert::testing::overlap_bounds(r, "0.5165560667688698007810597943763",
                                                 "0.5165560667688698007810597943764"))
       << r.lower() << " " << r.upper();
+}
+
+TEST(OffsetAudit, NormalLineAlongCylinderAxis) {
+  // (the gap as the equation reads it, its exact decimal value)
+  const std::pair<const char*, const char*> gaps[] = {
+      {"1", "1"},
+      {"1/10^10", "1e-10"},
+      {"1/10^20", "1e-20"},
+      {"1/10^30", "1e-30"},
+      {"1/1267650600228229401496703205376",
+       "7.8886090522101180541172856528278622967320643510902300477027893066406250e-31"}};
+  for (const auto& [g, name] : gaps)
+    for (int side : {1, -1}) {
+      // Centre x0 = 2 +- gap: the leftmost point (x0 - 1, 0, 0) is gap outside / inside the
+      // cylinder; the top and bottom (x0, 0, +-1/2) are exact rational solutions.
+      const std::string x0 = std::string("(2 ") + (side > 0 ? "+ " : "- ") + g + ")";
+      const std::string ell = "(x - " + x0 + ")^2 + 4 y^2 + 4 z^2 - 1";
+      SCOPED_TRACE(ell);
+      const auto r = certify::surface_distance(surfcert::testing::q(ell),
+                                               surfcert::testing::q("x^2 + y^2 - 1"), 15, false,
+                                               certify::Mode::Exact);
+      ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+      if (side < 0) {
+        EXPECT_TRUE(certified_zero(r)) << r.lower() << " " << r.upper();
+        continue;
+      }
+      EXPECT_TRUE(surfcert::testing::overlap_bounds(r, name, name))
+          << r.lower() << " " << r.upper();
+      EXPECT_EQ(r.minimizers, "1") << r.note;
+    }
 }

@@ -262,6 +262,9 @@ void minimize_over_cover(algebra::SolutionCover& cover, const SourceQuadric& src
         centre[k] = (r.lo + r.hi) * Rational(1, 2);
       }
       tgt.lower(lows[i].v, box, centre, prec);
+      // A NaN bound (an Arb indeterminate) bounds nothing: 0, never a box silently left out of L
+      // (arf_cmp with NaN is 0, so a NaN would neither lower L nor drop the box).
+      if (arf_is_nan(lows[i].v)) arf_zero(lows[i].v);
       if (arf_cmp(lows[i].v, L.v) < 0) arf_set(L.v, lows[i].v);
       if (arf_is_pos_inf(lows[i].v)) continue;
       Ball p[3];

@@ -189,6 +189,17 @@ public:
       arb_sqrt(s.v, s.v, prec);
       arb_add(s.v, s.v, b1.v, prec);
       arb_mul_2exp_si(b0.v, b0.v, 1);
+      const bool no_root = !arf_is_zero(A0) && arf_is_zero(A1) && arf_is_zero(A2);
+      if (no_root) {
+        // a1 = a2 = 0 on the whole box (exact balls: an exact rational box where the normal line
+        // runs along a null direction of the target, e.g. a cylinder's axis) and a0 != 0: no
+        // root mu, no pair here. (2 A0 / 0 would be Arb's indeterminate, a NaN bound.)
+        arf_clear(A0);
+        arf_clear(A1);
+        arf_clear(A2);
+        arf_pos_inf(out);
+        return;
+      }
       if (arf_is_zero(A0))
         arb_zero(m.v);
       else
