@@ -15,6 +15,12 @@
 //   kept both phantom boxes, so the single minimizer was reported as 3 undecided candidates.
 //   Closed form: the distance is x0 - 2 (the ellipsoid's leftmost point (x0 - 1, 0, 0) to the
 //   cylinder), gaps 1, 1e-10, 1e-20, 1e-30, 2^-100; x0 < 2: they cross.
+// - the teardrop x^2 + y^2 = z^3 (1 - z) (a cusp at the origin, a singular point: grad f = 0,
+//   no normal line) against an ellipsoid whose top is `gap` below the cusp: the cusp, an exact
+//   rational solution of the offset system, is the closest point, and it once got no upper
+//   bound (the source point was projected along its normal line), so the answer stayed
+//   undecided with [gap, 2.5]. Closed form: the distance is gap (the teardrop rises as
+//   z >= 0 and the ellipsoid falls away below its top); the ellipsoid raised by gap: they cross.
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/core/io/json.hpp"
@@ -130,16 +136,21 @@ TEST(OffsetAudit, ParaboloidBetweenTwoBlobsOffsetRoute) {
       << r.lower() << " " << r.upper();
 }
 
+namespace {
+
+// (the gap as the equation reads it, its exact decimal value)
+const std::pair<const char*, const char*> kGaps[] = {
+    {"1", "1"},
+    {"1/10^10", "1e-10"},
+    {"1/10^20", "1e-20"},
+    {"1/10^30", "1e-30"},
+    {"1/1267650600228229401496703205376",
+     "7.8886090522101180541172856528278622967320643510902300477027893066406250e-31"}};
+
+} // namespace
+
 TEST(OffsetAudit, NormalLineAlongCylinderAxis) {
-  // (the gap as the equation reads it, its exact decimal value)
-  const std::pair<const char*, const char*> gaps[] = {
-      {"1", "1"},
-      {"1/10^10", "1e-10"},
-      {"1/10^20", "1e-20"},
-      {"1/10^30", "1e-30"},
-      {"1/1267650600228229401496703205376",
-       "7.8886090522101180541172856528278622967320643510902300477027893066406250e-31"}};
-  for (const auto& [g, name] : gaps)
+  for (const auto& [g, name] : kGaps)
     for (int side : {1, -1}) {
       // Centre x0 = 2 +- gap: the leftmost point (x0 - 1, 0, 0) is gap outside / inside the
       // cylinder; the top and bottom (x0, 0, +-1/2) are exact rational solutions.
@@ -149,6 +160,26 @@ TEST(OffsetAudit, NormalLineAlongCylinderAxis) {
       const auto r = certify::surface_distance(surfcert::testing::q(ell),
                                                surfcert::testing::q("x^2 + y^2 - 1"), 15, false,
                                                certify::Mode::Exact);
+      ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+      if (side < 0) {
+        EXPECT_TRUE(certified_zero(r)) << r.lower() << " " << r.upper();
+        continue;
+      }
+      EXPECT_TRUE(surfcert::testing::overlap_bounds(r, name, name))
+          << r.lower() << " " << r.upper();
+      EXPECT_EQ(r.minimizers, "1") << r.note;
+    }
+}
+
+TEST(OffsetAudit, CuspOfImplicitSourceIsTheClosestPoint) {
+  const core::Surface drop = surf("x^2 + y^2 - z^3 + z^4");
+  for (const auto& [g, name] : kGaps)
+    for (int side : {1, -1}) { // the ellipsoid's top (0, 0, -+gap): below the cusp / around it
+      if (side < 0 && std::string(g) == "1") continue; // its bottom would touch the cusp
+      const std::string ell =
+          std::string("x^2 + 4 y^2 + 4 (z + 1/2 ") + (side > 0 ? "+ " : "- ") + g + ")^2 - 1";
+      SCOPED_TRACE(ell);
+      const auto r = certify::surface_distance(drop, surf(ell), 15, false);
       ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
       if (side < 0) {
         EXPECT_TRUE(certified_zero(r)) << r.lower() << " " << r.upper();

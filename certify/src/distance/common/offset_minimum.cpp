@@ -135,6 +135,17 @@ SourceQuadric::SourceQuadric(const core::QuadricMatrix& q)
 }
 
 bool SourceQuadric::project(const Rational (&c)[3], Ball (&p)[3], long prec) const {
+  if (project_on_normal(c, p, prec)) return true;
+  // c itself on S1 (then t = 0 is the root nearest c), decided exactly: the fallback where the
+  // normal line gives no certified root, as at a singular point of S1 (grad f(c) = 0: no line
+  // at all), where box centres sit exactly at symmetric inputs (an exact rational apex).
+  if (!f.evaluate(c[0], c[1], c[2]).is_zero()) return false;
+  for (size_t k = 0; k < 3; ++k)
+    arb_set_fmpq(p[k].v, c[k].raw(), prec);
+  return true;
+}
+
+bool SourceQuadric::project_on_normal(const Rational (&c)[3], Ball (&p)[3], long prec) const {
   if (f.total_degree() > 2) return project_general(f, N, c, p, prec);
   // f(c + t n) = f(c) + t |n|^2 + t^2 n^T H n / 2 with n = grad f(c): exact coefficients.
   Ball cb[3], n[3], b0, b1, b2, tmp, h;

@@ -124,8 +124,8 @@ public:
     for (size_t i = 0; i < 3; ++i)
       algebra::evaluate(N[i].v, src_.N[i], ball_point(box), prec);
     if (arb_contains_zero(N[0].v) && arb_contains_zero(N[1].v) && arb_contains_zero(N[2].v)) {
-      PointQuadricResult pq = point_quadric_critical({centre[0], centre[1], centre[2]}, *o_.target,
-                                                     std::max<long>(digits_, 15) + 5);
+      PointQuadricResult pq =
+          point_quadric_critical({centre[0], centre[1], centre[2]}, *o_.target, point_digits());
       if (!pq.ok || pq.criticals.empty()) {
         arf_zero(out);
         return;
@@ -213,11 +213,15 @@ public:
     if (arf_sgn(out) < 0) arf_zero(out);
   }
 
-  // The points of S2 on the normal line at the certified point p: genuine pairs.
+  // The points of S2 on the normal line at the certified point p: genuine pairs. Where grad f
+  // may vanish at an exact p (a singular point of S1, e.g. an exact rational apex: no normal
+  // line), the nearest critical foot of p on S2 (the point-quadric sextic).
   std::optional<CandidatePair> upper(const Ball (&p)[3], long prec) const override {
     Ball N[3], a0, a1, a2, nrm;
     for (size_t k = 0; k < 3; ++k)
       algebra::evaluate(N[k].v, src_.N[k], ball_point(p), prec);
+    if (arb_contains_zero(N[0].v) && arb_contains_zero(N[1].v) && arb_contains_zero(N[2].v))
+      if (auto fp = foot_pair(p, prec)) return fp;
     ball_norm(nrm.v, N, prec);
     algebra::evaluate(a0.v, o_.g, ball_point(p), prec);
     algebra::evaluate(a1.v, o_.g1, ball_point(p), prec);
@@ -253,6 +257,42 @@ public:
   }
 
 private:
+  // Enclosures of the point-quadric distances as narrow as the refinement loop's target (its
+  // 3.33 digits + 24 bits, about digits + 8 decimal digits), or the loop never closes on them.
+  long point_digits() const { return std::max<long>(digits_, 15) + 10; }
+
+  // The least critical distance from an exact point p (every radius 0) to S2, as the distance
+  // of a genuine pair (each enclosure holds the distance to an actual foot point on S2);
+  // nullopt when p is not exact or the sextic is not decided.
+  std::optional<CandidatePair> foot_pair(const Ball (&p)[3], long prec) const {
+    std::array<Rational, 3> x;
+    for (size_t k = 0; k < 3; ++k) {
+      if (!arb_is_exact(p[k].v)) return std::nullopt;
+      arf_get_fmpq(x[k].raw_mut(), arb_midref(p[k].v));
+    }
+    const PointQuadricResult pq = point_quadric_critical(x, *o_.target, point_digits());
+    if (!pq.ok) return std::nullopt;
+    std::optional<CandidatePair> best;
+    for (const auto& cd : pq.criticals) {
+      CandidatePair c;
+      Ball hi;
+      arb_set_str(c.d.v, cd.lower.c_str(), prec);
+      arb_set_str(hi.v, cd.upper.c_str(), prec);
+      arb_union(c.d.v, c.d.v, hi.v, prec);
+      if (best) { // keep the least upper bound (any entry is a valid one)
+        algebra::Arf u, ub;
+        arb_get_ubound_arf(u.v, c.d.v, prec);
+        arb_get_ubound_arf(ub.v, best->d.v, prec);
+        if (arf_cmp(u.v, ub.v) >= 0) continue;
+      }
+      for (size_t k = 0; k < 3; ++k)
+        c.p[k] = x[k].to_double_approx();
+      c.q = cd.foot;
+      best = std::move(c);
+    }
+    return best;
+  }
+
   const SourceQuadric& src_;
   const Offset& o_;
   long digits_;

@@ -53,8 +53,12 @@ struct SourceQuadric {
   std::array<core::Poly3, 3> N; ///< grad f
   std::array<std::array<core::Rational, 3>, 3> hess;
   /// A point of S1 on the gradient line through c (the root nearest c): balls that contain
-  /// an exact point of S1. False when no real root is certain.
+  /// an exact point of S1; c itself when f(c) = 0 exactly and the line gives no certain root
+  /// (a singular point). False when no real root is certain.
   bool project(const core::Rational (&c)[3], Ball (&p)[3], long prec) const;
+
+private:
+  bool project_on_normal(const core::Rational (&c)[3], Ball (&p)[3], long prec) const;
 };
 
 /// The sign of h (+1 or -1; 0 when not certain) at a certified point of the source near the
