@@ -21,6 +21,10 @@
 //   bound (the source point was projected along its normal line), so the answer stayed
 //   undecided with [gap, 2.5]. Closed form: the distance is gap (the teardrop rises as
 //   z >= 0 and the ellipsoid falls away below its top); the ellipsoid raised by gap: they cross.
+// The cylinder and cusp cases also run under every isolating-interval placement refine_root can
+// hand the routes (algebra::set_root_placement): degenerate or not, the exact boxes must not
+// change the answer.
+#include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
 #include "surfcert/core/io/json.hpp"
@@ -81,6 +85,20 @@ std::string tip_plane_offset(const std::string& eps, int sign, mpfr_t gap) {
   mpfr_clears(s, e, t, static_cast<mpfr_ptr>(nullptr));
   return out;
 }
+
+// Every valid isolating-interval placement refine_root can hand the routes (testing hook).
+const algebra::RootPlacement kPlacements[] = {
+    algebra::RootPlacement::Bisect,     algebra::RootPlacement::Newton,
+    algebra::RootPlacement::Centred,    algebra::RootPlacement::RootNearLo,
+    algebra::RootPlacement::RootNearHi, algebra::RootPlacement::Tiny};
+
+// Sets a placement for a scope (restores Bisect even when an assertion returns early).
+struct Placed {
+  explicit Placed(algebra::RootPlacement p) { algebra::set_root_placement(p); }
+  ~Placed() { algebra::set_root_placement(algebra::RootPlacement::Bisect); }
+  Placed(const Placed&) = delete;
+  Placed& operator=(const Placed&) = delete;
+};
 
 bool certified_zero(const certify::DistanceResult& r) {
   return r.status == certify::Status::Certified && r.upper() == "0";
@@ -150,25 +168,28 @@ const std::pair<const char*, const char*> kGaps[] = {
 } // namespace
 
 TEST(OffsetAudit, NormalLineAlongCylinderAxis) {
-  for (const auto& [g, name] : kGaps)
-    for (int side : {1, -1}) {
-      // Centre x0 = 2 +- gap: the leftmost point (x0 - 1, 0, 0) is gap outside / inside the
-      // cylinder; the top and bottom (x0, 0, +-1/2) are exact rational solutions.
-      const std::string x0 = std::string("(2 ") + (side > 0 ? "+ " : "- ") + g + ")";
-      const std::string ell = "(x - " + x0 + ")^2 + 4 y^2 + 4 z^2 - 1";
-      SCOPED_TRACE(ell);
-      const auto r = certify::surface_distance(surfcert::testing::q(ell),
-                                               surfcert::testing::q("x^2 + y^2 - 1"), 15, false,
-                                               certify::Mode::Exact);
-      ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
-      if (side < 0) {
-        EXPECT_TRUE(certified_zero(r)) << r.lower() << " " << r.upper();
-        continue;
+  for (const auto placement : kPlacements)
+    for (const auto& [g, name] : kGaps)
+      for (int side : {1, -1}) {
+        const Placed placed(placement);
+        SCOPED_TRACE(static_cast<int>(placement));
+        // Centre x0 = 2 +- gap: the leftmost point (x0 - 1, 0, 0) is gap outside / inside the
+        // cylinder; the top and bottom (x0, 0, +-1/2) are exact rational solutions.
+        const std::string x0 = std::string("(2 ") + (side > 0 ? "+ " : "- ") + g + ")";
+        const std::string ell = "(x - " + x0 + ")^2 + 4 y^2 + 4 z^2 - 1";
+        SCOPED_TRACE(ell);
+        const auto r = certify::surface_distance(surfcert::testing::q(ell),
+                                                 surfcert::testing::q("x^2 + y^2 - 1"), 15, false,
+                                                 certify::Mode::Exact);
+        ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+        if (side < 0) {
+          EXPECT_TRUE(certified_zero(r)) << r.lower() << " " << r.upper();
+          continue;
+        }
+        EXPECT_TRUE(surfcert::testing::overlap_bounds(r, name, name))
+            << r.lower() << " " << r.upper();
+        EXPECT_EQ(r.minimizers, "1") << r.note;
       }
-      EXPECT_TRUE(surfcert::testing::overlap_bounds(r, name, name))
-          << r.lower() << " " << r.upper();
-      EXPECT_EQ(r.minimizers, "1") << r.note;
-    }
 }
 
 TEST(OffsetAudit, CuspOfImplicitSourceIsTheClosestPoint) {
@@ -189,4 +210,19 @@ TEST(OffsetAudit, CuspOfImplicitSourceIsTheClosestPoint) {
           << r.lower() << " " << r.upper();
       EXPECT_EQ(r.minimizers, "1") << r.note;
     }
+}
+
+TEST(OffsetAudit, CuspUnderEveryPlacement) {
+  // Where the cusp's exact box sits (a degenerate interval or not) depends on the placement.
+  const core::Surface drop = surf("x^2 + y^2 - z^3 + z^4");
+  const core::Surface ell = surf("x^2 + 4 y^2 + 4 (z + 1/2 + 1/10^20)^2 - 1");
+  for (const auto placement : kPlacements) {
+    const Placed placed(placement);
+    SCOPED_TRACE(static_cast<int>(placement));
+    const auto r = certify::surface_distance(drop, ell, 15, false);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_TRUE(surfcert::testing::overlap_bounds(r, "1e-20", "1e-20"))
+        << r.lower() << " " << r.upper();
+    EXPECT_EQ(r.minimizers, "1") << r.note;
+  }
 }

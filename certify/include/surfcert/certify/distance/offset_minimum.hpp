@@ -11,9 +11,14 @@
 //   exceeds the best upper bound, and fills a DistanceResult (enclosure, minimizer count,
 //   approximate pairs).
 // Invariants: every lower bound is <= the distance of every closest pair with its S1 point in
-// the box; every upper bound is the distance of a pair of actual surface points (balls that
-// contain the exact points), so [min lower, min upper] always encloses the minimum when the
-// minimum is attained and the cover is complete.
+// the box (a NaN bound is read as 0); every upper bound is the distance of a pair of actual
+// surface points (balls that contain the exact points), so [min lower, min upper] always
+// encloses the minimum when the minimum is attained and the cover is complete. The minimizer
+// count is the number of kept boxes, i.e. of closest S1 points (a box holds one solution at
+// most; extra kept boxes only raise it, and a count above 1 is a tie, unproven until
+// symmetry.hpp proves it). It would undercount only where one S1 point has two closest points
+// on S2, which needs S2 on both sides of S1 along its normal (a plane between the sheets of a
+// hyperboloid of two sheets): planes are answered by the closed form first.
 #pragma once
 
 #include "surfcert/algebra/poly_ops.hpp"
