@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -59,7 +60,8 @@ std::string fast_line(int i) {
          R"("b":{"type":"sphere","center":[0.5,0.25,0],"radius":0.75},"detail":"topology"})";
 }
 
-// Two tori 1e-20 apart: the distance's branch and bound runs for minutes (its budget here).
+// Two tori 1e-20 apart: the distance's branch and bound runs for seconds (3.7 s on the
+// development machine) before it gives up undecided.
 const char* kSlowLine =
     R"({"id":"slow","op":"distance","a":{"type":"torus","center":[0,0,0],"axis":[0,0,1],)"
     R"("major_radius":3,"minor_radius":1},"b":{"type":"torus","center":)"
@@ -140,12 +142,25 @@ TEST(BatchStream, TimeoutKilledBatchWroteEveryCompletedLine) {
   text += std::string(kSlowLine) + "\n";
   for (int i = kBefore; i < kBefore + kAfter; ++i)
     text += fast_line(i) + "\n";
-  const std::string in = tmp_path("in"), out = tmp_path("out");
+  const std::string in = tmp_path("in"), out = tmp_path("out"), slow = tmp_path("slow");
   std::ofstream(in) << text;
+  // The kill must come while the slow line runs, whatever this machine's speed (it takes
+  // ~3.7 s on one, far longer under ASan): time it alone and kill at half that, at most 4 s.
+  // The time only chooses when to kill; what is asserted is what was written by then.
+  std::ofstream(slow) << kSlowLine << "\n";
+  const auto t0 = std::chrono::steady_clock::now();
+  const int alone = std::system((std::string("timeout -s TERM 8 ") + SURFCERT_BINARY +
+                                 " batch --threads 1 <" + slow + " >/dev/null 2>&1")
+                                    .c_str());
+  const double t_slow =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(WIFEXITED(alone)) << alone;
+  char kill_after[32];
+  std::snprintf(kill_after, sizeof kill_after, "%.2f", std::clamp(t_slow / 2, 0.5, 4.0));
   for (const bool ordered : {true, false}) {
-    const std::string cmd = std::string("timeout -s TERM 4 ") + SURFCERT_BINARY + " batch " +
-                            (ordered ? "--threads 1" : "--threads 2 --unordered") + " <" + in +
-                            " >" + out + " 2>/dev/null";
+    const std::string cmd = std::string("timeout -s TERM ") + kill_after + " " + SURFCERT_BINARY +
+                            " batch " + (ordered ? "--threads 1" : "--threads 2 --unordered") +
+                            " <" + in + " >" + out + " 2>/dev/null";
     const int st = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 124) << st; // killed by timeout
     const auto ids = ids_of(slurp(out));
@@ -163,6 +178,7 @@ TEST(BatchStream, TimeoutKilledBatchWroteEveryCompletedLine) {
   }
   std::remove(in.c_str());
   std::remove(out.c_str());
+  std::remove(slow.c_str());
 }
 
 // Request and response through pipes with the input left open: each answer arrives without
