@@ -26,83 +26,85 @@ I enclose_integer(const fmpz* z) {
   return I(arf_get_d(a.v, ARF_RND_FLOOR), arf_get_d(a.v, ARF_RND_CEIL));
 }
 
-// The matrix of a posed shape, in intervals, by the same formula as core::posed_quadric_matrix:
-// M = T^T L T with T = [[R^T, -R^T c], [0, 1]] and R the quaternion's rotation over |q|^2.
+// The matrix of a posed shape, in intervals: the exact matrix of core::posed_quadric_matrix,
+// M = T^T L T with T = [[S, -S c], [0, 1]], S = R^T = Q^T / n the inverse of the quaternion's
+// rotation (Q the textbook matrix of the unnormalised quaternion, n = |q|^2) and
+// L = [[D, l], [l^T, k]], D = diag(d), l = (0, 0, h), expanded so that n is divided once per
+// radius instead of once per rotation entry:
+//   M_ij = sum_q Q_iq (d_q / n^2) Q_jq                 (i, j < 3; the block A = S^T D S),
+//   M_i3 = -(A c)_i + h S_2i,   M_33 = c^T A c + 2 h (-S c)_2 + k.
+// Every operation is an interval one on enclosures of exact values, so each entry encloses the
+// exact one (not the same intervals as the plain 4x4 product, only as rigorous).
 IMat4 enclose_shape(const core::ShapeSpec& s) {
   const core::LocalForm f = core::local_form(s.type);
-  IMat4 local;
-  for (auto& row : local)
-    row.fill(I(0));
-  for (size_t i = 0; i < 3; ++i)
-    if (f.q_sign[i] != 0) {
-      const I r(s.radii[i]);
-      const I q = I(1) / (r * r);
-      local[i][i] = f.q_sign[i] > 0 ? q : -q;
-    }
-  local[2][3] = local[3][2] = I(0.5 * f.linear_z);
-  local[3][3] = I(f.constant);
-  // inv = R^-1 = R^T.
-  std::array<std::array<I, 3>, 3> inv;
+  // qt[q][i] = n S_qi = Q_iq: the transposed textbook matrix (the identity when unrotated).
+  std::array<std::array<I, 3>, 3> qt;
+  I n(1);
   if (s.rotated) {
     const I w(s.quaternion[0]), x(s.quaternion[1]), y(s.quaternion[2]), z(s.quaternion[3]);
-    // Each product and partial sum once: the same operations on the same operands as the
-    // textbook formula (w*w + x*x - y*y - z*z and so on, left to right), so the same intervals
-    // (the compiler cannot share them itself: interval operations are opaque to it).
+    // Each product once (interval operations are opaque to the compiler); 2 t as t + t (exact).
     const I ww = w * w, xx = x * x, yy = y * y, zz = z * z;
     const I xy = x * y, wz = w * z, xz = x * z, wy = w * y, yz = y * z, wx = w * x;
     const I ww_p_xx = ww + xx, ww_m_xx = ww - xx;
-    const I n = ww_p_xx + yy + zz;
-    const I two(2);
+    n = ww_p_xx + yy + zz;
+    auto twice = [](const I& t) { return t + t; };
     const std::array<std::array<I, 3>, 3> r = {
-        {{ww_p_xx - yy - zz, two * (xy - wz), two * (xz + wy)},
-         {two * (xy + wz), ww_m_xx + yy - zz, two * (yz - wx)},
-         {two * (xz - wy), two * (yz + wx), ww_m_xx - yy + zz}}};
-    for (size_t i = 0; i < 3; ++i)
-      for (size_t j = 0; j < 3; ++j)
-        inv[i][j] = r[j][i] / n;
+        {{ww_p_xx - yy - zz, twice(xy - wz), twice(xz + wy)},
+         {twice(xy + wz), ww_m_xx + yy - zz, twice(yz - wx)},
+         {twice(xz - wy), twice(yz + wx), ww_m_xx - yy + zz}}};
+    for (size_t q = 0; q < 3; ++q)
+      for (size_t i = 0; i < 3; ++i)
+        qt[q][i] = r[i][q];
   } else {
-    for (size_t i = 0; i < 3; ++i)
-      for (size_t j = 0; j < 3; ++j)
-        inv[i][j] = I(i == j ? 1 : 0);
+    for (size_t q = 0; q < 3; ++q)
+      for (size_t i = 0; i < 3; ++i)
+        qt[q][i] = I(q == i ? 1 : 0);
   }
-  // T = [[R^T, tc], [0, 1]] with tc = -R^T c; L = [[diag(d), l], [l^T, k]] with l = (0, 0, h).
-  // The products below are those of the plain 4x4 formulas M = T^T (L T) without the terms
-  // that are exact zeros (T's last row, L's zero entries), summed in the same order: adding an
-  // exact zero changes no interval, so the enclosure is the same, at a third of the cost.
-  std::array<I, 3> tc;
-  for (size_t i = 0; i < 3; ++i) {
-    I acc(0);
+  const I n2 = n * n;
+  // dq[q][j] = (d_q / n^2) Q_jq, d_q = +-1 / r_q^2 (0 for an absent term).
+  std::array<std::array<I, 3>, 3> dq;
+  for (size_t q = 0; q < 3; ++q) {
+    I d(0);
+    if (f.q_sign[q] != 0) {
+      const I r(s.radii[q]);
+      const I v = I(1) / (r * r * n2);
+      d = f.q_sign[q] > 0 ? v : -v;
+    }
     for (size_t j = 0; j < 3; ++j)
-      acc += inv[i][j] * I(s.center[j]);
-    tc[i] = -acc;
+      dq[q][j] = d * qt[q][j];
   }
-  const I h = local[2][3], k = local[3][3];
-  // lt = L T.
-  std::array<std::array<I, 4>, 4> lt;
-  for (size_t i = 0; i < 3; ++i) {
-    const I& d = local[i][i];
-    for (size_t j = 0; j < 3; ++j)
-      lt[i][j] = d * inv[i][j];
-    lt[i][3] = d * tc[i];
-  }
-  lt[2][3] += h; // h * T[3][3] = h
-  for (size_t j = 0; j < 3; ++j)
-    lt[3][j] = h * inv[2][j];
-  lt[3][3] = h * tc[2] + k;
-  // Symmetric by construction: compute the upper triangle once and mirror it, so the
-  // enclosure is exactly symmetric as the exact matrix is.
+  // Symmetric by construction: the upper triangle once, mirrored, so the enclosure is exactly
+  // symmetric as the exact matrix is.
   IMat4 m;
   for (size_t i = 0; i < 3; ++i)
-    for (size_t j = i; j < 4; ++j) {
-      I acc(0);
-      for (size_t q = 0; q < 3; ++q)
-        acc += inv[q][i] * lt[q][j];
+    for (size_t j = i; j < 3; ++j) {
+      I acc = qt[0][i] * dq[0][j];
+      for (size_t q = 1; q < 3; ++q)
+        acc += qt[q][i] * dq[q][j];
       m[i][j] = m[j][i] = acc;
     }
-  I acc(0);
-  for (size_t q = 0; q < 3; ++q)
-    acc += tc[q] * lt[q][3];
-  m[3][3] = acc + lt[3][3];
+  const std::array<I, 3> c = {I(s.center[0]), I(s.center[1]), I(s.center[2])};
+  I ctac(0); // c^T A c
+  for (size_t i = 0; i < 3; ++i) {
+    I ac = m[i][0] * c[0];
+    for (size_t j = 1; j < 3; ++j)
+      ac += m[i][j] * c[j];
+    m[i][3] = -ac;
+    ctac += c[i] * ac;
+  }
+  m[3][3] = ctac + I(f.constant);
+  if (f.linear_z != 0) { // h = linear_z / 2: the terms h S_2i and 2 h (-S c)_2 = -linear_z (S c)_2
+    const I h(0.5 * f.linear_z), inv_n = I(1) / n;
+    I sc2(0); // (S c)_2 = sum_j S_2j c_j
+    for (size_t j = 0; j < 3; ++j) {
+      const I s2j = qt[2][j] * inv_n; // S_2j = Q_j2 / n
+      m[j][3] += h * s2j;
+      sc2 += s2j * c[j];
+    }
+    m[3][3] -= I(f.linear_z) * sc2;
+  }
+  for (size_t i = 0; i < 3; ++i)
+    m[3][i] = m[i][3];
   return m;
 }
 
