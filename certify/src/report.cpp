@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdio>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 namespace surfcert::certify {
@@ -302,81 +303,56 @@ const MorphologyFragments& morphology_fragments(const Morphology& m) {
 } // namespace
 
 void append_qsic_topology_envelope(std::string& out, const QsicResult& r) {
-  // The fields and order of qsic_envelope_json at Detail::Topology (the keys need no escaping).
-  auto key = [&out](const char* k) {
-    out += '"';
-    out += k;
-    out += "\":";
-  };
+  // The fields and order of qsic_envelope_json at Detail::Topology. Keys and the names of enum
+  // values (status, mode, pencil) are plain lower-case words that need no escaping: each run of
+  // constant text is one append; strings computed per answer go through append_json_string.
+  using namespace std::string_view_literals;
   auto text = [&out](std::string_view v) { core::io::append_json_string(out, v); };
-  auto number = [&out](long n) {
-    char buf[24];
-    out.append(buf, std::to_chars(buf, buf + sizeof buf, n).ptr);
-  };
-  auto boolean = [&out](bool b) { out += b ? "true" : "false"; };
-  out += '{';
-  key("status");
-  text(to_string(r.status));
-  out += ',';
-  key("mode");
-  text(to_string(r.mode));
-  if (r.mode == Mode::Filtered) {
-    out += ',';
-    key("exact_fallback");
-    boolean(r.exact_fallback);
-  }
+  out += "{\"status\":\""sv;
+  out += to_string(r.status);
+  out += "\",\"mode\":\""sv;
+  out += to_string(r.mode);
+  if (r.mode == Mode::Filtered)
+    out += r.exact_fallback ? "\",\"exact_fallback\":true"sv : "\",\"exact_fallback\":false"sv;
+  else
+    out += '"';
   if (!r.note.empty()) {
-    out += ',';
-    key("note");
+    out += ",\"note\":"sv;
     text(r.note);
   }
-  out += ',';
-  key("detail");
-  text(to_string(Detail::Topology));
-  out += ',';
-  key("result");
-  out += '{';
-  key("pencil");
-  text(pencil_name(r.pencil));
-  out += ',';
-  key("tu_case");
+  out += ",\"detail\":\"topology\",\"result\":{\"pencil\":\""sv;
+  out += pencil_name(r.pencil);
   if (r.pencil != algebra::PencilKind::Regular) {
-    out += "null,";
-    key("morphology");
+    out += "\",\"tu_case\":null,\"morphology\":"sv;
     text(r.pencil == algebra::PencilKind::Degenerate ? "degenerate_pencil" : "coincident_quadrics");
-    out += ',';
-    key("description");
+    out += ",\"description\":"sv;
     text(r.pencil == algebra::PencilKind::Degenerate ? kDegenerateDescription
                                                      : kCoincidentDescription);
   } else {
+    out += "\",\"tu_case\":"sv;
     if (r.morphology) {
-      number(r.tu_case);
+      char buf[24];
+      out.append(buf, std::to_chars(buf, buf + sizeof buf, r.tu_case).ptr);
       out += ',';
       out += morphology_fragments(*r.morphology).head;
     } else {
-      out += "null,";
-      key("morphology");
-      out += "null";
+      out += "null,\"morphology\":null"sv;
     }
-    out += ',';
-    key("segre");
+    out += ",\"segre\":"sv;
     text(r.segre);
-    out += ',';
-    key("root_pattern");
+    out += ",\"root_pattern\":"sv;
     text(r.facts.root_pattern);
     if (r.morphology) out += morphology_fragments(*r.morphology).components;
   }
   if (!r.ellipsoid_relation.empty()) {
-    out += ',';
-    key("ellipsoid_relation");
+    out += ",\"ellipsoid_relation\":"sv;
     text(r.ellipsoid_relation);
   }
   if (r.pencil == algebra::PencilKind::Regular && !r.containment.empty()) {
-    out += ',';
-    key("containment");
+    out += ",\"containment\":"sv;
     text(r.containment);
   }
-  out += "}}";
+  out += "}}"sv;
 }
 
 std::string qsic_result_text(const QsicResult& r, const core::QuadricMatrix& a,
