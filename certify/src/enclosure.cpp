@@ -41,10 +41,13 @@ IMat4 enclose_shape(const core::ShapeSpec& s) {
   std::array<std::array<I, 3>, 3> qt;
   I n(1);
   if (s.rotated) {
-    const I w(s.quaternion[0]), x(s.quaternion[1]), y(s.quaternion[2]), z(s.quaternion[3]);
-    // Each product once (interval operations are opaque to the compiler); 2 t as t + t (exact).
-    const I ww = w * w, xx = x * x, yy = y * y, zz = z * z;
-    const I xy = x * y, wz = w * z, xz = x * z, wy = w * y, yz = y * z, wx = w * x;
+    const double wd = s.quaternion[0], xd = s.quaternion[1], yd = s.quaternion[2],
+                 zd = s.quaternion[3];
+    const I w(wd), x(xd), y(yd), z(zd);
+    // Each product once (interval operations are opaque to the compiler), by a double operand
+    // where one is a double (CGAL's cheaper interval * double); 2 t as t + t (exact).
+    const I ww = w * wd, xx = x * xd, yy = y * yd, zz = z * zd;
+    const I xy = x * yd, wz = w * zd, xz = x * zd, wy = w * yd, yz = y * zd, wx = w * xd;
     const I ww_p_xx = ww + xx, ww_m_xx = ww - xx;
     n = ww_p_xx + yy + zz;
     auto twice = [](const I& t) { return t + t; };
@@ -83,14 +86,14 @@ IMat4 enclose_shape(const core::ShapeSpec& s) {
         acc += qt[q][i] * dq[q][j];
       m[i][j] = m[j][i] = acc;
     }
-  const std::array<I, 3> c = {I(s.center[0]), I(s.center[1]), I(s.center[2])};
+  const std::array<double, 3>& c = s.center;
   I ctac(0); // c^T A c
   for (size_t i = 0; i < 3; ++i) {
     I ac = m[i][0] * c[0];
     for (size_t j = 1; j < 3; ++j)
       ac += m[i][j] * c[j];
     m[i][3] = -ac;
-    ctac += c[i] * ac;
+    ctac += ac * c[i];
   }
   m[3][3] = ctac + I(f.constant);
   if (f.linear_z != 0) { // h = linear_z / 2: the terms h S_2i and 2 h (-S c)_2 = -linear_z (S c)_2
