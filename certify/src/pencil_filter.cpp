@@ -120,9 +120,10 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   out.samples.reserve(nsep);
   for (size_t si = 0; si < nsep; ++si) {
     double s = seps[si];
+    // The leading 3x3 block of s*A - B first: Jacobi's rule needs no more.
     Mat4T<I> m;
-    for (size_t i = 0; i < 4; ++i)
-      for (size_t j = i; j < 4; ++j)
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = i; j < 3; ++j)
         m[i][j] = m[j][i] = a[i][j] * s - b[i][j];
     // Jacobi's rule: with leading minors d1, d2, d3 certainly nonzero and d4 = f(s) (its sign
     // is certain from above), the negative eigenvalues are the sign changes of 1, d1..d4.
@@ -141,7 +142,9 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
       out.samples.push_back(Rational::exact_from_double(s));
       continue;
     }
-    auto c = algebra::charpoly_coeffs(m); // a leading minor may vanish: Descartes instead
+    for (size_t i = 0; i < 4; ++i) // a leading minor may vanish: Descartes instead
+      m[i][3] = m[3][i] = a[i][3] * s - b[i][3];
+    auto c = algebra::charpoly_coeffs(m);
     int sg[4];
     for (size_t t = 0; t < 4; ++t) {
       sg[t] = isign(c[t]);
