@@ -95,6 +95,47 @@ std::string_view number_text(od::value v) {
   return t;
 }
 
+// The common literal -?(0|[1-9][0-9]*)\.[0-9]+ of at most 19 digits takes a shorter road first:
+// its digits read 8 at a time, then simdjson's own conversion of those digits and exponent
+// (numberparsing::compute_float_64 of the kernel that get_double runs: the same function on the
+// same integer and power of ten, so the same double). simdjson's internal API, pinned by the
+// system package: batch_line_test compares this reader with the document parser on hard cases.
+// It answers only normal values; zero, subnormals and the rare case compute_float_64 declines
+// go the general way. The value is left unconsumed (the array or object iteration skips it).
+bool plain_decimal(std::string_view t, double& out) {
+  namespace np = simdjson::SIMDJSON_BUILTIN_IMPLEMENTATION::numberparsing;
+  const char* p = t.data();
+  const char* const end = p + t.size();
+  auto digit = [&end](const char* q) { return q != end && static_cast<unsigned>(*q - '0') <= 9; };
+  const bool negative = p != end && *p == '-';
+  p += negative;
+  if (!digit(p)) return false;
+  const char* const first = p;
+  uint64_t w = 0; // overflows only past 19 digits, which are refused below
+  if (*p == '0') {
+    ++p;
+  } else {
+    while (digit(p))
+      w = 10 * w + static_cast<uint64_t>(*p++ - '0');
+  }
+  const auto int_digits = p - first;
+  if (p == end || *p != '.') return false;
+  const char* const frac = ++p;
+  while (end - p >= 8 && np::is_made_of_eight_digits_fast(reinterpret_cast<const uint8_t*>(p))) {
+    w = w * 100000000 + simdjson::SIMDJSON_BUILTIN_IMPLEMENTATION::parse_eight_digits_unrolled(p);
+    p += 8;
+  }
+  while (digit(p))
+    w = 10 * w + static_cast<uint64_t>(*p++ - '0');
+  const auto frac_digits = p - frac;
+  if (p != end || frac_digits == 0 || int_digits + frac_digits > 19) return false;
+  double d = 0;
+  if (!np::compute_float_64(-static_cast<int64_t>(frac_digits), w, negative, d)) return false;
+  if (!(std::fabs(d) >= DBL_MIN) || !std::isfinite(d)) return false;
+  out = d;
+  return true;
+}
+
 // A number literal read as the shape reader reads one (surface_reader.cpp, literal_double): a
 // non-integer literal is the double it rounds to (correctly rounded, as strtod), an integer
 // literal of at most 15 digits its exact value. Anything else (longer integers: exact
@@ -105,6 +146,7 @@ std::string_view number_text(od::value v) {
 double literal_double(od::value v) {
   const std::string_view t = v.raw_json_token(); // the literal (and trailing white space)
   double d = 0;
+  if (plain_decimal(trimmed(t), d)) return d;
   if (v.get_double().get(d) != simdjson::SUCCESS) throw NotFast{};
   const double a = std::fabs(d);
   if (a >= 1e15 || d == 0) {
