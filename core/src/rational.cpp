@@ -4,6 +4,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 
 namespace surfcert::core {
@@ -41,17 +43,24 @@ Rational Rational::exact_from_double(double d) {
   if (!std::isfinite(d)) throw std::domain_error("exact_from_double: non-finite double");
   Rational r;
   if (d == 0) return r;
-  int e = 0;
-  double m = std::frexp(d, &e); // d = m * 2^e, 0.5 <= |m| < 1
-  // m * 2^53 is an integer exactly (53-bit significand); strip its trailing zero bits so
-  // that num / 2^k is already in lowest terms.
-  auto mi = static_cast<long long>(std::ldexp(m, 53));
-  long exp2 = static_cast<long>(e) - 53;
-  while ((mi & 1) == 0) {
-    mi /= 2;
-    ++exp2;
+  // d = +-m * 2^e from its IEEE 754 fields (no libm calls: this runs for every sample point of
+  // the filtered decision): a normal number is (2^52 + fraction) * 2^(biased - 1075), a
+  // subnormal fraction * 2^-1074. Stripping m's trailing zero bits leaves num / 2^k in lowest
+  // terms.
+  uint64_t bits = 0;
+  std::memcpy(&bits, &d, sizeof bits);
+  const auto biased = static_cast<long>((bits >> 52) & 0x7ff);
+  uint64_t m = bits & ((uint64_t(1) << 52) - 1);
+  long exp2 = -1074;
+  if (biased != 0) {
+    m |= uint64_t(1) << 52;
+    exp2 = biased - 1075;
   }
-  fmpz_set_si(fmpq_numref(r.v_), static_cast<slong>(mi));
+  const int tz = __builtin_ctzll(m); // m != 0 since d != 0
+  m >>= tz;
+  exp2 += tz;
+  const auto mi = static_cast<slong>(m); // < 2^53
+  fmpz_set_si(fmpq_numref(r.v_), (bits >> 63) ? -mi : mi);
   if (exp2 >= 0)
     fmpz_mul_2exp(fmpq_numref(r.v_), fmpq_numref(r.v_), static_cast<ulong>(exp2));
   else

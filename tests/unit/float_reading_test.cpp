@@ -13,13 +13,17 @@
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 
+#include <gmp.h>
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
+#include <vector>
 
 using namespace surfcert;
 using core::Rational;
@@ -224,4 +228,47 @@ TEST(FloatReading, BatchLineCarriesTheReadings) {
   ASSERT_NE(rd, nullptr);
   ASSERT_EQ(rd->size(), 1u);
   EXPECT_EQ(rd->items()[0].find("path")->text(), "$.a.rotation.matrix");
+}
+
+// Rational::exact_from_double against GMP's exact mpq_set_d (an independent route): every
+// class of double (normal, subnormal, powers of two, the extremes, both signs) and random bits.
+TEST(FloatReading, ExactValueOfADoubleMatchesGmp) {
+  std::vector<double> ds = {0.1,
+                            -0.1,
+                            1,
+                            -1,
+                            0.5,
+                            3,
+                            1e300,
+                            -1e-300,
+                            5e-324,
+                            -5e-324,
+                            DBL_MIN,
+                            -DBL_MIN,
+                            DBL_MAX,
+                            -DBL_MAX,
+                            0x1p-1023,
+                            0x1.fffffffffffffp-1023,
+                            0x1p52,
+                            0x1p53 + 2,
+                            0x1p-52,
+                            9007199254740991.0,
+                            0.18250386420143827,
+                            -0.0};
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 2000; ++i) {
+    const uint64_t bits = rng();
+    double d = 0;
+    std::memcpy(&d, &bits, sizeof d);
+    if (std::isfinite(d)) ds.push_back(d);
+  }
+  mpq_t want;
+  mpq_init(want);
+  for (double d : ds) {
+    mpq_set_d(want, d);
+    core::Rational w;
+    fmpq_set_mpq(w.raw_mut(), want);
+    EXPECT_EQ(core::Rational::exact_from_double(d), w) << d;
+  }
+  mpq_clear(want);
 }
