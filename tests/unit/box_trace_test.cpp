@@ -163,17 +163,30 @@ TEST(BoxTrace, GivenBoxCutsTheHyperbolaAtItsFaces) {
   }
 }
 
-// A bounded loop cut by a given box: the open pieces no longer match the certified loop count,
-// and the answer says so instead of certifying.
-TEST(BoxTrace, BoxCuttingALoopIsUndecided) {
-  trace::TraceOptions opt;
-  trace::Box box;
-  box.min = {-0.5, -2, -2};
-  box.max = {0.5, 2, 2};
-  opt.box = box;
-  auto r = trace::intersect_curve(q("z = x^2 - y^2"), q("x^2 + y^2 = 1"), Mode::Exact, opt);
-  EXPECT_EQ(r.status, certify::Status::Undecided);
-  EXPECT_FALSE(r.matches_topology);
+// A bounded loop cut by a given box: the loop (cos t, sin t, cos 2t) meets the faces x = +-1/2
+// at t = +-pi/3, +-2pi/3, the four points (+-1/2, +-sqrt(3)/2, -1/2) (closed form), leaving
+// two open pieces and no closed one. Certified only because no loop lies wholly inside the box
+// (certify/inner_loops.hpp; was undecided, the loop count differing); the box holding the
+// whole loop shows it closed.
+TEST(BoxTrace, BoxCuttingALoopIsCertifiedAsItsPieces) {
+  for (double half : {0.5, 2.0}) {
+    auto r = trace::intersect_curve(q("z = x^2 - y^2"), q("x^2 + y^2 = 1"), Mode::Exact,
+                                    given_box({-half, -2, -2}, {half, 2, 2}));
+    ASSERT_EQ(r.status, certify::Status::Certified) << half << ": " << r.note;
+    EXPECT_TRUE(r.matches_topology);
+    int closed = 0, open = 0;
+    for (const auto& br : r.branches)
+      (br.closed ? closed : open) += 1;
+    EXPECT_EQ(closed, half > 1 ? 1 : 0) << half;
+    EXPECT_EQ(open, half > 1 ? 0 : 2) << half;
+    ASSERT_TRUE(r.box_exits && r.box_exits->certified) << half;
+    ASSERT_EQ(r.box_exits->points.size(), half > 1 ? 0u : 4u) << half;
+    for (const auto& e : r.box_exits->points) {
+      EXPECT_NEAR(std::fabs(e.approx[0]), 0.5, 1e-12);
+      EXPECT_NEAR(std::fabs(e.approx[1]), std::sqrt(3.0) / 2, 1e-12);
+      EXPECT_NEAR(e.approx[2], -0.5, 1e-12);
+    }
+  }
 }
 
 namespace {

@@ -4,6 +4,7 @@
 
 #include "surfcert/algebra/eigen4.hpp"
 #include "surfcert/certify/enclosure.hpp"
+#include "surfcert/certify/inner_loops.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/special_points.hpp"
 #include "surfcert/trace/conics.hpp"
@@ -306,6 +307,30 @@ std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& 
   return "";
 }
 
+// Whether `closed` traced loops are all the loops lying wholly inside a given box (which may
+// cut others): all `loops` of the affine topology, or none when no compact component of the
+// curve lies in the box (certify/inner_loops.hpp: proven by interval arithmetic, whatever the
+// tracer saw). Between the two (some loops traced inside, others cut) nothing tells a cut loop
+// from a missed one: false, with the reason in `why`.
+bool loops_in_given_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Box& box,
+                        int closed, int loops, std::string& why) {
+  if (closed == loops) return true;
+  if (closed > loops) return false;
+  if (closed == 0) {
+    const certify::InnerLoopProof p =
+        certify::no_compact_component_in_box(a.matrix(), b.matrix(), box.min, box.max);
+    if (p.proven) return true;
+    why = "traced no closed branch in the box, and the certified affine topology has " +
+          std::to_string(loops) + " loop(s) that the box may cut or hold: not proven that none " +
+          "lies wholly inside (" + p.reason + ")";
+    return false;
+  }
+  why = "traced " + std::to_string(closed) + " closed branch(es) in the box; the certified " +
+        "affine topology has " + std::to_string(loops) + " loop(s): which of the others the " +
+        "box cuts and which it holds is not certified";
+  return false;
+}
+
 // The exact crossings with the box's faces (an automatic box meeting the curve
 // non-generically — on an edge, tangentially — is widened a little, unevenly, up to 3 times,
 // and `retrace` called for it), then the verdict: certified only when the affine topology is
@@ -358,12 +383,14 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
     why = "the affine topology is not certified";
   } else if (!special_points_complete) {
     why = "special points not all computed exactly";
-  } else if (closed != *af.loops || (automatic && open < *af.unbounded_branches)) {
+  } else if (!(automatic ? closed == *af.loops && open >= *af.unbounded_branches
+                         : loops_in_given_box(a, b, box, closed, *af.loops, why))) {
     tracer_fault = true;
-    why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
-          " open branch(es) in the box; the certified affine topology has " +
-          std::to_string(*af.loops) + " loop(s) and " + std::to_string(*af.unbounded_branches) +
-          " unbounded branch(es)";
+    if (why.empty())
+      why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
+            " open branch(es) in the box; the certified affine topology has " +
+            std::to_string(*af.loops) + " loop(s) and " + std::to_string(*af.unbounded_branches) +
+            " unbounded branch(es)";
   } else if (open_off_face > 0) {
     tracer_fault = true;
     why = std::to_string(open_off_face) + " open branch(es) do not end on the box's faces";
