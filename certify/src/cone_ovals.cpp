@@ -235,6 +235,9 @@ std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q
         const size_t from = droots[j], to = droots[(j + 1) % m];
         if (sign_at(disc, s[from + 1]) <= 0) continue; // disc < 0 just after this root
         ++found_ovals;
+        // Through infinity iff a root of c lies on the arc. (A root of b alone cannot: where
+        // b = 0 on the arc, disc = -a c > 0, while b^2 = a c > 0 at the arc's ends, so c
+        // changes sign in between; testing for any root at all would answer the same.)
         bool any = false;
         for (size_t i = (from + 1) % n; i != to; i = (i + 1) % n)
           any = any || kind[i] == C;

@@ -131,3 +131,31 @@ TEST(ConeOvals, OneLoopAndOneUnboundedOval) {
       EXPECT_EQ(r.box_exits->points.size(), static_cast<size_t>(2 * open)) << ctx;
     }
 }
+
+// Two ovals on two arcs of generators (disc < 0 between them: generators missing the other
+// quadric), none through infinity: the cone x^2 + y^2 = z^2 against the sphere
+// (x - 3)^2 + y^2 + z^2 = 25/4 (distance from its centre to the generator (cos t, sin t, 1)
+// is sqrt(4.5 (1 + sin^2 t)), below 5/2 only for sin^2 t < 7/18: one oval near each of the
+// generators t = 0 (upper nappe) and t = pi (lower nappe)) and against the cylinder
+// y^2 + (z - 2)^2 = 1 (on the generator s (cos t, sin t, 1): s^2 (1 + sin^2 t) - 4 s + 3 = 0,
+// real roots for sin^2 t < 1/3, both s > 0). Both second surfaces meet the cone's conic at
+// infinity in no real point (the sphere has none; the cylinder's, (1 : 0 : 0 : 0), is off the
+// cone), so every component is bounded: 2 loops, 0 unbounded (closed form). Fails when the
+// reading of an arc lets an oval reach infinity without a root of c on it.
+TEST(ConeOvals, OvalsOnArcsAreLoopsWithoutPointsAtInfinity) {
+  const core::QuadricMatrix cone = surfcert::testing::q("x^2 + y^2 = z^2");
+  const Mat4 m = motion(1, -2, 1, 3, {Rational(1, 3), Rational(-2), Rational(5, 2)});
+  for (const char* other : {"(x - 3)^2 + y^2 + z^2 = 25/4", "y^2 + (z - 2)^2 = 1"})
+    for (bool moved : {false, true}) {
+      const std::string ctx = std::string(other) + (moved ? " moved" : "");
+      core::QuadricMatrix k = cone, o = surfcert::testing::q(other);
+      if (moved) k = k.congruent(m), o = o.congruent(m);
+      const auto lu = certify::cone_oval_counts(k.matrix(), o.matrix(), 2, 0);
+      ASSERT_TRUE(lu.has_value()) << ctx;
+      EXPECT_EQ(*lu, (std::pair<int, int>{2, 0})) << ctx;
+      const auto r = trace::intersect_curve(k, o, Mode::Exact, {});
+      ASSERT_TRUE(r.affine.certified()) << ctx;
+      EXPECT_EQ(*r.affine.loops, 2) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, 0) << ctx;
+    }
+}
