@@ -111,3 +111,53 @@ TEST(BoxThresholds, OffsetPipesNearTangency) {
       EXPECT_EQ(*r.affine.loops, side > 0 ? 1 : 2) << ctx;
     }
 }
+
+// A face near a cone's apex where the curve has its node: the cylinder (x - 1)^2 + y^2 = 1
+// through the apex of x^2 + y^2 = z^2 cuts it in the figure eight z^2 = 2x (one component,
+// 1 loop, node at the apex). Closed forms: the face z = s delta (box [-1, 3] x [-2, 2] x
+// [s delta, 3]) meets it at the 2 points (delta^2 / 2, +-delta sqrt(1 - delta^2 / 4), s delta),
+// on either side (s = +-1: the upper lobe cut off near the node, or the lower one cut just
+// below it); the face x = delta (box [delta, 3] x [-2, 2] x [-3, 3]) at the 4 points
+// (delta, +-sqrt(2 delta - delta^2), +-sqrt(2 delta)), the face x = -delta at none (the box
+// holds the whole curve). The exits are certified with these counts at every delta (the exact
+// crossings); the answer is certified with them or undecided with a reason.
+TEST(BoxThresholds, FaceNearTheNodeAtAConeApex) {
+  const auto cone = q("x^2 + y^2 = z^2"), cyl = q("(x - 1)^2 + y^2 = 1");
+  for (double d : deltas())
+    for (double side : {1.0, -1.0})
+      for (int axis : {2, 0}) {
+        const std::string ctx = std::string(axis == 2 ? "face z = " : "face x = ") +
+                                std::to_string(side) + " * " + std::to_string(d);
+        const trace::Point3 lo =
+            axis == 2 ? trace::Point3{-1, -2, side * d} : trace::Point3{side * d, -2, -3};
+        auto r = trace::intersect_curve(cone, cyl, Mode::Exact, given_box(lo, {3, 2, 3}));
+        ASSERT_TRUE(r.box_exits && r.box_exits->certified) << ctx << ": " << r.box_exits->reason;
+        const size_t exits = axis == 2 ? 2 : (side > 0 ? 4 : 0);
+        ASSERT_EQ(r.box_exits->points.size(), exits) << ctx;
+        for (const auto& e : r.box_exits->points) {
+          const auto& p = e.approx;
+          if (axis == 2) {
+            EXPECT_NEAR(p[0], d * d / 2, e.radius + 1e-9 * d * d) << ctx;
+            EXPECT_NEAR(std::fabs(p[1]), d * std::sqrt(1 - d * d / 4), e.radius + 1e-9 * d) << ctx;
+            EXPECT_EQ(p[2], side * d) << ctx;
+          } else {
+            EXPECT_EQ(p[0], d) << ctx;
+            EXPECT_NEAR(std::fabs(p[1]), std::sqrt(2 * d - d * d), e.radius + 1e-9 * std::sqrt(d))
+                << ctx;
+            EXPECT_NEAR(std::fabs(p[2]), std::sqrt(2 * d), e.radius + 1e-9 * std::sqrt(d)) << ctx;
+          }
+        }
+        ASSERT_TRUE(r.affine.certified()) << ctx;
+        EXPECT_EQ(*r.affine.loops, 1) << ctx;
+        if (r.status != certify::Status::Certified) {
+          EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+          EXPECT_FALSE(r.note.empty()) << ctx;
+          continue;
+        }
+        int closed = 0, open = 0;
+        for (const auto& br : r.branches)
+          (br.closed ? closed : open) += 1;
+        EXPECT_EQ(2 * open, static_cast<int>(exits)) << ctx;
+        EXPECT_EQ(closed, exits == 0 ? 1 : 0) << ctx;
+      }
+}
