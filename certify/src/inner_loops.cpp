@@ -1,11 +1,13 @@
-// no_compact_component_in_box (inner_loops.hpp): a cover of the box by cells on each of which
-// f, g or h_d = det[d; grad f; grad g] provably misses 0, for one direction d.
+// inner_component_bound (inner_loops.hpp): for a direction d, a cover of the box by cells on
+// each of which f, g or h_d = det[d; grad f; grad g] provably misses 0, or which hold exactly
+// one solution of f = g = h_d = 0 (Krawczyk); with the signs of d . tau at the box's crossings.
 #include "surfcert/certify/inner_loops.hpp"
 
 #include "surfcert/certify/enclosure.hpp"
 
 #include <CGAL/Interval_nt.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -89,13 +91,86 @@ bool misses_zero(const Interval& x) {
   return !x.do_overlap(Interval(0));
 }
 
-enum class Cover { Proven, OutOfBudget, Blocked };
+using Vec3 = std::array<Interval, 3>;
 
-// Whether the cells cover the box for direction d within `budget` cells (`cells` counts them):
-// Blocked when a cell too small to split further (or 1e-9 of the box) is not cleared (most
-// likely a critical point in the box: more budget would not help).
+// The Jacobian of (f, g, h) over the cell c + t, h = det[d; p; q] with p = P + A t, q = Q + B t
+// the half gradients: rows 2 p, 2 q and dh/dx_k = det[d; A e_k; q] + det[d; p; B e_k].
+std::array<Vec3, 3> jacobian(const IM4& a, const IM4& b, const std::array<int, 3>& d,
+                             const OverCell& fa, const OverCell& fb, const Vec3& t) {
+  Vec3 p, q;
+  for (size_t i = 0; i < 3; ++i) {
+    p[i] = fa.half_grad_at_mid[i] + a[i][0] * t[0] + a[i][1] * t[1] + a[i][2] * t[2];
+    q[i] = fb.half_grad_at_mid[i] + b[i][0] * t[0] + b[i][1] * t[1] + b[i][2] * t[2];
+  }
+  std::array<Vec3, 3> j;
+  for (size_t k = 0; k < 3; ++k) {
+    Vec3 ak, bk;
+    for (size_t i = 0; i < 3; ++i)
+      ak[i] = a[i][k], bk[i] = b[i][k];
+    j[0][k] = Interval(2) * p[k];
+    j[1][k] = Interval(2) * q[k];
+    j[2][k] = triple(d, ak, q) + triple(d, p, bk);
+  }
+  return j;
+}
+
+enum class Newton { Unique, Empty, Unknown };
+
+// The Krawczyk test on the cell c + t: K = c - Y F(c) + (I - Y J(X)) t, Y a float inverse of
+// J's midpoint. K inside the cell's interior: exactly one solution there, where J is
+// nonsingular; K disjoint from the cell: none.
+Newton krawczyk(const IM4& a, const IM4& b, const std::array<int, 3>& d, const Cell& cell,
+                const std::array<double, 3>& c, const Vec3& t) {
+  const Vec3 zero{Interval(0), Interval(0), Interval(0)};
+  const OverCell fa = over(a, c, zero), fb = over(b, c, zero);
+  const Vec3 fc{fa.value, fb.value, triple(d, fa.half_grad_at_mid, fb.half_grad_at_mid)};
+  const OverCell ta = over(a, c, t), tb = over(b, c, t);
+  const std::array<Vec3, 3> j = jacobian(a, b, d, ta, tb, t);
+  double m[3][3];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t k = 0; k < 3; ++k)
+      m[i][k] = 0.5 * j[i][k].inf() + 0.5 * j[i][k].sup();
+  // Y = adj(m) / det(m), in floats (any Y is sound; a poor one only fails the test).
+  double y[3][3];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t k = 0; k < 3; ++k) {
+      const size_t r0 = (k + 1) % 3, r1 = (k + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      y[i][k] = m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
+    }
+  const double det = m[0][0] * y[0][0] + m[0][1] * y[1][0] + m[0][2] * y[2][0];
+  if (!(std::fabs(det) > 0) || !std::isfinite(det)) return Newton::Unknown;
+  for (auto& row : y)
+    for (double& v : row)
+      v /= det;
+  bool inside = true;
+  for (size_t i = 0; i < 3; ++i) {
+    Interval k = Interval(c[i]);
+    for (size_t l = 0; l < 3; ++l)
+      k -= Interval(y[i][l]) * fc[l];
+    for (size_t l = 0; l < 3; ++l) {
+      Interval mil = Interval(i == l ? 1 : 0);
+      for (size_t r = 0; r < 3; ++r)
+        mil -= Interval(y[i][r]) * j[r][l];
+      k += mil * t[l];
+    }
+    if (!std::isfinite(k.inf()) || !std::isfinite(k.sup())) return Newton::Unknown;
+    if (k.sup() < cell.lo[i] || k.inf() > cell.hi[i]) return Newton::Empty;
+    inside = inside && cell.lo[i] < k.inf() && k.sup() < cell.hi[i];
+  }
+  return inside ? Newton::Unique : Newton::Unknown;
+}
+
+enum class Cover { Done, OutOfBudget, Blocked };
+
+// The cover of the box for direction d within `budget` cells (`cells` counts them); when Done,
+// `solutions` is the number of solutions of f = g = h_d = 0 in the box. Blocked when a cell too
+// small to split further (or 1e-9 of the box) is neither cleared nor verified: a degenerate
+// solution (a singular point, a tangency) most likely, which more budget would not resolve.
+// Cells are split off centre (59/128 of the widest side) so that a solution with short dyadic
+// coordinates does not fall on a cut, where no cell holds it in its interior.
 Cover cover(const IM4& a, const IM4& b, const std::array<int, 3>& d, const Cell& box, long budget,
-            long& cells) {
+            long& cells, int& solutions) {
+  solutions = 0;
   double size = 0;
   for (size_t k = 0; k < 3; ++k)
     size = std::max(size, box.hi[k] - box.lo[k]);
@@ -106,7 +181,7 @@ Cover cover(const IM4& a, const IM4& b, const std::array<int, 3>& d, const Cell&
     const Cell c = todo.back();
     todo.pop_back();
     std::array<double, 3> mid;
-    std::array<Interval, 3> t;
+    Vec3 t;
     size_t widest = 0;
     for (size_t k = 0; k < 3; ++k) {
       mid[k] = 0.5 * c.lo[k] + 0.5 * c.hi[k];
@@ -119,30 +194,62 @@ Cover cover(const IM4& a, const IM4& b, const std::array<int, 3>& d, const Cell&
     const OverCell fb = over(b, mid, t);
     if (misses_zero(fb.value)) continue;
     if (misses_zero(critical_form(a, b, d, fa, fb, t))) continue;
-    const double m = mid[widest];
-    if (c.hi[widest] - c.lo[widest] <= 1e-9 * size || !(c.lo[widest] < m && m < c.hi[widest]))
-      return Cover::Blocked;
+    const Newton n = krawczyk(a, b, d, c, mid, t);
+    if (n == Newton::Empty) continue;
+    if (n == Newton::Unique) {
+      ++solutions;
+      continue;
+    }
+    const double w = c.hi[widest] - c.lo[widest];
+    const double m = c.lo[widest] + w * (59.0 / 128.0);
+    if (w <= 1e-9 * size || !(c.lo[widest] < m && m < c.hi[widest])) return Cover::Blocked;
     Cell left = c, right = c;
     left.hi[widest] = m;
     right.lo[widest] = m;
     todo.push_back(left);
     todo.push_back(right);
   }
-  return Cover::Proven;
+  return Cover::Done;
+}
+
+// sigma_e for a certified crossing: the sign of d . tau with tau oriented into the box, from an
+// interval enclosure of the crossing (its Arb enclosure, midpoint rounded to doubles, widened
+// by that rounding); 0 when not decided.
+int inward_sign(const IM4& a, const IM4& b, const std::array<int, 3>& d, const BoxCrossing& e,
+                const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+  Vec3 x;
+  for (size_t k = 0; k < 3; ++k) {
+    const double r = e.radius + std::ldexp(std::fabs(e.approx[k]), -50) + 1e-300;
+    x[k] = Interval(e.approx[k]) + Interval(-r, r);
+  }
+  const size_t ax = static_cast<size_t>(e.axis);
+  x[ax] = Interval(e.at_max ? hi[ax] : lo[ax]); // on the face exactly
+  Vec3 p, q;
+  for (size_t i = 0; i < 3; ++i) {
+    p[i] = a[i][0] * x[0] + a[i][1] * x[1] + a[i][2] * x[2] + a[i][3];
+    q[i] = b[i][0] * x[0] + b[i][1] * x[1] + b[i][2] * x[2] + b[i][3];
+  }
+  const Vec3 tau{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
+  const Interval along =
+      Interval(d[0]) * tau[0] + Interval(d[1]) * tau[1] + Interval(d[2]) * tau[2];
+  const Interval across = e.at_max ? -tau[ax] : tau[ax];
+  if (!misses_zero(along) || !misses_zero(across)) return 0;
+  return (along.inf() > 0) == (across.inf() > 0) ? 1 : -1;
 }
 
 } // namespace
 
-InnerLoopProof no_compact_component_in_box(const core::Mat4& a, const core::Mat4& b,
-                                           const std::array<double, 3>& lo,
-                                           const std::array<double, 3>& hi, long budget) {
-  InnerLoopProof out;
+InnerComponentBound inner_component_bound(const core::Mat4& a, const core::Mat4& b,
+                                          const std::array<double, 3>& lo,
+                                          const std::array<double, 3>& hi, const BoxExits* exits,
+                                          int wanted, long budget) {
+  InnerComponentBound out;
   for (size_t k = 0; k < 3; ++k)
     if (!(lo[k] <= hi[k]) || !std::isfinite(lo[k]) || !std::isfinite(hi[k])) {
       out.reason = "the box is empty or not finite";
       return out;
     }
-  // The axes first (cheap to read), then the face and the body diagonals.
+  // The axes first, then the face and the body diagonals.
   static const std::array<std::array<int, 3>, 13> directions{{{1, 0, 0},
                                                               {0, 1, 0},
                                                               {0, 0, 1},
@@ -158,21 +265,44 @@ InnerLoopProof no_compact_component_in_box(const core::Mat4& a, const core::Mat4
                                                               {-1, 1, 1}}};
   CGAL::Protect_FPU_rounding<true> guard;
   const IM4 ia = enclose_matrix(a), ib = enclose_matrix(b);
-  // Iterative deepening over the directions (budgets 1/64, 1/8, 1 of `budget`): a direction
-  // that is easy is found before a hard one spends the whole budget.
-  std::array<bool, 13> blocked{};
+  const bool crossings = exits && exits->certified;
+  // Iterative deepening over the directions (budgets 1/64, 1/8, 1 of `budget`): an easy
+  // direction is found before a hard one spends the whole budget.
+  std::array<bool, 13> done{};
   for (long share : {64L, 8L, 1L})
     for (size_t i = 0; i < directions.size(); ++i) {
-      if (blocked[i]) continue;
-      const Cover c = cover(ia, ib, directions[i], Cell{lo, hi}, budget / share, out.cells);
-      if (c == Cover::Proven) {
-        out.proven = true;
-        out.direction = directions[i];
-        return out;
+      if (done[i]) continue;
+      const auto& d = directions[i];
+      int solutions = 0;
+      const Cover c = cover(ia, ib, d, Cell{lo, hi}, budget / share, out.cells, solutions);
+      if (c == Cover::OutOfBudget) continue;
+      done[i] = true;
+      if (c == Cover::Blocked) continue;
+      int bound = -1;
+      if (solutions == 0) {
+        bound = 0;
+      } else if (crossings) {
+        int plus = 0, minus = 0;
+        bool decided = true;
+        for (const auto& e : exits->points) {
+          const int s = inward_sign(ia, ib, d, e, lo, hi);
+          decided = decided && s != 0;
+          (s > 0 ? plus : minus) += 1;
+        }
+        if (decided && (plus + minus) % 2 == 0) {
+          const int turning = std::abs(plus - minus) / 2;
+          if (solutions >= turning) bound = (solutions - turning) / 2;
+        }
       }
-      blocked[i] = c == Cover::Blocked;
+      if (bound < 0 || (out.bound && *out.bound <= bound)) continue;
+      out.bound = bound;
+      out.direction = d;
+      out.critical_points = solutions;
+      if (bound <= wanted) return out;
     }
-  out.reason = "for each of 13 directions a critical point of the curve may lie in the box";
+  if (!out.bound)
+    out.reason = "no direction's critical points in the box were all verified (a singular "
+                 "point, a tangency or a budget of cells)";
   return out;
 }
 

@@ -1,6 +1,6 @@
-// A given box that cuts a loop (issue 15): the tracer then shows fewer closed branches than the
-// affine topology has loops, and certify::no_compact_component_in_box must prove that no loop
-// lies wholly inside the box before the picture is certified.
+// A given box that cuts loops (issue 15): the tracer then shows fewer closed branches than the
+// affine topology has loops, and certify::inner_component_bound must prove that no more loops
+// than those traced closed lie wholly inside the box before the picture is certified.
 //
 // Pair 139 of bench/natural_box_pairs.py --seed 6 (two cones: one loop about 200 across, x in
 // [-0.2, 98], y in [1.8, 195], z in [-107, 0.8], and two unbounded branches; cone_ovals_test
@@ -11,11 +11,18 @@
 // (pair and box moved by the same rational vector).
 //
 // The other side: x^2 + y^2 = 1 against z^2 - (x - 1/2)^2 - y^2/4 = 1 is two loops, one in
-// z > 0 and one in z < 0 (z^2 = 1 + (x - 1/2)^2 + y^2/4 in [1, 13/4] on the cylinder, so
-// |z| in [1, 1.81]). A box that holds the lower loop wholly must not be proven empty of loops
-// (else a tracer that missed that loop would be certified): no_compact_component_in_box says
-// "not proven" for it, with and without the upper loop cut; the box between the loops (no
-// curve at all) and boxes below or beside everything are proven.
+// z > 0 and one in z < 0: on the cylinder (cos t, sin t, z), z^2 = 3/2 - cos t + 3/4 cos^2 t, in
+// [1, 13/4] (|z| in [1, 1.81]; critical at t = 0, pi and cos t = 2/3). For each box, the number
+// of loops wholly inside it (closed form) is a lower bound for any proven bound: the lower loop
+// inside must never be proven away (else a tracer that missed it would be certified). Where
+// the bound equals that number the answer is certified with it:
+//  - [-2, 0.3] x [-2, 2]^2 cuts both loops at x = 0.3 (4 crossings, (3/10, +-sqrt(91)/10,
+//    +-sqrt(1 + 1/25 + 91/400))): x is critical on the loops at t = 0, pi only, so 2 critical
+//    points in the box (t = pi) and 4 crossings where x decreases into the box: no loop inside;
+//  - [-2, 2]^2 x [-2, 6/5] holds the lower loop and cuts the upper one at z = 6/5, where
+//    cos t = (1 - sqrt(41/50)) / 1.5: 3 x-critical points (2 on the lower loop, t = 0 on the
+//    upper one) and 2 crossings where x increases into the box: at most 1 loop inside.
+// With the tracer mutated to drop its closed loops, these boxes must be undecided.
 #include "support/distance_checks.hpp"
 #include "support/fixtures.hpp"
 #include "support/trace_boxes.hpp"
@@ -24,6 +31,8 @@
 #include "surfcert/trace/intersect_curve.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 using namespace surfcert;
 using certify::Mode;
@@ -71,8 +80,10 @@ TEST(InnerLoops, CutLoopOfSeed6Pair139) {
         if (swapped) std::swap(a, b);
         const std::array<double, 3> lo{t[0] - r, t[1] - r, t[2] - r},
             hi{t[0] + r, t[1] + r, t[2] + r};
-        const auto proof = certify::no_compact_component_in_box(a.matrix(), b.matrix(), lo, hi);
-        EXPECT_TRUE(proof.proven) << ctx << ": " << proof.reason;
+        const auto bound =
+            certify::inner_component_bound(a.matrix(), b.matrix(), lo, hi, nullptr, 0);
+        ASSERT_TRUE(bound.bound.has_value()) << ctx << ": " << bound.reason;
+        EXPECT_EQ(*bound.bound, 0) << ctx;
         const auto res = trace::intersect_curve(a, b, Mode::Exact, given_box(lo, hi));
         ASSERT_TRUE(res.affine.certified()) << ctx;
         EXPECT_EQ(*res.affine.loops, 1) << ctx;
@@ -88,43 +99,82 @@ TEST(InnerLoops, CutLoopOfSeed6Pair139) {
       }
 }
 
-TEST(InnerLoops, LoopWhollyInsideIsNeverProvenAway) {
+namespace {
+
+struct LoopBox {
+  std::array<double, 3> lo, hi;
+  int inside; ///< loops wholly inside (closed form)
+  int exits;  ///< crossings with the faces (closed form)
+  bool exact; ///< the bound is expected to be exactly `inside` (the cases above)
+  const char* what;
+};
+
+} // namespace
+
+TEST(InnerLoops, LoopsInsideAreCountedNeverProvenAway) {
   const core::QuadricMatrix a = q("x^2 + y^2 = 1"), b = q("z^2 - (x - 1/2)^2 - y^2/4 = 1");
-  struct Case {
-    std::array<double, 3> lo, hi;
-    bool empty_of_loops;
-    int inside; ///< loops wholly inside the box
-    const char* what;
+  const LoopBox cases[] = {
+      {{-2, -2, -2}, {0.3, 2, 2}, 0, 4, true, "both loops cut by x = 0.3"},
+      {{-2, -2, -2}, {2, 2, 1.2}, 1, 2, true, "lower loop inside, upper loop cut by z = 1.2"},
+      {{-2, -2, -2}, {2, 2, 0}, 1, 0, false, "lower loop inside, upper loop outside"},
+      {{-1.5, -1.5, -1.9}, {1.5, 1.5, -0.9}, 1, 0, false, "lower loop inside, tight"},
+      {{-2, -2, -2}, {2, 2, 2}, 2, 0, false, "both loops inside"},
+      {{-2, -2, -0.9}, {2, 2, 0.9}, 0, 0, true, "between the loops: no curve"},
+      {{1.5, -2, -2}, {3, 2, 2}, 0, 0, true, "beside the cylinder: no curve"},
   };
-  const Case cases[] = {
-      {{-2, -2, -2}, {2, 2, 1.2}, false, 1, "lower loop inside, upper loop cut by z = 1.2"},
-      {{-2, -2, -2}, {2, 2, 0}, false, 1, "lower loop inside, upper loop outside"},
-      {{-1.5, -1.5, -1.9}, {1.5, 1.5, -0.9}, false, 1, "lower loop inside, tight"},
-      {{-2, -2, -2}, {2, 2, 2}, false, 2, "both loops inside"},
-      {{-2, -2, -0.9}, {2, 2, 0.9}, true, 0, "between the loops: no curve"},
-      {{1.5, -2, -2}, {3, 2, 2}, true, 0, "beside the cylinder: no curve"},
-  };
-  for (const auto& c : cases) {
+  for (const auto& c : cases)
     for (bool swapped : {false, true}) {
       const std::string ctx = std::string(c.what) + (swapped ? " swapped" : "");
-      const auto p = swapped
-                         ? certify::no_compact_component_in_box(b.matrix(), a.matrix(), c.lo, c.hi)
-                         : certify::no_compact_component_in_box(a.matrix(), b.matrix(), c.lo, c.hi);
-      EXPECT_EQ(p.proven, c.empty_of_loops) << ctx << ": " << p.reason;
-      if (!p.proven) {
-        EXPECT_FALSE(p.reason.empty()) << ctx;
+      const core::QuadricMatrix& x = swapped ? b : a;
+      const core::QuadricMatrix& y = swapped ? a : b;
+      const certify::BoxExits ex = certify::box_exits(
+          x.matrix(), y.matrix(),
+          {Rational::exact_from_double(c.lo[0]), Rational::exact_from_double(c.lo[1]),
+           Rational::exact_from_double(c.lo[2])},
+          {Rational::exact_from_double(c.hi[0]), Rational::exact_from_double(c.hi[1]),
+           Rational::exact_from_double(c.hi[2])});
+      ASSERT_TRUE(ex.certified) << ctx << ": " << ex.reason;
+      ASSERT_EQ(static_cast<int>(ex.points.size()), c.exits) << ctx;
+      // Never below the true count, whatever number is wanted.
+      for (int wanted : {0, 1, 2}) {
+        const auto p =
+            certify::inner_component_bound(x.matrix(), y.matrix(), c.lo, c.hi, &ex, wanted);
+        if (p.bound) {
+          EXPECT_GE(*p.bound, c.inside) << ctx << ", wanted " << wanted;
+        } else {
+          EXPECT_FALSE(p.reason.empty()) << ctx;
+        }
+        if (c.exact && wanted == c.inside) {
+          ASSERT_TRUE(p.bound.has_value()) << ctx << ": " << p.reason;
+          EXPECT_EQ(*p.bound, c.inside) << ctx;
+        }
       }
       // The whole answer: certified only with every loop inside the box traced closed.
-      const auto r = swapped ? trace::intersect_curve(b, a, Mode::Exact, given_box(c.lo, c.hi))
-                             : trace::intersect_curve(a, b, Mode::Exact, given_box(c.lo, c.hi));
-      if (r.status != certify::Status::Certified) {
+      const auto r = trace::intersect_curve(x, y, Mode::Exact, given_box(c.lo, c.hi));
+      if (!c.exact && r.status != certify::Status::Certified) {
         EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+        EXPECT_FALSE(r.note.empty()) << ctx;
         continue;
       }
-      int closed = 0;
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      int closed = 0, open = 0;
       for (const auto& br : r.branches)
-        closed += br.closed ? 1 : 0;
+        (br.closed ? closed : open) += 1;
       EXPECT_EQ(closed, c.inside) << ctx;
+      EXPECT_EQ(2 * open, c.exits) << ctx;
+      if (c.exits == 4) {
+        for (const auto& e : r.box_exits->points) {
+          EXPECT_NEAR(e.approx[0], 0.3, 1e-12) << ctx;
+          EXPECT_NEAR(std::fabs(e.approx[1]), std::sqrt(0.91), 1e-12) << ctx;
+          EXPECT_NEAR(std::fabs(e.approx[2]), std::sqrt(1 + 0.04 + 0.91 / 4), 1e-12) << ctx;
+        }
+      } else if (c.exits == 2) {
+        const double ct = (1 - std::sqrt(0.82)) / 1.5;
+        for (const auto& e : r.box_exits->points) {
+          EXPECT_NEAR(e.approx[0], ct, 1e-12) << ctx;
+          EXPECT_NEAR(std::fabs(e.approx[1]), std::sqrt(1 - ct * ct), 1e-12) << ctx;
+          EXPECT_NEAR(e.approx[2], 1.2, 1e-12) << ctx;
+        }
+      }
     }
-  }
 }

@@ -308,26 +308,21 @@ std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& 
 }
 
 // Whether `closed` traced loops are all the loops lying wholly inside a given box (which may
-// cut others): all `loops` of the affine topology, or none when no compact component of the
-// curve lies in the box (certify/inner_loops.hpp: proven by interval arithmetic, whatever the
-// tracer saw). Between the two (some loops traced inside, others cut) nothing tells a cut loop
-// from a missed one: false, with the reason in `why`.
+// cut others): all `loops` of the affine topology, or as many as certify/inner_loops.hpp proves
+// at most (from the critical points of a direction in the box and the crossings `ex`, by
+// interval arithmetic, whatever the tracer saw). Else false, with the reason in `why`.
 bool loops_in_given_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Box& box,
-                        int closed, int loops, std::string& why) {
+                        const certify::BoxExits& ex, int closed, int loops, std::string& why) {
   if (closed == loops) return true;
   if (closed > loops) return false;
-  if (closed == 0) {
-    const certify::InnerLoopProof p =
-        certify::no_compact_component_in_box(a.matrix(), b.matrix(), box.min, box.max);
-    if (p.proven) return true;
-    why = "traced no closed branch in the box, and the certified affine topology has " +
-          std::to_string(loops) + " loop(s) that the box may cut or hold: not proven that none " +
-          "lies wholly inside (" + p.reason + ")";
-    return false;
-  }
+  const certify::InnerComponentBound p =
+      certify::inner_component_bound(a.matrix(), b.matrix(), box.min, box.max, &ex, closed);
+  if (p.bound && *p.bound == closed) return true;
   why = "traced " + std::to_string(closed) + " closed branch(es) in the box; the certified " +
-        "affine topology has " + std::to_string(loops) + " loop(s): which of the others the " +
-        "box cuts and which it holds is not certified";
+        "affine topology has " + std::to_string(loops) + " loop(s), which the box may cut or " +
+        "hold: " +
+        (p.bound ? "at most " + std::to_string(*p.bound) + " proven to lie wholly inside"
+                 : "not proven how many lie wholly inside (" + p.reason + ")");
   return false;
 }
 
@@ -384,7 +379,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
   } else if (!special_points_complete) {
     why = "special points not all computed exactly";
   } else if (!(automatic ? closed == *af.loops && open >= *af.unbounded_branches
-                         : loops_in_given_box(a, b, box, closed, *af.loops, why))) {
+                         : loops_in_given_box(a, b, box, *out.box_exits, closed, *af.loops, why))) {
     tracer_fault = true;
     if (why.empty())
       why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +

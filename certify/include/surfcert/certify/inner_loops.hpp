@@ -1,43 +1,60 @@
-// surfcert::certify::no_compact_component_in_box: a proof that no bounded component of the
-// intersection curve of two quadrics (a loop, or an isolated point) lies wholly inside a box.
+// surfcert::certify::inner_component_bound: a proven upper bound on the number of bounded
+// components of the intersection curve of two quadrics (loops, isolated points) that lie
+// wholly inside a box.
 //
-// Why: a box given by the caller may cut a loop of the curve. The traced picture then shows
+// Why: a box given by the caller may cut loops of the curve. The traced picture then shows
 // fewer closed branches than the affine topology has loops, and the box's exact crossings
-// (box_exits.hpp) account only for the pieces that reach a face; a small loop lying wholly
-// inside, missed by the tracer, would go unseen. This proves that there is none.
+// (box_exits.hpp) account only for the pieces that reach a face; a loop lying wholly inside,
+// missed by the tracer, would go unseen. A bound equal to the number of closed branches traced
+// inside rules that out.
 //
-// The argument (exact in its premises, rigorous in its arithmetic): let K be a compact
-// component of C = {f = g = 0} and d a direction. The linear function d.x attains its minimum
-// on K at some point p. If p is a smooth point of C, d is normal to C there (Lagrange:
-// d in span(grad f, grad g)); if p is singular, grad f and grad g are dependent. Either way
-//   f(p) = g(p) = 0  and  h_d(p) = det[d; grad f(p); grad g(p)] = 0.
-// So if K lay in the closed box B, the system f = g = h_d = 0 would have a solution in B. The
-// proof covers B by cells (a subdivision, at most `budget` cells per direction) and shows on
-// each cell that one of f, g, h_d has a CGAL interval enclosure (directed rounding, the exact
-// rational coefficients enclosed) that misses 0. Directions are tried in turn (the axes, the
-// face and the body diagonals); one direction that succeeds is a proof. Where a loop or an
-// isolated point does lie in B, or a critical point of every direction is in B (on a cut loop,
-// or on an unbounded branch), nothing is proved: `proven` is false, never a guess.
+// The argument (exact in its premises, rigorous in its arithmetic). C = {f = g = 0}, d a
+// direction, h_d = det[d; grad f; grad g] = d . tau with tau = grad f x grad g the tangent
+// (zero exactly at the singular points). Along a smooth arc of C, d.x is critical exactly where
+// h_d = 0. The system S_d: f = g = h_d = 0 is solved in the closed box B by a cover of cells,
+// each either cleared (one of f, g, h_d has a CGAL interval enclosure, directed rounding, that
+// misses 0) or holding exactly one solution, where the interval Newton (Krawczyk) operator maps
+// the cell into its interior (so the Jacobian is nonsingular there: a smooth point, where h_d
+// changes sign along C). This gives K_d, the exact number of solutions in B, all of that kind
+// (a singular point of C in B, or a positive-dimensional solution set, blocks the cover).
+//  - A compact component wholly in B has its d-minimum and d-maximum in B: two solutions, at
+//    least, of its own.
+//  - With the crossings certified (transversal, complete: the curve in B is closed loops plus
+//    arcs between crossings), each crossing e gets sigma_e, the sign of d . tau oriented into
+//    the box (decided on an interval enclosure of the crossing). An arc whose two ends have the
+//    same sigma turns back in d: it holds an odd number, so at least one, of the solutions.
+//    Whatever the pairing of the crossings into arcs, at least |n+ - n-| / 2 arcs do that
+//    (n+, n- the crossings with sigma = +, -).
+// So the number of compact components wholly in B is at most (K_d - |n+ - n-| / 2) / 2
+// (K_d = 0 needs no crossing). Directions are tried in turn (the axes, the face and the body
+// diagonals) until one gives a bound <= `wanted`; the least bound found is returned. Nothing is
+// a guess: where no direction's cover completes (within `budget` cells each), no bound.
 #pragma once
 
+#include "surfcert/certify/box_exits.hpp"
 #include "surfcert/core/shape.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 
 namespace surfcert::certify {
 
-struct InnerLoopProof {
-  bool proven = false;                   ///< no compact component of the curve lies in the box
-  std::array<int, 3> direction{0, 0, 0}; ///< the direction d whose critical points B misses
+struct InnerComponentBound {
+  std::optional<int> bound;              ///< proven: at most this many compact components in B
+  std::array<int, 3> direction{0, 0, 0}; ///< the direction d giving it
+  int critical_points = 0;               ///< K_d for that direction
   long cells = 0;                        ///< cells examined, over every direction tried
-  std::string reason;                    ///< why not proven
+  std::string reason;                    ///< why no bound
 };
 
-/// The proof above for Q_A ∩ Q_B and the closed box [lo, hi] (lo <= hi coordinate-wise, finite
-/// doubles, read exactly). `budget` bounds the cells examined per direction.
-InnerLoopProof no_compact_component_in_box(const core::Mat4& a, const core::Mat4& b,
-                                           const std::array<double, 3>& lo,
-                                           const std::array<double, 3>& hi, long budget = 20000);
+/// The bound above for Q_A ∩ Q_B and the closed box [lo, hi] (lo <= hi coordinate-wise, finite
+/// doubles, read exactly). `exits`, when given and certified, must be box_exits of that pair
+/// and box; without it only directions with no solution in B (bound 0) count. `budget` bounds
+/// the cells examined per direction.
+InnerComponentBound inner_component_bound(const core::Mat4& a, const core::Mat4& b,
+                                          const std::array<double, 3>& lo,
+                                          const std::array<double, 3>& hi, const BoxExits* exits,
+                                          int wanted, long budget = 20000);
 
 } // namespace surfcert::certify

@@ -16,9 +16,9 @@
 // loop, with a margin): loops closed, pieces of unbounded branches open with both ends on the box's
 // faces, conics in closed form clipped to the box.
 // There status is Certified only when the affine topology (certify/affine.hpp) is certified,
-// the traced closed loops and isolated points have its counts (a given box showing no closed
-// loop may cut them all: certified then only with certify/inner_loops.hpp's proof that no loop
-// lies wholly inside it), the exact crossings of the
+// the traced closed loops and isolated points have its counts (a given box may cut loops:
+// certified then only when certify/inner_loops.hpp proves that no more loops than those traced
+// closed lie wholly inside it), the exact crossings of the
 // curve with the box's faces are certified (certify/box_exits.hpp: complete, transversal, off
 // the edges) and the traced open pieces are exactly half as many, their ends matched one to
 // one with those crossings (so a branch crossing the box twice is two certified pieces); an
