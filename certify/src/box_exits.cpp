@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace surfcert::certify {
@@ -337,6 +338,8 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Ra
             bc.approx[j] = arf_get_d(arb_midref((*uv)[1].v), ARF_RND_NEAR);
             bc.radius =
                 std::max(mag_get_d(arb_radref((*uv)[0].v)), mag_get_d(arb_radref((*uv)[1].v)));
+          } else {
+            bc.radius = std::numeric_limits<double>::infinity(); // no enclosure: approx unknown
           }
         }
         if (where == Where::Unknown) {

@@ -87,8 +87,9 @@ Interval critical_form(const IM4& a, const IM4& b, const std::array<int, 3>& d, 
   return h;
 }
 
+// Comparisons, so that an interval with a NaN bound (overflow) never misses 0.
 bool misses_zero(const Interval& x) {
-  return !x.do_overlap(Interval(0));
+  return x.inf() > 0 || x.sup() < 0;
 }
 
 using Vec3 = std::array<Interval, 3>;
@@ -220,6 +221,7 @@ int inward_sign(const IM4& a, const IM4& b, const std::array<int, 3>& d, const B
   Vec3 x;
   for (size_t k = 0; k < 3; ++k) {
     const double r = e.radius + std::ldexp(std::fabs(e.approx[k]), -50) + 1e-300;
+    if (!std::isfinite(r) || !std::isfinite(e.approx[k])) return 0; // no enclosure
     x[k] = Interval(e.approx[k]) + Interval(-r, r);
   }
   const size_t ax = static_cast<size_t>(e.axis);
@@ -233,7 +235,8 @@ int inward_sign(const IM4& a, const IM4& b, const std::array<int, 3>& d, const B
   const Interval along =
       Interval(d[0]) * tau[0] + Interval(d[1]) * tau[1] + Interval(d[2]) * tau[2];
   const Interval across = e.at_max ? -tau[ax] : tau[ax];
-  if (!misses_zero(along) || !misses_zero(across)) return 0;
+  for (const Interval& v : {along, across})
+    if (!std::isfinite(v.inf()) || !std::isfinite(v.sup()) || !misses_zero(v)) return 0;
   return (along.inf() > 0) == (across.inf() > 0) ? 1 : -1;
 }
 

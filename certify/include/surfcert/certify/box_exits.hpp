@@ -46,7 +46,7 @@ struct BoxCrossing {
   int axis = 0; ///< the face is x_axis = (at_max ? hi : lo)[axis]
   bool at_max = false;
   std::array<double, 3> approx{}; ///< midpoint of an enclosure (the point, to double)
-  double radius = 0;              ///< max over coordinates of the enclosure's radius
+  double radius = 0; ///< max over coordinates of the enclosure's radius (infinite: none found)
 };
 
 struct BoxExits {
