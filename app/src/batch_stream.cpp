@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -187,22 +188,20 @@ public:
   FdLineReader(int fd, OutputBuffer& out)
       : fd_(fd), out_(out), buf_(new char[kInitialSize]), size_(kInitialSize) {}
 
-  // The next line; without may_wait, only a line whose bytes have already arrived (else
-  // WouldBlock: the caller hands over the lines it holds before it waits).
-  detail::NextLine next(std::string& line, bool may_wait) {
+  // The next line, as a view into the buffer valid until the next call; without may_wait,
+  // only a line whose bytes have already arrived (else WouldBlock: the caller hands over the
+  // lines it holds before it waits).
+  detail::NextLine next(std::string_view& line, bool may_wait) {
     for (;;) {
       if (const void* nl = std::memchr(buf_.get() + begin_, '\n', end_ - begin_)) {
         const size_t e = static_cast<size_t>(static_cast<const char*>(nl) - buf_.get());
-        // Room behind the line for a parser's padding (the fast line reader, batch_line.cpp,
-        // reads 64 bytes past the end): no copy there.
-        line.reserve(e - begin_ + 64);
-        line.assign(buf_.get() + begin_, e - begin_);
+        line = std::string_view(buf_.get() + begin_, e - begin_);
         begin_ = e + 1;
         return detail::NextLine::Line;
       }
       if (eof_) {
         if (begin_ == end_) return detail::NextLine::End;
-        line.assign(buf_.get() + begin_, end_ - begin_); // the last line has no '\n'
+        line = std::string_view(buf_.get() + begin_, end_ - begin_); // the last line: no '\n'
         begin_ = end_;
         return detail::NextLine::Line;
       }
@@ -316,14 +315,20 @@ namespace {
 // caller waiting for its answer is not held back by a chunk that waits to fill up).
 constexpr size_t kChunkLines = 64;
 constexpr size_t kChunkBytes = 1 << 15;
+constexpr size_t kChunkRoom = 1 << 12; ///< a chunk's text past kChunkBytes: its last line
+constexpr size_t kLinePadding = 64;    ///< bytes behind a line's end that its parser may read
 
 struct BatchItem {
-  std::string line;
+  size_t begin = 0, size = 0; ///< the line: text[begin, begin + size) of its chunk
   long line_no = 0;
   BatchLineAnswer answer;
 };
 
 struct Chunk {
+  // The chunk's lines one after the other, copied in by the read stage: one block of text that
+  // keeps its capacity (a string per line cost an allocation per line, and with 4 N chunks in
+  // flight and lines of varying lengths ~250 more page faults at two threads, ~30 µs each).
+  std::string text;
   std::vector<BatchItem> items; // the first n are this chunk's; the rest keep their capacity
   size_t n = 0;
   long seq = 0;
@@ -359,6 +364,7 @@ public:
     return new Chunk();
   }
   void give(Chunk* c) {
+    c->text.clear();
     std::fill(c->complete.begin(), c->complete.begin() + static_cast<std::ptrdiff_t>(c->n), 0);
     c->n = 0;
     c->next.store(0, std::memory_order_relaxed);
@@ -447,7 +453,7 @@ private:
 } // namespace
 
 BatchStats
-run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait)>& next_line,
+run_batch_pipeline(const std::function<NextLine(std::string_view& line, bool may_wait)>& next_line,
                    const std::function<void(const BatchLineAnswer&)>& write,
                    certify::Mode default_mode, const BatchTextAnswer& answer, int threads,
                    bool ordered, const std::function<void(const BatchStats&)>& progress) {
@@ -461,19 +467,22 @@ run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait
   auto read_chunk = [&]() -> Chunk* {
     if (ended) return nullptr;
     Chunk* c = pool.take();
-    size_t bytes = 0;
-    while (c->n < kChunkLines && bytes < kChunkBytes) {
+    if (c->text.capacity() < kChunkBytes + kChunkRoom) c->text.reserve(kChunkBytes + kChunkRoom);
+    while (c->n < kChunkLines && c->text.size() < kChunkBytes) {
       if (c->items.size() == c->n) {
         c->items.emplace_back();
         c->complete.push_back(0);
       }
       BatchItem& item = c->items[c->n];
       // The first line may wait for input; later ones only if already there.
-      const NextLine r = next_line(item.line, c->n == 0);
+      std::string_view line;
+      const NextLine r = next_line(line, c->n == 0);
       if (r == NextLine::End) ended = true;
       if (r != NextLine::Line) break;
       item.line_no = next_no++;
-      bytes += item.line.size();
+      item.begin = c->text.size();
+      item.size = line.size();
+      c->text.append(line);
       ++c->n;
     }
     if (c->n == 0) {
@@ -487,8 +496,26 @@ run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait
   // Stage 2: answer i of c, written as soon as it may be.
   auto answer_line = [default_mode, &answer, &writer](Chunk* c, size_t i) {
     BatchItem& item = c->items[i];
+    // The line in a string of this thread's, with room behind it for a parser's padding (the
+    // fast line reader, batch_line.cpp, reads 64 bytes past the end): no copy there. Its
+    // capacity stays, so a line costs no allocation. Should an answer ever wait inside TBB (and
+    // so run another line on this thread meanwhile), that inner line takes a string of its own.
+    thread_local std::string own;
+    thread_local bool own_in_use = false;
+    std::string other;
+    const bool nested = own_in_use;
+    std::string& line = nested ? other : own;
+    own_in_use = true;
+    struct Release {
+      bool nested;
+      ~Release() {
+        if (!nested) own_in_use = false;
+      }
+    } release{nested};
+    if (line.capacity() < item.size + kLinePadding) line.reserve(item.size + kLinePadding);
+    line.assign(c->text, item.begin, item.size);
     try { // the per-line guard: nothing escapes into the pipeline
-      item.answer = answer(item.line, item.line_no, default_mode);
+      item.answer = answer(line, item.line_no, default_mode);
     } catch (const std::exception& e) {
       item.answer = {core::io::dump(internal_error_line(core::io::Json::null(), e.what())), "error",
                      "internal", false};
@@ -579,7 +606,7 @@ BatchStats process_batch_fd(int in_fd, int out_fd, certify::Mode default_mode,
   if (block) signals.emplace(*block, out);
   FdLineReader in(in_fd, out);
   BatchStats st = detail::run_batch_pipeline(
-      [&](std::string& line, bool may_wait) { return in.next(line, may_wait); },
+      [&](std::string_view& line, bool may_wait) { return in.next(line, may_wait); },
       [&](const BatchLineAnswer& a) { out.append_line(a.text); }, default_mode, answer,
       options.threads, options.ordered, options.progress);
   out.flush(); // while the signals are still taken

@@ -522,9 +522,11 @@ BatchStats process_batch(std::istream& in, std::ostream& out, Mode default_mode,
   return detail::run_batch_pipeline(
       // One line per chunk (never "already there"): a stream cannot say whether its next line
       // has arrived, and a caller may be waiting for this answer before it sends more.
-      [&in](std::string& line, bool may_wait) {
+      [&in, held = std::string()](std::string_view& line, bool may_wait) mutable {
         if (!may_wait) return detail::NextLine::WouldBlock;
-        return std::getline(in, line) ? detail::NextLine::Line : detail::NextLine::End;
+        if (!std::getline(in, held)) return detail::NextLine::End;
+        line = held;
+        return detail::NextLine::Line;
       },
       [&out](const BatchLineAnswer& a) {
         out << a.text << '\n';

@@ -438,3 +438,100 @@ TEST(BatchStream, ManyFullBuffersThroughASlowPipeKeepTheirOrder) {
     EXPECT_TRUE(got == expected) << threads; // not printed: 4 MB
   }
 }
+
+// Every line reaches the answer function exactly as it was in the input, with its number and
+// the parser's padding behind it, whatever the boundaries: the reader's reads (a feeder writes
+// odd-sized pieces through a pipe, pausing between some, so lines straddle reads and chunks end
+// where the next line has not arrived), the chunks' blocks of text (32 KB: thousands of lines
+// of 0-3000 bytes), a 200 KB line (longer than a chunk and than the reader's first buffer),
+// empty lines, a '\r' before the '\n' (kept: the line's own byte), and a last line without '\n'.
+// The answer echoes the line; the expected output is built from the input independently.
+TEST(BatchStream, LinesReachTheAnswerIntactAcrossReadAndChunkBoundaries) {
+  std::vector<std::string> lines;
+  unsigned x = 12345;
+  for (int i = 0; i < 6000; ++i) {
+    x = x * 1103515245u + 12345u;
+    const size_t len = (x >> 8) % 3001;
+    std::string l;
+    for (size_t k = 0; k < len; ++k)
+      l += static_cast<char>('a' + (k * 7 + static_cast<size_t>(i)) % 26);
+    if (i % 97 == 0) l.clear();
+    if (i % 89 == 0) l += '\r';
+    if (i == 3000) l = std::string(200000, 'L') + "end";
+    lines.push_back(l);
+  }
+  lines.push_back("last line, no newline");
+  std::string text, expected;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    text += lines[i] + (i + 1 < lines.size() ? "\n" : "");
+    expected +=
+        std::to_string(i + 1) + ":" + std::to_string(lines[i].size()) + ":" + lines[i] + "\n";
+  }
+  for (int threads : {1, 2}) {
+    for (bool ordered : {true, false}) {
+      if (threads == 1 && !ordered) continue;
+      int in[2], out[2];
+      ASSERT_EQ(pipe(in), 0);
+      ASSERT_EQ(pipe(out), 0);
+      const pid_t child = fork();
+      ASSERT_GE(child, 0);
+      if (child == 0) {
+        close(in[1]);
+        close(out[0]);
+        BatchStreamOptions opt;
+        opt.threads = threads;
+        opt.ordered = ordered;
+        surfcert::app::process_batch_fd(
+            in[0], out[1], surfcert::certify::Mode::Filtered,
+            [](const std::string& line, long no, surfcert::certify::Mode) {
+              const bool padded = line.capacity() - line.size() >= 64;
+              return BatchLineAnswer{std::to_string(no) + ":" + std::to_string(line.size()) + ":" +
+                                         (padded ? line : std::string("unpadded")),
+                                     "certified", "", false};
+            },
+            opt);
+        _exit(0);
+      }
+      close(in[0]);
+      close(out[1]);
+      const pid_t feeder = fork();
+      ASSERT_GE(feeder, 0);
+      if (feeder == 0) {
+        close(out[0]);
+        size_t at = 0;
+        for (int piece = 0; at < text.size(); ++piece) {
+          const size_t n = std::min(text.size() - at, static_cast<size_t>(7001 + 13 * piece));
+          if (write(in[1], text.data() + at, n) != static_cast<ssize_t>(n)) _exit(1);
+          at += n;
+          if (piece % 50 == 0) usleep(2000);
+        }
+        _exit(0);
+      }
+      close(in[1]);
+      std::string got;
+      char buf[65536];
+      ssize_t n;
+      while ((n = read(out[0], buf, sizeof buf)) > 0)
+        got.append(buf, static_cast<size_t>(n));
+      close(out[0]);
+      int status = 0;
+      ASSERT_EQ(waitpid(feeder, &status, 0), feeder);
+      ASSERT_EQ(waitpid(child, &status, 0), child);
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+      if (!ordered) { // completion order: the same lines, each once
+        std::vector<std::string> g, e;
+        std::istringstream gs(got), es(expected);
+        for (std::string l; std::getline(gs, l);)
+          g.push_back(l);
+        for (std::string l; std::getline(es, l);)
+          e.push_back(l);
+        std::sort(g.begin(), g.end());
+        std::sort(e.begin(), e.end());
+        EXPECT_TRUE(g == e) << threads;
+      } else {
+        EXPECT_EQ(got.size(), expected.size()) << threads;
+        EXPECT_TRUE(got == expected) << threads; // not printed: 9 MB
+      }
+    }
+  }
+}

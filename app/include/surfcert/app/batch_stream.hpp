@@ -30,6 +30,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace surfcert::app {
 
@@ -67,10 +68,13 @@ namespace detail {
 enum class NextLine { Line, End, WouldBlock };
 
 /// The pipeline shared by process_batch and process_batch_fd: next_line(line, may_wait) gives
-/// the next line (with may_wait false it may answer WouldBlock instead of waiting for input);
-/// write receives the answers (in input order when ordered), one call at a time.
+/// the next line (with may_wait false it may answer WouldBlock instead of waiting for input) as
+/// a view valid until the next call; the read stage copies it into its chunk's one block of
+/// text (no allocation per line), and the answering thread copies it from there into a string
+/// of its own (padded for the parser) on the core that answers it. write receives the answers
+/// (in input order when ordered), one call at a time.
 BatchStats
-run_batch_pipeline(const std::function<NextLine(std::string& line, bool may_wait)>& next_line,
+run_batch_pipeline(const std::function<NextLine(std::string_view& line, bool may_wait)>& next_line,
                    const std::function<void(const BatchLineAnswer&)>& write,
                    certify::Mode default_mode, const BatchTextAnswer& answer, int threads,
                    bool ordered, const std::function<void(const BatchStats&)>& progress);
