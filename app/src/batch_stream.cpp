@@ -51,12 +51,15 @@ class OutputBuffer {
 public:
   OutputBuffer(int fd, std::chrono::milliseconds max_delay)
       : fd_(fd), max_delay_(max_delay), flusher_([this] { flusher_loop(); }) {
-    // Room for a full buffer and its last line, kept (clear() keeps it): grown by doubling, a
-    // buffer past 128 KB is copied into fresh pages at each step (~130 page faults of ~30 µs
-    // each on this VM, per buffer, instead of the 65 a buffer touches).
+    // Room for the most a buffer holds (two full buffers while the flusher still writes the
+    // previous one, see append_line) and its last line, kept (clear() keeps it): grown by
+    // doubling, a buffer is copied into fresh pages at each step (~130 page faults of ~30 µs
+    // each on this VM, per buffer, at 256 KB; at two threads, where the flusher shares the
+    // cores with the answering threads and so falls behind, both buffers grew past 256 KB).
+    // Pages reserved and never filled are never touched.
     std::lock_guard<std::mutex> lock(m_);
-    buf_.reserve(kFlushBytes + kLineRoom);
-    out_.reserve(kFlushBytes + kLineRoom);
+    buf_.reserve(2 * kFlushBytes + kLineRoom);
+    out_.reserve(2 * kFlushBytes + kLineRoom);
   }
   ~OutputBuffer() {
     {
