@@ -516,6 +516,16 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
           [&](std::string& o, const certify::DistanceResult& r) {
             certify::append_distance_envelope(o, r, q.digits, q.detail);
           });
+    } else if (q.op == "intersect") {
+      // Written directly too: the branches' points are almost all of the answer's bytes.
+      const auto& a = std::get<core::QuadricMatrix>(*fl->a);
+      const auto& b = std::get<core::QuadricMatrix>(*fl->b);
+      append_within_budget(
+          out, ans.status, q.budget_ms, [&] { return batch_intersect(q, a, b); },
+          [&](std::string& o, const trace::CurveResult& r) {
+            ans.fallback = r.topology.exact_fallback;
+            trace::append_curve_envelope(o, r, a, b, q.detail);
+          });
     } else {
       const Json env = batch_envelope(q, *fl->a, *fl->b, &ans.fallback);
       if (const Json* s = env.find("status")) ans.status = s->text();

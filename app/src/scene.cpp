@@ -205,6 +205,14 @@ QsicResult batch_classify(const BatchQuery& q, const core::QuadricMatrix& a,
   return r;
 }
 
+CurveResult batch_intersect(const BatchQuery& q, const core::QuadricMatrix& a,
+                            const core::QuadricMatrix& b) {
+  trace::TraceOptions opt;
+  if (q.tolerance) opt.tolerance = *q.tolerance;
+  if (q.box) opt = trace_options(opt.tolerance, q.box);
+  return intersect_curve(a, b, q.mode, opt, q.detail);
+}
+
 Json batch_envelope(const BatchQuery& q, const core::Surface& sa, const core::Surface& sb,
                     bool* fallback) {
   return budget_limited(q.budget_ms, [&]() -> Json {
@@ -214,10 +222,7 @@ Json batch_envelope(const BatchQuery& q, const core::Surface& sa, const core::Su
     const auto& a = std::get<core::QuadricMatrix>(sa);
     const auto& b = std::get<core::QuadricMatrix>(sb);
     if (q.op == "intersect") {
-      trace::TraceOptions opt;
-      if (q.tolerance) opt.tolerance = *q.tolerance;
-      if (q.box) opt = trace_options(opt.tolerance, q.box);
-      CurveResult c = intersect_curve(a, b, q.mode, opt, q.detail);
+      CurveResult c = batch_intersect(q, a, b);
       if (fallback) *fallback = c.topology.exact_fallback;
       return curve_envelope_json(c, a, b, q.detail);
     }

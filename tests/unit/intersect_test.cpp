@@ -1,12 +1,20 @@
 // intersect_curve end to end on every ellipsoid case: the branches returned must reproduce the
 // certified morphology (counts by kind), every point must lie on both surfaces, and a rational
-// rigid motion must move the branches with the surfaces.
+// rigid motion must move the branches with the surfaces. The batch's direct text of an answer
+// (append_curve_envelope) is byte for byte the document's (curve_envelope_json, dump), on every
+// fixture pencil at every detail level (boxes, exits, conics, notes) and on awkward doubles
+// against a reference builder (printf "%.17g").
 #include "support/fixtures.hpp"
 
+#include "surfcert/core/error.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
 
 using namespace surfcert;
 using certify::Mode;
@@ -216,4 +224,102 @@ TEST(Intersect, EllipsoidAndCylinder) {
   auto tangent = curve("x^2+y^2/4+z^2=1", "x^2+z^2=1");
   EXPECT_EQ(tangent.topology.tu_case, 21);
   expect_matches_morphology(tangent, "ellipsoid tangent to a cylinder along a circle");
+}
+
+TEST(Intersect, DirectEnvelopeTextEqualsTheDocument) {
+  int checked = 0, with_box = 0, with_exits = 0;
+  for (const char* file :
+       {"fixtures/canonical_examples.json", "fixtures/ellipsoid_fixtures.json"}) {
+    const auto doc = fixtures::load_json(file);
+    for (const auto& [key, e] : doc.members()) {
+      const auto* A = e.find("A") ? e.find("A") : e.find("E1");
+      const auto* B = e.find("B") ? e.find("B") : e.find("E2");
+      core::QuadricMatrix a(fixtures::mat4_from_json(*A)), b(fixtures::mat4_from_json(*B));
+      trace::TraceOptions opt;
+      opt.tolerance = 1e-2;
+      for (certify::Detail d :
+           {certify::Detail::Topology, certify::Detail::Certificate, certify::Detail::Full}) {
+        const auto r = trace::intersect_curve(a, b, Mode::Filtered, opt, d);
+        std::string text = "prefix";
+        trace::append_curve_envelope(text, r, a, b, d);
+        ASSERT_EQ(text, "prefix" + core::io::dump(trace::curve_envelope_json(r, a, b, d)))
+            << file << " " << key;
+        ++checked;
+        with_box += r.box ? 1 : 0;
+        for (const auto& br : r.branches)
+          with_exits += br.exits.empty() ? 0 : 1;
+      }
+    }
+  }
+  EXPECT_GE(checked, 3 * 35);
+  EXPECT_GT(with_box, 0);
+  EXPECT_GT(with_exits, 0);
+}
+
+TEST(Intersect, DirectEnvelopeAwkwardDoubles) {
+  // A reference document of the branches built here: numbers by printf "%.17g".
+  auto num = [](double x) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return core::io::Json::number_text(buf);
+  };
+  core::QuadricMatrix a(fixtures::mat4_from_json(
+      *fixtures::load_json("fixtures/ellipsoid_fixtures.json").find("1")->find("E1")));
+  core::QuadricMatrix b(fixtures::mat4_from_json(
+      *fixtures::load_json("fixtures/ellipsoid_fixtures.json").find("1")->find("E2")));
+  auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+  const double awkward[] = {0.0,
+                            -0.0,
+                            std::numeric_limits<double>::denorm_min(),
+                            -std::numeric_limits<double>::min(),
+                            1e300,
+                            -1.7976931348623157e308,
+                            0.1,
+                            -1.0 / 3,
+                            123456789012345678.0,
+                            1e-7,
+                            2.5};
+  r.branches.clear();
+  trace::Branch open;
+  open.kind = "arc";
+  open.closed = false;
+  open.exits = {3, 0};
+  for (size_t i = 0; i + 2 < std::size(awkward); ++i)
+    open.points.push_back({awkward[i], awkward[i + 1], awkward[i + 2]});
+  trace::Branch empty;
+  empty.kind = "lo\"op\\";
+  r.branches = {open, empty, open};
+  r.note = "a \"note\"\n";
+  core::io::Json ref = core::io::Json::array();
+  for (const auto& br : r.branches) {
+    auto o = core::io::Json::object();
+    o.set("kind", core::io::Json::string(br.kind));
+    o.set("closed", core::io::Json::boolean(br.closed));
+    if (!br.exits.empty()) {
+      auto ex = core::io::Json::array();
+      for (int i : br.exits)
+        ex.push_back(core::io::Json::number(i));
+      o.set("exits", ex);
+    }
+    auto pts = core::io::Json::array();
+    for (const auto& p : br.points) {
+      auto a3 = core::io::Json::array();
+      for (double x : p)
+        a3.push_back(num(x));
+      pts.push_back(a3);
+    }
+    o.set("points", pts);
+    ref.push_back(o);
+  }
+  for (certify::Detail d : {certify::Detail::Topology, certify::Detail::Full}) {
+    std::string text;
+    trace::append_curve_envelope(text, r, a, b, d);
+    ASSERT_EQ(text, core::io::dump(trace::curve_envelope_json(r, a, b, d)));
+    const auto back = core::io::parse_json(text, "direct text");
+    EXPECT_EQ(core::io::dump(*back.find("result")->find("branches")), core::io::dump(ref));
+    EXPECT_EQ(back.find("note")->text(), r.note);
+  }
+  r.branches[0].points[1][2] = std::numeric_limits<double>::quiet_NaN();
+  std::string text;
+  EXPECT_THROW(trace::append_curve_envelope(text, r, a, b), core::InternalError);
 }

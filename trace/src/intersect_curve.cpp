@@ -7,9 +7,11 @@
 #include "surfcert/certify/inner_loops.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/special_points.hpp"
+#include "surfcert/core/error.hpp"
 #include "surfcert/trace/conics.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -865,42 +867,45 @@ std::string curve_caption(const CurveResult& r) {
                   : ", NOT matching the certified topology: undecided (" + r.note + ")");
 }
 
-Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
-                         const core::QuadricMatrix& b, certify::Detail detail) {
+namespace {
+
+// A point as dump() writes a Json array of three Json::number_double: "[x,y,z]".
+void append_point(std::string& out, const Point3& p) {
+  char buf[3 * 32 + 4];
+  char* at = buf;
+  *at++ = '[';
+  for (size_t k = 0; k < 3; ++k) {
+    if (!std::isfinite(p[k])) throw core::InternalError("append_point: not a finite double");
+    if (k) *at++ = ',';
+    at = std::to_chars(at, buf + sizeof buf, p[k], std::chars_format::general, 17).ptr;
+  }
+  *at++ = ']';
+  out.append(buf, at);
+}
+
+Json point_json(const Point3& p) {
+  Json a3 = Json::array();
+  a3.reserve(3);
+  for (double x : p)
+    a3.push_back(Json::number_double(x));
+  return a3;
+}
+
+// The envelope with every member in its place, except that result.branches holds null: the
+// branches are filled in by curve_envelope_json as a document and by append_curve_envelope as
+// text (the polylines are almost all of an answer's bytes; a document of them costs four
+// values and three heap strings per point).
+Json envelope_without_branches(const CurveResult& r, const core::QuadricMatrix& a,
+                               const core::QuadricMatrix& b, certify::Detail detail) {
   Json env = qsic_envelope_json(r.topology, a, b, detail);
   env.set("status", Json::string(to_string(r.status)));
   if (!r.note.empty()) env.set("note", Json::string(r.note));
   Json res = *env.find("result");
   auto num = [](double x) { return Json::number_double(x); };
-  auto point = [&](const Point3& p) {
-    Json a3 = Json::array();
-    a3.reserve(3);
-    for (double x : p)
-      a3.push_back(num(x));
-    return a3;
-  };
-  Json branches = Json::array();
-  for (const auto& br : r.branches) {
-    Json o = Json::object();
-    o.set("kind", Json::string(br.kind));
-    o.set("closed", Json::boolean(br.closed));
-    if (!br.exits.empty()) {
-      Json ex = Json::array();
-      for (int i : br.exits)
-        ex.push_back(Json::number_text(std::to_string(i)));
-      o.set("exits", ex);
-    }
-    Json pts = Json::array();
-    pts.reserve(br.points.size());
-    for (const auto& p : br.points)
-      pts.push_back(point(p));
-    o.set("points", std::move(pts));
-    branches.push_back(std::move(o));
-  }
-  res.set("branches", std::move(branches));
+  res.set("branches", Json::null());
   Json iso = Json::array();
   for (const auto& p : r.isolated_points)
-    iso.push_back(point(p));
+    iso.push_back(point_json(p));
   res.set("isolated_points", std::move(iso));
   res.set("branches_match_topology", Json::boolean(r.matches_topology));
   res.set("branch_points_approximate", Json::boolean(true));
@@ -909,8 +914,8 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
   res.set("affine", certify::affine_json(r.affine));
   if (r.box) {
     Json bx = Json::object();
-    bx.set("min", point(r.box->min));
-    bx.set("max", point(r.box->max));
+    bx.set("min", point_json(r.box->min));
+    bx.set("max", point_json(r.box->max));
     bx.set("automatic", Json::boolean(r.box_automatic));
     if (r.box_exits) {
       // The exact crossings of the curve with the faces: "certified" when complete and each
@@ -921,7 +926,7 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
         ex.set("count", Json::number_text(std::to_string(r.box_exits->points.size())));
         Json pts = Json::array();
         for (const auto& c : r.box_exits->points)
-          pts.push_back(point(c.approx));
+          pts.push_back(point_json(c.approx));
         ex.set("points", pts);
       } else {
         ex.set("count", Json::null());
@@ -933,6 +938,95 @@ Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
   }
   env.set("result", std::move(res));
   return env;
+}
+
+// {"kind", "closed", "exits" (when matched), "points"} up to "points"'s value.
+Json branch_head_json(const Branch& br) {
+  Json o = Json::object();
+  o.set("kind", Json::string(br.kind));
+  o.set("closed", Json::boolean(br.closed));
+  if (!br.exits.empty()) {
+    Json ex = Json::array();
+    for (int i : br.exits)
+      ex.push_back(Json::number_text(std::to_string(i)));
+    o.set("exits", ex);
+  }
+  return o;
+}
+
+// The branches as dump() writes the array curve_envelope_json builds.
+void append_branches(std::string& out, const std::vector<Branch>& branches) {
+  size_t points = 0;
+  for (const auto& br : branches)
+    points += br.points.size();
+  out.reserve(out.size() + 64 * points + 128 * branches.size() + 2);
+  out += '[';
+  for (size_t i = 0; i < branches.size(); ++i) {
+    const Branch& br = branches[i];
+    if (i) out += ',';
+    std::string head = core::io::dump(branch_head_json(br));
+    head.pop_back(); // its '}': "points" continues the object
+    out += head;
+    out += ",\"points\":[";
+    for (size_t k = 0; k < br.points.size(); ++k) {
+      if (k) out += ',';
+      append_point(out, br.points[k]);
+    }
+    out += "]}";
+  }
+  out += ']';
+}
+
+} // namespace
+
+Json curve_envelope_json(const CurveResult& r, const core::QuadricMatrix& a,
+                         const core::QuadricMatrix& b, certify::Detail detail) {
+  Json env = envelope_without_branches(r, a, b, detail);
+  Json res = *env.find("result");
+  Json branches = Json::array();
+  for (const auto& br : r.branches) {
+    Json o = branch_head_json(br);
+    Json pts = Json::array();
+    pts.reserve(br.points.size());
+    for (const auto& p : br.points)
+      pts.push_back(point_json(p));
+    o.set("points", std::move(pts));
+    branches.push_back(std::move(o));
+  }
+  res.set("branches", std::move(branches));
+  env.set("result", std::move(res));
+  return env;
+}
+
+void append_curve_envelope(std::string& out, const CurveResult& r, const core::QuadricMatrix& a,
+                           const core::QuadricMatrix& b, certify::Detail detail) {
+  const Json env = envelope_without_branches(r, a, b, detail);
+  out += '{';
+  bool first = true;
+  for (const auto& [key, value] : env.members()) {
+    if (!first) out += ',';
+    first = false;
+    core::io::append_json_string(out, key);
+    out += ':';
+    if (key != "result") {
+      out += core::io::dump(value);
+      continue;
+    }
+    out += '{';
+    bool first_member = true;
+    for (const auto& [k, v] : value.members()) {
+      if (!first_member) out += ',';
+      first_member = false;
+      core::io::append_json_string(out, k);
+      out += ':';
+      if (k == "branches")
+        append_branches(out, r.branches);
+      else
+        out += core::io::dump(v);
+    }
+    out += '}';
+  }
+  out += '}';
 }
 
 } // namespace surfcert::trace

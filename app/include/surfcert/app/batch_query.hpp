@@ -13,6 +13,7 @@
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/surface.hpp"
+#include "surfcert/trace/intersect_curve.hpp"
 
 #include <array>
 #include <functional>
@@ -48,6 +49,11 @@ core::io::Json budget_undecided_envelope(double budget_ms);
 
 /// The decision of a classify line, completed to q.detail (certify/report.hpp).
 certify::QsicResult batch_classify(const BatchQuery& q, const core::QuadricMatrix& a,
+                                   const core::QuadricMatrix& b);
+
+/// The decision and branches of an intersect line (trace/intersect_curve.hpp), its report data
+/// those of q.detail.
+trace::CurveResult batch_intersect(const BatchQuery& q, const core::QuadricMatrix& a,
                                    const core::QuadricMatrix& b);
 
 certify::Mode read_mode(const core::io::Json& v, const std::string& source,

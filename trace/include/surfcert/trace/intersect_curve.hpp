@@ -86,6 +86,12 @@ core::io::Json curve_envelope_json(const CurveResult& r, const core::QuadricMatr
                                    const core::QuadricMatrix& b,
                                    certify::Detail detail = certify::Detail::Full);
 
+/// Appends dump(curve_envelope_json(r, a, b, detail)) byte for byte, the branches' polylines
+/// written directly (no document of them is built: the batch's answers; tests compare the two).
+void append_curve_envelope(std::string& out, const CurveResult& r, const core::QuadricMatrix& a,
+                           const core::QuadricMatrix& b,
+                           certify::Detail detail = certify::Detail::Full);
+
 /// One line saying truthfully what was traced (the SVG caption): the certified topology,
 /// then "nothing traced" (with why), or the counts of closed and open branches traced (in the
 /// box) and whether they match the certified (affine) topology.
