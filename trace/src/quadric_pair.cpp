@@ -46,15 +46,14 @@ M4 normalised(const core::QuadricMatrix& q) {
 // keeps that below the steps even for loops of size 2^-20 at some distance from the origin.
 // (The coefficients themselves are rounded doubles: the traced curve is that of the rounded
 // pair, a fixed, smooth perturbation of the exact one, not noise.)
+// The symmetric form's ten distinct products (m symmetric): x (m00 x + 2 (m01 y + m02 z +
+// m03)) + y (m11 y + 2 (m12 z + m13)) + z (m22 z + 2 m23) + m33, as form_fast below.
 double form(const M4& m, const Point3& p) {
-  const long double x[4] = {p[0], p[1], p[2], 1.0L};
-  long double s = 0;
-  for (size_t i = 0; i < 4; ++i) {
-    long double r = 0;
-    for (size_t j = 0; j < 4; ++j)
-      r += static_cast<long double>(m[i][j]) * x[j];
-    s += x[i] * r;
-  }
+  const long double x = p[0], y = p[1], z = p[2];
+  auto e = [&m](size_t i, size_t j) { return static_cast<long double>(m[i][j]); };
+  const long double s = x * (e(0, 0) * x + 2 * (e(0, 1) * y + e(0, 2) * z + e(0, 3))) +
+                        y * (e(1, 1) * y + 2 * (e(1, 2) * z + e(1, 3))) +
+                        z * (e(2, 2) * z + 2 * e(2, 3)) + e(3, 3);
   return static_cast<double>(s);
 }
 
@@ -83,13 +82,13 @@ double dot(const Point3& a, const Point3& b) {
 // f's evaluation is ~1e-19 of it, and f / it is scale-free: a curve scaled by 10^4 and
 // translated by 10^5 meets the same relative criterion as a unit one (1 + |p|^2 would not be:
 // there it lets points lie ~1e-3 of the curve's size off it).
+// (m symmetric: the ten distinct products, the off-diagonal ones twice.)
 double term_size(const std::array<std::array<double, 4>, 4>& m, const Point3& p) {
-  const double x[4] = {std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2]), 1.0};
-  double s = 0;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      s += std::fabs(m[i][j]) * x[i] * x[j];
-  return s;
+  const double x = std::fabs(p[0]), y = std::fabs(p[1]), z = std::fabs(p[2]);
+  auto a = [&m](size_t i, size_t j) { return std::fabs(m[i][j]); };
+  return x * (a(0, 0) * x + 2 * (a(0, 1) * y + a(0, 2) * z + a(0, 3))) +
+         y * (a(1, 1) * y + 2 * (a(1, 2) * z + a(1, 3))) + z * (a(2, 2) * z + 2 * a(2, 3)) +
+         a(3, 3);
 }
 
 } // namespace
@@ -179,15 +178,23 @@ void polish(const QuadricPair& q, Point3& p) {
 
 bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
   // Double-precision steps while the residual is far above the rounding floor, then the
-  // extended-precision loop below decides convergence.
+  // extended-precision loop below decides convergence. From within 1e-11 one more double step
+  // is taken: Newton's quadratic convergence puts it at the double evaluation's floor (~1e-16),
+  // where the extended loop usually accepts at its first evaluation (it would otherwise take
+  // that step itself, at twice the cost).
   for (int it = 0; it < iterations; ++it) {
     const double fv = form_fast(q.a, p), gv = form_fast(q.b, p);
     if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
-    if (relative_residual(q, p, fv, gv) <= 1e-11) break;
+    const double rel = relative_residual(q, p, fv, gv);
+    if (rel <= 1e-14) break; // at the double floor already
     Point3 x{};
     double sn = 0;
-    if (!gauss_newton_step(q, p, fv, gv, x, sn)) return false;
+    if (!gauss_newton_step(q, p, fv, gv, x, sn)) {
+      if (rel <= 1e-11) break;
+      return false;
+    }
     p = x;
+    if (rel <= 1e-11) break;
   }
   for (int it = 0; it <= iterations; ++it) {
     const double fv = q.f(p), gv = q.g(p);
