@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <random>
 #include <string>
 
 using surfcert::core::InputError;
@@ -327,6 +330,58 @@ TEST(Json, NumberDoubleIsPrintfs17g) {
   }
   EXPECT_THROW(Json::number_double(HUGE_VAL), InternalError);
   EXPECT_THROW(Json::number_double(NAN), InternalError);
+}
+
+// append_json_double's exact integer route (1e-4 <= |x| < 2^53) and its fallback against
+// glibc's printf: random bit patterns, random magnitudes 1e-20 .. 1e17 and their neighbours,
+// powers of ten and their neighbours (where the decimal exponent estimate is off by one and
+// rounding carries into a new digit), decimal ties (odd / 2^j: exact binary values whose
+// 18th significant digit is a final 5, rounded half to even), integers up to 10^17.
+TEST(Json, AppendDoubleIsPrintfs17gOnRandomAndTieValues) {
+  std::mt19937_64 rng(20261125);
+  long checked = 0, ties = 0;
+  auto check = [&](double x) {
+    if (!std::isfinite(x)) return;
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    std::string text = "<";
+    surfcert::core::io::append_json_double(text, x);
+    ASSERT_EQ(text, "<" + std::string(buf)) << buf;
+    ++checked;
+  };
+  std::uniform_real_distribution<double> mag(-20, 17);
+  for (int i = 0; i < 60000; ++i) {
+    const uint64_t bits = rng();
+    double x = 0;
+    std::memcpy(&x, &bits, sizeof x);
+    check(x);
+    const double y = std::pow(10.0, mag(rng)) * ((rng() & 1) ? 1 : -1);
+    check(y);
+    check(std::nextafter(y, 0.0));
+    const int p = static_cast<int>(rng() % 22) - 5;
+    check(std::pow(10.0, p));
+    check(std::nextafter(std::pow(10.0, p), HUGE_VAL));
+    check(std::nextafter(std::pow(10.0, p), 0.0));
+    check(static_cast<double>(rng() % 100000000000000000ULL));
+    // odd / 2^j with j + (digits of odd) > 17: the 18th digit is often the final 5 of a tie.
+    const uint64_t odd = ((rng() & ((1ULL << 53) - 1)) >> (rng() % 50)) | 1;
+    const double t = std::ldexp(static_cast<double>(odd), -static_cast<int>(1 + rng() % 60));
+    check(t);
+  }
+  // Ties by construction: 131073 / 2^18 = 0.500003814697265625 (18 digits, a final 5) rounds
+  // to even ...62, 131075 / 2^18 = 0.500011444091796875 to ...88 (odd 7 rounded up).
+  for (long n = 131073; n < 131073 + 2000; n += 2) {
+    check(static_cast<double>(n) / 262144);
+    ++ties;
+  }
+  EXPECT_EQ(Json::number_double(131073.0 / 262144).text(), "0.50000381469726562");
+  EXPECT_EQ(Json::number_double(131075.0 / 262144).text(), "0.50001144409179688");
+  for (double x : {1e-4, 9.9999999999999991e-05, 0x1p53, 0x1p53 - 1, 0x1p52, 1e16 - 2, 0.5, -2.5})
+    check(x);
+  EXPECT_GT(checked, 400000);
+  EXPECT_EQ(ties, 1000);
+  std::string text;
+  EXPECT_THROW(surfcert::core::io::append_json_double(text, -HUGE_VAL), InternalError);
 }
 
 TEST(Json, ReserveKeepsTheArrayAndRefusesOtherTypes) {

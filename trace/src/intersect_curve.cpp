@@ -7,11 +7,9 @@
 #include "surfcert/certify/inner_loops.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/special_points.hpp"
-#include "surfcert/core/error.hpp"
 #include "surfcert/trace/conics.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -871,16 +869,12 @@ namespace {
 
 // A point as dump() writes a Json array of three Json::number_double: "[x,y,z]".
 void append_point(std::string& out, const Point3& p) {
-  char buf[3 * 32 + 4];
-  char* at = buf;
-  *at++ = '[';
+  out += '[';
   for (size_t k = 0; k < 3; ++k) {
-    if (!std::isfinite(p[k])) throw core::InternalError("append_point: not a finite double");
-    if (k) *at++ = ',';
-    at = std::to_chars(at, buf + sizeof buf, p[k], std::chars_format::general, 17).ptr;
+    if (k) out += ',';
+    core::io::append_json_double(out, p[k]);
   }
-  *at++ = ']';
-  out.append(buf, at);
+  out += ']';
 }
 
 Json point_json(const Point3& p) {

@@ -5,7 +5,9 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <set>
 #include <string_view>
 #include <system_error>
@@ -554,14 +556,143 @@ Json Json::number_text(std::string text) {
   return v;
 }
 
-Json Json::number_double(double x) {
+namespace {
+
+// The 17 significant digits printf("%.17g") gives for ax in [1e-4, 2^53) (where it writes no
+// exponent), exactly: ax = m 2^-q with m < 2^53, so ax 10^k = m 5^k 2^(k-q) is an integer
+// (at most 116 bits for k <= 27) shifted right, rounded half to even as glibc rounds the exact
+// binary value. d in [10^16, 10^17), ax ~ d 10^(e - 16). False outside that range (the caller
+// falls back to std::to_chars, several times slower).
+// GCC's and Clang's 128-bit integers (__extension__: not ISO C++, hence -Wpedantic's silence).
+__extension__ using U128 = unsigned __int128;
+
+bool digits17(double ax, uint64_t& d, int& e) {
+  if (!(ax >= 1e-4 && ax < 0x1p53)) return false;
+  static constexpr uint64_t pow5[28] = {1ULL,
+                                        5ULL,
+                                        25ULL,
+                                        125ULL,
+                                        625ULL,
+                                        3125ULL,
+                                        15625ULL,
+                                        78125ULL,
+                                        390625ULL,
+                                        1953125ULL,
+                                        9765625ULL,
+                                        48828125ULL,
+                                        244140625ULL,
+                                        1220703125ULL,
+                                        6103515625ULL,
+                                        30517578125ULL,
+                                        152587890625ULL,
+                                        762939453125ULL,
+                                        3814697265625ULL,
+                                        19073486328125ULL,
+                                        95367431640625ULL,
+                                        476837158203125ULL,
+                                        2384185791015625ULL,
+                                        11920928955078125ULL,
+                                        59604644775390625ULL,
+                                        298023223876953125ULL,
+                                        1490116119384765625ULL,
+                                        7450580596923828125ULL};
+  uint64_t bits = 0;
+  std::memcpy(&bits, &ax, sizeof bits);
+  const int biased = static_cast<int>(bits >> 52); // ax is positive and normal here
+  const uint64_t m = (bits & ((1ULL << 52) - 1)) | (1ULL << 52);
+  const int q = 1075 - biased;  // ax = m 2^-q, 0 <= q <= 66
+  const int e2 = biased - 1023; // 2^e2 <= ax < 2^(e2 + 1)
+  constexpr uint64_t p16 = 10000000000000000ULL, p17 = 100000000000000000ULL;
+  e = (e2 * 1233) >> 12; // floor(e2 log10 2): e or e - 1 (corrected below)
+  for (int tries = 0; tries < 3; ++tries) {
+    const int k = 16 - e;
+    if (k < 0 || k > 27 || q < k) return false;
+    const int sh = q - k; // <= 66
+    const U128 n = static_cast<U128>(m) * pow5[k];
+    const U128 ip = n >> sh;
+    if (ip < p16) {
+      --e;
+      continue;
+    }
+    if (ip >= p17) {
+      ++e;
+      continue;
+    }
+    d = static_cast<uint64_t>(ip);
+    if (sh > 0) {
+      const U128 rem = n - (ip << sh);
+      const U128 half = static_cast<U128>(1) << (sh - 1);
+      if (rem > half || (rem == half && (d & 1) != 0)) ++d;
+    }
+    if (d == p17) { // rounded up to the next power of ten
+      d = p16;
+      ++e;
+    }
+    return true;
+  }
+  return false;
+}
+
+// The n digits of v (v < 10^n) at out, two at a time.
+void write_digits(char* out, uint32_t v, int n) {
+  static constexpr char pairs[] = "00010203040506070809101112131415161718192021222324252627282930"
+                                  "31323334353637383940414243444546474849505152535455565758596061"
+                                  "62636465666768697071727374757677787980818283848586878889909192"
+                                  "93949596979899";
+  while (n >= 2) {
+    n -= 2;
+    std::memcpy(out + n, pairs + 2 * (v % 100), 2);
+    v /= 100;
+  }
+  if (n == 1) out[0] = static_cast<char>('0' + v);
+}
+
+} // namespace
+
+void append_json_double(std::string& out, double x) {
+  if (!std::isfinite(x)) throw InternalError("Json::number_double: not a finite double");
   char buf[40];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
-  if (!std::isfinite(x) || r.ec != std::errc())
-    throw InternalError("Json::number_double: not a finite double");
+  char* at = buf;
+  uint64_t d = 0;
+  int e = 0;
+  if (digits17(std::fabs(x), d, e)) {
+    // %.17g without an exponent (-4 <= e < 17): 16 - e decimals, trailing zeros and a bare
+    // point dropped.
+    char dig[17];
+    write_digits(dig, static_cast<uint32_t>(d / 100000000), 9);
+    write_digits(dig + 9, static_cast<uint32_t>(d % 100000000), 8);
+    if (x < 0) *at++ = '-';
+    int last = 16; // the last digit kept
+    while (last > std::max(e, 0) && dig[last] == '0')
+      --last;
+    if (e >= 0) {
+      std::memcpy(at, dig, static_cast<size_t>(e) + 1);
+      at += e + 1;
+      if (last > e) {
+        *at++ = '.';
+        std::memcpy(at, dig + e + 1, static_cast<size_t>(last - e));
+        at += last - e;
+      }
+    } else {
+      *at++ = '0';
+      *at++ = '.';
+      for (int i = 0; i < -e - 1; ++i)
+        *at++ = '0';
+      std::memcpy(at, dig, static_cast<size_t>(last) + 1);
+      at += last + 1;
+    }
+  } else {
+    const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
+    if (r.ec != std::errc()) throw InternalError("Json::number_double: not a finite double");
+    at = r.ptr;
+  }
+  out.append(buf, at);
+}
+
+Json Json::number_double(double x) {
   Json v;
+  append_json_double(v.text_, x);
   v.type_ = Type::Number;
-  v.text_.assign(buf, r.ptr);
   return v;
 }
 

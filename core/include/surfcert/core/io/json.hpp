@@ -38,8 +38,8 @@ public:
   static Json number_text(std::string text);
   static Json number(long n);
   /// A double as the text printf("%.17g") gives (it reads back as the same double), written
-  /// by std::to_chars (the same characters, several times faster than printf). Precondition:
-  /// x finite (checked: throws InternalError).
+  /// by append_json_double (the same characters, far faster than printf). Precondition: x
+  /// finite (checked: throws InternalError).
   static Json number_double(double x);
   static Json string(std::string s);
   static Json array();
@@ -110,6 +110,12 @@ std::string dump(const Json& v, int indent = -1);
 /// Appends the string `s` as dump() writes a string value (quoted and escaped, see above): for
 /// writers that put out JSON text directly and must match dump() byte for byte.
 void append_json_string(std::string& out, std::string_view s);
+
+/// Appends x as Json::number_double's text (printf "%.17g"; std::to_chars' characters): for
+/// writers that put out JSON text directly. Most doubles (1e-4 <= |x| < 2^53) take an exact
+/// integer route ~10x faster than std::to_chars. Precondition: x finite (checked: throws
+/// InternalError).
+void append_json_double(std::string& out, double x);
 
 /// JSON path of a member: parent + ".key", or parent + "[\"key\"]" when key is not an
 /// identifier ([A-Za-z_][A-Za-z0-9_]*). The root path is "$".
