@@ -336,8 +336,9 @@ FastLine read_fast(const std::string& line, certify::Mode default_mode, double d
       }
     } else if (key == "op") {
       seen.mark(kOp);
-      fl.q.op = plain_string(v);
-      if (fl.q.op != "classify" && fl.q.op != "intersect" && fl.q.op != "distance") throw NotFast{};
+      const std::string_view op = plain_string(v); // compared in place, then copied
+      if (op != "classify" && op != "intersect" && op != "distance") throw NotFast{};
+      fl.q.op = op;
     } else if (key == "a") {
       seen.mark(kA);
       fl.a = read_surface_fast(v, "$.a", fl.readings);
@@ -373,24 +374,25 @@ FastLine read_fast(const std::string& line, certify::Mode default_mode, double d
   if (!seen.has(kOp) || !seen.has(kA) || !seen.has(kB)) throw NotFast{};
   fl.readings.insert(fl.readings.end(), rb.begin(), rb.end());
   BatchQuery& q = fl.q;
+  const std::string_view op = q.op; // views compare inline (std::string's == calls compare)
   q.mode = default_mode;
-  q.detail = certify::detail_for_op(q.op, default_detail);
+  q.detail = certify::detail_for_op(op, default_detail);
   if (seen.has(kDetail)) {
-    auto d = certify::parse_detail(std::string(detail_text));
-    if (!d || !certify::detail_accepted(q.op, *d)) throw NotFast{};
+    auto d = certify::parse_detail(detail_text);
+    if (!d || !certify::detail_accepted(op, *d)) throw NotFast{};
     q.detail = *d;
   }
-  if (q.op != "distance" && (!std::holds_alternative<core::QuadricMatrix>(*fl.a) ||
-                             !std::holds_alternative<core::QuadricMatrix>(*fl.b)))
+  if (op != "distance" && (!std::holds_alternative<core::QuadricMatrix>(*fl.a) ||
+                           !std::holds_alternative<core::QuadricMatrix>(*fl.b)))
     throw NotFast{};
   // The scalar fields through the document route's own readers (an error: not fast).
   auto number = [](std::string_view t) { return Json::number_text(std::string(t)); };
   q.budget_ms = default_budget_ms;
   if (seen.has(kBudget)) q.budget_ms = read_budget(number(budget_text), "<stdin>", "$.budget_ms");
-  if (q.op == "distance") {
+  if (op == "distance") {
     if (seen.has(kDigits)) q.digits = read_digits(number(digits_text), "<stdin>", "$.digits");
     q.solid = solid;
-  } else if (q.op == "intersect" && seen.has(kTol)) {
+  } else if (op == "intersect" && seen.has(kTol)) {
     q.tolerance = read_tolerance(number(tolerance_text), "<stdin>", "$.tolerance");
   }
   return fl;
@@ -499,7 +501,8 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
     out += "{\"id\":";
     out += fl->id;
     const BatchQuery& q = fl->q;
-    if (q.op == "classify" && q.detail == certify::Detail::Topology) {
+    const std::string_view op = q.op;
+    if (op == "classify" && q.detail == certify::Detail::Topology) {
       const auto& a = std::get<core::QuadricMatrix>(*fl->a);
       const auto& b = std::get<core::QuadricMatrix>(*fl->b);
       append_within_budget(
@@ -508,7 +511,7 @@ BatchLineAnswer answer_batch_line(const std::string& line, long line_no, certify
             ans.fallback = r.exact_fallback;
             certify::append_qsic_topology_envelope(o, r);
           });
-    } else if (q.op == "distance") {
+    } else if (op == "distance") {
       // Written directly as well (batch_envelope's bytes: tests compare the two).
       append_within_budget(
           out, ans.status, q.budget_ms,

@@ -320,6 +320,39 @@ TEST(Detail, BatchDefaultMapsOntoEachOp) {
       nullptr);
 }
 
+// The batch reader hands parse_detail / detail_accepted / detail_for_op views into its line:
+// they must read exactly the view's bytes (no NUL after them), never a prefix or a longer run.
+TEST(Detail, SpellingsAreReadFromTheViewsBytesOnly) {
+  using certify::Detail;
+  const std::string buf = "topologyfullvaluecertificateclassifyintersectdistance";
+  auto at = [&](std::size_t pos, std::size_t n) { return std::string_view(buf).substr(pos, n); };
+  EXPECT_EQ(certify::parse_detail(at(0, 8)), Detail::Topology);
+  EXPECT_EQ(certify::parse_detail(at(8, 4)), Detail::Full);
+  EXPECT_EQ(certify::parse_detail(at(12, 5)), Detail::Value);
+  EXPECT_EQ(certify::parse_detail(at(17, 11)), Detail::Certificate);
+  for (auto [pos, n] : {std::pair<std::size_t, std::size_t>{0, 7},
+                        {0, 9},
+                        {8, 3},
+                        {8, 5},
+                        {12, 4},
+                        {17, 10},
+                        {17, 12},
+                        {0, 0}})
+    EXPECT_EQ(certify::parse_detail(at(pos, n)), std::nullopt) << buf.substr(pos, n);
+  const std::string_view classify = at(28, 8), intersect = at(36, 9), distance = at(45, 8);
+  EXPECT_TRUE(certify::detail_accepted(classify, Detail::Topology));
+  EXPECT_FALSE(certify::detail_accepted(classify, Detail::Value));
+  EXPECT_TRUE(certify::detail_accepted(intersect, Detail::Certificate));
+  EXPECT_TRUE(certify::detail_accepted(distance, Detail::Value));
+  EXPECT_FALSE(certify::detail_accepted(distance, Detail::Topology));
+  EXPECT_FALSE(certify::detail_accepted(at(28, 7), Detail::Topology)); // "classif"
+  EXPECT_FALSE(certify::detail_accepted(at(45, 7), Detail::Value));    // "distanc"
+  EXPECT_EQ(certify::detail_for_op(distance, Detail::Topology), Detail::Value);
+  EXPECT_EQ(certify::detail_for_op(at(45, 7), Detail::Value), Detail::Topology);
+  EXPECT_EQ(certify::detail_for_op(classify, Detail::Value), Detail::Topology);
+  EXPECT_STREQ(certify::detail_spellings(distance), "\"value\" or \"full\"");
+}
+
 TEST(Detail, BadValuesAreInputErrorsWithLocation) {
   const std::string cl = R"({"op":"classify","a":"x^2+y^2+z^2=1","b":"(x-1)^2+y^2+z^2=1"})";
   const std::string it = R"({"op":"intersect","a":"x^2+y^2+z^2=1","b":"(x-1)^2+y^2+z^2=1"})";

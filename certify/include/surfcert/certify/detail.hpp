@@ -18,6 +18,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace surfcert::certify {
 
@@ -25,19 +26,21 @@ enum class Detail { Value, Topology, Certificate, Full };
 
 const char* to_string(Detail d);
 
-/// "value", "topology", "certificate" or "full"; nullopt otherwise.
-std::optional<Detail> parse_detail(const std::string& s);
+/// "value", "topology", "certificate" or "full" (exactly those bytes: the view need not end
+/// in a NUL); nullopt otherwise. Views, so that the batch reader compares its line's bytes in
+/// place (no string built, no out-of-line compare per spelling).
+std::optional<Detail> parse_detail(std::string_view s);
 
 /// Which levels an op accepts in a line or query of its own ("classify" / "intersect":
 /// topology, certificate, full; "distance": value, full; other ops: none); others are input
 /// errors.
-bool detail_accepted(const std::string& op, Detail d);
+bool detail_accepted(std::string_view op, Detail d);
 
 /// The spellings accepted for an op, for error messages ("\"topology\", ... or \"full\"").
-const char* detail_spellings(const std::string& op);
+const char* detail_spellings(std::string_view op);
 
 /// A default for every op (batch --detail): the nearest level an op has. For distance, topology
 /// and certificate are the lean answer (Value); for classify / intersect, value is Topology.
-Detail detail_for_op(const std::string& op, Detail d);
+Detail detail_for_op(std::string_view op, Detail d);
 
 } // namespace surfcert::certify
