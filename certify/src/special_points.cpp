@@ -125,13 +125,13 @@ std::vector<SpecialPoint> special_points(const algebra::PencilFacts& f, int tu_c
         m[i][j] = *root.rational_value * f.a[i][j] - f.b[i][j];
     auto ker = algebra::kernel_basis(m);
     if (ker.size() == 1) {
-      if (algebra::bilinear(f.a, ker[0], ker[0]).is_zero())
+      if (algebra::bilinear(f.a.get(), ker[0], ker[0]).is_zero())
         out.push_back(make_point(vertex_kind(tu_case), lift(ker[0], one), one));
     } else if (ker.size() == 2) {
       const Vec4& u = ker[0];
       const Vec4& v = ker[1];
-      Rational al = algebra::bilinear(f.a, u, u), be = algebra::bilinear(f.a, u, v),
-               ga = algebra::bilinear(f.a, v, v);
+      Rational al = algebra::bilinear(f.a.get(), u, u), be = algebra::bilinear(f.a.get(), u, v),
+               ga = algebra::bilinear(f.a.get(), v, v);
       if (al.is_zero() && be.is_zero() && ga.is_zero()) continue; // the line is a component
       const char* kind = line_kind(tu_case);
       if (al.is_zero()) {
@@ -193,7 +193,7 @@ std::vector<SpecialPoint> special_points(const algebra::PencilFacts& f, int tu_c
       fmpq_mat_clear(qa);
       fmpq_mat_clear(qn);
       fmpq_mat_clear(qx);
-      if (algebra::bilinear(f.a, p, p).is_zero())
+      if (algebra::bilinear(f.a.get(), p, p).is_zero())
         out.push_back(make_point(tu_case == 33 ? "isolated_point" : "double_lines_crossing",
                                  lift(p, one), one));
     }

@@ -62,3 +62,52 @@ TEST(Filter, AgreesWithExactArithmeticWheneverItAnswers) {
   EXPECT_GT(answered, 400);
   EXPECT_GT(descartes_branch, 150);
 }
+
+// PencilFacts::a, ::b (LazyMat4): unset, the basis reads as the zero matrix a default Mat4
+// was; the filter leaves it unset and a report at Certificate copies the given matrices in;
+// copies are deep.
+TEST(Filter, PencilBasisIsSetOnlyWhenAReportNeedsIt) {
+  const core::Mat4 zero{};
+  algebra::PencilFacts unset;
+  EXPECT_FALSE(unset.a.filled());
+  EXPECT_EQ(unset.a, zero);
+  EXPECT_EQ(unset.b[3][3], Rational(0));
+
+  core::Mat4 a, b;
+  for (size_t i = 0; i < 4; ++i) {
+    a[i][i] = Rational(i == 3 ? -1 : static_cast<long>(i) + 1);         // diag(1, 2, 3, -1)
+    b[i][i] = Rational(i == 3 ? -1 : static_cast<long>(i + 2) % 3 + 1); // diag(3, 1, 2, -1)
+  }
+  b[0][3] = b[3][0] = Rational(-1, 2);
+  const core::QuadricMatrix qa(a), qb(b);
+  certify::QsicResult r = certify::classify_qsic(qa, qb, certify::Mode::Filtered);
+  ASSERT_EQ(r.status, certify::Status::Certified);
+  ASSERT_FALSE(r.exact_fallback);
+  EXPECT_FALSE(r.facts.a.filled());
+  EXPECT_FALSE(r.facts.b.filled());
+  certify::complete_report_data(r, qa, qb, certify::Detail::Topology);
+  EXPECT_FALSE(r.facts.a.filled()); // topology needs no basis
+  certify::complete_report_data(r, qa, qb, certify::Detail::Certificate);
+  EXPECT_TRUE(r.facts.a.filled());
+  EXPECT_EQ(r.facts.a, a);
+  EXPECT_EQ(r.facts.b, b);
+  const algebra::PencilFacts ex = algebra::analyze_pencil_exact(a, b);
+  EXPECT_EQ(ex.a, a);
+  EXPECT_EQ(ex.b, b);
+  EXPECT_EQ(r.facts.f, ex.f); // the exact f from the copied basis
+  algebra::PencilFacts inv = ex;
+  algebra::fill_quartic_invariants(inv); // the exact analysis leaves D2..E to the report
+  EXPECT_EQ(r.facts.d4, inv.d4);
+  EXPECT_EQ(r.facts.e, inv.e);
+
+  algebra::PencilFacts copy = ex;
+  copy.a = core::scaled(a, Rational(2));
+  EXPECT_EQ(ex.a, a); // deep
+  EXPECT_NE(copy.a, a);
+  EXPECT_EQ(copy.a[3][3], Rational(-2));
+  copy.a = unset.a; // assigning an unset basis unsets it
+  EXPECT_FALSE(copy.a.filled());
+  EXPECT_EQ(copy.a, zero);
+  const algebra::PencilFacts copy2 = unset;
+  EXPECT_FALSE(copy2.b.filled());
+}

@@ -8,12 +8,17 @@
 // its exact value (rational, or a + b sqrt(d)) and its exact rank and inertia.
 // Cost: one 4x4 closed-form determinant over Z, one square-free factorisation, an isolation
 // of a quartic, k+1 Descartes counts; exact work in Q(sqrt d) only at conjugate double roots.
+// The basis a, b is set by the exact analysis; facts from the interval filter leave it unset
+// (LazyMat4: reads as zero) until a report needs it (certify::complete_report_data).
 #pragma once
 
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/algebra/upoly.hpp"
 #include "surfcert/core/quadric.hpp"
 
+#include <array>
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,13 +48,70 @@ struct RootFacts {
   bool jump() const { return index_left != index_right; }
 };
 
+/// A pencil basis matrix (PencilFacts::a, ::b) that costs nothing until it is set. Empty, it
+/// reads as the zero matrix (what a default core::Mat4 holds), so every reader sees a Mat4 as
+/// before; setting it allocates one. Why: the filtered classify path never sets the basis
+/// (certify::complete_report_data copies it in on demand), and two default Mat4s (32
+/// Rationals) built and destroyed per answer were ~0.5 k instructions a line of a batch.
+/// Copies are deep; reads of a shared const object are thread-safe (the zero is a constant).
+class LazyMat4 {
+public:
+  LazyMat4() = default;
+  LazyMat4(const core::Mat4& m) : p_(std::make_unique<core::Mat4>(m)) {} // NOLINT: implicit
+  LazyMat4(const LazyMat4& o) : p_(o.p_ ? std::make_unique<core::Mat4>(*o.p_) : nullptr) {}
+  LazyMat4(LazyMat4&&) noexcept = default;
+  LazyMat4& operator=(const LazyMat4& o) {
+    if (!o.p_)
+      p_.reset();
+    else if (this != &o)
+      *this = *o.p_;
+    return *this;
+  }
+  LazyMat4& operator=(LazyMat4&&) noexcept = default;
+  LazyMat4& operator=(const core::Mat4& m) {
+    if (p_)
+      *p_ = m;
+    else
+      p_ = std::make_unique<core::Mat4>(m);
+    return *this;
+  }
+  LazyMat4& operator=(core::Mat4&& m) {
+    if (p_)
+      *p_ = std::move(m);
+    else
+      p_ = std::make_unique<core::Mat4>(std::move(m));
+    return *this;
+  }
+
+  /// The matrix (the zero matrix while unset).
+  const core::Mat4& get() const { return p_ ? *p_ : zero(); }
+  operator const core::Mat4&() const { return get(); } // NOLINT: reads as a Mat4
+  const std::array<Rational, 4>& operator[](std::size_t i) const { return get()[i]; }
+  /// True once set (a set zero matrix included).
+  bool filled() const { return p_ != nullptr; }
+
+  friend bool operator==(const LazyMat4& x, const LazyMat4& y) { return x.get() == y.get(); }
+  friend bool operator==(const LazyMat4& x, const core::Mat4& y) { return x.get() == y; }
+  friend bool operator==(const core::Mat4& x, const LazyMat4& y) { return x == y.get(); }
+  friend bool operator!=(const LazyMat4& x, const LazyMat4& y) { return !(x == y); }
+  friend bool operator!=(const LazyMat4& x, const core::Mat4& y) { return !(x == y); }
+  friend bool operator!=(const core::Mat4& x, const LazyMat4& y) { return !(x == y); }
+
+private:
+  static const core::Mat4& zero() {
+    static const core::Mat4 z{};
+    return z;
+  }
+  std::unique_ptr<core::Mat4> p_;
+};
+
 struct PencilFacts {
   PencilKind kind = PencilKind::Regular;
-  core::Mat4 a, b;                ///< the basis used (after re-basing)
-  bool rebased = false;           ///< true when the given A was singular
-  long rebase_t = 0;              ///< then a = t*A0 - B0, b = -A0, l0 = t + 1/l
-  UPolyQ f;                       ///< det(l*a - b)
-  Rational d2, d3, d4, e;         ///< seed 002 Lemma 1 quantities of f (fill_quartic_invariants)
+  LazyMat4 a, b;          ///< the basis used (after re-basing); unset (zero) in filtered facts
+  bool rebased = false;   ///< true when the given A was singular
+  long rebase_t = 0;      ///< then a = t*A0 - B0, b = -A0, l0 = t + 1/l
+  UPolyQ f;               ///< det(l*a - b)
+  Rational d2, d3, d4, e; ///< seed 002 Lemma 1 quantities of f (fill_quartic_invariants)
   bool invariants_filled = false; ///< f, d2..e set exactly (report data)
   std::string root_pattern;       ///< "R1".."R9"
   std::vector<RootFacts> real_roots;
