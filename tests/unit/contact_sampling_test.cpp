@@ -19,6 +19,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <tuple>
+#include <vector>
 
 using namespace surfcert;
 using core::Rational;
@@ -222,4 +225,113 @@ TEST(ContactSampling, ConeMeetingAtItsApexOnlyIsNoContinuum) {
   const auto c = certify::surface_distance(cone, read("z^3 - 1 = 0"), 15, false);
   ASSERT_EQ(c.status, certify::Status::Certified) << c.note;
   EXPECT_EQ(c.upper(), "0");
+}
+
+namespace {
+
+// 2^-100 as a decimal-free rational literal for the equation reader.
+const std::string kTwoPowMinus100 = "1/1267650600228229401496703205376";
+
+// The answers for (a, b) and (b, a).
+std::vector<certify::DistanceResult> both_orders(const core::Surface& a, const core::Surface& b) {
+  return {certify::surface_distance(a, b, 15, false), certify::surface_distance(b, a, 15, false)};
+}
+
+} // namespace
+
+TEST(ContactSampling, QuadricsMeetingAtAffineIsolatedPointsOnly) {
+  // The projective morphology counts components at infinity too. Subtracting the equations
+  // gives the common points by hand: z^2 = x^2 + y^2 and x^2 + y^2 = z^2 - z give z = 0, so
+  // the apex alone (their common conic lies at infinity); x^2 + y^2 = z and x^2 + c y^2 = -z
+  // give (1 + 1) x^2 + (1 + c) y^2 = 0, the origin alone (the second isolated point of the
+  // morphology is (0 : 0 : 1 : 0)). Before the fix: "infinite" and "2" (exact). Controls: two
+  // lines (x^2 - y^2 = z and = -z: z = 0, x = +-y) and a circle (z = 1) are continua.
+  const std::tuple<const char*, const char*, const char*> cases[] = {
+      {"x^2 + y^2 - z^2 = 0", "x^2 + y^2 - z^2 + z = 0", "1"},
+      {"x^2 + y^2 - z = 0", "x^2 + y^2 + z = 0", "1"},
+      {"x^2 + y^2 - z = 0", "x^2 + 2y^2 + z = 0", "1"},
+      {"x^2 - y^2 - z = 0", "x^2 - y^2 + z = 0", "infinite"},
+      {"x^2 + y^2 - z = 0", "x^2 + y^2 - 2z + 1 = 0", "infinite"}};
+  const auto m = motion(1, 2, -3, 1, {Rational(2, 3), Rational(-5), Rational(1, 7)});
+  for (const auto& [a, b, count] : cases)
+    for (bool moved : {false, true}) {
+      const auto A = moved ? q(a).congruent(m) : q(a), B = moved ? q(b).congruent(m) : q(b);
+      for (const auto& x : both_orders(core::Surface(A), core::Surface(B))) {
+        ASSERT_EQ(x.status, certify::Status::Certified) << a << " | " << b << ": " << x.note;
+        EXPECT_EQ(x.upper(), "0") << a << " | " << b;
+        EXPECT_EQ(x.minimizers, count)
+            << a << " | " << b << (moved ? " moved" : "") << ": " << x.note;
+      }
+    }
+}
+
+TEST(ContactSampling, ParaboloidsAcrossTheTouchingThreshold) {
+  // x^2 + y^2 = z against x^2 + y^2 = e - z: for e > 0 the circle x^2 + y^2 = e/2 at z = e/2
+  // (a continuum, too small for the sampling grid: the affine reading of the topology proves
+  // it); e = 0 the origin alone; e < 0 apart at distance |e| (the axis points (0, 0, 0) and
+  // (0, 0, e): both normals are the axis there and every other pair is farther).
+  const std::string eps[] = {"1/10000000000", "1/100000000000000000000",
+                             "1/1000000000000000000000000000000", kTwoPowMinus100};
+  const double eps_d[] = {1e-10, 1e-20, 1e-30, std::ldexp(1.0, -100)};
+  const auto A = core::Surface(q("x^2 + y^2 - z = 0"));
+  for (size_t k = 0; k < 4; ++k)
+    for (int sign : {1, -1}) {
+      const std::string eq = "x^2 + y^2 + z " + std::string(sign > 0 ? "- " : "+ ") + eps[k];
+      for (const auto& x : both_orders(A, core::Surface(q(eq)))) {
+        ASSERT_EQ(x.status, certify::Status::Certified) << eq << ": " << x.note;
+        if (sign > 0) {
+          EXPECT_EQ(x.upper(), "0") << eq;
+          EXPECT_EQ(x.minimizers, "infinite") << eq << ": " << x.note;
+        } else {
+          EXPECT_NEAR(surfcert::testing::lo(x) / eps_d[k], 1, 1e-12) << eq;
+          EXPECT_NEAR(surfcert::testing::hi(x) / eps_d[k], 1, 1e-12) << eq;
+        }
+      }
+    }
+  for (const auto& x : both_orders(A, core::Surface(q("x^2 + y^2 + z = 0")))) {
+    ASSERT_EQ(x.status, certify::Status::Certified) << x.note;
+    EXPECT_EQ(x.minimizers, "1") << x.note;
+  }
+}
+
+TEST(ContactSampling, PinchedCanalIsNoContinuum) {
+  // The canal C(t) = (t, 0, 0), r(t) = t^2 + e on [-1, 1]. For e = 0 the ball at t = 0 is the
+  // origin and the solid is two lobes joined there: the plane x = 0 (and the cubic x^3 + x = 0,
+  // whose real points are that plane) meets the canal surface at the origin alone, though its
+  // support points lie on both sides. Before the fix the contact fallback certified
+  // "infinite", in both operand orders. Now no sign change is read off a canal whose radius
+  // is not proven positive (r = t^2 - e, negative near 0, too). For e > 0 the plane cuts the
+  // ball B(0, e) in a circle: a continuum, still certified.
+  auto read = [](const std::string& s) {
+    return core::io::read_surface(core::io::parse_json(s, "t"), "t", "$");
+  };
+  auto canal = [&](const std::string& e) {
+    return read(R"({"type": "canal", "spine": [[0, 1], [0], [0]], "radius": [")" + e +
+                R"(", 0, 1], "interval": [-1, 1]})");
+  };
+  const auto plane = core::Surface(q("x = 0"));
+  const auto cubic = core::io::read_surface(core::io::Json::string("x^3 + x = 0"), "t", "$");
+  for (const auto* other : {&plane, &cubic}) {
+    for (const std::string& e :
+         std::vector<std::string>{"0", "-1/10000000000", "-" + kTwoPowMinus100}) {
+      std::array<double, 3> w{};
+      EXPECT_FALSE(certify::surfaces_meet_by_sign_change(canal(e), *other, w)) << e;
+      EXPECT_FALSE(certify::surfaces_meet_by_sign_change(*other, canal(e), w)) << e;
+      if (e != "0") continue; // the routes' answers once (each runs the canal route)
+      for (const auto& x : both_orders(canal(e), *other))
+        if (x.status == certify::Status::Certified) { // the truth for e = 0: 0, one point
+          EXPECT_EQ(x.upper(), "0") << e << ": " << x.note;
+          EXPECT_EQ(x.minimizers, "1") << e << ": " << x.note;
+        }
+    }
+    for (const std::string& e :
+         std::vector<std::string>{"1/10000000000", "1/100000000000000000000",
+                                  "1/1000000000000000000000000000000", kTwoPowMinus100}) {
+      std::array<double, 3> w{};
+      bool continuum = false;
+      ASSERT_TRUE(certify::surfaces_meet_by_sign_change(canal(e), *other, w, nullptr, &continuum))
+          << e;
+      EXPECT_TRUE(continuum) << e;
+    }
+  }
 }

@@ -19,6 +19,7 @@
 
 #include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/poly_ops.hpp"
+#include "surfcert/certify/affine.hpp"
 #include "surfcert/certify/qsic.hpp"
 
 #include <flint/fmpq_mat.h>
@@ -261,6 +262,28 @@ bool always(const Query&) {
   return true;
 }
 
+// The minimizers of distance 0 between two quadrics proven to meet at an affine point and
+// bounded by no ellipsoid. The morphology counts projective components: its curve may lie at
+// infinity only (the cone x^2 + y^2 = z^2 and x^2 + y^2 = z^2 - z share their conic at
+// infinity and meet at the apex alone) and its isolated points may be at infinity (x^2 + y^2 = z
+// and x^2 + y^2 = -z: the origin and (0 : 0 : 1 : 0)). `curve_affine`: a real curve of the
+// intersection is proven to have affine points (no common component of the conics at
+// infinity), so they are infinitely many. Otherwise the affine reading of the topology
+// (affine_topology, exact) decides: a continuum when the affine curve has a piece (a loop or
+// an unbounded branch), else its isolated points; undecided (`candidates`) when it does not.
+Minimizers affine_minimizers(QsicResult& t, const core::QuadricMatrix& a,
+                             const core::QuadricMatrix& b, bool curve_affine, long candidates) {
+  if (curve_affine) return Minimizers::continuum(Minimizers::Proof::Exact);
+  const AffineTopology at = affine_topology(t, a, b);
+  if (at.computed && at.loops && at.unbounded_branches) {
+    if (*at.loops + *at.unbounded_branches > 0)
+      return Minimizers::continuum(Minimizers::Proof::Exact);
+    if (at.isolated_points && *at.isolated_points > 0)
+      return Minimizers::count(*at.isolated_points, Minimizers::Proof::Exact);
+  }
+  return Minimizers::undecided(candidates);
+}
+
 // Do the surfaces meet? The certified topology decides; when it proves the affine surfaces
 // disjoint, the query records it (the sphere and offset routes need it).
 Outcome topology_run(Query& query) {
@@ -296,7 +319,8 @@ Outcome topology_run(Query& query) {
     const bool curve = m.loops + m.conics + m.lines + m.cubics > 0;
     const bool bounded = a.kind() == core::QuadricKind::Ellipsoid ||
                          b.kind() == core::QuadricKind::Ellipsoid; // no point at infinity
-    bool affine = bounded || (curve && !conics_at_infinity_share_component(a, b));
+    const bool curve_affine = curve && !conics_at_infinity_share_component(a, b);
+    bool affine = bounded || curve_affine;
     std::array<double, 3> w{};
     bool have = false;
     for (const auto& sp : t.special_points)
@@ -312,9 +336,15 @@ Outcome topology_run(Query& query) {
     if (affine) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
+      // An ellipsoid has no point at infinity: the projective counts are the affine ones.
+      long affine_points = 0;
+      for (const auto& sp : t.special_points)
+        affine_points += sp.at_infinity ? 0 : 1;
       out.minimizers =
-          curve ? Minimizers::continuum(Minimizers::Proof::Exact)
-                : Minimizers::count(static_cast<long>(m.isolated_points), Minimizers::Proof::Exact);
+          !bounded ? affine_minimizers(t, a, b, curve_affine, std::max(1L, affine_points))
+          : curve
+              ? Minimizers::continuum(Minimizers::Proof::Exact)
+              : Minimizers::count(static_cast<long>(m.isolated_points), Minimizers::Proof::Exact);
       if (have) out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
       return Outcome::answer(std::move(out));
@@ -322,12 +352,28 @@ Outcome topology_run(Query& query) {
     if (curve && meet_by_sign_change(a, b, w)) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
-      out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+      // The common point found may be isolated (the curve at infinity): the affine reading.
+      out.minimizers = affine_minimizers(t, a, b, false, 1);
       out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) +
                  "; an affine common point proven by certified points of a connected surface "
                  "on both sides of the other; the pair is an approximate common point)";
       return Outcome::answer(std::move(out));
+    }
+    if (curve) {
+      // The sampling missed it (a circle of radius 1e-15 about the axis of two paraboloids
+      // sharing their conic at infinity): the affine reading of the topology (exact) proves an
+      // affine loop or unbounded branch of the curve, hence infinitely many common points.
+      const AffineTopology at = affine_topology(t, a, b);
+      if (at.computed && at.loops && at.unbounded_branches &&
+          *at.loops + *at.unbounded_branches > 0) {
+        out.status = Status::Certified;
+        out.distance = Enclosure::zero();
+        out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+        out.note = "the surfaces meet (certified topology: " + std::string(m.id) +
+                   "; its affine reading has a loop or an unbounded branch; no pair located)";
+        return Outcome::answer(std::move(out));
+      }
     }
     if (curve || !t.special_points_complete) {
       out.status = Status::Undecided;

@@ -351,6 +351,10 @@ bool ellipsoid_point_outside(const core::QuadricMatrix& q, const core::CanalSurf
 
 } // namespace
 
+bool canal_radius_positive(const core::CanalSurface& c) {
+  return core::eval_poly(c.radius, c.t0).sign() > 0 && !has_root_in(c.radius, c.t0, c.t1);
+}
+
 DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::CanalSurface& c,
                                       long digits, bool quadric_first) {
   DistanceResult out;

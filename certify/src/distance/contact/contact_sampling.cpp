@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/contact_sampling.hpp"
 
 #include "surfcert/algebra/inertia.hpp"
+#include "surfcert/certify/distance/canal_distance.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/solid_relation.hpp"
 
@@ -485,6 +486,13 @@ double polish_witness(const core::Surface& a, const core::Surface& b, std::array
 bool surfaces_meet_by_sign_change(const core::Surface& a, const core::Surface& b,
                                   std::array<double, 3>& witness, double* residual,
                                   bool* continuum) {
+  // A canal radius vanishing inside the interval pinches the solid to a point (r = t^2 along
+  // the x axis: two lobes joined at the origin, which the plane x = 0 meets there alone, yet
+  // its support points lie on both sides), and a negative radius makes C(t) + r(t) e no
+  // support point: the sampling and side_of are sound only for r > 0 throughout.
+  for (const core::Surface* s : {&a, &b})
+    if (const auto* c = std::get_if<core::CanalSurface>(s); c && !canal_radius_positive(*c))
+      return false;
   bool piece = false;
   if (!one_side(a, b, witness, nullptr, &piece) && !one_side(b, a, witness, nullptr, &piece))
     return false;

@@ -21,6 +21,12 @@
 
 namespace surfcert::certify {
 
+/// Exact: r > 0 on the whole of [t0, t1] (r(t0) > 0 and no root of r in the interval). Where
+/// r vanishes inside, a ball shrinks to a point and the solid may be pinched there (the
+/// boundary of the union is then no surface that stays connected once a point is removed);
+/// where r < 0 the union of balls is not what the routes compute.
+bool canal_radius_positive(const core::CanalSurface& c);
+
 DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::CanalSurface& c,
                                       long digits, bool quadric_first);
 
