@@ -335,3 +335,48 @@ TEST(ContactSampling, PinchedCanalIsNoContinuum) {
     }
   }
 }
+
+TEST(ContactSampling, SinglePointQuadricIsNoUnboundedSurface) {
+  // x^2 + 2 y^2 + 3 z^2 = 0 moved to P is the point P alone (QuadricKind::Other, yet bounded).
+  // The torus (R = 3, r = 1, axis z): dist(P, torus) = |dist(P, core circle) - 1|, so P =
+  // (4 -+ e, 0, 0) is at distance e, inside (-) or outside (+) the tube. The quadric-torus
+  // contact read "a point of a non-ellipsoid quadric inside the solid torus" as a crossing and
+  // certified 0 for every inside point (P = (3, 0, 0) too, at distance 1).
+  const auto T =
+      core::io::read_surface(core::io::parse_json(R"({"type": "torus", "center": [0, 0, 0],
+        "axis": [0, 0, 1], "major_radius": 3, "minor_radius": 1})",
+                                                  "t"),
+                             "t", "$");
+  const std::vector<std::pair<std::string, double>> xs = {
+      {"3", 1},
+      {"4 - 1/10000000000", 1e-10},
+      {"4 - 1/100000000000000000000", 1e-20},
+      {"4 - 1/1000000000000000000000000000000", 1e-30},
+      {"4 - " + kTwoPowMinus100, std::ldexp(1.0, -100)},
+      {"4 + 1/10000000000", 1e-10},
+      {"4 + " + kTwoPowMinus100, std::ldexp(1.0, -100)}};
+  for (const auto& [x, d] : xs) {
+    const auto P = core::Surface(q("(x - (" + x + "))^2 + 2y^2 + 3z^2 = 0"));
+    for (const auto& r : both_orders(P, T)) {
+      if (r.status != certify::Status::Certified) continue;
+      EXPECT_NEAR(surfcert::testing::lo(r) / d, 1, 1e-9) << x << ": " << r.note;
+      EXPECT_NEAR(surfcert::testing::hi(r) / d, 1, 1e-9) << x << ": " << r.note;
+    }
+  }
+  // The point p = (1/10, 1/20, 1/50) inside the canal C(t) = (t, t^2/4, t^3/8), r = 1/2: every
+  // point within 1/2 - min |p - C(t)| = 0.448569209524938... (mpmath, 50 digits: t* =
+  // 0.1025062973...) of p lies in the ball about C(t*), so the distance is at least that. The
+  // canal route read min phi at the spine's ends only (the point is a singular foot the (alpha,
+  // t) system never yields) and certified 0.42791432794197.
+  const auto K = core::io::read_surface(
+      core::io::parse_json(
+          R"({"type": "canal", "spine": [[0, 1], [0, 0, "1/4"], [0, "1/8"]], "radius": "1/2",
+              "interval": [-1, 1]})",
+          "t"),
+      "t", "$");
+  const auto p = core::Surface(q("(x - 1/10)^2 + (y - 1/20)^2 + (z - 1/50)^2 = 0"));
+  for (const auto& r : both_orders(p, K)) {
+    if (r.status != certify::Status::Certified) continue;
+    EXPECT_GE(surfcert::testing::lo(r), 0.4485692095) << r.note;
+  }
+}

@@ -15,6 +15,16 @@ RMat3 quadratic_block(const core::QuadricMatrix& q) {
   return m;
 }
 
+bool components_unbounded(const core::QuadricMatrix& q) {
+  const RMat3 A = quadratic_block(q);
+  const Rational m1 = A[0][0], m2 = A[0][0] * A[1][1] - A[0][1] * A[0][1];
+  const Rational m3 = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[1][2]) -
+                      A[0][1] * (A[0][1] * A[2][2] - A[1][2] * A[0][2]) +
+                      A[0][2] * (A[0][1] * A[1][2] - A[1][1] * A[0][2]);
+  const bool definite = m2.sign() > 0 && m1.sign() != 0 && m3.sign() == m1.sign();
+  return !definite;
+}
+
 Rational restricted_resultant(const RMat3& a, const RMat3& b, const RVec3& u, const RVec3& v) {
   // Res(a11 s^2 + 2 a12 s t + a22 t^2, b11 s^2 + 2 b12 s t + b22 t^2) by the 2 x 2 Bezout
   // formula (a11 b22 - a22 b11)^2 - (a11 b12' - a12' b11)(a12' b22 - a22 b12'), ' = doubled.

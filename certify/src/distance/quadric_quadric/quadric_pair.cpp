@@ -881,19 +881,6 @@ int leading_form_sign(const core::Poly3& f) {
   return live.empty() ? sign : 0;
 }
 
-// Every real component of q is unbounded: its quadratic block is not definite (a definite block
-// gives an ellipsoid, a single point or no real point; otherwise q is a cone, a hyperboloid, a
-// paraboloid, a cylinder or planes, each component running off to infinity).
-bool components_unbounded(const core::QuadricMatrix& q) {
-  const RMat3 A = quadratic_block(q);
-  const Rational m1 = A[0][0], m2 = A[0][0] * A[1][1] - A[0][1] * A[0][1];
-  const Rational m3 = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[1][2]) -
-                      A[0][1] * (A[0][1] * A[2][2] - A[1][2] * A[0][2]) +
-                      A[0][2] * (A[0][1] * A[1][2] - A[1][1] * A[0][2]);
-  const bool definite = m2.sign() > 0 && m1.sign() != 0 && m3.sign() == m1.sign();
-  return !definite;
-}
-
 // Contact of q and the bounded surface f = 0 (s: the sign of f's definite leading form), from
 // q's side: on each component of q, s f grows at infinity, so its least value there is
 // attained at a critical point of f on q (singular points of q are critical too). Hence a

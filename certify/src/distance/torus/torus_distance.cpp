@@ -7,6 +7,7 @@
 #include "surfcert/certify/distance/critical_signs.hpp"
 #include "surfcert/certify/distance/offset_minimum.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
+#include "surfcert/certify/distance/quadratic_forms.hpp"
 #include "surfcert/certify/distance/revolution.hpp"
 #include "surfcert/certify/distance/torus_fast.hpp"
 #include "surfcert/certify/qsic.hpp"
@@ -453,10 +454,13 @@ enum class Contact { Disjoint, Meet, Unknown };
 Contact quadric_torus_contact(const SourceQuadric& src, const TorusPolys& tp, bool ellipsoid,
                               std::array<double, 3>& witness, std::string& why) {
   // Certified points of S1 inside (T < 0) and outside (T > 0) the solid torus; points inside
-  // and outside (or, for a non-ellipsoid quadric, a component reaching infinity) mean the
-  // surface crosses the torus.
-  const auto crosses = [ellipsoid](const CriticalSigns& s) {
-    return s.neg_point && (s.pos_point || !ellipsoid);
+  // and outside (S1 connected: an ellipsoid), or a point inside when every component of S1
+  // reaches infinity, mean the surface crosses the torus. Not "any quadric but an ellipsoid":
+  // x^2 + y^2 + z^2 = 0 is a single point, inside the solid torus on its core circle at
+  // distance r from the torus, and was certified as meeting it.
+  const bool unbounded = components_unbounded(*src.quadric);
+  const auto crosses = [ellipsoid, unbounded](const CriticalSigns& s) {
+    return s.neg_point && ((ellipsoid && s.pos_point) || unbounded);
   };
   const auto disjoint = [ellipsoid](const CriticalSigns& s) {
     return s.all_signed && (!s.any_neg || (ellipsoid && !s.any_pos));
