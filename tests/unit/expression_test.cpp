@@ -7,6 +7,8 @@
 #include "surfcert/core/poly3.hpp"
 #include "surfcert/core/rational.hpp"
 
+#include <flint/fmpz.h>
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -312,4 +314,113 @@ TEST(ExpressionRegressions, SurfaceEquationErrorsPointAtTheCharacter) {
   EXPECT_EQ(column(R"("x^2 + $")"), 8);
   EXPECT_EQ(column(R"({"equation": "x^3 + $"})"), 21);
   EXPECT_EQ(column(R"({"type": "parametric", "x": "u + $", "y": "v", "z": "1"})"), 34);
+}
+
+// Found by the fuzz target under CI's sanitizers (libFuzzer timeout, 14 s): the work budget
+// counted coefficient products, not their size, and the size guards formed every term of every
+// intermediate result (a gcd each). (1 + y + 8e-320 z)^64 has only 2145 terms but coefficients
+// of up to 68000 bits: 5 s in Release before, now refused by the work budget before the
+// expansion ends; at the fuzz target's budget it is refused by the total-size limit.
+TEST(ExpressionRegressions, LargeCoefficientsWeighTheWorkBudget) {
+  const std::string work = "an expression expanding with at most 10000000 term operations";
+  for (const std::string text : {"(1 +  y +8e-320 z)^64", "(1+x+y+8e-320 z)^40"}) {
+    try {
+      parse(text);
+      ADD_FAILURE() << "accepted " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.expected(), work) << text;
+    }
+  }
+  // A smaller power of the same base is accepted, and exact: the coefficient of y^a z^b is
+  // 40! / (a! b! (40 - a - b)!) * (8e-320)^b.
+  const Poly3 p = parse("(1 + y + 8e-320 z)^40");
+  EXPECT_EQ(p.length(), 861);
+  const Rational t(8, 1); // 8e-320 = 8 / 10^320
+  Integer ten320(10);
+  fmpz_pow_ui(ten320.raw_mut(), ten320.raw(), 320);
+  const Rational small = t / Rational(ten320);
+  Rational power(1);
+  for (int b = 0; b < 17; ++b)
+    power *= small;
+  Integer multinomial; // 40! / (13! 17! 10!)
+  fmpz_fac_ui(multinomial.raw_mut(), 40);
+  Integer f13, f17, f10;
+  fmpz_fac_ui(f13.raw_mut(), 13);
+  fmpz_fac_ui(f17.raw_mut(), 17);
+  fmpz_fac_ui(f10.raw_mut(), 10);
+  EXPECT_EQ(p.coeff(0, 13, 17),
+            Rational(multinomial) / (Rational(f13) * Rational(f17) * Rational(f10)) * power);
+}
+
+// Sums were not charged: 12000 decimal literals of 63000 to 103000 bits ("1e-19000 + 1e-19001
+// + ...") took 9 s. Now each rational sum is weighted by its operands' sizes.
+TEST(ExpressionRegressions, SumsOfLargeLiteralsAreCharged) {
+  std::string text = "1e-19000";
+  for (int i = 1; i < 12000; ++i)
+    text += "+1e-" + std::to_string(19000 + i);
+  try {
+    parse(text);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.expected(), "an expression expanding with at most 10000000 term operations");
+    EXPECT_GT(e.where().column, 10 + 8); // past the first sum
+  }
+  // Few such sums are accepted, exactly.
+  EXPECT_EQ(parse("1e-19000 + 1e-19001 + 1e-19002"),
+            Poly3(Rational::from_string("111e-19002").value()));
+}
+
+// A division by a long constant is cheap (FLINT scales the common content), but printing the
+// result writes the long denominator once per term: (1+x+y+z)^30 / 1e30000 prints 165 MB. The
+// coefficients' total size is limited (2^27 bits, from the stored form), on both sides.
+TEST(ExpressionRegressions, TotalCoefficientSizeIsLimited) {
+  try {
+    parse("(1+x+y+z)^30/1e30000");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.expected(), "coefficients of at most 134217728 bits in all");
+    EXPECT_EQ(e.where().column, 10 + 12); // the '/'
+  }
+  // 5456 terms of about 10^3000 each: 54 million bits, accepted and read back from its print.
+  const Poly3 p = parse("(1+x+y+z)^30/1e3000");
+  EXPECT_EQ(p.length(), 5456);
+  EXPECT_EQ(p.coeff(0, 0, 30), Rational::from_string("1e-3000").value());
+  EXPECT_EQ(parse(p.to_string()), p);
+  // A smaller budget scales the limit down (the fuzz target's budget: a fortieth).
+  try {
+    parse_polynomial("(1+x+y+z)^30/1e300", kWhere, surfcert::core::io::kMaxExpressionWork / 40);
+    ADD_FAILURE() << "accepted at a fortieth of the budget";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.expected(), "coefficients of at most 3355443 bits in all");
+  }
+  EXPECT_EQ(parse("(1+x+y+z)^30/1e300").length(), 5456);
+}
+
+// The coefficient-size guards first use free bounds from FLINT's stored form (content times
+// integers), which over-estimate a term whose own denominator is smaller than the common one;
+// only then the exact sizes decide. Probed on both sides of the 131072-bit limit.
+TEST(ExpressionRegressions, CoefficientGuardsDecideOnExactSizes) {
+  Integer three(3);
+  fmpz_pow_ui(three.raw_mut(), three.raw(), 25000); // 39625 bits
+  const std::string t = three.to_string();
+  // Stored as (3^25000 x + 10^20000 y) / (10^20000 3^25000): a bound of 106064 bits per term,
+  // exactly 66439 and 39625.
+  const std::string a = "(x*1e-20000 + y/" + t + ")";
+  const Poly3 pa = parse(a);
+  EXPECT_EQ(pa.coeff(1, 0, 0), Rational::from_string("1e-20000").value());
+  // A product whose bounds exceed the limit but whose exact sizes do not: 66439 + 64446 - 1.
+  const Poly3 ok = parse(a + "*x*1e-19400");
+  EXPECT_EQ(ok.coeff(2, 0, 0), Rational::from_string("1e-39400").value());
+  // One whose exact sizes exceed it: 66439 + 64778 - 1 = 131216 bits.
+  try {
+    parse(a + "*x*1e-19500");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.expected(), "coefficients of at most 131072 bits");
+    EXPECT_EQ(e.found(), "a coefficient of 131216 bits");
+  }
+  // Sums whose common denominator exceeds the limit while every term's own does not.
+  const Poly3 sum = parse("x*1e-39000 + y/" + t + "/" + t + "/" + t);
+  EXPECT_EQ(sum.coeff(1, 0, 0), Rational::from_string("1e-39000").value());
+  EXPECT_EQ(parse(sum.to_string()), sum);
 }

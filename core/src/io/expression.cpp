@@ -2,8 +2,11 @@
 
 #include <flint/fmpq.h>
 #include <flint/fmpz.h>
+#include <flint/fmpz_mpoly.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 
 namespace surfcert::core::io {
@@ -45,12 +48,115 @@ long coefficient_bits(const Rational& c) {
   return static_cast<long>(std::max(fmpz_bits(fmpq_numref(q)), fmpz_bits(fmpq_denref(q))));
 }
 
-long max_coefficient_bits(const Poly3& p) {
-  long bits = 0;
+// The sizes the header limits: the largest coefficient_bits over p's terms, and the sum over
+// its terms of numerator plus denominator bits (what printing p writes, in binary).
+struct CoefficientSizes {
+  long max = 0, total = 0;
+};
+
+CoefficientSizes coefficient_sizes(const Poly3& p) {
+  CoefficientSizes s;
   p.for_each_term([&](const Poly3::Exponent&, const Rational& c) {
-    bits = std::max(bits, coefficient_bits(c));
+    s.max = std::max(s.max, coefficient_bits(c));
+    s.total += static_cast<long>(fmpz_bits(fmpq_numref(c.raw())) + fmpz_bits(fmpq_denref(c.raw())));
   });
-  return bits;
+  return s;
+}
+
+// Sizes of the integer coefficients FLINT multiplies (an fmpq_mpoly is content * zpoly), by
+// powers of two of 64-bit limbs: bucket k holds the coefficients of 2^k to 2^(k+1) - 1 limbs,
+// with their count, the sum of their sizes L and the sum of L^0.6 (what product_work needs).
+struct LimbBucket {
+  double count = 0, sum = 0, sum_06 = 0;
+};
+using LimbHistogram = std::array<LimbBucket, 24>;
+
+long limbs_of(const fmpz_t x) {
+  return std::max(1L, (static_cast<long>(fmpz_bits(x)) + 63) / 64);
+}
+
+LimbHistogram limb_histogram(const Poly3& p) {
+  LimbHistogram h{};
+  const fmpz_mpoly_struct* z = p.raw()->zpoly;
+  for (slong i = 0; i < z->length; ++i) {
+    const long limbs = limbs_of(z->coeffs + i);
+    std::size_t k = 0;
+    while (k + 1 < h.size() && (2L << k) <= limbs)
+      ++k;
+    h[k].count += 1;
+    h[k].sum += static_cast<double>(limbs);
+    h[k].sum_06 += std::pow(static_cast<double>(limbs), 0.6);
+  }
+  return h;
+}
+
+// Term operations for the product a * b, in units of one product of machine-sized integers
+// with its addition into the result (16 ns measured: FLINT fmpz_mul + fmpz_add, Release, one
+// core). A product of integers of la >= lb limbs costs about (la / lb) * M(lb) with
+// M(n) ~ 2.9 ns * n^1.58 (GMP's Karatsuba/Toom range; measured 680 ns at 32 x 32 limbs, 342 us
+// at 2048 x 2048), so each pair is charged 1 + la * lb^0.6 / 5. Summed by buckets: when all of
+// one bucket's sizes exceed the other's the sums give it exactly; within one bucket both orders
+// are charged (at most twice the truth). Saturates at `cap` (the caller refuses beyond it).
+long product_work(const Poly3& a, const Poly3& b, long cap) {
+  const LimbHistogram ha = limb_histogram(a), hb = limb_histogram(b);
+  double work = 0;
+  for (std::size_t i = 0; i < ha.size(); ++i) {
+    if (ha[i].count == 0) continue;
+    for (std::size_t j = 0; j < hb.size(); ++j) {
+      if (hb[j].count == 0) continue;
+      double big = 0;
+      if (i >= j) big += ha[i].sum * hb[j].sum_06;
+      if (i <= j) big += ha[i].sum_06 * hb[j].sum;
+      work += ha[i].count * hb[j].count + big / 5.0; // multiply_work, summed
+    }
+  }
+  return work >= static_cast<double>(cap) ? cap : static_cast<long>(std::ceil(work));
+}
+
+// Term operations (units of product_work) for a multiplication of integers of la and lb limbs
+// (the per-pair weight of product_work, without its floor of 1).
+double multiply_work(double la, double lb) {
+  return std::max(la, lb) * std::pow(std::min(la, lb), 0.6) / 5.0;
+}
+
+// Term operations for a gcd of integers of la >= lb limbs: one division (like a product), then a
+// gcd of lb-limb numbers, about ten products of that size. Measured (FLINT fmpz_gcd, Release, one
+// core): 120 ns for one limb each, 0.8 us at 1024 x 1 limbs, 2.9 us at 16 x 16, 16.6 us at
+// 64 x 64, 1.6 ms at 1024 x 1024; charged 8 units (128 ns) at least.
+double gcd_work(double la, double lb) {
+  return 8.0 + multiply_work(la, lb) + 10.0 * multiply_work(std::min(la, lb), std::min(la, lb));
+}
+
+// Term operations for the rational sum a + b (GMP's mpq_add: a gcd of the denominators, three
+// products, a gcd with the small common factor; 1.8 ms measured for 65536-bit numerators and
+// denominators; 12000 such sums took 9 s before sums were charged). A sum into a zero
+// coefficient is a copy.
+long sum_work(const Rational& a, const Rational& b) {
+  const auto limbs = [](const Rational& q) {
+    return static_cast<double>(limbs_of(fmpq_numref(q.raw())) + limbs_of(fmpq_denref(q.raw())));
+  };
+  const double la = limbs(a), lb = limbs(b);
+  if (a.is_zero() || b.is_zero()) return 1 + static_cast<long>((la + lb) / 16.0);
+  return static_cast<long>(std::ceil(gcd_work(la, lb) + 3.0 * (1.0 + multiply_work(la, lb))));
+}
+
+// Upper bounds on coefficient_sizes(p), without forming the terms. A term is content * z_i in
+// lowest terms: its numerator has at most bits(content num) + bits(z_i) bits, its denominator
+// at most bits(content den). Forming every term costs a gcd each, 5 s for the 2145 terms of
+// (1 + y + 8e-320 z)^64, more than expanding it; these bounds cost nothing. They are exact
+// when the content is an integer; with a common denominator a term's own may be smaller.
+CoefficientSizes coefficient_sizes_bound(const Poly3& p) {
+  const fmpq* content = p.raw()->content;
+  const fmpz_mpoly_struct* z = p.raw()->zpoly;
+  const long num = static_cast<long>(fmpz_bits(fmpq_numref(content)));
+  const long den = static_cast<long>(fmpz_bits(fmpq_denref(content)));
+  CoefficientSizes s;
+  for (slong i = 0; i < z->length; ++i) {
+    const long zbits = static_cast<long>(fmpz_bits(z->coeffs + i));
+    s.max = std::max({s.max, num + zbits, den});
+    s.total += num + zbits + den;
+  }
+  return s;
 }
 
 // Long literals are shortened in messages; the column already says where they are.
@@ -164,8 +270,34 @@ private:
       fail(at, "a polynomial of total degree at most " + std::to_string(kMaxExpressionDegree),
            "a result of total degree " + std::to_string(degree));
     if (p.length() > kMaxExpressionTerms) too_many_terms(at, p.length());
-    long bits = max_coefficient_bits(p);
+    const CoefficientSizes bound = coefficient_sizes_bound(p);
+    // The total is a resource limit (what printing p may write), checked on its free bound.
+    const long total_limit = max_total_bits();
+    if (bound.total > total_limit)
+      fail(at, "coefficients of at most " + std::to_string(total_limit) + " bits in all",
+           "a result whose coefficients need up to " + std::to_string(bound.total) + " bits");
+    if (bound.max <= kMaxExpressionCoefficientBits) return;
+    const long bits = exact_max_coefficient_bits(p, at);
     if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
+  }
+
+  // kMaxExpressionTotalBits, scaled down with a smaller work budget: what a caller does with the
+  // result (printing it, reading it back) must stay within the same time.
+  long max_total_bits() const {
+    return static_cast<long>(static_cast<double>(kMaxExpressionTotalBits) *
+                             (static_cast<double>(max_work_) / kMaxExpressionWork));
+  }
+
+  // coefficient_sizes(p).max, charged: only called where the free bound is over the limit.
+  long exact_max_coefficient_bits(const Poly3& p, std::size_t at) {
+    // Forming a term takes a gcd of its integer and the content's denominator.
+    const fmpz_mpoly_struct* z = p.raw()->zpoly;
+    const double lc = static_cast<double>(limbs_of(fmpq_denref(p.raw()->content)));
+    double cost = 0;
+    for (slong i = 0; i < z->length; ++i)
+      cost += gcd_work(static_cast<double>(limbs_of(z->coeffs + i)), lc);
+    charge(cost > static_cast<double>(max_work_) ? max_work_ + 1 : static_cast<long>(cost), at);
+    return coefficient_sizes(p).max;
   }
   [[noreturn]] void too_many_terms(std::size_t at, long terms) {
     fail(at, "a polynomial with at most " + std::to_string(kMaxExpressionTerms) + " terms",
@@ -176,12 +308,14 @@ private:
          "a coefficient of " + std::to_string(bits) + " bits");
   }
 
-  // Counts `cost` term operations against max_work_; fails at `at` beyond it.
+  // Counts `cost` term operations against max_work_; fails at `at` beyond it (a cost above
+  // max_work_ may be saturated: product_work stops counting there).
   void charge(long cost, std::size_t at) {
     if (cost > max_work_ - work_)
       fail(at,
            "an expression expanding with at most " + std::to_string(max_work_) + " term operations",
-           "an expansion needing " + std::to_string(work_ + cost));
+           cost > max_work_ ? "an expansion needing more than " + std::to_string(max_work_)
+                            : "an expansion needing " + std::to_string(work_ + cost));
     work_ += cost;
   }
 
@@ -191,6 +325,7 @@ private:
   void add_into(Poly3::Terms& acc, const Poly3& t, bool subtract, std::size_t at) {
     t.for_each_term([&](const Poly3::Exponent& e, const Rational& c) {
       auto it = acc.try_emplace(e).first;
+      charge(sum_work(it->second, c), at);
       if (subtract)
         it->second -= c;
       else
@@ -216,11 +351,15 @@ private:
     // A product of integers of b1 and b2 bits has b1 + b2 - 1 bits at least: refuse only then
     // (b1 + b2 refused "N*x" for a coefficient N of exactly the limit, so that the printed form
     // "1/N*x" of an accepted "x/N" did not read back). check() below is exact.
-    long bits = max_coefficient_bits(a) + max_coefficient_bits(b) - 1;
-    if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
+    long bits = coefficient_sizes_bound(a).max + coefficient_sizes_bound(b).max - 1;
+    if (bits > kMaxExpressionCoefficientBits) {
+      bits = exact_max_coefficient_bits(a, at) + exact_max_coefficient_bits(b, at) - 1;
+      if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
+    }
     // Degree <= 64 already bounds the terms (at most 47905 in three variables), but not the
-    // work: two dense degree-32 factors would need 43 million coefficient products.
-    charge(a.length() * b.length(), at);
+    // work: two dense degree-32 factors would need 43 million coefficient products, and
+    // (1 + y + 8e-320 z)^64 only 137 thousand, but of up to 68000-bit integers (5 s unweighted).
+    charge(product_work(a, b, max_work_ + 1), at);
     Poly3 r = a * b;
     check(r, at);
     return r;
@@ -282,7 +421,7 @@ private:
             --end;
           fail(start, "a constant nonzero divisor", quote(s_.substr(start, end - start)));
         }
-        charge(acc.length(), at); // "big/1/1/1..." is not free
+        charge(product_work(acc, divisor, max_work_ + 1), at); // "big/1/1/1..." is not free
         acc = acc.scaled(Rational(1) / divisor.coeff(0, 0, 0));
         check(acc, at);
       } else if (is_digit(c) || (c == '.' && is_digit(peek(1))) || is_ident_start(c) || c == '(') {
@@ -308,8 +447,11 @@ private:
       if (degree > kMaxExpressionDegree)
         fail(at, "a polynomial of total degree at most " + std::to_string(kMaxExpressionDegree),
              "a result of total degree " + std::to_string(degree));
-      long bits = max_coefficient_bits(base) * static_cast<long>(n);
-      if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
+      long bits = coefficient_sizes_bound(base).max * static_cast<long>(n);
+      if (bits > kMaxExpressionCoefficientBits) {
+        bits = exact_max_coefficient_bits(base, at) * static_cast<long>(n);
+        if (bits > kMaxExpressionCoefficientBits) too_many_bits(at, bits);
+      }
     }
     // Repeated multiplication, not binary powering: for the dense polynomials of three
     // variables met here, squaring a^(n/2) costs far more than n small products (measured:

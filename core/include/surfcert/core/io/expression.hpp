@@ -20,9 +20,10 @@
 // "1/2x" is x/2. Division is only by a nonzero constant.
 //
 // Invariants of the result: exactly the polynomial written; total degree <= 64, at most 100000
-// terms and coefficients of at most 131072 bits (numerator and denominator) at every
-// intermediate step, and a bounded number of coefficient products in all, so hostile input
-// cannot exhaust time or memory.
+// terms, coefficients of at most 131072 bits (numerator and denominator) and 2^27 bits in all
+// at every intermediate step, and a bounded amount of coefficient arithmetic (weighted by the
+// operands' sizes), so hostile input cannot exhaust time or memory, in the parser or in
+// printing its result.
 #pragma once
 
 #include "surfcert/core/error.hpp"
@@ -36,8 +37,15 @@ namespace surfcert::core::io {
 constexpr int kMaxExpressionDegree = 64;
 constexpr long kMaxExpressionTerms = 100000;
 constexpr long kMaxExpressionCoefficientBits = 131072;
-/// Limit on the term operations (coefficient products, and terms scaled by a division) spent
-/// expanding one expression: about two seconds of work; (1+x+y+z)^64 needs 3 million.
+/// Limit on the bits of all coefficients of a result together (numerators and denominators, as
+/// bounded from FLINT's storage: content times integers; about 40 MB of decimal digits once
+/// printed), scaled down in proportion with a smaller work budget.
+constexpr long kMaxExpressionTotalBits = 1L << 27;
+/// Limit on the term operations spent expanding one expression: a product of two
+/// machine-sized coefficients (with its addition into the result) is one; larger ones are
+/// weighted by their measured cost relative to that (about la * lb^0.6 / 5 for integers of
+/// la >= lb 64-bit limbs), and so are rational sums. The whole budget is about 0.2 s of work
+/// (Release, one core); (1+x+y+z)^64 needs 5 million, (1 + y + 8e-320 z)^64 is refused.
 constexpr long kMaxExpressionWork = 10000000;
 /// Limit on nested parentheses (the reader is recursive).
 constexpr int kMaxExpressionNesting = 256;
