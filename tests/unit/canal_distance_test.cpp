@@ -7,6 +7,8 @@
 // - a parabolic spine with a growing radius against a sphere: a dense float search over t;
 // - rigid motions of both surfaces (integer quaternions) leave the enclosure unchanged;
 // - input: a capsule with equal ends, an empty interval, a radius not positive at an end.
+#include "support/distance_checks.hpp"
+
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
@@ -166,4 +168,113 @@ TEST(CanalDistance, SeveralFeetPerSpinePointAreNotCountedAsOne) {
   const auto r = certify::surface_distance(eq("x^2/9 + y^2/4 + z^2 = 1"), c, 15, false);
   expect_value(r, std::sqrt(7.0 / 8.0) - 0.1, "inside");
   EXPECT_TRUE(r.minimizers == "4" || r.minimizers == "undecided") << r.minimizers;
+}
+
+// Feet on a singular line of the point-quadric parametrisation (canal_distance.cpp,
+// singular_line_parameters). For a spine lying in a principal plane of the quadric, every
+// spine point has candidate feet at alpha = -1/lambda, where I + alpha Q3 is singular; the
+// (alpha, t) system loses them with the common factor it divides out. Closed forms:
+//  - the cone x^2 + y^2 = z^2 and a spine point (5, t, h): dist = (sqrt(25 + t^2) - |h|)/sqrt 2
+//    (the point is outside the cone), least at t = 0; at h = 0 the nearest feet are
+//    (5/2, 0, +-5/2). Capsules on (5, t, 0) were certified at the ends' sqrt 13 - 1 instead of
+//    5/sqrt 2 - 1. The cone x^2 + y^2 = 9/16 z^2 (slope 4/3 in (rho, z)): dist(5, 0, 0) = 4;
+//  - the ellipsoid x^2/16 + y^2/9 + z^2 = 1 and the spine (t, 0, 0): the nearest feet are
+//    (16t/15, 0, +-sqrt(1 - t^2/15^2 16)) at distance sqrt(1 - t^2/15); with the radius
+//    1/2 - t^2 on [-1/2, 1/2], phi(t) = sqrt(1 - t^2/15) - 1/2 + t^2 is least at t = 0: 1/2
+//    (the ends give sqrt(59/60) - 1/4 = 0.7416).
+// The spine moved off the plane by +-1e-10, 1e-20, 2^-100 has no singular line: the main
+// system finds the interior parameter; the answer must still contain the closed form.
+namespace {
+
+// a / sqrt(2) + b, and a check that r is certified, contains it and meets its width.
+void expect_closed_form(const certify::DistanceResult& r, const std::string& a,
+                        const std::string& b, long digits, const std::string& ctx) {
+  ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+  mpfr_t x, y;
+  mpfr_inits2(4000, x, y, static_cast<mpfr_ptr>(nullptr));
+  mpfr_set_str(x, a.c_str(), 10, MPFR_RNDN); // exact: short decimals or integers / 2^k
+  mpfr_sqrt_ui(y, 2, MPFR_RNDN);
+  mpfr_div(x, x, y, MPFR_RNDN);
+  mpfr_set_str(y, b.c_str(), 10, MPFR_RNDN);
+  mpfr_add(x, x, y, MPFR_RNDN);
+  EXPECT_TRUE(surfcert::testing::contains(r, x))
+      << ctx << ": [" << r.lower() << ", " << r.upper() << "] misses the closed form";
+  EXPECT_LE(surfcert::testing::log10_rel_width(r), static_cast<double>(-digits)) << ctx;
+  mpfr_clears(x, y, static_cast<mpfr_ptr>(nullptr));
+}
+
+std::string capsule(const std::string& from, const std::string& to, const std::string& r) {
+  return R"({"type":"capsule","from":)" + from + R"(,"to":)" + to + R"(,"radius":")" + r + "\"}";
+}
+
+} // namespace
+
+TEST(CanalDistance, FeetOnASingularLine) {
+  const auto cone = eq("x^2 + y^2 = z^2");
+  struct Case {
+    std::string from, to, radius, a, b;
+  };
+  const std::vector<Case> cases = {
+      {"[5,-1,0]", "[5,1,0]", "1", "5", "-1"},
+      {"[5,-1,0]", "[5,2,0]", "1", "5", "-1"},
+      {"[5,-10,0]", "[5,10,0]", "1", "5", "-1"},
+      {"[5,-1,0]", "[5,1,0]", "1/2", "5", "-0.5"},
+  };
+  for (const Case& k : cases)
+    for (bool swap : {false, true}) {
+      const auto c = js(capsule(k.from, k.to, k.radius));
+      const std::string ctx = k.from + "->" + k.to + " r " + k.radius + (swap ? " swapped" : "");
+      const auto r = swap ? certify::surface_distance(c, cone, 20, false)
+                          : certify::surface_distance(cone, c, 20, false);
+      expect_closed_form(r, k.a, k.b, 20, ctx);
+      // Two nearest feet of one spine point: never one minimizer.
+      EXPECT_NE(r.minimizers, "1") << ctx;
+    }
+  // A narrower cone: dist((5, 0, 0)) = 4.
+  expect_closed_form(certify::surface_distance(eq("x^2 + y^2 = 9/16 z^2"),
+                                               js(capsule("[5,-1,0]", "[5,1,0]", "1")), 20, false),
+                     "0", "3", 20, "9/16 cone");
+  // The ellipsoid's interior minimum with a varying radius.
+  const auto canal = js(
+      R"({"type":"canal","spine":[[0,1],[0],[0]],"radius":["1/2",0,-1],"interval":["-1/2","1/2"]})");
+  for (bool swap : {false, true}) {
+    const auto e = eq("x^2/16 + y^2/9 + z^2 = 1");
+    const auto r = swap ? certify::surface_distance(canal, e, 15, false)
+                        : certify::surface_distance(e, canal, 15, false);
+    expect_closed_form(r, "0", "0.5", 15, swap ? "ellipsoid swapped" : "ellipsoid");
+    EXPECT_NE(r.minimizers, "1");
+  }
+}
+
+TEST(CanalDistance, SpineJustOffASingularPlane) {
+  // (5, t, h): the minimum (5 - |h|)/sqrt 2 - 1 at t = 0, h on both sides of the plane z = 0
+  // (h given as exact strings: 1e-10, 1e-20, 1e-30 and 2^-100).
+  const auto cone = eq("x^2 + y^2 = z^2");
+  const std::vector<std::pair<std::string, long>> hs = {
+      {"1e-10", 0}, {"1e-20", 0}, {"1e-30", 0}, {"1/1267650600228229401496703205376", 100}};
+  int certified = 0;
+  for (const auto& [h, pow2] : hs)
+    for (const std::string sign : {"", "-"}) {
+      const std::string z = "\"" + sign + h + "\"";
+      const auto c = js(capsule("[5,-1," + z + "]", "[5,1," + z + "]", "1"));
+      const auto r = certify::surface_distance(cone, c, 20, false);
+      if (r.status != certify::Status::Certified) continue; // undecided is honest
+      ++certified;
+      mpfr_t x, y;
+      mpfr_inits2(4000, x, y, static_cast<mpfr_ptr>(nullptr));
+      if (pow2 > 0)
+        mpfr_set_ui_2exp(y, 1, -pow2, MPFR_RNDN);
+      else
+        mpfr_set_str(y, h.c_str(), 10, MPFR_RNDN); // 1e-30 at 4000 bits: 2^-3900 relative
+      mpfr_ui_sub(x, 5, y, MPFR_RNDN);
+      mpfr_sqrt_ui(y, 2, MPFR_RNDN);
+      mpfr_div(x, x, y, MPFR_RNDN);
+      mpfr_sub_ui(x, x, 1, MPFR_RNDN);
+      EXPECT_TRUE(surfcert::testing::contains(r, x))
+          << "h = " << sign << h << ": [" << r.lower() << ", " << r.upper() << "]";
+      EXPECT_NE(r.minimizers, "infinite") << "h = " << sign << h;
+      mpfr_clears(x, y, static_cast<mpfr_ptr>(nullptr));
+    }
+  // The interior parameter is a regular critical point here: all eight are certified today.
+  EXPECT_EQ(certified, 8);
 }

@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/canal_distance.hpp"
 
 #include "surfcert/algebra/arb.hpp"
+#include "surfcert/algebra/kernel.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
 #include "surfcert/certify/distance/ball.hpp"
@@ -164,6 +165,10 @@ bool candidate(Candidate& cd, const core::QuadricMatrix& q, const core::CanalSur
 }
 
 constexpr long kEnd0 = -1, kEnd1 = -2;
+// Keys of the parameters with feet on singular lines (singular_line_parameters): the roots
+// of line k's cover at kSingularKeys + k kSingularStride + index, the isolated ones below
+// kSingularKeys; all far above the main cover's indices.
+constexpr long kSingularKeys = 1L << 40, kSingularStride = 1L << 20;
 
 // Whether the foot of every spine point C(t), t in [ta, tb], on q is unique, proven: always
 // for a plane; for a sphere when C([ta, tb]) avoids its centre; for the convex solid of an
@@ -275,9 +280,10 @@ std::array<Poly3, 3> canal_system(const core::QuadricMatrix& q, const core::Cana
   return {F, Poly3(dr) * Poly3(dr) * uc * uc - Poly3(dc) * Poly3(dc) * rpt * rpt * uu, D};
 }
 
-// Divides F and G by their common factors that involve alpha only (see the caller); false
-// (with a note) when a common factor involves t.
-bool strip_alpha_factors(Poly3& F, Poly3& G, const Poly3& D, std::string& note) {
+// Divides F and G by their common factors that involve alpha only (see the caller), each
+// irreducible one given in `stripped`; false (with a note) when a common factor involves t.
+bool strip_alpha_factors(Poly3& F, Poly3& G, const Poly3& D, std::vector<Poly3>& stripped,
+                         std::string& note) {
   Poly3 H = algebra::gcd(F, G);
   if (H.is_constant()) return true;
   fmpq_mpoly_factor_t fac;
@@ -304,9 +310,146 @@ bool strip_alpha_factors(Poly3& F, Poly3& G, const Poly3& D, std::string& note) 
         if (!fmpq_mpoly_divides(qd.raw_mut(), P->raw(), h.raw(), Poly3::ctx())) break;
         *P = qd;
       }
+    stripped.push_back(std::move(h));
   }
   fmpq_mpoly_factor_clear(fac, Poly3::ctx());
   return ok;
+}
+
+// The critical parameters hidden by the factors strip_alpha_factors divides out. A factor
+// h(alpha) of det(I + alpha Q3) divides F and G when, on its line alpha = alpha_i
+// (alpha_i = -1/lambda for an eigenvalue lambda of Q3), M = I + alpha_i Q3 is singular: the
+// feet there are not p(alpha, t) but the solutions of M X = w(t) = C(t) - alpha_i b, which
+// exist iff n.w(t) = 0 for every n in ker M, and then form a line (or plane) of candidates.
+// Dividing h out loses every critical pair with such a foot: the cone x^2 + y^2 = z^2 and the
+// capsule on (5, t, 0), t in [-1, 1], radius 1: the nearest feet of (5, 0, 0) are
+// (5/2, 0, +-5/2), at alpha = 1, and the distance 5/sqrt 2 - 1 was certified as the ends'
+// sqrt 13 - 1. So, for each stripped factor (a double or triple eigenvalue is rational; a
+// simple irrational one is declined):
+//  - the n.w(t) not all identically zero: singular feet exist only at their common real
+//    roots, which are added as candidate parameters (a superset is sound);
+//  - all identically zero and ker M of dimension 1 (a simple eigenvalue: the spine lies in
+//    that principal plane): the feet are X = X_p(t) + s v (v spans ker M, X_p = K^-1 w with
+//    K = M + v v^T / v.v, so X_p is orthogonal to v); f(X) = 0 and the envelope condition
+//    (squared as in canal_system) are two equations in (s, t), covered exactly like the main
+//    system, and their t-intervals are added;
+//  - otherwise (the whole spine on an axis of revolution or at a sphere's centre): declined.
+// Every added parameter gets the same lower bound over its interval as the main ones.
+struct SingularParameters {
+  std::vector<algebra::SolutionCover> covers; ///< (s, t) systems of singular lines
+  std::vector<algebra::UPolyZ> factors;       ///< isolated parameters with singular feet
+  std::vector<algebra::RootInterval> roots;
+};
+
+bool singular_line_parameters(const core::QuadricMatrix& q, const core::CanalSurface& c,
+                              const std::vector<Poly3>& stripped, SingularParameters& out,
+                              std::string& note) {
+  for (const Poly3& h : stripped) {
+    if (h.degree(0) != 1) {
+      note = "feet on a singular line of the point-quadric parametrisation at an irrational "
+             "alpha (a simple irrational eigenvalue whose principal plane holds the spine)";
+      return false;
+    }
+    Rational h0, h1;
+    h.for_each_term(
+        [&](const Poly3::Exponent& e, const Rational& v) { (e[0] == 0 ? h0 : h1) = v; });
+    // canal_system's alpha multiplies den Q3 (den: the lcm of q's denominators).
+    Integer den(1);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        fmpz_lcm(den.raw_mut(), den.raw(), q(i, j).den().raw());
+    const Rational al = -h0 / h1 * Rational(den);
+    core::Mat4 m{}; // M = I + alpha_i Q3, bordered by 1: kernel vectors end in 0
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        m[i][j] = Rational(i == j ? 1 : 0) +
+                  (i < 3 && j < 3 ? al * q(static_cast<int>(i), static_cast<int>(j)) : Rational(0));
+    const auto ker = algebra::kernel_basis(m);
+    std::array<std::vector<Rational>, 3> w; // C(t) - alpha_i b
+    for (size_t i = 0; i < 3; ++i) {
+      w[i] = c.spine[i];
+      if (w[i].empty()) w[i].push_back(Rational(0));
+      w[i][0] -= al * q(static_cast<int>(i), 3);
+    }
+    algebra::UPolyQ g; // gcd of the nonzero n.w(t)
+    bool all_zero = true;
+    for (const auto& n : ker) {
+      algebra::UPolyQ p;
+      for (size_t i = 0; i < 3; ++i)
+        p = p + algebra::UPolyQ(n[i]) * algebra::UPolyQ::from_coeffs(w[i]);
+      if (p.is_zero()) continue;
+      if (all_zero)
+        g = p;
+      else
+        fmpq_poly_gcd(g.raw_mut(), g.raw(), p.raw());
+      all_zero = false;
+    }
+    if (!all_zero) {
+      if (g.degree() <= 0) continue; // no singular foot for any t
+      for (algebra::IrreducibleFactor& f : algebra::irreducible_factors(g.primitive_integer())) {
+        algebra::RootSeparation sep = algebra::isolate_real_roots(f.poly);
+        for (size_t k = 0; k + 1 < sep.separators.size(); ++k)
+          out.roots.push_back({sep.separators[k], sep.separators[k + 1], out.factors.size()});
+        out.factors.push_back(std::move(f.poly));
+      }
+      continue;
+    }
+    if (ker.size() != 1) {
+      note = "a continuum of feet along the whole spine (an axis of revolution or a centre)";
+      return false;
+    }
+    const std::array<Rational, 3> v{ker[0][0], ker[0][1], ker[0][2]};
+    const Rational vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    std::array<std::array<Rational, 3>, 3> K, Ki;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        K[i][j] = m[i][j] + v[i] * v[j] / vv;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        const size_t r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+        Ki[i][j] = K[r0][c0] * K[r1][c1] - K[r0][c1] * K[r1][c0]; // adjugate
+      }
+    const Rational det = K[0][0] * Ki[0][0] + K[0][1] * Ki[1][0] + K[0][2] * Ki[2][0];
+    const Poly3 s = Poly3::variable(0), t = Poly3::variable(1);
+    auto poly_t = [&](const std::vector<Rational>& cf) {
+      Poly3 r, pw(1);
+      for (const auto& a : cf) {
+        r = r + Poly3(a) * pw;
+        pw = pw * t;
+      }
+      return r;
+    };
+    std::array<Poly3, 3> X, u;
+    for (size_t i = 0; i < 3; ++i) {
+      X[i] = Poly3(v[i]) * s;
+      for (size_t j = 0; j < 3; ++j)
+        X[i] = X[i] + Poly3(Ki[i][j] / det) * poly_t(w[j]);
+      u[i] = poly_t(c.spine[i]) - X[i];
+    }
+    Poly3 F(q(3, 3)), G;
+    for (size_t i = 0; i < 3; ++i) {
+      F = F + Poly3(Rational(2) * q(static_cast<int>(i), 3)) * X[i];
+      for (size_t j = 0; j < 3; ++j)
+        F = F + Poly3(q(static_cast<int>(i), static_cast<int>(j))) * X[i] * X[j];
+      G = G + u[i] * poly_t(derivative(c.spine[i]));
+    }
+    const auto rp = derivative(c.radius);
+    if (!std::all_of(rp.begin(), rp.end(), [](const Rational& a) { return a.sign() == 0; }))
+      G = G * G - poly_t(rp) * poly_t(rp) * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if ((F.is_constant() && !F.is_zero()) || (G.is_constant() && !G.is_zero()))
+      continue; // no solution on this line
+    if (!algebra::gcd(F, G).is_constant()) {
+      note = "a curve of critical pairs with feet on a singular line";
+      return false;
+    }
+    algebra::SolutionCover cover = algebra::cover_real_solutions_2d(F, G, Rational(1, 16));
+    if (!cover.ok) {
+      note = "feet on a singular line: " + cover.note;
+      return false;
+    }
+    out.covers.push_back(std::move(cover));
+  }
+  return true;
 }
 
 // A certified point of the ellipsoid outside every ball B(C(t), r(t)): the extreme points of
@@ -382,6 +525,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
   std::vector<algebra::UPolyZ> tfactors;    // plane: factors of the critical-t polynomial
   std::vector<algebra::RootInterval> tints; // and their isolated roots
   std::optional<algebra::SolutionCover> cover;
+  SingularParameters singular; // parameters with feet on singular lines (not for a plane)
   bool plane = q.is_plane();
   if (plane) {
     // |n| phi(t) = s (n.C(t) - delta) - |n| r(t): interior critical t solve
@@ -433,7 +577,8 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     // spine lies on that axis: checked below at the middle parameter). Any other common
     // factor is a genuine curve of critical pairs: not supported yet.
     std::string curve_note;
-    if (!strip_alpha_factors(F, G, Dalpha, curve_note)) {
+    std::vector<Poly3> stripped;
+    if (!strip_alpha_factors(F, G, Dalpha, stripped, curve_note)) {
       out.status = Status::Undecided;
       out.note = "not supported yet: " + curve_note;
       return out;
@@ -458,6 +603,11 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
                    "continuum of feet along the whole spine)";
         return out;
       }
+    }
+    if (!singular_line_parameters(q, c, stripped, singular, curve_note)) {
+      out.status = Status::Undecided;
+      out.note = "not supported yet: " + curve_note;
+      return out;
     }
     cover = algebra::cover_real_solutions_2d(F, G, Rational(1, 16));
     out.system_degrees = {F.total_degree(), G.total_degree()};
@@ -513,6 +663,24 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
         algebra::refine_root(tfactors[r.factor], r.lo, r.hi, width);
         ts.push_back({r.lo, r.hi, key_of(tfactors[r.factor], r.lo, r.hi, static_cast<long>(i))});
       }
+    }
+    for (size_t k = 0; k < singular.covers.size(); ++k) {
+      algebra::SolutionCover& sc = singular.covers[k];
+      algebra::refine_cover(sc, width);
+      for (const auto& b : sc.boxes) {
+        const auto& r = sc.roots[1][b[1]];
+        ts.push_back({r.lo, r.hi,
+                      key_of(sc.factors[1][r.factor], r.lo, r.hi,
+                             kSingularKeys + static_cast<long>(k) * kSingularStride +
+                                 static_cast<long>(b[1]))});
+      }
+    }
+    for (size_t i = 0; i < singular.roots.size(); ++i) {
+      auto& r = singular.roots[i];
+      algebra::refine_root(singular.factors[r.factor], r.lo, r.hi, width);
+      ts.push_back({r.lo, r.hi,
+                    key_of(singular.factors[r.factor], r.lo, r.hi,
+                           kSingularKeys - 1 - static_cast<long>(i))});
     }
     std::vector<Candidate> cands;
     for (auto [lo, hi, key] : ts) {
@@ -581,10 +749,18 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
   // proven for a plane and for points outside an ellipsoid or elliptic cylinder; otherwise the
   // count is not proven (a point may have several nearest feet).
   {
+    // A parameter with feet on a singular line has several nearest feet (+-s, a circle), and
+    // it may be a parameter of the main system (or of another line) found again under another
+    // key: such a candidate joins any kept one whose interval it meets (one region, listed
+    // once), and the count is not proven.
+    auto singular_key = [](long key) { return key >= kSingularKeys / 2; };
     std::vector<Candidate> uniq;
     for (auto& cd : best) {
-      auto same = std::find_if(uniq.begin(), uniq.end(),
-                               [&](const Candidate& u) { return u.key == cd.key; });
+      out.count_unproven = out.count_unproven || singular_key(cd.key);
+      auto same = std::find_if(uniq.begin(), uniq.end(), [&](const Candidate& u) {
+        return u.key == cd.key ||
+               ((singular_key(u.key) || singular_key(cd.key)) && !(cd.tb < u.ta || u.tb < cd.ta));
+      });
       if (same == uniq.end()) {
         uniq.push_back(std::move(cd));
         continue;
