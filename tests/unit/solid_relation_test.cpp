@@ -6,10 +6,12 @@
 // - surface_distance with `solid`: 0 for nested solids, the surface distance for disjoint ones
 //   (closed forms: R + r, far gaps), the same after rational rigid motions of both surfaces
 //   (integer quaternions) and with the surfaces swapped;
-// - open surfaces keep the surface distance and say so.
+// - surfaces whose solids are not modelled (open quadrics, implicit surfaces) give no certified
+//   solid distance unless the surfaces meet or a separating direction proves the solids apart.
 #include "surfcert/certify/distance/solid_relation.hpp"
 
 #include "support/distance_checks.hpp"
+#include "surfcert/core/io/json.hpp"
 
 #include <gtest/gtest.h>
 
@@ -103,8 +105,49 @@ TEST(SolidRelation, SolidDistanceThroughTheApi) {
   const auto Fm = sphere(moved({10, 0, 0}), 1);
   r = certify::surface_distance(Fm, Tm, 15, true);
   EXPECT_NEAR(surfcert::testing::lo(r), 5, 1e-13) << r.note;
-  // Open surfaces: the surface distance, with a note.
+  // Open surfaces: no solid distance; what stays is 0 <= it <= the surface distance 6.
   r = certify::surface_distance(T, core::Surface(q("z = 7")), 15, true);
-  EXPECT_NEAR(surfcert::testing::lo(r), 6, 1e-14);
+  EXPECT_EQ(r.status, certify::Status::Undecided) << r.note;
+  EXPECT_EQ(r.lower(), "0");
+  EXPECT_NEAR(surfcert::testing::hi(r), 6, 1e-14);
   EXPECT_NE(r.note.find("closed surfaces"), std::string::npos) << r.note;
+}
+
+// Quadric pairs other than two ellipsoids. The cylinder x^2 + y^2 = 4 contains the unit ball:
+// solid distance 0, surface distance 1 (it was certified 1 with --solid, and verify read it as
+// 'separated'); x^4 + y^4 + z^4 = 1 contains the ball of radius 1/2 (surface distance 1/2). A
+// sphere beside the cylinder x^2 + y^2 = 1 at (5, 0, 0): convex solids apart (a separating
+// direction), solid distance = surface distance = 3. A sphere crossing the plane z = 1/2: 0.
+TEST(SolidRelation, UnmodelledSolidsGiveNoCertifiedPositiveDistance) {
+  const core::Surface unit = sphere({0, 0, 0}, 1);
+  for (bool swap : {false, true}) {
+    const core::Surface cyl(q("x^2 + y^2 = 4"));
+    auto r = swap ? certify::surface_distance(unit, cyl, 15, true)
+                  : certify::surface_distance(cyl, unit, 15, true);
+    EXPECT_EQ(r.status, certify::Status::Undecided) << r.note;
+    EXPECT_EQ(r.lower(), "0");
+    EXPECT_GE(surfcert::testing::hi(r), 1.0);
+    // Without solid: the surface distance 1, certified.
+    r = certify::surface_distance(cyl, unit, 15, false);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_EQ(r.lower(), "1");
+    EXPECT_EQ(r.upper(), "1");
+    const core::Surface beside = sphere({5, 0, 0}, 1);
+    const core::Surface thin(q("x^2 + y^2 = 1"));
+    r = swap ? certify::surface_distance(beside, thin, 15, true)
+             : certify::surface_distance(thin, beside, 15, true);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_EQ(r.lower(), "3");
+    EXPECT_EQ(r.upper(), "3");
+    const core::Surface plane(q("z = 1/2"));
+    r = swap ? certify::surface_distance(unit, plane, 15, true)
+             : certify::surface_distance(plane, unit, 15, true);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_EQ(r.upper(), "0");
+  }
+  const core::Surface quartic =
+      core::io::read_surface(core::io::parse_json("\"x^4 + y^4 + z^4 = 1\"", "t"), "t", "$");
+  const auto r = certify::surface_distance(quartic, sphere({0, 0, 0}, Rational(1, 2)), 15, true);
+  EXPECT_NE(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.lower(), "0");
 }

@@ -862,3 +862,33 @@ TEST(Verify, SceneQuery) {
   EXPECT_EQ(error_path(head + R"({"op": "distance", "a": "u", "b": "u", "claims": []}]})"),
             "$.queries[1].claims");
 }
+
+// The solid of a surface other than an ellipsoid, torus or canal surface is not modelled: its
+// surface distance must not be read as the solid distance. x^4 + y^4 + z^4 <= 1 contains the
+// ball of radius 1/2 (x^4 + y^4 + z^4 <= (x^2 + y^2 + z^2)^2 = 1/16 there): the solids are
+// nested and collide, the solid distance is 0, the surface distance 1/2 (six axis points). It
+// was certified 'separated', 'solids_collide: false' and solid distance 1/2.
+TEST(Verify, NoSolidVerdictFromAnUnmodelledSolid) {
+  const std::string quartic = "\"x^4+y^4+z^4=1\"";
+  const std::string ball = R"({"type":"sphere","center":[0,0,0],"radius":"1/2"})";
+  const Json r = answer(quartic, ball,
+                        R"([{"kind":"relation","value":"separated"},
+                            {"kind":"solids_collide","value":false},
+                            {"kind":"relation","value":"nested"},
+                            {"kind":"solids_collide","value":true},
+                            {"kind":"distance","value":"1/2","abs_tol":"1e-12","solid":true},
+                            {"kind":"distance","value":0,"abs_tol":"1e-12","solid":true}])");
+  // The true claims (nested, collide, solid distance 0) may stay undecided; none of the six
+  // may get a verdict against the truth.
+  const std::vector<std::string> v = verdicts(r);
+  ASSERT_EQ(v.size(), 6u) << core::io::dump(r);
+  EXPECT_NE(v[0], "confirmed");
+  EXPECT_NE(v[1], "confirmed");
+  EXPECT_NE(v[2], "refuted");
+  EXPECT_NE(v[3], "refuted");
+  EXPECT_NE(v[4], "confirmed");
+  EXPECT_NE(v[5], "refuted");
+  // The surface distance itself stays certified: 1/2.
+  const Json s = answer(quartic, ball, R"([{"kind":"distance","value":"1/2","abs_tol":"1e-12"}])");
+  EXPECT_EQ(verdicts(s), std::vector<std::string>{"confirmed"}) << core::io::dump(s);
+}

@@ -155,8 +155,19 @@ DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface&
     for (auto& pr : r.pairs)
       std::swap(pr[0], pr[1]);
   if (r.ties == Ties::Unproven) prove_ties(r, a0, b0);
-  // Two quadrics handle solid in their routes; the parametric route passes it on itself.
-  if (solid && kind != PairKind::QuadricQuadric && kind != PairKind::Parametric)
+  // The parametric route passes solid on itself. Two quadrics handle it in their routes for
+  // two ellipsoids (nested: 0) and for convex solids proven disjoint by a separating
+  // direction (the surface distance); the solids of any other pair of quadrics are not
+  // modelled there (a unit sphere inside the cylinder x^2 + y^2 = 4 was certified at the
+  // surface distance 1, and verify read it as 'separated'): apply_solid_option says so.
+  auto is_ellipsoid = [](const core::Surface& s) {
+    const auto* m = std::get_if<core::QuadricMatrix>(&s);
+    return m != nullptr && m->kind() == core::QuadricKind::Ellipsoid;
+  };
+  const bool quadric_solids_modelled =
+      kind == PairKind::QuadricQuadric &&
+      ((is_ellipsoid(a0) && is_ellipsoid(b0)) || r.method == Method::ConvexDuality);
+  if (solid && kind != PairKind::Parametric && !quadric_solids_modelled)
     apply_solid_option(r, a0, b0);
   return r;
 }

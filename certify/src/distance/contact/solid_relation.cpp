@@ -296,9 +296,19 @@ int solids_nested(const core::Surface& a, const core::Surface& b) {
 void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::Surface& b) {
   r.solid = true;
   if (!is_closed_surface(a) || !is_closed_surface(b)) {
-    r.note += std::string(r.note.empty() ? "" : "; ") +
-              "solid applies to closed surfaces (ellipsoids, tori, canal surfaces) only: "
-              "surface distance";
+    // The solids of other surfaces are not modelled, so the surface distance is no answer to
+    // this query (verify read it as the solid distance: x^4 + y^4 + z^4 = 1 inside a sphere
+    // was certified 'separated', solids not colliding). What stays established when the
+    // surfaces are apart: 0 <= solid distance <= surface distance (each surface lies in any
+    // solid it bounds); surfaces that meet give 0 either way.
+    std::string note = "solid distance: supported for closed surfaces (ellipsoids, tori, canal "
+                       "surfaces) only";
+    if (r.status == Status::Certified && r.distance && !r.distance->is_zero()) {
+      note += " (the surface distance is [" + r.lower() + ", " + r.upper() + "])";
+      r.status = Status::Undecided;
+      r.distance = Enclosure::up_to(r.distance->upper_arf(), r.distance->digits());
+    }
+    r.note += std::string(r.note.empty() ? "" : "; ") + note;
     return;
   }
   if (r.status != Status::Certified || r.distance->is_zero())
