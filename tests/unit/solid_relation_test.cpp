@@ -105,11 +105,17 @@ TEST(SolidRelation, SolidDistanceThroughTheApi) {
   const auto Fm = sphere(moved({10, 0, 0}), 1);
   r = certify::surface_distance(Fm, Tm, 15, true);
   EXPECT_NEAR(surfcert::testing::lo(r), 5, 1e-13) << r.note;
-  // Open surfaces: no solid distance; what stays is 0 <= it <= the surface distance 6.
+  // A plane bounds no solid: the surface distance 6, certified, and said so.
   r = certify::surface_distance(T, core::Surface(q("z = 7")), 15, true);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_NEAR(surfcert::testing::lo(r), 6, 1e-14);
+  EXPECT_NE(r.note.find("a plane bounds no solid"), std::string::npos) << r.note;
+  // Another open surface: no solid distance; what stays is 0 <= it <= the surface distance 2
+  // (the cylinder of radius 6 around the torus, whose outer equator has radius 4).
+  r = certify::surface_distance(T, core::Surface(q("x^2 + y^2 = 36")), 15, true);
   EXPECT_EQ(r.status, certify::Status::Undecided) << r.note;
   EXPECT_EQ(r.lower(), "0");
-  EXPECT_NEAR(surfcert::testing::hi(r), 6, 1e-14);
+  EXPECT_NEAR(surfcert::testing::hi(r), 2, 1e-14);
   EXPECT_NE(r.note.find("closed surfaces"), std::string::npos) << r.note;
 }
 
@@ -139,6 +145,12 @@ TEST(SolidRelation, UnmodelledSolidsGiveNoCertifiedPositiveDistance) {
     ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
     EXPECT_EQ(r.lower(), "3");
     EXPECT_EQ(r.upper(), "3");
+    const core::Surface far_plane(q("x = 3"));
+    r = swap ? certify::surface_distance(unit, far_plane, 15, true)
+             : certify::surface_distance(far_plane, unit, 15, true);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note; // a plane bounds no solid
+    EXPECT_EQ(r.lower(), "2");
+    EXPECT_EQ(r.upper(), "2");
     const core::Surface plane(q("z = 1/2"));
     r = swap ? certify::surface_distance(unit, plane, 15, true)
              : certify::surface_distance(plane, unit, 15, true);

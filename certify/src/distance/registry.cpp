@@ -164,6 +164,7 @@ DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface&
     const auto* m = std::get_if<core::QuadricMatrix>(&s);
     return m != nullptr && m->kind() == core::QuadricKind::Ellipsoid;
   };
+  // (A plane against an ellipsoid or a plane goes to apply_solid_option, which keeps it.)
   const bool quadric_solids_modelled =
       kind == PairKind::QuadricQuadric &&
       ((is_ellipsoid(a0) && is_ellipsoid(b0)) || r.method == Method::ConvexDuality);

@@ -295,6 +295,16 @@ int solids_nested(const core::Surface& a, const core::Surface& b) {
 
 void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::Surface& b) {
   r.solid = true;
+  auto plane = [](const core::Surface& s) {
+    const auto* q = std::get_if<core::QuadricMatrix>(&s);
+    return q != nullptr && q->is_plane();
+  };
+  if ((plane(a) && (plane(b) || is_closed_surface(b))) || (plane(b) && is_closed_surface(a))) {
+    if (r.status == Status::Certified && r.distance && !r.distance->is_zero())
+      r.note += std::string(r.note.empty() ? "" : "; ") +
+                "a plane bounds no solid: the solid distance is the surface distance";
+    return;
+  }
   if (!is_closed_surface(a) || !is_closed_surface(b)) {
     // The solids of other surfaces are not modelled, so the surface distance is no answer to
     // this query (verify read it as the solid distance: x^4 + y^4 + z^4 = 1 inside a sphere

@@ -40,7 +40,11 @@ int side_of(const core::Surface& s, const Ball (&p)[3]);
 
 /// Applies the `solid` option to a certified surface distance r between closed surfaces:
 /// nested solids give 0, disjoint solids keep r, undecided nesting makes r undecided with the
-/// enclosure [0, upper]. Meeting surfaces (distance 0) stay 0.
+/// enclosure [0, upper]. Meeting surfaces (distance 0) stay 0. A plane bounds no solid (its
+/// solid is the plane itself, as a collision library's plane): against a closed surface or a
+/// plane the solid distance is the surface distance (a plane meeting a bounded solid crosses
+/// its boundary). Any other surface's solid is not modelled: r becomes undecided with
+/// [0, upper] unless it is 0.
 void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::Surface& b);
 
 } // namespace surfcert::certify
