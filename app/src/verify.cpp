@@ -3,6 +3,8 @@
 #include "surfcert/app/claim_geometry.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
 
+#include "surfcert/algebra/inertia.hpp"
+
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/certify/morphology.hpp"
 #include "surfcert/core/budget.hpp"
@@ -291,10 +293,18 @@ public:
         f.possible = {er};
       if (!er.empty()) f.established.set("ellipsoid_relation", str(er));
     }
+    // Both real surfaces: a semidefinite matrix (a double plane x^2 = 0, the line
+    // x^2 + y^2 = 0, a point) makes every common component double or isolated without any
+    // tangency (the unit sphere against x^2 = 0, or against the z axis x^2 + y^2 = 0 that
+    // pierces it, were certified 'touching'); such pairs go to the distances below.
+    auto real_surface = [](const core::QuadricMatrix* m) {
+      return !algebra::inertia_ldlt(m->matrix()).semidefinite();
+    };
     if (const QsicResult* r = qsic(); f.possible.empty() && r && r->morphology &&
                                       r->pencil == algebra::PencilKind::Regular &&
                                       (qa()->kind() == core::QuadricKind::Ellipsoid ||
-                                       qb()->kind() == core::QuadricKind::Ellipsoid)) {
+                                       qb()->kind() == core::QuadricKind::Ellipsoid) &&
+                                      real_surface(qa()) && real_surface(qb())) {
       // An ellipsoid and another quadric: the certified morphology counts the affine real
       // components (morphology.hpp). A simple curve component (multiplicity 1) is met
       // transversally at its generic points, so the surfaces cross: overlapping. When every

@@ -892,3 +892,24 @@ TEST(Verify, NoSolidVerdictFromAnUnmodelledSolid) {
   const Json s = answer(quartic, ball, R"([{"kind":"distance","value":"1/2","abs_tol":"1e-12"}])");
   EXPECT_EQ(verdicts(s), std::vector<std::string>{"confirmed"}) << core::io::dump(s);
 }
+
+// An ellipsoid against a quadric whose real points are no surface: a double plane, a line
+// (two conjugate imaginary planes), met transversally. Every common component is double or an
+// isolated point without any tangency: the surfaces cross (the plane x = 0 cuts the sphere,
+// the z axis pierces it at (0, 0, +-1) with (0, 0, 0) inside and (0, 0, 2) outside). They were
+// certified 'touching', 'overlapping' refuted. The tangent plane x = 1 stays 'touching'.
+TEST(Verify, DegenerateQuadricsDoNotTouchByMorphology) {
+  const std::string claims =
+      R"([{"kind":"relation","value":"touching"},{"kind":"relation","value":"overlapping"}])";
+  for (const std::string other :
+       {"\"x^2=0\"", "\"(x-1/2)^2=0\"", "\"x^2+y^2=0\"", "\"(x-1/2)^2+y^2=0\""})
+    for (bool swap : {false, true}) {
+      const Json r = swap ? answer(other, kUnit, claims) : answer(kUnit, other, claims);
+      const std::vector<std::string> v = verdicts(r);
+      ASSERT_EQ(v.size(), 2u) << core::io::dump(r);
+      EXPECT_NE(v[0], "confirmed") << other << (swap ? " swapped" : "");
+      EXPECT_NE(v[1], "refuted") << other << (swap ? " swapped" : "");
+    }
+  const Json t = answer(kUnit, "\"x=1\"", claims);
+  EXPECT_EQ(verdicts(t), (std::vector<std::string>{"confirmed", "refuted"})) << core::io::dump(t);
+}
