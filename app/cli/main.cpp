@@ -27,6 +27,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -245,6 +246,11 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
       auto r = core::Rational::from_string(item);
       if (!r) break;
       v.push_back(r->to_double_approx());
+      // The box is one of doubles (its exits are certified for that box, which the answer
+      // reports): say so when a corner moved, e.g. 1-2^-100 onto 1, a node's plane.
+      if (std::isfinite(v.back()) && !(core::Rational::exact_from_double(v.back()) == *r))
+        std::cerr << "note: --box " << item << " is used as the double " << std::setprecision(17)
+                  << v.back() << "\n";
     }
     trace::Box bx;
     bool ok = v.size() == 6;

@@ -370,3 +370,18 @@ TEST(Cli, VersionAndHelp) {
   auto none = run("");
   EXPECT_EQ(none.code, 2);
 }
+
+// --box corners are read exactly and rounded once to doubles: a corner that moves is named on
+// stderr (1-2^-100 becomes 1, which puts the face on Steinmetz's node); exact doubles are not.
+TEST(Cli, BoxCornersThatRoundAreNamed) {
+  const std::string pair = quote("x^2+y^2=1") + " " + quote("x^2+z^2=1");
+  auto r = run("intersect " + pair + " --box -2,-2,-2,1/2,2,2");
+  EXPECT_TRUE(r.code == 0 || r.code == 3) << r.code << " " << r.err; // certified or undecided
+  EXPECT_EQ(r.err.find("--box"), std::string::npos) << r.err;
+  r = run("intersect " + pair +
+          " --box -2,-2,-2,1267650600228229401496703205375/1267650600228229401496703205376,2,2");
+  EXPECT_NE(r.err.find("is used as the double 1\n"), std::string::npos) << r.err;
+  r = run("intersect " + pair + " --box -0.1,-2,-2,2,2,2");
+  EXPECT_NE(r.err.find("--box -0.1 is used as the double -0.10000000000000001"), std::string::npos)
+      << r.err;
+}
