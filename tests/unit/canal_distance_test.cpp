@@ -278,3 +278,55 @@ TEST(CanalDistance, SpineJustOffASingularPlane) {
   // The interior parameter is a regular critical point here: all eight are certified today.
   EXPECT_EQ(certified, 8);
 }
+
+// A plane and a canal whose (n.C')^2 = |n|^2 r'^2 holds identically: phi' = (s sigma - 1) r'
+// is not zero when the spine leaves the plane as fast as its radius shrinks. Closed forms:
+//  - z = 0, spine (t, 0, 5 + t^2), r = 1 - t^2 on [-1/2, 1/2]: phi = 4 + 2 t^2, 4 at t = 0,
+//    one pair ((0,0,0), (0,0,4)) (was certified 4.5, 'infinite');
+//  - x + 2y + 2z = 0, spine (2t, -t, 5 + t^2), r = 1 - 2t^2/3: phi = 7/3 + 4t^2/3 (was 8/3);
+//  - z = 0, spine (t, 0, 5 + t), r = 1 - t on [0, 1/2]: phi = 4 + 2t, 4 at the end t = 0;
+//  - z = 0, spine (0, 0, 5 + t), r = 1 + t on [0, 1]: phi = 4 for every t, but every ball
+//    touches the plane's point (0, 0, 0) from (0, 0, 4): one pair, never 'infinite';
+//  - z = 0, spine (t, 0, 5), r = 1: phi = 4 and the contacts move: 'infinite'.
+TEST(CanalDistance, PlaneWithTheSquaredCriticalEquationIdenticallyZero) {
+  struct Case {
+    std::string plane, canal;
+    long num, den; // the distance num / den
+    bool continuum;
+  };
+  const std::vector<Case> cases = {
+      {"z = 0",
+       R"({"type":"canal","spine":[[0,1],[0],[5,0,1]],"radius":[1,0,-1],"interval":["-1/2","1/2"]})",
+       4, 1, false},
+      {"x + 2y + 2z = 0",
+       R"({"type":"canal","spine":[[0,2],[0,-1],[5,0,1]],"radius":[1,0,"-2/3"],"interval":["-1/2","1/2"]})",
+       7, 3, false},
+      {"z = 0",
+       R"({"type":"canal","spine":[[0,1],[0],[5,1]],"radius":[1,-1],"interval":["0","1/2"]})", 4, 1,
+       false},
+      {"z = 0", R"({"type":"canal","spine":[[0],[0],[5,1]],"radius":[1,1],"interval":["0","1"]})",
+       4, 1, false},
+      {"z = 0", R"({"type":"canal","spine":[[0,1],[0],[5]],"radius":1,"interval":["0","1"]})", 4, 1,
+       true},
+  };
+  for (const Case& k : cases)
+    for (bool swap : {false, true}) {
+      const auto p = eq(k.plane);
+      const auto c = js(k.canal);
+      const auto r = swap ? certify::surface_distance(c, p, 20, false)
+                          : certify::surface_distance(p, c, 20, false);
+      const std::string ctx = k.plane + " " + k.canal + (swap ? " swapped" : "");
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      mpfr_t x;
+      mpfr_init2(x, 4000);
+      mpfr_set_si(x, k.num, MPFR_RNDN);
+      mpfr_div_si(x, x, k.den, MPFR_RNDN);
+      EXPECT_TRUE(surfcert::testing::contains(r, x))
+          << ctx << ": [" << r.lower() << ", " << r.upper() << "]";
+      mpfr_clear(x);
+      if (k.continuum)
+        EXPECT_EQ(r.minimizers, "infinite") << ctx;
+      else
+        EXPECT_NE(r.minimizers, "infinite") << ctx;
+    }
+}

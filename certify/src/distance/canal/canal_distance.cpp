@@ -557,17 +557,47 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     }
     algebra::UPolyQ a = algebra::UPolyQ::from_coeffs(nc), b = algebra::UPolyQ::from_coeffs(rp);
     algebra::UPolyQ e = a * a - algebra::UPolyQ(nn) * b * b;
-    if (e.is_zero()) {
-      // phi constant on the interval (a segment parallel to the plane, constant radius): the
-      // ends carry the value; every t is a minimizer.
-      out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
-    } else if (e.degree() > 0) {
-      for (algebra::IrreducibleFactor& f : algebra::irreducible_factors(e.primitive_integer())) {
+    // The critical parameters: the real roots of p (factor by factor).
+    auto add_roots = [&](const algebra::UPolyQ& p) {
+      if (p.degree() <= 0) return;
+      for (algebra::IrreducibleFactor& f : algebra::irreducible_factors(p.primitive_integer())) {
         algebra::RootSeparation s = algebra::isolate_real_roots(f.poly);
         for (size_t k = 0; k + 1 < s.separators.size(); ++k)
           tints.push_back({s.separators[k], s.separators[k + 1], tfactors.size()});
         tfactors.push_back(std::move(f.poly));
       }
+    };
+    if (e.is_zero()) {
+      // (n.C')^2 = |n|^2 r'^2 identically: n.C' = sigma |n| r' with one sign sigma (or both
+      // zero), so phi' = s n.C' / |n| - r' = (s sigma - 1) r', s the spine's side of the plane.
+      // s sigma = -1: phi' = -2 r', whose roots are the critical parameters (a spine rising
+      // from z = 0 as its radius shrinks, (t, 0, 5 + t^2) with r = 1 - t^2, was read as
+      // constant: certified 4.5 'infinite' for 4 at t = 0). s sigma = 1 (or both zero): phi is
+      // constant and every t minimizes; the pairs form a continuum only if the spine moves
+      // across n (else every t gives the same contact: (0, 0, 5 + t), r = 1 + t, one pair).
+      const int s_side = core::eval_poly(side, c.t0).sign(); // nonzero: no root (above)
+      const int sigma = a.is_zero() ? 0 : a.coeff(a.degree()).sign() * b.coeff(b.degree()).sign();
+      if (sigma != 0 && s_side * sigma < 0) {
+        add_roots(b);
+      } else {
+        std::array<algebra::UPolyQ, 3> dc; // C'
+        for (size_t i = 0; i < 3; ++i)
+          dc[i] = algebra::UPolyQ::from_coeffs(derivative(c.spine[i]));
+        std::array<Rational, 3> n;
+        for (size_t i = 0; i < 3; ++i)
+          n[i] = Rational(2) * q(static_cast<int>(i), 3);
+        bool across = false; // n x C'(t) not identically 0
+        for (size_t i = 0; i < 3 && !across; ++i) {
+          const size_t j = (i + 1) % 3, k = (i + 2) % 3;
+          across = !(algebra::UPolyQ(n[j]) * dc[k] - algebra::UPolyQ(n[k]) * dc[j]).is_zero();
+        }
+        if (across)
+          out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
+        else
+          out.count_unproven = true;
+      }
+    } else {
+      add_roots(e);
     }
   } else {
     auto [F, G, Dalpha] = canal_system(q, c);
