@@ -69,6 +69,30 @@ TEST(CertifiedContract, FloatModeIsAnEstimate) {
   ASSERT_NE(res, nullptr);
   EXPECT_EQ(res->find("distance"), nullptr);
   EXPECT_NE(res->find("estimate"), nullptr);
+  // A float search proves no count either (it said "1", proof "exact"): the pair is a
+  // candidate.
+  EXPECT_TRUE(r.minimizers.is_undecided()) << r.minimizers;
+  EXPECT_EQ(r.minimizers.proof(), certify::Minimizers::Proof::None);
+  EXPECT_EQ(r.minimizer_candidates(), 1);
+}
+
+TEST(CertifiedContract, OnlyACertifiedAnswerCarriesAProvenCount) {
+  // z = x^2 against z = x^2 + c: the critical pair at x = 0 is at distance c, but the
+  // infimum is 0 at infinity (not attained). The answer is undecided [0, c] and said
+  // "minimizers 1" (proof "interval"), a false proven field.
+  for (const char* c : {"1", "1/10^10", "1/10^30", "1/2^64"}) {
+    const auto r = certify::surface_distance(q("z = x^2"), q(std::string("z = x^2 + ") + c), 15,
+                                             false);
+    ASSERT_NE(r.status, certify::Status::Certified) << c << ": " << r.note;
+    EXPECT_FALSE(r.minimizers.is_count()) << c << ": " << r.minimizers;
+    EXPECT_EQ(r.minimizers.proof(), certify::Minimizers::Proof::None) << c;
+  }
+  // The same route with an attained minimum stays a proven answer: parallel circular
+  // cylinders at centre distance 5, radii 1 and 2 (distance 2, a line of pairs).
+  const auto s = certify::surface_distance(q("x^2+y^2=1"), q("(x-5)^2+y^2=4"), 15, false);
+  if (s.status == certify::Status::Certified) {
+    EXPECT_EQ(s.minimizers, "infinite");
+  }
 }
 
 TEST(CertifiedContract, WidthContractAtSeveralDigits) {

@@ -54,7 +54,10 @@ std::string g17(double x) {
 //   a route that says its count is not proven) becomes "undecided", the candidate count kept
 //   apart in minimizer_candidates: a count is reported only when proven;
 // - the width contract: a certified enclosure satisfies upper - lower <= 10^-digits lower on
-//   the printed decimals, or the answer is not certified.
+//   the printed decimals, or the answer is not certified;
+// - an answer that is not certified states no proven count: its minimum is not proven, so
+//   neither is the number of pairs that realise it (an undecided enclosure of an infimum that
+//   may lie at infinity, a float search's single pair); the candidates are kept.
 void finalize(DistanceResult& r, long digits) {
   if (r.status == Status::Certified && r.minimizers.is_count()) {
     const long n = r.minimizers.value();
@@ -71,6 +74,11 @@ void finalize(DistanceResult& r, long digits) {
     r.note += std::string(r.note.empty() ? "" : "; ") + "the enclosure is wider than --digits " +
               std::to_string(digits) + " asks (kept as what was established)";
   }
+  if (r.status != Status::Certified && r.minimizers.is_count())
+    r.minimizers = Minimizers::undecided(r.minimizers.value());
+  else if (r.status == Status::Uncertified && !r.minimizers.empty() &&
+           !r.minimizers.is_undecided()) // a float route proves nothing, not even a continuum
+    r.minimizers = Minimizers::undecided(0);
 }
 
 // Computes, and when a certified enclosure misses the width contract, computes once more

@@ -630,7 +630,8 @@ std::optional<DistanceResult> separated_convex_distance_float(const ConvexQuadri
   if (!d.finite || !(d.phi > 0)) return std::nullopt;
   DistanceResult out;
   out.status = Status::Uncertified;
-  out.minimizers = Minimizers::count(1, Minimizers::Proof::Exact);
+  // One pair if the float separation holds (strict convexity), which nothing proved here.
+  out.minimizers = Minimizers::undecided(1);
   out.critical_candidates = 1;
   V3<double> pa = d.pa, pb = d.pb;
   if (a.is_cylinder() || b.is_cylinder()) { // slide along the cylinder's line of support
