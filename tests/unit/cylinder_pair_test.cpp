@@ -281,3 +281,115 @@ TEST(CylinderPair, ParallelSectionsAtExtremes) {
     EXPECT_TRUE(overlap(base, t)) << a << ": " << t.lower() << " vs " << base.lower();
   }
 }
+
+namespace {
+
+// The gap e: "0", a decimal power "1/10^k", or "2^-100" (as an equation term and in MPFR).
+struct Gap {
+  const char* term; // appended to the centre distance 2 in an equation
+  long neg_pow10;   // e = 10^-k (0: e = 2^-100; -1: e = 0)
+};
+
+void set_gap(mpfr_t e, const Gap& g) {
+  if (g.neg_pow10 < 0) {
+    mpfr_set_zero(e, 1);
+  } else if (g.neg_pow10 == 0) {
+    mpfr_set_ui_2exp(e, 1, -100, MPFR_RNDN);
+  } else {
+    mpfr_set_ui(e, 10, MPFR_RNDN);
+    mpfr_pow_si(e, e, -g.neg_pow10, MPFR_RNDN);
+  }
+}
+
+const Gap kGaps[] = {{"", -1},
+                     {"1/10^10", 10},
+                     {"1/10^20", 20},
+                     {"1/10^30", 30},
+                     {"1/2^64/2^36", 0}};
+
+} // namespace
+
+TEST(CylinderPair, ParallelSectionsThatTouchOrBarelyOverlap) {
+  // Unit circular cylinders with parallel axes at centre distance 2 - e (they overlap: the
+  // sections cross at two points 2 sqrt(e) apart, nearly tangent; e = 0: they touch along a
+  // ruling) and 2 + e (apart by exactly e). Was undecided ("may meet or touch") for every
+  // e <= 10^-10: the sign-change probes cannot see a lens 10^-30 thick. Also under a rational
+  // rigid motion (the axes along an irrational unit direction).
+  const auto mv = motion(1, 2, 3, 4, {Rational(1, 3), Rational(-2), Rational(5, 7)});
+  for (const Gap& g : kGaps) {
+    for (int side : {-1, 1}) {
+      if (g.neg_pow10 < 0 && side > 0) continue;
+      const std::string c = std::string("(2") + (side < 0 ? "-" : "+") + (*g.term ? g.term : "0") + ")";
+      const auto A = q("x^2 + y^2 = 1"), B = q("(x - " + c + ")^2 + y^2 = 1");
+      for (bool moved : {false, true}) {
+        const auto a = moved ? A.congruent(mv) : A, b = moved ? B.congruent(mv) : B;
+        for (bool swap : {false, true}) {
+          const auto r = swap ? dist(b, a, 20) : dist(a, b, 20);
+          const std::string what = c + (moved ? " moved" : "") + (swap ? " swapped" : "");
+          ASSERT_EQ(r.status, certify::Status::Certified) << what << ": " << r.note;
+          EXPECT_EQ(r.minimizers, "infinite") << what;
+          mpfr_t e;
+          mpfr_init2(e, 400);
+          set_gap(e, g);
+          if (side < 0) mpfr_set_zero(e, 1); // overlapping or touching: distance 0
+          EXPECT_TRUE(surfcert::testing::contains(r, e)) << what << ": [" << r.lower() << ", "
+                                                         << r.upper() << "]";
+          if (side > 0) {
+            EXPECT_GT(lo(r), 0) << what; // apart: never 0
+          }
+          mpfr_clear(e);
+        }
+      }
+    }
+  }
+}
+
+TEST(CylinderPair, CoaxialCylindersOfRevolution) {
+  // x^2 + y^2 = R1 against x^2 + y^2 = R2: |sqrt R1 - sqrt R2| on every ray from the axis (was
+  // undecided: the meridian system is a pair of parallel lines, a curve of solutions).
+  for (const char* r2 : {"4", "1 + 1/10^10", "1 + 1/10^30", "1 + 1/2^64/2^36", "0"}) {
+    const auto A = q("x^2 + y^2 = 1"), B = q(std::string("x^2 + y^2 = ") + r2);
+    // MPFR: sqrt(R2) - 1 at 2000 bits, R2 from the same text.
+    mpfr_t d, t;
+    mpfr_inits2(2000, d, t, static_cast<mpfr_ptr>(nullptr));
+    const std::string s = r2;
+    if (s == "4") {
+      mpfr_set_ui(d, 4, MPFR_RNDN);
+    } else if (s == "0") {
+      mpfr_set_zero(d, 1);
+    } else if (s == "1 + 1/2^64/2^36") {
+      mpfr_set_ui_2exp(d, 1, -100, MPFR_RNDN);
+      mpfr_add_ui(d, d, 1, MPFR_RNDN);
+    } else {
+      mpfr_set_ui(d, 10, MPFR_RNDN);
+      mpfr_pow_si(d, d, s.find("10^10") != std::string::npos ? -10 : -30, MPFR_RNDN);
+      mpfr_add_ui(d, d, 1, MPFR_RNDN);
+    }
+    mpfr_sqrt(d, d, MPFR_RNDN);
+    mpfr_sub_ui(d, d, 1, MPFR_RNDN);
+    mpfr_abs(d, d, MPFR_RNDN);
+    for (long digits : {15L, 60L})
+      for (bool swap : {false, true}) {
+        const auto r = swap ? dist(B, A, digits) : dist(A, B, digits);
+        ASSERT_EQ(r.status, certify::Status::Certified) << r2 << ": " << r.note;
+        EXPECT_EQ(r.minimizers, "infinite") << r2;
+        EXPECT_TRUE(surfcert::testing::contains(r, d))
+            << r2 << " digits " << digits << ": [" << r.lower() << ", " << r.upper() << "]";
+      }
+    mpfr_clears(d, t, static_cast<mpfr_ptr>(nullptr));
+  }
+  // About the axis (1, 1, 1) (|a| = sqrt 3 irrational), radii 1 and 2, moved rigidly: 1.
+  const auto mv = motion(2, -1, 3, 1, {Rational(7), Rational(-1, 2), Rational(3)});
+  const auto A = q(circular({0, 0, 0}, {1, 1, 1}, 1)).congruent(mv),
+             B = q(circular({0, 0, 0}, {1, 1, 1}, 2)).congruent(mv);
+  const auto r = dist(A, B, 30);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.minimizers, "infinite");
+  EXPECT_EQ(r.lower(), "1");
+  EXPECT_EQ(r.upper(), "1");
+  for (const auto& p : r.pairs) { // the shown pair lies on both surfaces, 1 apart
+    EXPECT_NEAR(eval(A, p[0]), 0, 1e-9);
+    EXPECT_NEAR(eval(B, p[1]), 0, 1e-9);
+    EXPECT_NEAR(std::hypot(p[0][0] - p[1][0], p[0][1] - p[1][1], p[0][2] - p[1][2]), 1, 1e-9);
+  }
+}

@@ -116,8 +116,10 @@ std::optional<core::QuadricMatrix> meridian_conic(const core::QuadricMatrix& q, 
   Integer an2 = aa.num() * aa.den(); // aa a square iff num*den is (both coprime)
   Integer root;
   fmpz_sqrtrem(root.raw_mut(), Integer().raw_mut(), an2.raw());
-  if (!(root * root == an2)) return std::nullopt;
-  const Rational alen = Rational(root) / Rational(aa.den()); // |a|
+  // |a|, when rational: needed only for a linear term in the height (beta != 0 below).
+  const std::optional<Rational> alen =
+      root * root == an2 ? std::optional<Rational>(Rational(root) / Rational(aa.den()))
+                         : std::nullopt;
   auto M = [&](size_t i, size_t j) { return q(static_cast<int>(i), static_cast<int>(j)); };
   std::array<Rational, 3> Ma, v; // M a, and M c + b
   for (size_t i = 0; i < 3; ++i) {
@@ -182,7 +184,8 @@ std::optional<core::QuadricMatrix> meridian_conic(const core::QuadricMatrix& q, 
   const size_t h = static_cast<size_t>(height_var);
   g[0][0] = *mu;
   g[h][h] = lambda;
-  g[h][3] = g[3][h] = *beta * alen;
+  if (!beta->is_zero() && !alen) return std::nullopt;
+  if (!beta->is_zero()) g[h][3] = g[3][h] = *beta * *alen;
   g[3][3] = fc;
   if (mu->is_zero() && lambda.is_zero()) return std::nullopt; // a plane: the closed form applies
   return core::QuadricMatrix(g);

@@ -376,6 +376,65 @@ AxisPlacement axis_placement(const algebra::SolutionCover& cover, bool axial_exc
   return on ? AxisPlacement::On : AxisPlacement::Off;
 }
 
+// r^2 of a cylinder of revolution from its meridian conic mu X^2 + lambda Z^2 + 2 beta Z + fc
+// (X in x, Z in y: meridian_conic with height_var 1): lambda = beta = 0, r^2 = -fc / mu >= 0.
+std::optional<Rational> cylinder_radius2(const core::QuadricMatrix& m) {
+  if (!m(1, 1).is_zero() || !m(1, 3).is_zero() || m(0, 0).is_zero()) return std::nullopt;
+  const Rational r2 = -m(3, 3) / m(0, 0);
+  if (r2.sign() < 0) return std::nullopt; // r^2 = 0: the axis itself (a real line)
+  return r2;
+}
+
+// Two cylinders of revolution about one axis (meridians X^2 = Ra and X^2 = Rb, Ra != Rb): every
+// point of the meridian system is critical (parallel lines), so the offset systems have a
+// curve of solutions. The distance is |sqrt Ra - sqrt Rb|, realised on every ray orthogonal to
+// the axis (a continuum), computed as |Ra - Rb| / (sqrt Ra + sqrt Rb): an exact numerator, so
+// nearby radii lose no digits to cancellation.
+std::optional<DistanceResult> coaxial_cylinders(const core::QuadricMatrix& ma,
+                                                const core::QuadricMatrix& mb, const Axis& ax,
+                                                long digits) {
+  const auto ra = cylinder_radius2(ma), rb = cylinder_radius2(mb);
+  if (!ra || !rb || *ra == *rb) return std::nullopt;
+  const long prec = bits_for(digits) + 64;
+  Ball sa, sb, num, d;
+  arb_set_fmpq(sa.v, ra->raw(), prec);
+  arb_sqrt(sa.v, sa.v, prec);
+  arb_set_fmpq(sb.v, rb->raw(), prec);
+  arb_sqrt(sb.v, sb.v, prec);
+  Rational diff = *ra - *rb;
+  if (diff.sign() < 0) diff = -diff;
+  arb_set_fmpq(num.v, diff.raw(), prec);
+  arb_add(d.v, sa.v, sb.v, prec);
+  arb_div(d.v, num.v, d.v, prec);
+  DistanceResult out;
+  out.status = Status::Certified;
+  set_distance_enclosure(out, d.v, digits);
+  out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+  out.method = Method::ParallelSections;
+  out.critical_candidates = 0;
+  // One pair, for display: on a unit ray u orthogonal to the axis.
+  std::array<double, 3> ad{}, p0{};
+  for (size_t i = 0; i < 3; ++i) {
+    ad[i] = ax.direction[i].to_double_approx();
+    p0[i] = ax.point[i].to_double_approx();
+  }
+  std::array<double, 3> u = std::fabs(ad[0]) <= std::fabs(ad[1]) && std::fabs(ad[0]) <= std::fabs(ad[2])
+                                ? std::array<double, 3>{0, ad[2], -ad[1]}
+                            : std::fabs(ad[1]) <= std::fabs(ad[2]) ? std::array<double, 3>{ad[2], 0, -ad[0]}
+                                                                   : std::array<double, 3>{ad[1], -ad[0], 0};
+  const double un = std::hypot(u[0], u[1], u[2]);
+  const double ha = std::sqrt(ra->to_double_approx()), hb = std::sqrt(rb->to_double_approx());
+  std::array<std::array<double, 3>, 2> pr{};
+  for (size_t i = 0; i < 3; ++i) {
+    pr[0][i] = p0[i] + ha * u[i] / un;
+    pr[1][i] = p0[i] + hb * u[i] / un;
+  }
+  out.pairs.push_back(pr);
+  out.note = "coaxial cylinders of revolution: the distance is the difference of the radii, "
+             "realised on every ray orthogonal to the axis (one pair shown)";
+  return out;
+}
+
 // Two quadrics of revolution about one axis: the distance between the surfaces is the 2D
 // distance between their meridian conics (rotate a pair into one half-plane: the distance
 // does not grow; the conics are symmetric in X, so the 2D minimum over the whole conics is
@@ -475,11 +534,9 @@ std::optional<DistanceResult> coaxial_pair_distance(const core::QuadricMatrix& a
     }
     return out;
   }
-  DistanceResult out;
-  out.status = Status::Undecided;
-  out.note = "not supported yet: coaxial surfaces of revolution whose meridian system "
-             "degenerates";
-  return out;
+  // The meridian system degenerates (a curve of solutions): coaxial cylinders have the closed
+  // form; otherwise the 3D routes take the pair.
+  return coaxial_cylinders(*ma, *mb, *ax, digits);
 }
 
 } // namespace
@@ -530,6 +587,125 @@ std::optional<std::array<Rational, 3>> common_ruling(const core::QuadricMatrix& 
   const auto k = common_kernel(a, b, 3);
   if (k.size() != 1) return std::nullopt;
   return std::array<Rational, 3>{k[0][0], k[0][1], k[0][2]};
+}
+
+// A proven common point of the quadrics a, b and the plane n.x = 0 in the box X: the
+// Krawczyk operator K(X) = m - Y F(m) + (I - Y J(X)) (X - m), Y a float inverse of the
+// Jacobian at the midpoint m, lands inside X, so X holds a zero (Brouwer). Fails at a
+// tangency (J singular there); transversal crossings, however close to tangent, pass once X
+// is small against their separation. w receives m (display).
+bool common_point_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                         const std::array<Rational, 3>& n, const Ball (&X)[3], long prec,
+                         std::array<double, 3>& w) {
+  Ball m[4], r[3], F[3], J[3][3];
+  for (size_t i = 0; i < 3; ++i) {
+    arb_get_mid_arb(m[i].v, X[i].v);
+    arb_sub(r[i].v, X[i].v, m[i].v, prec); // X - m
+  }
+  arb_one(m[3].v);
+  Ball x4[4];
+  for (size_t i = 0; i < 3; ++i)
+    arb_set(x4[i].v, X[i].v);
+  arb_one(x4[3].v);
+  Ball t, u, q;
+  const core::QuadricMatrix* quads[2] = {&a, &b};
+  for (size_t k = 0; k < 2; ++k) {
+    const core::QuadricMatrix& Q = *quads[k];
+    arb_zero(F[k].v);
+    for (int i = 0; i < 4; ++i) {
+      // (Q m)_i and, for i < 3, 2 (Q X)_i: the gradient's entry over X.
+      arb_zero(t.v);
+      arb_zero(u.v);
+      for (int j = 0; j < 4; ++j) {
+        arb_set_fmpq(q.v, Q(i, j).raw(), prec);
+        arb_addmul(t.v, q.v, m[j].v, prec);
+        arb_addmul(u.v, q.v, x4[j].v, prec);
+      }
+      arb_addmul(F[k].v, t.v, m[i].v, prec);
+      if (i < 3) arb_mul_2exp_si(J[k][i].v, u.v, 1);
+    }
+  }
+  arb_zero(F[2].v);
+  for (size_t i = 0; i < 3; ++i) {
+    arb_set_fmpq(J[2][i].v, n[i].raw(), prec);
+    arb_addmul(F[2].v, J[2][i].v, m[i].v, prec);
+  }
+  // Y: the inverse of J's midpoint matrix, in doubles (any Y works; a good one contracts).
+  double M[3][3];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      M[i][j] = arf_get_d(arb_midref(J[i][j].v), ARF_RND_NEAR);
+  const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                     M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                     M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+  if (!std::isfinite(det) || det == 0) return false;
+  double Yd[3][3];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      // adj(M)_ij = cofactor of M_ji
+      const size_t r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      Yd[i][j] = (M[r0][c0] * M[r1][c1] - M[r0][c1] * M[r1][c0]) / det;
+      if (!std::isfinite(Yd[i][j])) return false;
+    }
+  for (size_t i = 0; i < 3; ++i) {
+    Ball K, y, c;
+    arb_set(K.v, m[i].v);
+    for (size_t j = 0; j < 3; ++j) {
+      arb_set_d(y.v, Yd[i][j]);
+      arb_submul(K.v, y.v, F[j].v, prec);
+    }
+    for (size_t j = 0; j < 3; ++j) {
+      // (I - Y J(X))_ij
+      arb_set_si(c.v, i == j ? 1 : 0);
+      for (size_t k = 0; k < 3; ++k) {
+        arb_set_d(y.v, Yd[i][k]);
+        arb_submul(c.v, y.v, J[k][j].v, prec);
+      }
+      arb_addmul(K.v, c.v, r[j].v, prec);
+    }
+    if (!arb_contains(X[i].v, K.v)) return false;
+  }
+  for (size_t i = 0; i < 3; ++i)
+    w[i] = arf_get_d(arb_midref(m[i].v), ARF_RND_NEAR);
+  return true;
+}
+
+// A proven common point of the sections of a and b in the plane n.x = 0 among the boxes of
+// their solution cover: a rational solution (a box of exact points: a tangency of circles, say)
+// checked by exact substitution, or a box where the Krawczyk test succeeds after refinement
+// (transversal crossings, however near to tangent: the box narrows to 2^-640).
+bool sections_meet(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                   const std::array<Rational, 3>& n, algebra::SolutionCover& meet,
+                   std::array<double, 3>& w) {
+  const core::Poly3 fa = algebra::quadric_poly(a.matrix()), fb = algebra::quadric_poly(b.matrix());
+  // The root of coordinate k in a box, when rational: a collapsed interval, or the root of a
+  // linear factor of the eliminant.
+  auto rational_root = [&meet](size_t k, size_t i) -> std::optional<Rational> {
+    const algebra::RootInterval& r = meet.roots[k][i];
+    if (r.lo == r.hi) return r.lo;
+    const algebra::UPolyZ& f = meet.factors[k][r.factor];
+    if (f.degree() != 1) return std::nullopt;
+    return -Rational(f.coeff(0)) / Rational(f.coeff(1));
+  };
+  for (const auto& bx : meet.boxes) {
+    const auto x = rational_root(0, bx[0]), y = rational_root(1, bx[1]),
+               z = rational_root(2, bx[2]);
+    if (!x || !y || !z) continue;
+    if (fa.evaluate(*x, *y, *z).is_zero() && fb.evaluate(*x, *y, *z).is_zero()) {
+      w = {x->to_double_approx(), y->to_double_approx(), z->to_double_approx()};
+      return true;
+    }
+  }
+  for (long bits = 20; bits <= 640 && !meet.boxes.empty(); bits *= 2) {
+    algebra::refine_cover(meet, Rational::exact_from_double(std::ldexp(1.0, -static_cast<int>(bits))));
+    const long prec = 2 * bits + 64;
+    for (const auto& bx : meet.boxes) {
+      Ball X[3];
+      algebra::box_balls(meet, bx, X[0].v, X[1].v, X[2].v, prec);
+      if (common_point_in_box(a, b, n, X, prec, w)) return true;
+    }
+  }
+  return false;
 }
 
 // Two cylinders with a common ruling direction d: translating a pair along d gives a pair at
@@ -607,7 +783,7 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
   // is decided here. No real common point of the two sections (an exact solution cover with no
   // box): disjoint. Otherwise a sign change proves the crossing, or the answer stays open.
   {
-    const algebra::SolutionCover meet = algebra::cover_real_solutions(
+    algebra::SolutionCover meet = algebra::cover_real_solutions(
         {algebra::quadric_poly(a.matrix()), algebra::quadric_poly(b.matrix()), plane},
         Rational(1, 16));
     if (!meet.ok) return std::nullopt; // a common component of the sections
@@ -631,6 +807,16 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
         out.note = "two cylinders with a common ruling direction meet (a connected piece of one "
                    "has certified points on both sides of the other; the pair is an "
                    "approximate common point)";
+      } else if (sections_meet(a, b, *d, meet, w)) {
+        // A common point of the sections: the common ruling through it is a line of
+        // common points.
+        out.status = Status::Certified;
+        out.distance = Enclosure::zero();
+        out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+        out.pairs.push_back({w, w});
+        out.note = "two cylinders with a common ruling direction meet along a common ruling (a "
+                   "common point of their sections proven by exact substitution or a Krawczyk "
+                   "test; the pair is an approximate common point)";
       } else {
         out.status = Status::Undecided;
         out.note = "two cylinders with a common ruling direction whose sections may meet or "

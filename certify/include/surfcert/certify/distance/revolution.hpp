@@ -24,8 +24,9 @@ struct Axis {
 std::optional<Axis> revolution_axis(const core::QuadricMatrix& q);
 
 /// The meridian conic of q about `ax` as a quadric in (x = X, height_var = Z) — height_var 1
-/// (y) or 2 (z) — or nullopt when q is not invariant about that axis, |a| is irrational, or q
-/// is a plane.
+/// (y) or 2 (z), Z measured in units of length along the axis — or nullopt when q is not
+/// invariant about that axis, q is a plane, or |a| is irrational and the conic has a linear
+/// term in Z (its coefficient is a multiple of |a|).
 std::optional<core::QuadricMatrix> meridian_conic(const core::QuadricMatrix& q, const Axis& ax,
                                                   int height_var);
 
