@@ -535,17 +535,22 @@ std::optional<ComponentAtInfinity> conic_at_infinity(const M3& m) {
 // (x - p)^T M (x - p) = 0 with M its quadratic part, so the curve is the union of the lines
 // p + t d over the real common points d of the conics at infinity; p alone when there is none.
 
+// The apex is read off whichever of the two has an invertible quadratic block (a cone; the
+// other may be a plane pair or a cylinder through it, whose singular points form a line).
 std::optional<V3> common_apex(const core::Mat4& a, const core::Mat4& b) {
-  const M3 m = top_left(a);
-  const Rational det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  if (det.is_zero()) return std::nullopt; // no single affine apex
-  const M3 mi = inverse(m);
+  auto det3 = [](const M3& m) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  const bool use_a = !det3(top_left(a)).is_zero();
+  if (!use_a && det3(top_left(b)).is_zero()) return std::nullopt; // no single affine apex
+  const core::Mat4& c = use_a ? a : b;
+  const M3 mi = inverse(top_left(c));
   V3 p;
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
-      p[i] -= mi[i][j] * a[j][3];
+      p[i] -= mi[i][j] * c[j][3];
   for (const core::Mat4* q : {&a, &b})
     for (size_t i = 0; i < 4; ++i) {
       Rational s = (*q)[i][3];
@@ -822,6 +827,164 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
   return out;
 }
 
+// ---------------------------------------------------------------------------------------
+// Plane pair route: one quadric is two distinct real planes with rational equations (x y = 0,
+// x^2 = 1/4, ...), the other one not a plane. The curve is the union of the two plane sections
+// (plane_route on each), when that union is read off them exactly: both sections certified,
+// neither plane's line at infinity on the other quadric (a component at infinity), and, when
+// the planes meet along a line L, L not on the other quadric (a line counted twice) and no
+// isolated point (it may lie on the other section). Crossing components count separately, as
+// everywhere; the points at infinity of the two sections are merged (multiplicities add).
+
+// The two planes of a rational plane pair, as 4-vectors n (n . (x, y, z, 1) = 0), or nullopt.
+// x^T M x = (C^T x)^T S^-1 (C^T x) for a rank-2 M, S a nonzero principal 2x2 minor and C its
+// two columns (checked exactly, which also proves rank 2); the binary form splits over Q when
+// its discriminant is a positive rational square.
+std::optional<std::array<std::array<Rational, 4>, 2>> rational_plane_pair(const core::Mat4& m) {
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i + 1; j < 4; ++j) {
+      const Rational det = m[i][i] * m[j][j] - m[i][j] * m[i][j];
+      if (det.is_zero()) continue;
+      const Rational p = m[j][j] / det, q = -m[i][j] / det, r = m[i][i] / det; // S^-1
+      for (size_t a = 0; a < 4; ++a)
+        for (size_t b = 0; b < 4; ++b) {
+          const Rational v = m[a][i] * (p * m[b][i] + q * m[b][j]) +
+                             m[a][j] * (q * m[b][i] + r * m[b][j]);
+          if (v != m[a][b]) return std::nullopt; // rank > 2
+        }
+      const Rational disc = q * q - p * r;
+      if (disc.sign() <= 0) return std::nullopt; // complex planes (a real line) or a double plane
+      const Integer dn = disc.num() * disc.den();
+      Integer root;
+      fmpz_sqrt(root.raw_mut(), dn.raw());
+      if (!(root * root == dn)) return std::nullopt; // planes over Q(sqrt d): not handled
+      const Rational sq = Rational(root) / Rational(disc.den());
+      std::array<std::array<Rational, 4>, 2> n;
+      for (size_t k = 0; k < 4; ++k) {
+        const Rational &al = m[k][i], &be = m[k][j]; // alpha = C_i . x, beta = C_j . x
+        if (!p.is_zero()) {
+          // p (alpha - r1 beta)(alpha - r2 beta), r = (-q +- sq) / p
+          n[0][k] = al - ((-q + sq) / p) * be;
+          n[1][k] = al - ((-q - sq) / p) * be;
+        } else {
+          // beta (2 q alpha + r beta)
+          n[0][k] = be;
+          n[1][k] = Rational(2) * q * al + r * be;
+        }
+      }
+      return n;
+    }
+  return std::nullopt;
+}
+
+core::Mat4 plane_as_quadric(const std::array<Rational, 4>& n) {
+  core::Mat4 pm;
+  for (size_t k = 0; k < 3; ++k)
+    pm[k][3] = pm[3][k] = n[k] / Rational(2);
+  pm[3][3] = n[3];
+  return pm;
+}
+
+std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
+                                               const core::QuadricMatrix& quad) {
+  const auto planes = rational_plane_pair(pair.matrix());
+  if (!planes) return std::nullopt;
+  AffineTopology out;
+  out.route = "plane_pair";
+  const auto& n1 = (*planes)[0];
+  const auto& n2 = (*planes)[1];
+  AffineTopology sec[2];
+  for (size_t k = 0; k < 2; ++k) {
+    const core::Mat4 pm = plane_as_quadric((*planes)[k]);
+    const auto chart = algebra::plane_chart(pm);
+    if (!chart) return std::nullopt; // the plane at infinity: not a pair of affine planes
+    const M3 cm = algebra::restrict_form(quad.matrix(), *chart);
+    if (cm[0][0].is_zero() && cm[0][1].is_zero() && cm[1][1].is_zero()) {
+      out.reason = "a plane of the pair meets the other quadric in its line at infinity (a "
+                   "component at infinity; not analysed)";
+      return out;
+    }
+    sec[k] = plane_route(core::QuadricMatrix(pm), quad);
+    if (!sec[k].certified()) {
+      out.reason = "a plane section of the pair was not read exactly: " + sec[k].reason;
+      return out;
+    }
+  }
+  const V3 cr{n1[1] * n2[2] - n1[2] * n2[1], n1[2] * n2[0] - n1[0] * n2[2],
+              n1[0] * n2[1] - n1[1] * n2[0]};
+  const bool parallel = cr[0].is_zero() && cr[1].is_zero() && cr[2].is_zero();
+  if (!parallel) {
+    if (*sec[0].isolated_points + *sec[1].isolated_points > 0) {
+      out.reason = "a plane of the pair touches the other quadric at a point, which may lie on "
+                   "the other plane's section (not analysed)";
+      return out;
+    }
+    // L = n1 ∩ n2 spanned by two null vectors of the 2x4 matrix [n1; n2] (a nonzero 2x2 minor
+    // in columns (i, j); the free columns k, l set to (1, 0) and (0, 1)).
+    bool found = false;
+    for (size_t i = 0; i < 4 && !found; ++i)
+      for (size_t j = i + 1; j < 4 && !found; ++j) {
+        const Rational det = n1[i] * n2[j] - n1[j] * n2[i];
+        if (det.is_zero()) continue;
+        found = true;
+        std::array<std::array<Rational, 4>, 2> null{};
+        size_t f = 0;
+        for (size_t k = 0; k < 4; ++k) {
+          if (k == i || k == j) continue;
+          auto& x = null[f++];
+          x[k] = Rational(1);
+          // n1[i] x_i + n1[j] x_j = -n1[k], n2[i] x_i + n2[j] x_j = -n2[k] (Cramer)
+          x[i] = (-n1[k] * n2[j] + n2[k] * n1[j]) / det;
+          x[j] = (-n2[k] * n1[i] + n1[k] * n2[i]) / det;
+        }
+        const auto lq = algebra::restrict_form(quad.matrix(), null);
+        if (lq[0][0].is_zero() && lq[0][1].is_zero() && lq[1][1].is_zero()) {
+          out.reason = "the common line of the two planes lies on the other quadric (a line of "
+                       "both sections; not analysed)";
+          return out;
+        }
+      }
+  }
+  out.computed = true;
+  out.points_at_infinity_complete = true;
+  out.loops = *sec[0].loops + *sec[1].loops;
+  out.unbounded_branches = *sec[0].unbounded_branches + *sec[1].unbounded_branches;
+  out.isolated_points = *sec[0].isolated_points + *sec[1].isolated_points;
+  out.lines = *sec[0].lines + *sec[1].lines;
+  out.conics = *sec[0].conics + *sec[1].conics;
+  bool open = false;
+  for (const auto& s2 : sec)
+    for (const PointAtInfinity& pt : s2.points_at_infinity) {
+      bool merged = false;
+      for (PointAtInfinity& q2 : out.points_at_infinity) {
+        if (pt.rational && q2.rational) {
+          if (pt.direction == q2.direction) { // normalised: one text per direction
+            q2.multiplicity += pt.multiplicity;
+            merged = true;
+            break;
+          }
+          continue;
+        }
+        const auto& u = pt.approx;
+        const auto& v = q2.approx;
+        // Nearly one direction, not proven one (an irrational direction): left open.
+        open = open || std::fabs(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) > 1 - 1e-12;
+      }
+      if (!merged) out.points_at_infinity.push_back(pt);
+    }
+  if (open) {
+    AffineTopology undecided;
+    undecided.route = "plane_pair";
+    undecided.reason = "two sections have points at infinity that are close but not proven "
+                       "equal or distinct";
+    return undecided;
+  }
+  out.plane = plane_as_quadric(n1);
+  out.plane2 = plane_as_quadric(n2);
+  out.section_of = quad.matrix();
+  return out;
+}
+
 } // namespace
 
 // The conic at infinity has no real point: an ellipsoid's quadratic part is definite. Read
@@ -927,6 +1090,9 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   if (t.pencil == algebra::PencilKind::Degenerate && co == ChartOutcome::Ok)
     if (auto apex = common_apex(a.matrix(), b.matrix())) return common_apex_route(*apex, ch);
   if (t.status != Status::Certified || !t.morphology) {
+    // A degenerate pencil with a pair of rational planes: the union of two plane sections.
+    if (auto pp = plane_pair_route(a, b)) return *pp;
+    if (auto pp = plane_pair_route(b, a)) return *pp;
     out.reason = "no certified projective topology";
     return out;
   }

@@ -84,6 +84,18 @@ const Want kTable[] = {
     {"x^2 + y^2 = 1", "(x - 1)^2 + y^2 = 1", 0, 2, 0, 2, 0, 1},
     // Equal parallel cylinders too far apart: x = 5/4 misses both: empty.
     {"x^2 + y^2 = 1", "(x - 5/2)^2 + y^2 = 1", 0, 0, 0, 0, 0, 0},
+    // A plane pair through a cone's apex (degenerate pencil, was undecided: the apex was read
+    // off the first quadric only): x = 0 and y = 0 cut y = +-z and x = +-z.
+    {"x*y = 0", "x^2 + y^2 = z^2", 0, 4, 0, 4, 0, 4},
+    // Plane pairs in a degenerate pencil with a cylinder (was undecided): x = +-1/2 cut the
+    // lines y = +-sqrt(3)/2, all along (0:0:1) (multiplicity 2 + 2); tangent planes x = +-1,
+    // one double line each; x = +-2 miss it; x = 0 and y = 0 cut the four lines x, y = +-1.
+    {"x^2 = 1/4", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
+    {"x^2 = 1", "x^2 + y^2 = 1", 0, 2, 0, 2, 0, 1},
+    {"x^2 = 4", "x^2 + y^2 = 1", 0, 0, 0, 0, 0, 0},
+    {"x*y = 0", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
+    // Non-parallel planes x = 1/2 and y = -1/3 (not through the axis): four lines.
+    {"(x - 1/2)*(y + 1/3) = 0", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
 };
 
 void expect_field(const std::optional<int>& got, int want, const std::string& ctx) {
@@ -194,4 +206,22 @@ TEST(Affine, SharedComponentAtInfinityIsUndecided) {
   auto t = affine(q("x*y = z"), q("x*z = y")); // both contain the line x = 0 at infinity
   EXPECT_FALSE(t.certified());
   EXPECT_FALSE(t.reason.empty());
+}
+
+TEST(Affine, PlanePairsNotReadExactlyStayUndecided) {
+  // (x - 1) y = 0: the planes meet along x = 1, y = 0, a ruling of the cylinder that both
+  // sections hold (a line counted twice); x^2 = 2: planes over Q(sqrt 2), not split here.
+  for (const auto& [a, b] : {std::pair<const char*, const char*>{"(x - 1)*y = 0", "x^2 + y^2 = 1"},
+                             {"x^2 = 2", "x^2 + y^2 = 1"}}) {
+    const auto t = affine(q(a), q(b));
+    EXPECT_FALSE(t.certified()) << a << " | " << b;
+    const auto u = affine(q(b), q(a));
+    EXPECT_FALSE(u.certified()) << b << " | " << a;
+  }
+  // The route of a plane pair in a degenerate pencil names itself, with both planes kept.
+  const auto t = affine(q("x^2 = 1/4"), q("x^2 + y^2 = 1"));
+  EXPECT_EQ(t.route, "plane_pair");
+  ASSERT_TRUE(t.plane && t.plane2 && t.section_of);
+  ASSERT_EQ(t.points_at_infinity.size(), 1u);
+  EXPECT_EQ(t.points_at_infinity[0].multiplicity, 4);
 }

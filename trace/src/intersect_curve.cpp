@@ -416,6 +416,12 @@ bool trace_section_lines(const core::QuadricMatrix& a, const core::QuadricMatrix
   std::optional<SectionComponents> sec;
   if (af.plane && af.section_of) {
     sec = section_lines(*af.plane, *af.section_of);
+    if (sec && af.plane2) { // route plane_pair: the second plane's section too
+      const auto sec2 = section_lines(*af.plane2, *af.section_of);
+      if (!sec2) return false;
+      sec->lines.insert(sec->lines.end(), sec2->lines.begin(), sec2->lines.end());
+      sec->points.insert(sec->points.end(), sec2->points.begin(), sec2->points.end());
+    }
   } else if (af.apex) {
     // Lines from the common apex along the exact points at infinity (directions rounded).
     sec.emplace();

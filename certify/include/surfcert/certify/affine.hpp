@@ -32,7 +32,11 @@
 // (parallel), or coincide (not computed); the plane at infinity they share as quadrics is not
 // listed. Two cones with one common affine apex p (a degenerate pencil, route "common_apex"):
 // the curve is the lines p + t d over the real points d at infinity (p alone when there is
-// none). A twisted cubic and a line (cases 10-12, route "cubic_line"): the counts come from
+// none; the apex is read off whichever quadric is a cone, the other may be a plane pair or a
+// cylinder through it). A rational plane pair in a degenerate pencil (route "plane_pair": x y
+// = 0 or x^2 = 1/4 against a cylinder or a cone): the union of the two plane sections, when it
+// is read off them exactly (see plane_pair_route). A twisted cubic and a line (cases 10-12,
+// route "cubic_line"): the counts come from
 // their exact parametrisations (certify/cubic_line.hpp): one unbounded branch per distinct
 // real point at infinity of the cubic, one for the line; when the line lies at infinity (the
 // conics at infinity then share it) the affine curve is the cubic alone, its points at
@@ -77,7 +81,7 @@ struct ComponentAtInfinity {
 struct AffineTopology {
   bool computed = false; ///< false: nothing established (see reason)
   std::string route;     ///< "pencil", "plane_section", "pencil_plane", "plane_plane",
-                         ///< "common_apex" or "cubic_line"
+                         ///< "plane_pair", "common_apex" or "cubic_line"
   std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
   std::vector<PointAtInfinity> points_at_infinity;
   bool points_at_infinity_complete = false;
@@ -86,8 +90,9 @@ struct AffineTopology {
   std::string reason;                                         ///< when !computed
   /// Plane routes ("plane_section", "pencil_plane", "plane_plane"): the affine curve is
   /// `plane` (a plane written as a quadric: zero quadratic block) cut by `section_of`
-  /// (a quadric, or the other plane).
-  std::optional<core::Mat4> plane, section_of;
+  /// (a quadric, or the other plane). Route "plane_pair": the union of the sections of
+  /// `plane` and `plane2` (the two planes of a rational plane pair) by `section_of`.
+  std::optional<core::Mat4> plane, plane2, section_of;
   /// Route "common_apex" (a degenerate pencil of two cones with one affine apex): the apex;
   /// the curve is the lines from it along the points at infinity (the apex alone if none).
   std::optional<std::array<core::Rational, 3>> apex;
