@@ -269,6 +269,37 @@ certify::BoxExits exact_exits(const core::QuadricMatrix& a, const core::QuadricM
   return certify::box_exits(a.matrix(), b.matrix(), lo, hi);
 }
 
+// The crossings of the affine curve with the box's faces, from the pair that writes it most
+// simply: on the plane routes the affine curve is `plane` ∩ `section_of` (for "pencil_plane"
+// the plane B - cA replaces B), so a tangency along a line reads as the plane's rank-1
+// section (box_exits' exception) where the two quadrics show only a multiple crossing (two
+// parallel cylinders touching along a ruling). Route "plane_pair": the crossings of the two
+// sections together, certified when each is and no crossing of one may be one of the other
+// (disjoint enclosures: the curve is smooth there).
+certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                              const certify::AffineTopology& af, const Box& box) {
+  if (!af.certified() || !af.plane || !af.section_of) return exact_exits(a, b, box);
+  const core::QuadricMatrix plane(*af.plane), other(*af.section_of);
+  certify::BoxExits ex = exact_exits(plane, other, box);
+  if (!af.plane2 || !ex.certified) return ex;
+  certify::BoxExits ex2 = exact_exits(core::QuadricMatrix(*af.plane2), other, box);
+  if (!ex2.certified) return ex2;
+  for (const auto& p : ex.points)
+    for (const auto& q2 : ex2.points) {
+      if (p.axis != q2.axis || p.at_max != q2.at_max) continue;
+      double gap = 0;
+      for (size_t k = 0; k < 3; ++k)
+        gap = std::max(gap, std::fabs(p.approx[k] - q2.approx[k]));
+      if (!(gap > 2 * (p.radius + q2.radius))) {
+        certify::BoxExits out;
+        out.reason = "the sections of the two planes may cross each other on a face";
+        return out;
+      }
+    }
+  ex.points.insert(ex.points.end(), ex2.points.begin(), ex2.points.end());
+  return ex;
+}
+
 // Matches each end of each open piece with exactly one exact crossing (within tol) and each
 // crossing with exactly one end; sets the pieces' `exits`. Empty string on success, else why.
 std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& ex, double tol) {
@@ -338,7 +369,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
                 Box& box, bool automatic, const std::function<void(const Box&)>& retrace,
                 bool special_points_complete) {
   const certify::AffineTopology& af = out.affine;
-  out.box_exits = exact_exits(a, b, box);
+  out.box_exits = curve_exits(a, b, af, box);
   for (int nudge = 1; nudge <= 3 && automatic && !out.box_exits->certified; ++nudge) {
     Box wider = box;
     for (size_t k = 0; k < 3; ++k) {
@@ -347,7 +378,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
       wider.max[k] += h * 0.0253 * nudge * static_cast<double>(3 - k);
     }
     wider = dyadic_outward(wider);
-    certify::BoxExits ex = exact_exits(a, b, wider);
+    certify::BoxExits ex = curve_exits(a, b, af, wider);
     if (!ex.certified) continue;
     box = wider;
     retrace(box);
@@ -774,7 +805,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     if (local.box_exits && local.box) {
       // The reported box is the translated one moved back in double: its exact crossings are
       // recomputed on the original pair and matched again (the claim is about this box).
-      local.box_exits = exact_exits(a, b, *local.box);
+      local.box_exits = curve_exits(a, b, local.affine, *local.box);
       if (local.status == Status::Certified) {
         const std::string why =
             local.box_exits->certified
