@@ -21,7 +21,7 @@ const Morphology kTable[35] = {
   {10, "cubic_and_secant_line", "[22]", "twisted cubic and a line meeting it in two real points", 0,0,1,0,1,0, 1, false, false},
   {11, "cubic_and_disjoint_line", "[22]", "twisted cubic and a line meeting it in two complex points (two disjoint real components)", 0,0,1,0,1,0, 2, false, false},
   {12, "cubic_and_tangent_line", "[4]", "twisted cubic and a line tangent to it", 0,0,1,0,1,0, 1, false, false},
-  {13, "two_conics_crossing", "[(11)11]", "two real conics crossing in two real points (bounded)", 0,0,0,2,0,0, 1, true, true},
+  {13, "two_conics_crossing", "[(11)11]", "two real conics crossing in two real points (projectively bounded: some plane misses both; the affine reading may still be unbounded)", 0,0,0,2,0,0, 1, true, true},
   {14, "two_disjoint_conics", "[(11)11]", "two disjoint real conics (they meet in complex points)", 0,0,0,2,0,0, 2, true, true},
   {15, "two_points_imaginary_conics", "[(11)11]", "two imaginary conics meeting in two real points: two isolated points", 0,2,0,0,0,0, 2, true, true},
   {16, "empty_imaginary_conics", "[(11)11]", "two imaginary conics meeting in complex points: empty", 0,0,0,0,0,0, 0, true, true},

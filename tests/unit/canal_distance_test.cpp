@@ -330,3 +330,43 @@ TEST(CanalDistance, PlaneWithTheSquaredCriticalEquationIdenticallyZero) {
         EXPECT_NE(r.minimizers, "infinite") << ctx;
     }
 }
+
+TEST(CanalDistance, PlaneTouchingACanalIsContactNotUndecided) {
+  // The capsule (0,0,0)-(4,0,0), r = 1, against y = 1 + e: tangent along the whole segment at
+  // e = 0 (was undecided: "min phi not separated from 0"), apart by e > 0 (probed at 10^-10,
+  // 10^-20, 10^-30, 2^-100), cutting it for e < 0. A tilted plane touching only the end sphere
+  // at B: x + y = 4 + sqrt(2) is irrational, so x + 0 y = 5 (the cap at x = 5): one contact.
+  auto c = js(kCapsule);
+  for (const char* e : {"0", "1/10^10", "1/10^20", "1/10^30", "1/2^64/2^36"})
+    for (int sign : {1, -1}) {
+      const std::string plane = std::string("y = 1 ") + (sign > 0 ? "+ " : "- ") + e;
+      const auto r = certify::surface_distance(eq(plane), c, 20, false);
+      ASSERT_EQ(r.status, certify::Status::Certified) << plane << ": " << r.note;
+      if (sign < 0 || std::string(e) == "0") {
+        EXPECT_EQ(r.upper(), "0") << plane;
+        if (std::string(e) == "0") {
+          EXPECT_EQ(r.minimizers, "infinite") << plane;
+        }
+      } else {
+        EXPECT_GT(std::stod(r.lower()), 0) << plane; // apart: never contact
+        mpfr_t v;
+        mpfr_init2(v, 400);
+        if (std::string(e) == "1/2^64/2^36") {
+          mpfr_set_ui_2exp(v, 1, -100, MPFR_RNDN);
+        } else {
+          mpfr_set_ui(v, 10, MPFR_RNDN);
+          mpfr_pow_si(v, v, -std::stol(std::string(e).substr(5)), MPFR_RNDN);
+        }
+        EXPECT_TRUE(surfcert::testing::contains(r, v)) << plane << " [" << r.lower() << ", "
+                                                       << r.upper() << "]";
+        mpfr_clear(v);
+      }
+    }
+  const auto cap = certify::surface_distance(eq("x = 5"), c, 20, false);
+  ASSERT_EQ(cap.status, certify::Status::Certified) << cap.note;
+  EXPECT_EQ(cap.upper(), "0");
+  // The same contact with the surfaces swapped.
+  const auto sw = certify::surface_distance(c, eq("y = 1"), 20, false);
+  ASSERT_EQ(sw.status, certify::Status::Certified) << sw.note;
+  EXPECT_EQ(sw.upper(), "0");
+}

@@ -499,6 +499,57 @@ bool canal_radius_positive(const core::CanalSurface& c) {
   return core::eval_poly(c.radius, c.t0).sign() > 0 && !has_root_in(c.radius, c.t0, c.t1);
 }
 
+// The plane n.x + q33 = 0 (n = 2 q(i, 3)) against the spheres (C(t), r(t)): sphere t is
+// tangent to the plane iff g(t) = (n.C(t) + q33)^2 - |n|^2 r(t)^2 = 0 (exact, over Q; both
+// sides of the squared equation are >= 0 when the spine does not cross the plane). A root in
+// [t0, t1] means min phi <= 0: the plane touches or enters the canal solid, and a plane (not
+// bounded) then meets the solid's boundary, the canal surface.
+std::array<algebra::UPolyQ, 2> plane_side_and_radius(const core::QuadricMatrix& q,
+                                                     const core::CanalSurface& c) {
+  std::vector<Rational> side(1, q(3, 3));
+  for (size_t i = 0; i < 3; ++i) {
+    const auto& ci = c.spine[i];
+    if (side.size() < ci.size()) side.resize(ci.size());
+    for (size_t k = 0; k < ci.size(); ++k)
+      side[k] += Rational(2) * q(static_cast<int>(i), 3) * ci[k];
+  }
+  return {algebra::UPolyQ::from_coeffs(side), algebra::UPolyQ::from_coeffs(c.radius)};
+}
+
+algebra::UPolyQ plane_tangency(const core::QuadricMatrix& q, const core::CanalSurface& c) {
+  const auto [side, r] = plane_side_and_radius(q, c);
+  Rational nn;
+  for (int i = 0; i < 3; ++i)
+    nn += Rational(4) * q(i, 3) * q(i, 3);
+  return side * side - algebra::UPolyQ(nn) * r * r;
+}
+
+bool sphere_tangent_to_plane(const core::QuadricMatrix& q, const core::CanalSurface& c) {
+  const algebra::UPolyQ g = plane_tangency(q, c);
+  if (g.is_zero()) return true;
+  std::vector<Rational> co;
+  for (long k = 0; k <= g.degree(); ++k)
+    co.push_back(g.coeff(k));
+  return has_root_in(co, c.t0, c.t1);
+}
+
+// Every sphere tangent (g = 0 identically) and the spine moving across n: a continuum of
+// contact points; otherwise the contact set is not counted here.
+Minimizers plane_touch_minimizers(const core::QuadricMatrix& q, const core::CanalSurface& c) {
+  if (!plane_tangency(q, c).is_zero()) return Minimizers::undecided(1);
+  std::array<Rational, 3> n;
+  for (size_t i = 0; i < 3; ++i)
+    n[i] = Rational(2) * q(static_cast<int>(i), 3);
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t j = (i + 1) % 3, k = (i + 2) % 3;
+    const auto dj = algebra::UPolyQ::from_coeffs(derivative(c.spine[j]));
+    const auto dk = algebra::UPolyQ::from_coeffs(derivative(c.spine[k]));
+    if (!(algebra::UPolyQ(n[j]) * dk - algebra::UPolyQ(n[k]) * dj).is_zero())
+      return Minimizers::continuum(Minimizers::Proof::Exact);
+  }
+  return Minimizers::undecided(1);
+}
+
 DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::CanalSurface& c,
                                       long digits, bool quadric_first) {
   DistanceResult out;
@@ -851,6 +902,12 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
     out.distance = Enclosure::zero();
     out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
     out.note = "the ellipsoid has certified points inside and outside the canal solid: they meet";
+  } else if (plane && sphere_tangent_to_plane(q, c)) {
+    out.status = Status::Certified;
+    out.distance = Enclosure::zero();
+    out.minimizers = plane_touch_minimizers(q, c);
+    out.note = "a sphere of the family is tangent to the plane at an exact parameter: the "
+               "plane touches or enters the canal solid, and being unbounded meets its surface";
   } else {
     out.status = Status::Undecided;
     out.note = arf_sgn(u) < 0 ? "the quadric enters the canal solid; it may lie inside it"
