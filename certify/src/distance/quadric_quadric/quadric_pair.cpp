@@ -591,7 +591,8 @@ std::optional<std::array<Rational, 3>> common_ruling(const core::QuadricMatrix& 
 
 // A proven common point of the quadrics a, b and the plane n.x = 0 in the box X: the
 // Krawczyk operator K(X) = m - Y F(m) + (I - Y J(X)) (X - m), Y a float inverse of the
-// Jacobian at the midpoint m, lands inside X, so X holds a zero (Brouwer). Fails at a
+// Jacobian at the midpoint m, lands in the interior of X, so X holds a zero (Brouwer, with Y
+// nonsingular). Fails at a
 // tangency (J singular there); transversal crossings, however close to tangent, pass once X
 // is small against their separation. w receives m (display).
 bool common_point_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
@@ -663,7 +664,9 @@ bool common_point_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix
       }
       arb_addmul(K.v, c.v, r[j].v, prec);
     }
-    if (!arb_contains(X[i].v, K.v)) return false;
+    // In the interior: then Y (and every matrix of J(X)) is nonsingular (Rump), so the fixed
+    // point of x - Y F(x) that K(X) in X gives (Brouwer) is a zero of F.
+    if (!arb_contains_interior(X[i].v, K.v)) return false;
   }
   for (size_t i = 0; i < 3; ++i)
     w[i] = arf_get_d(arb_midref(m[i].v), ARF_RND_NEAR);
@@ -702,6 +705,10 @@ bool sections_meet(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
     for (const auto& bx : meet.boxes) {
       Ball X[3];
       algebra::box_balls(meet, bx, X[0].v, X[1].v, X[2].v, prec);
+      // Widened by 2^-bits: an exact coordinate (the plane's, say) is a ball of radius 0, whose
+      // interior is empty; any box holding a zero will do.
+      for (Ball& x : X)
+        arb_add_error_2exp_si(x.v, -bits);
       if (common_point_in_box(a, b, n, X, prec, w)) return true;
     }
   }
