@@ -270,8 +270,8 @@ Spawned spawn_batch(const std::string& input_path, const std::vector<std::string
   return sp;
 }
 
-// Waits for sp, adds its CPU time to r and reads its answers into r (ids below r's size).
-void collect_batch(const Spawned& sp, Run& r) {
+// Waits for sp and adds its CPU time and exit code to r.
+void wait_batch(const Spawned& sp, Run& r) {
   int st = 0;
   struct rusage ru {};
   wait4(sp.pid, &st, 0, &ru);
@@ -279,6 +279,10 @@ void collect_batch(const Spawned& sp, Run& r) {
              static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) * 1e-6;
   const int code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   r.exit_code = std::max(r.exit_code, code);
+}
+
+// Reads the answers of an ended process into r (ids below r's size) and removes its files.
+void read_batch(const Spawned& sp, Run& r) {
   std::ifstream in(sp.out_path);
   std::string l;
   while (std::getline(in, l)) {
@@ -290,13 +294,15 @@ void collect_batch(const Spawned& sp, Run& r) {
   std::remove(sp.err_path.c_str());
 }
 
+// The wall time is spawn to exit: the answers are read afterwards.
 Run run_batch(const std::string& input_path, const std::vector<std::string>& args, size_t lines) {
   Run r;
   r.answers.resize(lines);
   auto t0 = std::chrono::steady_clock::now();
   const Spawned sp = spawn_batch(input_path, args);
-  collect_batch(sp, r);
+  wait_batch(sp, r);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  read_batch(sp, r);
   return r;
 }
 
@@ -308,9 +314,11 @@ Run run_batch_pair(const std::string& path_a, const std::string& path_b, size_t 
   auto t0 = std::chrono::steady_clock::now();
   const Spawned a = spawn_batch(path_a, {"--threads", "1"});
   const Spawned b = spawn_batch(path_b, {"--threads", "1"});
-  collect_batch(a, r);
-  collect_batch(b, r);
+  wait_batch(a, r);
+  wait_batch(b, r);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  read_batch(a, r);
+  read_batch(b, r);
   return r;
 }
 
