@@ -128,11 +128,13 @@ TEST(SolidRelation, UnmodelledSolidsGiveNoCertifiedPositiveDistance) {
   const core::Surface unit = sphere({0, 0, 0}, 1);
   for (bool swap : {false, true}) {
     const core::Surface cyl(q("x^2 + y^2 = 4"));
+    // Now proven: the ball's centre lies inside the cylinder's convex solid and the surfaces
+    // are apart, so the ball is inside: solid distance 0 (never the surface distance 1).
     auto r = swap ? certify::surface_distance(unit, cyl, 15, true)
                   : certify::surface_distance(cyl, unit, 15, true);
-    EXPECT_EQ(r.status, certify::Status::Undecided) << r.note;
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
     EXPECT_EQ(r.lower(), "0");
-    EXPECT_GE(surfcert::testing::hi(r), 1.0);
+    EXPECT_EQ(r.upper(), "0");
     // Without solid: the surface distance 1, certified.
     r = certify::surface_distance(cyl, unit, 15, false);
     ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
@@ -162,4 +164,50 @@ TEST(SolidRelation, UnmodelledSolidsGiveNoCertifiedPositiveDistance) {
   const auto r = certify::surface_distance(quartic, sphere({0, 0, 0}, Rational(1, 2)), 15, true);
   EXPECT_NE(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.lower(), "0");
+}
+
+// An ellipsoid and an elliptic cylinder or paraboloid whose surfaces are apart: the side of
+// the ellipsoid's centre, exact, decides nested (solid distance 0) or disjoint (the surface
+// distance), probed at gaps e = 10^-10, 10^-30 and 2^-100 on both sides of the wall: the
+// unit sphere at (1 - e, 0, 0) inside x^2 + y^2 = 4 (surface gap e, solids nested) and at
+// (3 + e, 0, 0) outside it (gap e, solids apart by e); the sphere of radius 1/2 at
+// (0, 0, 3) inside z = x^2 + y^2 (nested), at (0, 0, -2) below it (apart by 3/2).
+TEST(SolidRelation, EllipsoidAgainstAConvexQuadricSolid) {
+  const core::Surface cyl(q("x^2 + y^2 = 4"));
+  for (const char* e : {"1/10^10", "1/10^30", "1/2^64/2^36"}) {
+    const core::Surface in(q(std::string("(x - 1 + ") + e + ")^2 + y^2 + z^2 = 1"));
+    const core::Surface out(q(std::string("(x - 3 - ") + e + ")^2 + y^2 + z^2 = 1"));
+    for (bool swap : {false, true}) {
+      auto r = swap ? certify::surface_distance(in, cyl, 20, true)
+                    : certify::surface_distance(cyl, in, 20, true);
+      ASSERT_EQ(r.status, certify::Status::Certified) << e << ": " << r.note;
+      EXPECT_EQ(r.upper(), "0") << e;
+      r = swap ? certify::surface_distance(out, cyl, 20, true)
+               : certify::surface_distance(cyl, out, 20, true);
+      if (r.status == certify::Status::Certified) {
+        EXPECT_GT(surfcert::testing::lo(r), 0) << e << ": solids apart, never 0";
+      } else {
+        EXPECT_EQ(r.status, certify::Status::Undecided) << e;
+      }
+    }
+  }
+  const core::Surface par(q("z = x^2 + y^2"));
+  const core::Surface up = sphere({0, 0, 3}, Rational(1, 2));
+  const core::Surface down = sphere({0, 0, -2}, Rational(1, 2));
+  for (bool swap : {false, true}) {
+    auto r = swap ? certify::surface_distance(up, par, 20, true)
+                  : certify::surface_distance(par, up, 20, true);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_EQ(r.upper(), "0");
+    r = swap ? certify::surface_distance(down, par, 20, true)
+             : certify::surface_distance(par, down, 20, true);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    EXPECT_EQ(r.lower(), "1.5");
+    EXPECT_EQ(r.upper(), "1.5");
+  }
+  // The same sphere inside the paraboloid written with the opposite sign (-z = -(x^2 + y^2)):
+  // the solid is the convex side either way.
+  const auto r = certify::surface_distance(core::Surface(q("-z = -x^2 - y^2")), up, 20, true);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.upper(), "0");
 }

@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/solid_relation.hpp"
 
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/certify/distance/convex_quadric.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -293,6 +294,46 @@ int solids_nested(const core::Surface& a, const core::Surface& b) {
   return 0;
 }
 
+namespace {
+
+// An ellipsoid E and an elliptic cylinder or paraboloid Q (solid: its convex side,
+// s q <= 0 with s the sign of the trace of Q's quadratic block), their surfaces known to be
+// disjoint: +1 when E's solid lies inside Q's, -1 when the solids are disjoint, 0 otherwise
+// (another pair of surfaces). Decided by the exact side of E's centre c: E's surface is
+// connected and misses Q's, so it lies wholly inside or wholly outside Q's solid. Inside: E's
+// solid (the convex hull of its surface) is inside the convex solid of Q; and c inside Q's
+// solid forces that (else the rays from c inside Q's unbounded solid would leave E through
+// points of E's surface inside Q). c outside: E's surface is outside, and Q's unbounded
+// connected solid cannot meet E's solid without crossing E's surface: disjoint solids, whose
+// distance is that of their boundaries.
+int ellipsoid_in_convex_quadric(const core::Surface& a, const core::Surface& b) {
+  const auto* qa = std::get_if<core::QuadricMatrix>(&a);
+  const auto* qb = std::get_if<core::QuadricMatrix>(&b);
+  if (qa == nullptr || qb == nullptr) return 0;
+  for (bool e_is_a : {true, false}) {
+    const core::QuadricMatrix& e = e_is_a ? *qa : *qb;
+    const core::QuadricMatrix& q = e_is_a ? *qb : *qa;
+    if (e.kind() != core::QuadricKind::Ellipsoid) continue;
+    const auto k = convex_kind(q);
+    if (!k || *k == ConvexQuadric::Kind::Ellipsoid) continue;
+    const auto ce = convex_quadric(e);
+    if (!ce) return 0;
+    const Rational trace = q(0, 0) + q(1, 1) + q(2, 2);
+    Rational v = q(3, 3);
+    for (int i = 0; i < 3; ++i) {
+      const Rational& ci = ce->c[static_cast<size_t>(i)];
+      v += Rational(2) * q(i, 3) * ci;
+      for (int j = 0; j < 3; ++j)
+        v += ci * q(i, j) * ce->c[static_cast<size_t>(j)];
+    }
+    const int side = v.sign() * trace.sign();
+    return side < 0 ? 1 : side > 0 ? -1 : 0;
+  }
+  return 0;
+}
+
+} // namespace
+
 void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::Surface& b) {
   r.solid = true;
   auto plane = [](const core::Surface& s) {
@@ -304,6 +345,26 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
       r.note += std::string(r.note.empty() ? "" : "; ") +
                 "a plane bounds no solid: the solid distance is the surface distance";
     return;
+  }
+  if (r.status == Status::Certified && r.distance && !r.distance->is_zero()) {
+    const int n = ellipsoid_in_convex_quadric(a, b);
+    if (n > 0) {
+      const std::string was = "[" + r.lower() + ", " + r.upper() + "]";
+      r.distance = Enclosure::zero();
+      r.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+      r.pairs.clear();
+      r.ties = Ties::None;
+      r.note = "solid distance: the ellipsoid lies inside the convex solid of the other quadric "
+               "(its centre inside, exactly; surface distance " +
+               was + ")";
+      return;
+    }
+    if (n < 0) {
+      r.note += std::string(r.note.empty() ? "" : "; ") +
+                "the solids are disjoint (the ellipsoid's centre lies outside the other's "
+                "convex solid, exactly): the solid distance is the surface distance";
+      return;
+    }
   }
   if (!is_closed_surface(a) || !is_closed_surface(b)) {
     // The solids of other surfaces are not modelled, so the surface distance is no answer to
