@@ -3,6 +3,7 @@
 
 #include "box_exits_double_line.hpp"
 
+#include "surfcert/certify/conic_pair.hpp"
 #include "surfcert/certify/enclosure.hpp"
 
 #include "surfcert/algebra/arb.hpp"
@@ -41,21 +42,7 @@ bool linear(const M3& m) {
   return m[0][0].is_zero() && m[0][1].is_zero() && m[1][1].is_zero();
 }
 
-// A conic in chart coordinates as c2 y^2 + c1(x) y + c0(x).
-struct InY {
-  Rational c2;
-  UPolyQ c1, c0;
-};
-
-InY in_y(const M3& c) {
-  InY r;
-  r.c2 = c[1][1];
-  r.c1 = UPolyQ::from_coeffs({Rational(2) * c[1][2], Rational(2) * c[0][1]});
-  r.c0 = UPolyQ::from_coeffs({c[2][2], Rational(2) * c[0][2], c[0][0]});
-  return r;
-}
-
-// One face in one chart: R(x) and the first subresultant s11(x) y + s10(x).
+// One face in one chart: R(x) and the first subresultant s11(x) y + s10(x) (conic_pair.hpp).
 struct FaceChart {
   std::array<V3, 3> t; ///< columns: (u, v, 1) = x t[0] + y t[1] + t[2]
   UPolyQ r;
@@ -65,38 +52,14 @@ struct FaceChart {
 
 enum class ChartOutcome { Ok, SharedComponent, Failed };
 
-// The charts tried, in order: shears of (u, v) and of (v, u) by small fixed rationals.
-std::vector<std::array<V3, 3>> charts() {
-  const std::pair<long, long> shears[] = {{0, 1}, {1, 3}, {-2, 5}, {3, 7}, {-5, 4}, {7, 11}};
-  std::vector<std::array<V3, 3>> out;
-  for (int swap = 0; swap < 2; ++swap)
-    for (const auto& [n, d] : shears) {
-      const Rational s(n, d);
-      std::array<V3, 3> t;
-      t[0] = swap ? V3{Rational(0), Rational(1), Rational(0)}
-                  : V3{Rational(1), Rational(0), Rational(0)};
-      t[1] = swap ? V3{Rational(1), s, Rational(0)} : V3{s, Rational(1), Rational(0)};
-      t[2] = V3{Rational(0), Rational(0), Rational(1)};
-      out.push_back(t);
-    }
-  return out;
-}
-
+// The first chart (conic_charts()) where every real root of R is simple.
 ChartOutcome face_chart(const M3& ca, const M3& cb, FaceChart& out) {
-  static const std::vector<std::array<V3, 3>> all = charts();
-  for (size_t n = 0; n < all.size(); ++n) {
-    const auto& t = all[n];
-    // The first chart is the identity: the forms as they are (T^T C T == C, no arithmetic).
-    InY a = in_y(n == 0 ? ca : algebra::restrict_form(ca, t));
-    InY b = in_y(n == 0 ? cb : algebra::restrict_form(cb, t));
-    if (a.c2.is_zero()) std::swap(a, b);
-    if (a.c2.is_zero()) continue; // (0 : 1 : 0) on both conics: another chart
-    const UPolyQ A2(a.c2), B2(b.c2);
-    const UPolyQ x = A2 * b.c0 - a.c0 * B2;
-    UPolyQ r = x * x - (A2 * b.c1 - a.c1 * B2) * (a.c1 * b.c0 - a.c0 * b.c1);
+  for (size_t n = 0; n < conic_charts().size(); ++n) {
+    const auto cr = conic_resultant(ca, cb, n);
+    if (!cr) continue;
     // With a2 != 0 constant, r == 0 exactly when the conics share a component.
-    if (r.is_zero()) return ChartOutcome::SharedComponent;
-    UPolyZ rz = r.primitive_integer();
+    if (cr->r.is_zero()) return ChartOutcome::SharedComponent;
+    UPolyZ rz = cr->r.primitive_integer();
     if (rz.degree() >= 1 && !fmpz_poly_is_squarefree(rz.raw())) {
       // Multiple non-real roots are harmless (complex points, e.g. of a double component
       // that misses the face); a multiple real root is not read: another chart.
@@ -105,7 +68,7 @@ ChartOutcome face_chart(const M3& ca, const M3& cb, FaceChart& out) {
       if (algebra::has_real_root(g)) continue;
       fmpz_poly_div(rz.raw_mut(), rz.raw(), g.raw());
     }
-    out = FaceChart{t, r, rz, B2 * a.c1 - A2 * b.c1, B2 * a.c0 - A2 * b.c0};
+    out = FaceChart{cr->t, cr->r, rz, cr->s11, cr->s10};
     return ChartOutcome::Ok;
   }
   return ChartOutcome::Failed;

@@ -393,3 +393,44 @@ TEST(CylinderPair, CoaxialCylindersOfRevolution) {
     EXPECT_NEAR(std::hypot(p[0][0] - p[1][0], p[0][1] - p[1][1], p[0][2] - p[1][2]), 1, 1e-9);
   }
 }
+
+TEST(CylinderPair, SectionsTangentAtAnIrrationalPoint) {
+  // The circle x^2 + (y - 1)^2 = 16/3 touches the ellipse x^2/4 + y^2 = 1 at (+-4 sqrt(2)/3,
+  // -1/3) (substituting x^2 = 4 - 4 y^2 leaves -3 (y + 1/3)^2): as cylinders along z they
+  // touch along two rulings (no rational point, no transversal crossing: was undecided). With
+  // R^2 = 16/3 - e they cross (0); with 16/3 + e the circle holds the ellipse, and the distance
+  // is sqrt(16/3 + e) - sqrt(16/3) (MPFR), probed at e = 10^-10, 10^-30, 2^-100; and in a
+  // moved frame.
+  const auto mv = motion(3, 1, -2, 1, {Rational(1, 2), Rational(5), Rational(-7, 3)});
+  for (const Gap& g : kGaps) {
+    for (int side : {-1, 1}) {
+      if (g.neg_pow10 < 0 && side > 0) continue;
+      const std::string r2 = std::string("16/3") + (side < 0 ? " - " : " + ") +
+                             (*g.term ? g.term : "0");
+      const auto A = q("x^2/4 + y^2 = 1"), B = q("x^2 + (y - 1)^2 = " + r2);
+      for (bool moved : {false, true}) {
+        const auto a = moved ? A.congruent(mv) : A, b = moved ? B.congruent(mv) : B;
+        const auto r = dist(a, b, 20);
+        const std::string what = r2 + (moved ? " moved" : "");
+        ASSERT_EQ(r.status, certify::Status::Certified) << what << ": " << r.note;
+        mpfr_t e, d;
+        mpfr_inits2(600, e, d, static_cast<mpfr_ptr>(nullptr));
+        if (side < 0) {
+          mpfr_set_zero(d, 1);
+        } else {
+          set_gap(e, g);
+          mpfr_set_ui(d, 16, MPFR_RNDN);
+          mpfr_div_ui(d, d, 3, MPFR_RNDN);
+          mpfr_add(e, e, d, MPFR_RNDN);
+          mpfr_sqrt(e, e, MPFR_RNDN);
+          mpfr_sqrt(d, d, MPFR_RNDN);
+          mpfr_sub(d, e, d, MPFR_RNDN);
+          EXPECT_GT(lo(r), 0) << what;
+        }
+        EXPECT_TRUE(surfcert::testing::contains(r, d))
+            << what << ": [" << r.lower() << ", " << r.upper() << "]";
+        mpfr_clears(e, d, static_cast<mpfr_ptr>(nullptr));
+      }
+    }
+  }
+}

@@ -1,6 +1,9 @@
 #include "surfcert/certify/distance/quadric_pair.hpp"
 
+#include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/algebra/plane_chart.hpp"
 #include "surfcert/algebra/solution_cover.hpp"
+#include "surfcert/certify/conic_pair.hpp"
 #include "surfcert/certify/distance/at_infinity.hpp"
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/contact_sampling.hpp"
@@ -788,13 +791,26 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
   // Contact: the pencil of two parallel cylinders is degenerate (their rulings meet in a
   // common singular point at infinity), so the projective classification says nothing and it
   // is decided here. No real common point of the two sections (an exact solution cover with no
-  // box): disjoint. Otherwise a sign change proves the crossing, or the answer stays open.
+  // box, or the sections' resultant read exactly): disjoint. Otherwise a sign change, a
+  // rational common point, a Krawczyk box or the resultant proves contact; or it stays open.
   {
     algebra::SolutionCover meet = algebra::cover_real_solutions(
         {algebra::quadric_poly(a.matrix()), algebra::quadric_poly(b.matrix()), plane},
         Rational(1, 16));
     if (!meet.ok) return std::nullopt; // a common component of the sections
+    // The sections as plane conics (chart of the plane d.x = 0): whether they have a real
+    // common point, decided exactly (conic_pair.hpp) unless they share a component or a sign
+    // stays open. No common point: the cover's boxes are phantoms, and the distance follows.
+    std::optional<bool> exact;
     if (!meet.boxes.empty()) {
+      core::Mat4 pm;
+      for (size_t i = 0; i < 3; ++i)
+        pm[i][3] = pm[3][i] = (*d)[i] / Rational(2);
+      if (const auto chart = algebra::plane_chart(pm))
+        exact = conics_meet(algebra::restrict_form(a.matrix(), *chart),
+                            algebra::restrict_form(b.matrix(), *chart));
+    }
+    if (!meet.boxes.empty() && !(exact && !*exact)) {
       DistanceResult out;
       out.method = Method::ParallelSections;
       std::array<double, 3> w{};
@@ -814,16 +830,19 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
         out.note = "two cylinders with a common ruling direction meet (a connected piece of one "
                    "has certified points on both sides of the other; the pair is an "
                    "approximate common point)";
-      } else if (sections_meet(a, b, *d, meet, w)) {
+      } else if (const bool located = sections_meet(a, b, *d, meet, w);
+                 located || (exact && *exact)) {
         // A common point of the sections: the common ruling through it is a line of
         // common points.
+        if (!located) w = near.front(); // a box of the cover (display only)
         out.status = Status::Certified;
         out.distance = Enclosure::zero();
         out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
         out.pairs.push_back({w, w});
         out.note = "two cylinders with a common ruling direction meet along a common ruling (a "
-                   "common point of their sections proven by exact substitution or a Krawczyk "
-                   "test; the pair is an approximate common point)";
+                   "common point of their sections proven exactly: a rational point, a Krawczyk "
+                   "test, or a real root of the sections' resultant; the pair is an approximate "
+                   "common point)";
       } else {
         out.status = Status::Undecided;
         out.note = "two cylinders with a common ruling direction whose sections may meet or "
