@@ -848,8 +848,8 @@ std::optional<std::array<std::array<Rational, 4>, 2>> rational_plane_pair(const 
       const Rational p = m[j][j] / det, q = -m[i][j] / det, r = m[i][i] / det; // S^-1
       for (size_t a = 0; a < 4; ++a)
         for (size_t b = 0; b < 4; ++b) {
-          const Rational v = m[a][i] * (p * m[b][i] + q * m[b][j]) +
-                             m[a][j] * (q * m[b][i] + r * m[b][j]);
+          const Rational v =
+              m[a][i] * (p * m[b][i] + q * m[b][j]) + m[a][j] * (q * m[b][i] + r * m[b][j]);
           if (v != m[a][b]) return std::nullopt; // rank > 2
         }
       const Rational disc = q * q - p * r;

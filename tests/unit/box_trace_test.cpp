@@ -53,14 +53,14 @@ const Want kPairs[] = {
     {"z = x^2 - y^2", "x^2 + y^2 = 1", 1, 0, 0},               // saddle on a cylinder
     {"x*y = 1", "x^2 + z^2 = 4", 0, 2, 0},                     // crunode at infinity
     // Degenerate pencils with a plane pair (were 'not traced'): four lines each.
-    {"x*y = 0", "x^2 + y^2 = z^2", 0, 4, 0},                   // through the cone's apex
-    {"x^2 = 1/4", "x^2 + y^2 = 1", 0, 4, 0},                   // y = +-sqrt(3)/2
-    {"x*y = 0", "x^2 + y^2 = 1", 0, 4, 0},                     // x, y = +-1
-    {"(x - 1/2)*(y + 1/3) = 0", "x^2 + y^2 = 1", 0, 4, 0},     // planes off the axis
+    {"x*y = 0", "x^2 + y^2 = z^2", 0, 4, 0},               // through the cone's apex
+    {"x^2 = 1/4", "x^2 + y^2 = 1", 0, 4, 0},               // y = +-sqrt(3)/2
+    {"x*y = 0", "x^2 + y^2 = 1", 0, 4, 0},                 // x, y = +-1
+    {"(x - 1/2)*(y + 1/3) = 0", "x^2 + y^2 = 1", 0, 4, 0}, // planes off the axis
     // Tangency along a ruling (a double line: every face crossing is a multiple root of the
     // pair's face conics; certified from the plane's rank-1 section, was undecided).
-    {"x^2 = 1", "x^2 + y^2 = 1", 0, 2, 0},                     // two tangent planes
-    {"x^2 + y^2 = 1", "(x - 2)^2 + y^2 = 1", 0, 1, 0},         // touching parallel cylinders
+    {"x^2 = 1", "x^2 + y^2 = 1", 0, 2, 0},             // two tangent planes
+    {"x^2 + y^2 = 1", "(x - 2)^2 + y^2 = 1", 0, 1, 0}, // touching parallel cylinders
 };
 
 // |f(p)| / |grad f(p)|, with f(p) exact (the double point read exactly): the first-order

@@ -357,8 +357,8 @@ TEST(CanalDistance, PlaneTouchingACanalIsContactNotUndecided) {
           mpfr_set_ui(v, 10, MPFR_RNDN);
           mpfr_pow_si(v, v, -std::stol(std::string(e).substr(5)), MPFR_RNDN);
         }
-        EXPECT_TRUE(surfcert::testing::contains(r, v)) << plane << " [" << r.lower() << ", "
-                                                       << r.upper() << "]";
+        EXPECT_TRUE(surfcert::testing::contains(r, v))
+            << plane << " [" << r.lower() << ", " << r.upper() << "]";
         mpfr_clear(v);
       }
     }

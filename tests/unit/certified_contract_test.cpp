@@ -81,8 +81,8 @@ TEST(CertifiedContract, OnlyACertifiedAnswerCarriesAProvenCount) {
   // infimum is 0 at infinity (not attained). The answer is undecided [0, c] and said
   // "minimizers 1" (proof "interval"), a false proven field.
   for (const char* c : {"1", "1/10^10", "1/10^30", "1/2^64"}) {
-    const auto r = certify::surface_distance(q("z = x^2"), q(std::string("z = x^2 + ") + c), 15,
-                                             false);
+    const auto r =
+        certify::surface_distance(q("z = x^2"), q(std::string("z = x^2 + ") + c), 15, false);
     ASSERT_NE(r.status, certify::Status::Certified) << c << ": " << r.note;
     EXPECT_FALSE(r.minimizers.is_count()) << c << ": " << r.minimizers;
     EXPECT_EQ(r.minimizers.proof(), certify::Minimizers::Proof::None) << c;

@@ -301,11 +301,8 @@ void set_gap(mpfr_t e, const Gap& g) {
   }
 }
 
-const Gap kGaps[] = {{"", -1},
-                     {"1/10^10", 10},
-                     {"1/10^20", 20},
-                     {"1/10^30", 30},
-                     {"1/2^64/2^36", 0}};
+const Gap kGaps[] = {
+    {"", -1}, {"1/10^10", 10}, {"1/10^20", 20}, {"1/10^30", 30}, {"1/2^64/2^36", 0}};
 
 } // namespace
 
@@ -319,7 +316,8 @@ TEST(CylinderPair, ParallelSectionsThatTouchOrBarelyOverlap) {
   for (const Gap& g : kGaps) {
     for (int side : {-1, 1}) {
       if (g.neg_pow10 < 0 && side > 0) continue;
-      const std::string c = std::string("(2") + (side < 0 ? "-" : "+") + (*g.term ? g.term : "0") + ")";
+      const std::string c =
+          std::string("(2") + (side < 0 ? "-" : "+") + (*g.term ? g.term : "0") + ")";
       const auto A = q("x^2 + y^2 = 1"), B = q("(x - " + c + ")^2 + y^2 = 1");
       for (bool moved : {false, true}) {
         const auto a = moved ? A.congruent(mv) : A, b = moved ? B.congruent(mv) : B;
@@ -332,8 +330,8 @@ TEST(CylinderPair, ParallelSectionsThatTouchOrBarelyOverlap) {
           mpfr_init2(e, 400);
           set_gap(e, g);
           if (side < 0) mpfr_set_zero(e, 1); // overlapping or touching: distance 0
-          EXPECT_TRUE(surfcert::testing::contains(r, e)) << what << ": [" << r.lower() << ", "
-                                                         << r.upper() << "]";
+          EXPECT_TRUE(surfcert::testing::contains(r, e))
+              << what << ": [" << r.lower() << ", " << r.upper() << "]";
           if (side > 0) {
             EXPECT_GT(lo(r), 0) << what; // apart: never 0
           }
@@ -405,8 +403,8 @@ TEST(CylinderPair, SectionsTangentAtAnIrrationalPoint) {
   for (const Gap& g : kGaps) {
     for (int side : {-1, 1}) {
       if (g.neg_pow10 < 0 && side > 0) continue;
-      const std::string r2 = std::string("16/3") + (side < 0 ? " - " : " + ") +
-                             (*g.term ? g.term : "0");
+      const std::string r2 =
+          std::string("16/3") + (side < 0 ? " - " : " + ") + (*g.term ? g.term : "0");
       const auto A = q("x^2/4 + y^2 = 1"), B = q("x^2 + (y - 1)^2 = " + r2);
       for (bool moved : {false, true}) {
         const auto a = moved ? A.congruent(mv) : A, b = moved ? B.congruent(mv) : B;

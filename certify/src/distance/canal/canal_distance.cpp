@@ -504,8 +504,8 @@ bool canal_radius_positive(const core::CanalSurface& c) {
 // sides of the squared equation are >= 0 when the spine does not cross the plane). A root in
 // [t0, t1] means min phi <= 0: the plane touches or enters the canal solid, and a plane (not
 // bounded) then meets the solid's boundary, the canal surface.
-std::array<algebra::UPolyQ, 2> plane_side_and_radius(const core::QuadricMatrix& q,
-                                                     const core::CanalSurface& c) {
+// n.C(t) + q33, n = 2 q(i, 3): |n| times the signed distance of the spine from the plane.
+std::vector<Rational> plane_side(const core::QuadricMatrix& q, const core::CanalSurface& c) {
   std::vector<Rational> side(1, q(3, 3));
   for (size_t i = 0; i < 3; ++i) {
     const auto& ci = c.spine[i];
@@ -513,11 +513,27 @@ std::array<algebra::UPolyQ, 2> plane_side_and_radius(const core::QuadricMatrix& 
     for (size_t k = 0; k < ci.size(); ++k)
       side[k] += Rational(2) * q(static_cast<int>(i), 3) * ci[k];
   }
-  return {algebra::UPolyQ::from_coeffs(side), algebra::UPolyQ::from_coeffs(c.radius)};
+  return side;
+}
+
+// n x C'(t) not identically 0: the spine moves across the plane's normal.
+bool spine_moves_across(const core::QuadricMatrix& q, const core::CanalSurface& c) {
+  std::array<algebra::UPolyQ, 3> dc; // C'
+  for (size_t i = 0; i < 3; ++i)
+    dc[i] = algebra::UPolyQ::from_coeffs(derivative(c.spine[i]));
+  std::array<Rational, 3> n;
+  for (size_t i = 0; i < 3; ++i)
+    n[i] = Rational(2) * q(static_cast<int>(i), 3);
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t j = (i + 1) % 3, k = (i + 2) % 3;
+    if (!(algebra::UPolyQ(n[j]) * dc[k] - algebra::UPolyQ(n[k]) * dc[j]).is_zero()) return true;
+  }
+  return false;
 }
 
 algebra::UPolyQ plane_tangency(const core::QuadricMatrix& q, const core::CanalSurface& c) {
-  const auto [side, r] = plane_side_and_radius(q, c);
+  const algebra::UPolyQ side = algebra::UPolyQ::from_coeffs(plane_side(q, c)),
+                        r = algebra::UPolyQ::from_coeffs(c.radius);
   Rational nn;
   for (int i = 0; i < 3; ++i)
     nn += Rational(4) * q(i, 3) * q(i, 3);
@@ -536,17 +552,8 @@ bool sphere_tangent_to_plane(const core::QuadricMatrix& q, const core::CanalSurf
 // Every sphere tangent (g = 0 identically) and the spine moving across n: a continuum of
 // contact points; otherwise the contact set is not counted here.
 Minimizers plane_touch_minimizers(const core::QuadricMatrix& q, const core::CanalSurface& c) {
-  if (!plane_tangency(q, c).is_zero()) return Minimizers::undecided(1);
-  std::array<Rational, 3> n;
-  for (size_t i = 0; i < 3; ++i)
-    n[i] = Rational(2) * q(static_cast<int>(i), 3);
-  for (size_t i = 0; i < 3; ++i) {
-    const size_t j = (i + 1) % 3, k = (i + 2) % 3;
-    const auto dj = algebra::UPolyQ::from_coeffs(derivative(c.spine[j]));
-    const auto dk = algebra::UPolyQ::from_coeffs(derivative(c.spine[k]));
-    if (!(algebra::UPolyQ(n[j]) * dk - algebra::UPolyQ(n[k]) * dj).is_zero())
-      return Minimizers::continuum(Minimizers::Proof::Exact);
-  }
+  if (plane_tangency(q, c).is_zero() && spine_moves_across(q, c))
+    return Minimizers::continuum(Minimizers::Proof::Exact);
   return Minimizers::undecided(1);
 }
 
@@ -592,13 +599,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
         nc[k] += ni * d[k];
     }
     // The spine crossing the plane (n.C(t) = delta inside the interval): they meet.
-    std::vector<Rational> side(1, q(3, 3));
-    for (size_t i = 0; i < 3; ++i) {
-      const auto& ci = c.spine[i];
-      if (side.size() < ci.size()) side.resize(ci.size());
-      for (size_t k = 0; k < ci.size(); ++k)
-        side[k] += Rational(2) * q(static_cast<int>(i), 3) * ci[k];
-    }
+    const std::vector<Rational> side = plane_side(q, c);
     if (has_root_in(side, c.t0, c.t1)) {
       out.status = Status::Certified;
       out.distance = Enclosure::zero();
@@ -631,18 +632,7 @@ DistanceResult quadric_canal_distance(const core::QuadricMatrix& q, const core::
       if (sigma != 0 && s_side * sigma < 0) {
         add_roots(b);
       } else {
-        std::array<algebra::UPolyQ, 3> dc; // C'
-        for (size_t i = 0; i < 3; ++i)
-          dc[i] = algebra::UPolyQ::from_coeffs(derivative(c.spine[i]));
-        std::array<Rational, 3> n;
-        for (size_t i = 0; i < 3; ++i)
-          n[i] = Rational(2) * q(static_cast<int>(i), 3);
-        bool across = false; // n x C'(t) not identically 0
-        for (size_t i = 0; i < 3 && !across; ++i) {
-          const size_t j = (i + 1) % 3, k = (i + 2) % 3;
-          across = !(algebra::UPolyQ(n[j]) * dc[k] - algebra::UPolyQ(n[k]) * dc[j]).is_zero();
-        }
-        if (across)
+        if (spine_moves_across(q, c))
           out.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
         else
           out.count_unproven = true;

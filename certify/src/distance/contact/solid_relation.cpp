@@ -346,17 +346,21 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
                 "a plane bounds no solid: the solid distance is the surface distance";
     return;
   }
+  // One solid inside the other: solid distance 0, a continuum of common points.
+  auto nested = [&r](const std::string& why, Minimizers::Proof proof) {
+    const std::string was = "[" + r.lower() + ", " + r.upper() + "]";
+    r.distance = Enclosure::zero();
+    r.minimizers = Minimizers::continuum(proof);
+    r.pairs.clear();
+    r.ties = Ties::None;
+    r.note = "solid distance: " + why + " (surface distance " + was + ")";
+  };
   if (r.status == Status::Certified && r.distance && !r.distance->is_zero()) {
     const int n = ellipsoid_in_convex_quadric(a, b);
     if (n > 0) {
-      const std::string was = "[" + r.lower() + ", " + r.upper() + "]";
-      r.distance = Enclosure::zero();
-      r.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
-      r.pairs.clear();
-      r.ties = Ties::None;
-      r.note = "solid distance: the ellipsoid lies inside the convex solid of the other quadric "
-               "(its centre inside, exactly; surface distance " +
-               was + ")";
+      nested("the ellipsoid lies inside the convex solid of the other quadric (its centre "
+             "inside, exactly)",
+             Minimizers::Proof::Exact);
       return;
     }
     if (n < 0) {
@@ -386,12 +390,7 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
     return; // meeting surfaces: 0 either way
   const int n = solids_nested(a, b);
   if (n > 0) {
-    const std::string was = "[" + r.lower() + ", " + r.upper() + "]";
-    r.distance = Enclosure::zero();
-    r.minimizers = Minimizers::continuum(Minimizers::Proof::Interval);
-    r.pairs.clear();
-    r.ties = Ties::None;
-    r.note = "solid distance: one solid contains the other (surface distance " + was + ")";
+    nested("one solid contains the other", Minimizers::Proof::Interval);
   } else if (n < 0) {
     r.note += std::string(r.note.empty() ? "" : "; ") +
               "the solids are disjoint: the solid distance is the surface distance";

@@ -421,10 +421,11 @@ std::optional<DistanceResult> coaxial_cylinders(const core::QuadricMatrix& ma,
     ad[i] = ax.direction[i].to_double_approx();
     p0[i] = ax.point[i].to_double_approx();
   }
-  std::array<double, 3> u = std::fabs(ad[0]) <= std::fabs(ad[1]) && std::fabs(ad[0]) <= std::fabs(ad[2])
-                                ? std::array<double, 3>{0, ad[2], -ad[1]}
-                            : std::fabs(ad[1]) <= std::fabs(ad[2]) ? std::array<double, 3>{ad[2], 0, -ad[0]}
-                                                                   : std::array<double, 3>{ad[1], -ad[0], 0};
+  std::array<double, 3> u =
+      std::fabs(ad[0]) <= std::fabs(ad[1]) && std::fabs(ad[0]) <= std::fabs(ad[2])
+          ? std::array<double, 3>{0, ad[2], -ad[1]}
+      : std::fabs(ad[1]) <= std::fabs(ad[2]) ? std::array<double, 3>{ad[2], 0, -ad[0]}
+                                             : std::array<double, 3>{ad[1], -ad[0], 0};
   const double un = std::hypot(u[0], u[1], u[2]);
   const double ha = std::sqrt(ra->to_double_approx()), hb = std::sqrt(rb->to_double_approx());
   std::array<std::array<double, 3>, 2> pr{};
@@ -703,7 +704,8 @@ bool sections_meet(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
     }
   }
   for (long bits = 20; bits <= 640 && !meet.boxes.empty(); bits *= 2) {
-    algebra::refine_cover(meet, Rational::exact_from_double(std::ldexp(1.0, -static_cast<int>(bits))));
+    algebra::refine_cover(meet,
+                          Rational::exact_from_double(std::ldexp(1.0, -static_cast<int>(bits))));
     const long prec = 2 * bits + 64;
     for (const auto& bx : meet.boxes) {
       Ball X[3];
@@ -822,27 +824,23 @@ std::optional<DistanceResult> parallel_cylinders(const core::QuadricMatrix& a,
                         arf_get_d(arb_midref(x[1].v), ARF_RND_NEAR),
                         arf_get_d(arb_midref(x[2].v), ARF_RND_NEAR)});
       }
-      if (meet_by_sign_change(a, b, w, near)) {
+      // Contact: the common ruling through a common point of the sections is a line of
+      // common points (the pair shown is an approximate common point).
+      auto contact = [&out, &w](const char* how) {
         out.status = Status::Certified;
         out.distance = Enclosure::zero();
         out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
         out.pairs.push_back({w, w});
-        out.note = "two cylinders with a common ruling direction meet (a connected piece of one "
-                   "has certified points on both sides of the other; the pair is an "
-                   "approximate common point)";
+        out.note = std::string("two cylinders with a common ruling direction meet (") + how +
+                   "; the pair is an approximate common point)";
+      };
+      if (meet_by_sign_change(a, b, w, near)) {
+        contact("a connected piece of one has certified points on both sides of the other");
       } else if (const bool located = sections_meet(a, b, *d, meet, w);
                  located || (exact && *exact)) {
-        // A common point of the sections: the common ruling through it is a line of
-        // common points.
         if (!located) w = near.front(); // a box of the cover (display only)
-        out.status = Status::Certified;
-        out.distance = Enclosure::zero();
-        out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
-        out.pairs.push_back({w, w});
-        out.note = "two cylinders with a common ruling direction meet along a common ruling (a "
-                   "common point of their sections proven exactly: a rational point, a Krawczyk "
-                   "test, or a real root of the sections' resultant; the pair is an approximate "
-                   "common point)";
+        contact("along a common ruling: a common point of their sections proven exactly, by a "
+                "rational point, a Krawczyk test or a real root of the sections' resultant");
       } else {
         out.status = Status::Undecided;
         out.note = "two cylinders with a common ruling direction whose sections may meet or "
