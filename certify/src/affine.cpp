@@ -688,6 +688,82 @@ std::vector<PointAtInfinity> cubic_points_at_infinity(const CubicAndLine& cl) {
 // ---------------------------------------------------------------------------------------
 // Plane route: one quadric is a plane (its matrix has a zero quadratic block).
 
+// The real directions at infinity of the plane section with form cm in the chart X = col[0]
+// s + col[1] t + col[2] (plane_chart): the real roots of its quadratic part a s^2 + 2 b s t +
+// d t^2, as 3D vectors, each with the intersection multiplicity of the section's conic with
+// the line at infinity of its plane (1 for two distinct directions, 2 for a double one). They
+// are real points at infinity of the curve whether or not the affine section is real (x = 2
+// against x^2 + y^2 = 1: two conjugate lines meeting at (0 : 0 : 1)). None when the quadratic
+// part is definite; the direction of the line when the quadratic part is zero.
+std::vector<PointAtInfinity> section_directions(const M3& cm,
+                                                const std::array<std::array<Rational, 4>, 3>& col) {
+  std::vector<PointAtInfinity> pts;
+  const Rational &a = cm[0][0], &b = cm[0][1], &d = cm[1][1];
+  auto add_direction = [&](const QuadraticNumber& s, const QuadraticNumber& t, int mult) {
+    PointAtInfinity pt;
+    pt.multiplicity = mult;
+    pt.rational = s.b.is_zero() && t.b.is_zero();
+    std::array<QuadraticNumber, 3> dir;
+    for (size_t i = 0; i < 3; ++i) {
+      dir[i] = {s.a * col[0][i] + t.a * col[1][i], s.b * col[0][i] + t.b * col[1][i], s.d};
+      if (dir[i].b.is_zero()) dir[i].d = Integer(1);
+    }
+    // Normalise: divide by the first nonzero coordinate's rational part when rational.
+    std::array<double, 3> ap{};
+    if (pt.rational) {
+      V3 r{dir[0].a, dir[1].a, dir[2].a};
+      r = normalise(r);
+      for (size_t i = 0; i < 3; ++i) {
+        pt.direction[i] = r[i].to_string();
+        ap[i] = r[i].to_double_approx();
+      }
+    } else {
+      for (size_t i = 0; i < 3; ++i) {
+        pt.direction[i] = dir[i].normalized().to_string();
+        ap[i] = dir[i].to_double_approx();
+      }
+    }
+    pt.approx = unit_approx(ap);
+    pts.push_back(pt);
+  };
+  const Integer one(1);
+  if (a.is_zero() && b.is_zero() && d.is_zero()) {
+    // A line 2 e s + 2 f t + g = 0 (or nothing): its direction (-f, e).
+    const Rational &e = cm[0][2], &f = cm[1][2];
+    if (!(e.is_zero() && f.is_zero()))
+      add_direction({-f, Rational(0), one}, {e, Rational(0), one}, 1);
+    return pts;
+  }
+  if (a.is_zero()) {
+    // t (2 b s + d t) = 0: t = 0 (s = 1) and, if b != 0, (s, t) = (-d, 2 b).
+    if (b.is_zero()) { // d t^2 = 0: the double direction t = 0
+      add_direction({Rational(1), Rational(0), one}, {Rational(0), Rational(0), one}, 2);
+      return pts;
+    }
+    add_direction({Rational(1), Rational(0), one}, {Rational(0), Rational(0), one}, 1);
+    add_direction({-d, Rational(0), one}, {Rational(2) * b, Rational(0), one}, 1);
+    return pts;
+  }
+  const Rational disc = b * b - a * d;
+  if (disc.sign() < 0) return pts;
+  if (disc.is_zero()) {
+    add_direction({-b, Rational(0), one}, {a, Rational(0), one}, 2);
+    return pts;
+  }
+  Integer dn = disc.num() * disc.den();
+  Integer root;
+  fmpz_sqrt(root.raw_mut(), dn.raw());
+  for (int sg : {1, -1}) {
+    QuadraticNumber s;
+    if (root * root == dn)
+      s = {-b + Rational(sg) * Rational(root, disc.den()), Rational(0), one};
+    else
+      s = {-b, Rational(sg) / Rational(disc.den()), dn};
+    add_direction(s, {a, Rational(0), one}, 1);
+  }
+  return pts;
+}
+
 AffineTopology plane_route(const core::QuadricMatrix& plane, const core::QuadricMatrix& quad) {
   AffineTopology out;
   out.route = "plane_section";
@@ -715,64 +791,9 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
                  &g = cm[2][2];
   const Rational delta = a * d - b * b;
   const Rational big = a * (d * g - f * f) - b * (b * g - f * e) + e * (b * f - d * e);
-  // Directions at infinity of the section: a s^2 + 2 b s t + d t^2 = 0, as 3D vectors.
-  auto add_direction = [&](const QuadraticNumber& s, const QuadraticNumber& t, int mult) {
-    PointAtInfinity pt;
-    pt.multiplicity = mult;
-    pt.rational = s.b.is_zero() && t.b.is_zero();
-    std::array<QuadraticNumber, 3> dir;
-    for (size_t i = 0; i < 3; ++i) {
-      dir[i] = {s.a * col[0][i] + t.a * col[1][i], s.b * col[0][i] + t.b * col[1][i], s.d};
-      if (dir[i].b.is_zero()) dir[i].d = Integer(1);
-    }
-    // Normalise: divide by the first nonzero coordinate's rational part when rational.
-    std::array<double, 3> ap{};
-    if (pt.rational) {
-      V3 r{dir[0].a, dir[1].a, dir[2].a};
-      r = normalise(r);
-      for (size_t i = 0; i < 3; ++i) {
-        pt.direction[i] = r[i].to_string();
-        ap[i] = r[i].to_double_approx();
-      }
-    } else {
-      for (size_t i = 0; i < 3; ++i) {
-        pt.direction[i] = dir[i].normalized().to_string();
-        ap[i] = dir[i].to_double_approx();
-      }
-    }
-    pt.approx = unit_approx(ap);
-    out.points_at_infinity.push_back(pt);
-  };
-  auto directions = [&](int mult_each) {
-    const Integer one(1);
-    if (a.is_zero()) {
-      // t (2 b s + d t) = 0: t = 0 (s = 1) and, if b != 0, (s, t) = (-d, 2 b).
-      if (b.is_zero()) { // d t^2 = 0: the double direction t = 0
-        add_direction({Rational(1), Rational(0), one}, {Rational(0), Rational(0), one}, 2);
-        return;
-      }
-      add_direction({Rational(1), Rational(0), one}, {Rational(0), Rational(0), one}, mult_each);
-      add_direction({-d, Rational(0), one}, {Rational(2) * b, Rational(0), one}, mult_each);
-      return;
-    }
-    const Rational disc = b * b - a * d;
-    if (disc.sign() < 0) return;
-    if (disc.is_zero()) {
-      add_direction({-b, Rational(0), one}, {a, Rational(0), one}, 2);
-      return;
-    }
-    Integer dn = disc.num() * disc.den();
-    Integer root;
-    fmpz_sqrt(root.raw_mut(), dn.raw());
-    for (int sg : {1, -1}) {
-      QuadraticNumber s;
-      if (root * root == dn)
-        s = {-b + Rational(sg) * Rational(root, disc.den()), Rational(0), one};
-      else
-        s = {-b, Rational(sg) / Rational(disc.den()), dn};
-      add_direction(s, {a, Rational(0), one}, mult_each);
-    }
-  };
+  // Directions at infinity of the section (section_directions): listed where the section
+  // has real affine points running to them.
+  auto directions = [&] { out.points_at_infinity = section_directions(cm, col); };
   int loops = 0, unbounded = 0, isolated = 0, lines = 0, conics = 0;
   const bool quad_zero = a.is_zero() && b.is_zero() && d.is_zero();
   if (quad_zero) {
@@ -780,7 +801,7 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
     if (!(e.is_zero() && f.is_zero())) {
       lines = 1;
       unbounded = 1;
-      add_direction({-f, Rational(0), Integer(1)}, {e, Rational(0), Integer(1)}, 1);
+      directions();
     }
   } else if (!big.is_zero()) {
     if (delta.sign() > 0) {
@@ -792,17 +813,17 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
     } else if (delta.sign() < 0) {
       conics = 1;
       unbounded = 2;
-      directions(1);
+      directions();
     } else {
       conics = 1;
       unbounded = 1;
-      directions(2);
+      directions();
     }
   } else {
     if (delta.sign() < 0) {
       lines = 2;
       unbounded = 2;
-      directions(1);
+      directions();
     } else if (delta.sign() > 0) {
       isolated = 1;
     } else {
@@ -810,12 +831,11 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
       if (kk.sign() < 0) {
         lines = 2;
         unbounded = 2;
-        directions(2); // two parallel lines: one direction, each line through it
-        out.points_at_infinity.back().multiplicity = 2;
+        directions(); // two parallel lines: one double direction, each line through it
       } else if (kk.is_zero()) {
         lines = 1; // a double line
         unbounded = 1;
-        directions(2);
+        directions();
       }
     }
   }
@@ -894,6 +914,7 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
   const auto& n1 = (*planes)[0];
   const auto& n2 = (*planes)[1];
   AffineTopology sec[2];
+  std::vector<PointAtInfinity> dirs[2]; // every real point at infinity of each section
   for (size_t k = 0; k < 2; ++k) {
     const core::Mat4 pm = plane_as_quadric((*planes)[k]);
     const auto chart = algebra::plane_chart(pm);
@@ -904,6 +925,7 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
                    "component at infinity; not analysed)";
       return out;
     }
+    dirs[k] = section_directions(cm, *chart);
     sec[k] = plane_route(core::QuadricMatrix(pm), quad);
     if (!sec[k].certified()) {
       out.reason = "a plane section of the pair was not read exactly: " + sec[k].reason;
@@ -952,26 +974,38 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
   out.isolated_points = *sec[0].isolated_points + *sec[1].isolated_points;
   out.lines = *sec[0].lines + *sec[1].lines;
   out.conics = *sec[0].conics + *sec[1].conics;
+  // The curve's real points at infinity: those of both sections, merged (multiplicities
+  // add), each real point of a section's quadratic part whether or not the section is real
+  // there (x^2 = 4 against x^2 + y^2 = 1: conjugate lines meeting at (0 : 0 : 1)). A point
+  // that no real affine branch of either section reaches lies at infinity only.
   bool open = false;
-  for (const auto& s2 : sec)
-    for (const PointAtInfinity& pt : s2.points_at_infinity) {
-      bool merged = false;
-      for (PointAtInfinity& q2 : out.points_at_infinity) {
-        if (pt.rational && q2.rational) {
-          if (pt.direction == q2.direction) { // normalised: one text per direction
-            q2.multiplicity += pt.multiplicity;
-            merged = true;
-            break;
-          }
-          continue;
-        }
-        const auto& u = pt.approx;
-        const auto& v = q2.approx;
-        // Nearly one direction, not proven one (an irrational direction): left open.
-        open = open || std::fabs(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) > 1 - 1e-12;
-      }
-      if (!merged) out.points_at_infinity.push_back(pt);
+  auto same = [&open](const PointAtInfinity& u, const PointAtInfinity& v) {
+    if (u.rational && v.rational) return u.direction == v.direction; // normalised texts
+    const auto &x = u.approx, &y = v.approx;
+    // Nearly one direction, not proven one (an irrational direction): left open.
+    open = open || std::fabs(x[0] * y[0] + x[1] * y[1] + x[2] * y[2]) > 1 - 1e-12;
+    return false;
+  };
+  for (const auto& d : dirs)
+    for (const PointAtInfinity& pt : d) {
+      auto it = std::find_if(out.points_at_infinity.begin(), out.points_at_infinity.end(),
+                             [&](const PointAtInfinity& q2) { return same(pt, q2); });
+      if (it != out.points_at_infinity.end())
+        it->multiplicity += pt.multiplicity;
+      else
+        out.points_at_infinity.push_back(pt);
     }
+  for (const PointAtInfinity& pt : out.points_at_infinity) {
+    bool on_branch = false;
+    for (const auto& s2 : sec)
+      for (const PointAtInfinity& q2 : s2.points_at_infinity)
+        on_branch = on_branch || same(pt, q2);
+    if (on_branch) continue;
+    ComponentAtInfinity c;
+    c.kind = "point";
+    c.direction = pt.direction;
+    out.at_infinity_only.push_back(c);
+  }
   if (open) {
     AffineTopology undecided;
     undecided.route = "plane_pair";

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <tuple>
 
 using namespace surfcert;
 using algebra::UPolyQ;
@@ -92,7 +93,11 @@ const Want kTable[] = {
     // one double line each; x = +-2 miss it; x = 0 and y = 0 cut the four lines x, y = +-1.
     {"x^2 = 1/4", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
     {"x^2 = 1", "x^2 + y^2 = 1", 0, 2, 0, 2, 0, 1},
-    {"x^2 = 4", "x^2 + y^2 = 1", 0, 0, 0, 0, 0, 0},
+    // x = +-2 miss it: conjugate lines meeting at the real point (0:0:1) at infinity (it was
+    // left out of points_at_infinity); also y = 2, and x = +-1/2 on the hyperbolic cylinder.
+    {"x^2 = 4", "x^2 + y^2 = 1", 0, 0, 0, 0, 0, 1},
+    {"(x - 2)*(y - 2) = 0", "x^2 + y^2 = 1", 0, 0, 0, 0, 0, 1},
+    {"x^2 = 1/4", "x^2 - y^2 = 1", 0, 0, 0, 0, 0, 1},
     {"x*y = 0", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
     // Non-parallel planes x = 1/2 and y = -1/3 (not through the axis): four lines.
     {"(x - 1/2)*(y + 1/3) = 0", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
@@ -217,6 +222,21 @@ TEST(Affine, PlanePairsNotReadExactlyStayUndecided) {
     EXPECT_FALSE(t.certified()) << a << " | " << b;
     const auto u = affine(q(b), q(a));
     EXPECT_FALSE(u.certified()) << b << " | " << a;
+  }
+  // A real point at infinity no affine branch reaches lies at infinity only; one that a
+  // branch reaches does not.
+  for (const auto& [a, b, only] :
+       {std::tuple<const char*, const char*, size_t>{"x^2 = 4", "x^2 + y^2 = 1", 1},
+        {"x^2 = 1/4", "x^2 + y^2 = 1", 0}}) {
+    const auto t = affine(q(a), q(b));
+    ASSERT_TRUE(t.certified()) << a << " " << t.reason;
+    ASSERT_EQ(t.at_infinity_only.size(), only) << a;
+    if (only) {
+      EXPECT_EQ(t.at_infinity_only[0].kind, "point");
+      EXPECT_EQ(t.at_infinity_only[0].direction, (std::array<std::string, 3>{"0", "0", "1"}));
+    }
+    ASSERT_EQ(t.points_at_infinity.size(), 1u) << a;
+    EXPECT_EQ(t.points_at_infinity[0].multiplicity, 4) << a; // 2 + 2: two double directions
   }
   // The route of a plane pair in a degenerate pencil names itself, with both planes kept.
   const auto t = affine(q("x^2 = 1/4"), q("x^2 + y^2 = 1"));
