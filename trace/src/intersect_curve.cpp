@@ -287,10 +287,15 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
   for (const auto& p : ex.points)
     for (const auto& q2 : ex2.points) {
       if (p.axis != q2.axis || p.at_max != q2.at_max) continue;
-      double gap = 0;
-      for (size_t k = 0; k < 3; ++k)
+      // Each point lies within its radius of its enclosure's midpoint, which approx rounds:
+      // the margin covers both radii and the roundings (of the midpoints and of this
+      // arithmetic) many times over, so a larger gap proves two distinct points.
+      double gap = 0, size = 0;
+      for (size_t k = 0; k < 3; ++k) {
         gap = std::max(gap, std::fabs(p.approx[k] - q2.approx[k]));
-      if (!(gap > 2 * (p.radius + q2.radius))) {
+        size = std::max({size, std::fabs(p.approx[k]), std::fabs(q2.approx[k])});
+      }
+      if (!(gap > 2 * (p.radius + q2.radius) + 0x1p-48 * size + 0x1p-1000)) {
         certify::BoxExits out;
         out.reason = "the sections of the two planes may cross each other on a face";
         return out;

@@ -596,9 +596,8 @@ std::optional<std::array<Rational, 3>> common_ruling(const core::QuadricMatrix& 
 // A proven common point of the quadrics a, b and the plane n.x = 0 in the box X: the
 // Krawczyk operator K(X) = m - Y F(m) + (I - Y J(X)) (X - m), Y a float inverse of the
 // Jacobian at the midpoint m, lands in the interior of X, so X holds a zero (Brouwer, with Y
-// nonsingular). Fails at a
-// tangency (J singular there); transversal crossings, however close to tangent, pass once X
-// is small against their separation. w receives m (display).
+// nonsingular). Fails at a tangency (J singular there); transversal crossings, however close
+// to tangent, pass once X is small against their separation. w receives m (display).
 bool common_point_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                          const std::array<Rational, 3>& n, const Ball (&X)[3], long prec,
                          std::array<double, 3>& w) {
