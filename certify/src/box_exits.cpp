@@ -317,4 +317,61 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Ra
   return out;
 }
 
+BoxExits lines_box_exits(const std::array<Rational, 3>& p, const std::vector<V3>& directions,
+                         const std::array<Rational, 3>& lo, const std::array<Rational, 3>& hi) {
+  BoxExits out;
+  bool within = true, inside = true;
+  for (size_t k = 0; k < 3; ++k) {
+    within = within && lo[k] <= p[k] && p[k] <= hi[k];
+    inside = inside && lo[k] < p[k] && p[k] < hi[k];
+  }
+  if (within && !inside) {
+    out.reason = "the lines meet on the boundary of the box";
+    return out;
+  }
+  for (const V3& d : directions)
+    for (int k = 0; k < 3; ++k)
+      for (int side = 0; side < 2; ++side) {
+        const size_t ku = static_cast<size_t>(k);
+        const Rational& c = side ? hi[ku] : lo[ku];
+        if (d[ku].is_zero()) {
+          if (p[ku] == c) {
+            out.points.clear();
+            out.reason = "a line of the curve lies in the plane of a face";
+            return out;
+          }
+          continue;
+        }
+        const Rational t = (c - p[ku]) / d[ku];
+        V3 q;
+        for (size_t i = 0; i < 3; ++i)
+          q[i] = i == ku ? c : p[i] + t * d[i];
+        bool in = true, edge = false;
+        for (size_t i = 0; i < 3; ++i) {
+          if (i == ku) continue;
+          if (q[i] == lo[i] || q[i] == hi[i]) edge = true;
+          in = in && lo[i] < q[i] && q[i] < hi[i];
+        }
+        if (edge) {
+          bool on_face = true;
+          for (size_t i = 0; i < 3; ++i)
+            on_face = on_face && lo[i] <= q[i] && q[i] <= hi[i];
+          if (on_face) {
+            out.points.clear();
+            out.reason = "a crossing on an edge of the box";
+            return out;
+          }
+        }
+        if (!in) continue;
+        BoxCrossing bc;
+        bc.axis = k;
+        bc.at_max = side == 1;
+        for (size_t i = 0; i < 3; ++i)
+          bc.approx[i] = q[i].to_double_approx();
+        out.points.push_back(bc);
+      }
+  out.certified = true;
+  return out;
+}
+
 } // namespace surfcert::certify

@@ -61,6 +61,9 @@ const Want kPairs[] = {
     // pair's face conics; certified from the plane's rank-1 section, was undecided).
     {"x^2 = 1", "x^2 + y^2 = 1", 0, 2, 0},             // two tangent planes
     {"x^2 + y^2 = 1", "(x - 2)^2 + y^2 = 1", 0, 1, 0}, // touching parallel cylinders
+    // Tangent along rulings through a common apex (lines_box_exits; was a multiple crossing).
+    {"(x - z)*(x + z) = 0", "x^2 + y^2 = z^2", 0, 2, 0}, // tangent planes through the apex
+    {"x^2 + y^2 = z^2", "x^2 + 2*y^2 = z^2", 0, 2, 0},   // two cones tangent along two rulings
 };
 
 // |f(p)| / |grad f(p)|, with f(p) exact (the double point read exactly): the first-order
@@ -381,4 +384,31 @@ TEST(BoxTrace, TangentFaceAndEdgeCrossingAreUndecided) {
     EXPECT_FALSE(r.box_exits->certified);
     EXPECT_EQ(r.status, certify::Status::Undecided);
   }
+}
+
+TEST(BoxTrace, LinesThroughOnePointCrossTheFacesExactly) {
+  using R3 = std::array<Rational, 3>;
+  const R3 lo{Rational(-1), Rational(-1), Rational(-1)}, hi{Rational(1), Rational(1), Rational(1)};
+  const std::vector<R3> dirs{{Rational(1), Rational(0), Rational(1, 2)},
+                             {Rational(1, 3), Rational(1), Rational(1, 5)}};
+  // Through the centre: each line leaves through two faces (x = +-1; y = +-1).
+  auto ex = certify::lines_box_exits({Rational(0), Rational(0), Rational(0)}, dirs, lo, hi);
+  ASSERT_TRUE(ex.certified) << ex.reason;
+  ASSERT_EQ(ex.points.size(), 4u);
+  for (const auto& c : ex.points)
+    EXPECT_EQ(std::fabs(c.approx[static_cast<size_t>(c.axis)]), 1.0);
+  // The common point on a face, a line in a face's plane, a crossing on an edge: not certified.
+  EXPECT_FALSE(
+      certify::lines_box_exits({Rational(1), Rational(0), Rational(0)}, dirs, lo, hi).certified);
+  EXPECT_FALSE(certify::lines_box_exits({Rational(0), Rational(0), Rational(1)},
+                                        {{Rational(1), Rational(0), Rational(0)}}, lo, hi)
+                   .certified);
+  EXPECT_FALSE(certify::lines_box_exits({Rational(0), Rational(0), Rational(0)},
+                                        {{Rational(1), Rational(1), Rational(0)}}, lo, hi)
+                   .certified);
+  // Outside the box, a line that misses it: certified, no crossing.
+  ex = certify::lines_box_exits({Rational(5), Rational(5), Rational(0)},
+                                {{Rational(1), Rational(-1), Rational(0)}}, lo, hi);
+  ASSERT_TRUE(ex.certified) << ex.reason;
+  EXPECT_TRUE(ex.points.empty());
 }

@@ -270,7 +270,8 @@ certify::BoxExits exact_exits(const core::QuadricMatrix& a, const core::QuadricM
 }
 
 // The crossings of the affine curve with the box's faces, from the pair that writes it most
-// simply: on the plane routes the affine curve is `plane` ∩ `section_of` (for "pencil_plane"
+// simply: on route common_apex the rational lines themselves (lines_box_exits); on the plane
+// routes the affine curve is `plane` ∩ `section_of` (for "pencil_plane"
 // the plane B - cA replaces B), so a tangency along a line reads as the plane's rank-1
 // section (box_exits' exception) where the two quadrics show only a multiple crossing (two
 // parallel cylinders touching along a ruling). Route "plane_pair": the crossings of the two
@@ -278,6 +279,29 @@ certify::BoxExits exact_exits(const core::QuadricMatrix& a, const core::QuadricM
 // (disjoint enclosures: the curve is smooth there).
 certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                               const certify::AffineTopology& af, const Box& box) {
+  if (af.certified() && af.apex) {
+    // Route common_apex: the lines from the apex, exact when every direction is rational (a
+    // line along which the surfaces are tangent is then no multiple crossing).
+    std::vector<std::array<core::Rational, 3>> dirs;
+    bool rational = true;
+    for (const auto& pt : af.points_at_infinity) {
+      std::array<core::Rational, 3> d;
+      for (size_t k = 0; k < 3 && rational; ++k) {
+        const auto v = pt.rational ? core::Rational::from_string(pt.direction[k]) : std::nullopt;
+        rational = v.has_value();
+        if (v) d[k] = *v;
+      }
+      dirs.push_back(d);
+    }
+    if (rational) {
+      std::array<core::Rational, 3> lo, hi;
+      for (size_t k = 0; k < 3; ++k) {
+        lo[k] = core::Rational::exact_from_double(box.min[k]);
+        hi[k] = core::Rational::exact_from_double(box.max[k]);
+      }
+      return certify::lines_box_exits(*af.apex, dirs, lo, hi);
+    }
+  }
   if (!af.certified() || !af.plane || !af.section_of) return exact_exits(a, b, box);
   const core::QuadricMatrix plane(*af.plane), other(*af.section_of);
   certify::BoxExits ex = exact_exits(plane, other, box);

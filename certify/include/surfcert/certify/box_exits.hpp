@@ -31,6 +31,7 @@
 // cone's tangent plane). The curve is then that rational line counted twice; as a set it is a
 // line, and its crossings with the faces (rational points, transversal unless the line lies in a
 // face's plane, which is not certified) are the points, with an edge crossing not certified.
+// lines_box_exits reads a union of rational lines through one point the same way.
 #pragma once
 
 #include "surfcert/core/quadric.hpp"
@@ -59,5 +60,16 @@ struct BoxExits {
 BoxExits box_exits(const core::Mat4& a, const core::Mat4& b,
                    const std::array<core::Rational, 3>& lo,
                    const std::array<core::Rational, 3>& hi);
+
+/// The crossings of a curve known to be the lines p + t d_i (rational p and directions,
+/// distinct directions: two cones with the common apex p, a plane pair through it), exact:
+/// a line meets a face's plane once unless parallel to it. Certified when every crossing lies
+/// in a face's open rectangle, no line lies in a face's plane, and p is not on the boundary
+/// (the lines meet only at p, so their crossings are then distinct). A line counts once
+/// whatever its multiplicity on the surfaces (a tangency along it is no multiple crossing).
+BoxExits lines_box_exits(const std::array<core::Rational, 3>& p,
+                         const std::vector<std::array<core::Rational, 3>>& directions,
+                         const std::array<core::Rational, 3>& lo,
+                         const std::array<core::Rational, 3>& hi);
 
 } // namespace surfcert::certify

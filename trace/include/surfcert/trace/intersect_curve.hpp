@@ -29,8 +29,9 @@
 // common_apex) are answered with those lines in closed form, clipped to the box and checked
 // the same way; on the plane routes the face crossings are those of the plane's section (a
 // tangency along a ruling, a double line, is then a rank-1 section, not a multiple crossing),
-// on plane_pair those of both sections. Other degenerate pencils are not traced (undecided). A
-// twisted cubic and a line (cases 10-12) come from their exact parametrisations
+// on plane_pair those of both sections, on common_apex those of the rational lines
+// (certify::lines_box_exits). Other degenerate pencils are not traced (undecided). A twisted
+// cubic and a line (cases 10-12) come from their exact parametrisations
 // (certify/cubic_line.hpp): the line in closed form, the cubic's arcs sampled from its rational
 // map, checked against the box the same way.
 #pragma once
