@@ -2,6 +2,8 @@
 
 #include <flint/fmpq_mat.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <stdexcept>
 
@@ -203,6 +205,75 @@ QuadricMatrix QuadricMatrix::translated(const std::array<double, 3>& c) const {
   for (size_t i = 0; i < 3; ++i)
     p[i][3] = Rational::exact_from_double(c[i]);
   return congruent(p);
+}
+
+// log2 |x| within 1 (x != 0), from the bit lengths of its numerator and denominator: no
+// double conversion, which under- or overflows at the scales this is for.
+namespace {
+long log2_about(const Rational& x) {
+  return x.num().bits() - x.den().bits();
+}
+} // namespace
+
+QuadricMatrix QuadricMatrix::rescaled(int k) const {
+  if (const ShapeSpec* sp = shape()) {
+    ShapeSpec moved = *sp;
+    bool exact = true;
+    auto shrink = [k, &exact](double& v) {
+      const double w = std::ldexp(v, -k);
+      exact = exact && std::isfinite(w) && std::ldexp(w, k) == v; // no rounding either way
+      v = w;
+    };
+    for (size_t i = 0; i < 3; ++i) {
+      shrink(moved.center[i]);
+      shrink(moved.radii[i]);
+    }
+    if (exact) return QuadricMatrix(moved);
+  }
+  Mat4 p{};
+  for (size_t i = 0; i < 3; ++i)
+    p[i][i] = pow2(k);
+  p[3][3] = Rational(1);
+  Mat4 m = congruence(p, matrix());
+  // Divided by a power of two near its largest entry (the same quadric): the quadratic block
+  // grew by 2^2k, and the double computations downstream need entries of moderate size.
+  long top = LONG_MIN;
+  for (const auto& row : m)
+    for (const Rational& x : row)
+      if (!x.is_zero()) top = std::max(top, log2_about(x));
+  return QuadricMatrix(top == LONG_MIN ? m : scaled(m, pow2(-top)));
+}
+
+// See quadric.hpp.
+std::optional<long> length_order(const QuadricMatrix& q) {
+  if (const ShapeSpec* sp = q.shape()) {
+    double m = 0;
+    for (size_t k = 0; k < 3; ++k)
+      m = std::max({m, std::fabs(sp->center[k]), std::fabs(sp->radii[k])});
+    if (!(m > 0) || !std::isfinite(m)) return std::nullopt;
+    return std::ilogb(m);
+  }
+  std::optional<long> la, lb, lc;
+  auto grow = [](std::optional<long>& l, const Rational& x) {
+    if (x.is_zero()) return;
+    const long v = log2_about(x);
+    l = l ? std::max(*l, v) : v;
+  };
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      grow(la, q(i, j));
+    grow(lb, q(i, 3));
+  }
+  grow(lc, q(3, 3));
+  std::optional<long> out;
+  auto take = [&out](long v) { out = out ? std::max(*out, v) : v; };
+  if (la) {
+    if (lb) take(*lb - *la);
+    if (lc) take((*lc - *la) / 2);
+  } else if (lb && lc) {
+    take(*lc - *lb);
+  }
+  return out;
 }
 
 bool QuadricMatrix::is_plane() const {

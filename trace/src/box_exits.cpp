@@ -17,8 +17,8 @@
 namespace surfcert::trace {
 
 double Box::diagonal() const {
-  return std::sqrt((max[0] - min[0]) * (max[0] - min[0]) + (max[1] - min[1]) * (max[1] - min[1]) +
-                   (max[2] - min[2]) * (max[2] - min[2]));
+  // hypot: the squares of a box 1e200 wide (or 1e-200) leave the double range.
+  return std::hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]);
 }
 
 namespace {

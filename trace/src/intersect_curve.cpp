@@ -10,6 +10,8 @@
 #include "surfcert/trace/conics.hpp"
 
 #include <algorithm>
+#include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -780,10 +782,137 @@ std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::Quadr
   return c;
 }
 
+// The exponent k of the power of two 2^k the pair is traced at unit size in (see
+// trace_curve), when its features lie beyond 2^+-8 (256); nullopt otherwise. Most of the
+// tracer's steps, tolerances and Newton tests are relative, but not all (the smallest step has
+// an absolute floor ~1e-14; seeds sit at distances 1 and 10), and its double products (x^2 at
+// 1e-200, the coefficients 1/r^2 at 1e-160) leave the double range long before the input does:
+// offset pipes scaled by 2^+-40 were undecided (30 of 85 scaled pairs of an audit, now
+// certified with the unit pair's counts).
+std::optional<int> extreme_order(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
+  const auto la = core::length_order(a), lb = core::length_order(b);
+  if (!la && !lb) return std::nullopt;
+  const long k = std::max(la.value_or(LONG_MIN), lb.value_or(LONG_MIN));
+  if (k >= -8 && k <= 8) return std::nullopt;
+  return static_cast<int>(std::clamp(k, -100000L, 100000L));
+}
+
+CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                           QsicResult topology, const TraceOptions& opt, int depth);
+
+// The pair traced at unit size: on the exact pair in the coordinates u = x / 2^k (its
+// classification re-done there: the same certified answer), every point and the box scaled
+// back by 2^k (exact, unless the result is subnormal: a rounding of at most 2^-1075 per
+// coordinate, added to max_residual), the box's exact crossings recomputed on the original
+// pair; topology and affine reading stay those of the original pair.
+CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                           CurveResult out, const TraceOptions& opt, int k, int depth) {
+  const auto a2 = a.rescaled(k), b2 = b.rescaled(k);
+  TraceOptions o2 = opt;
+  if (o2.box)
+    for (size_t i = 0; i < 3; ++i) {
+      o2.box->min[i] = std::ldexp(o2.box->min[i], -k);
+      o2.box->max[i] = std::ldexp(o2.box->max[i], -k);
+    }
+  CurveResult local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1);
+  bool finite = true, subnormal = false, box_exact = true;
+  auto back = [&](Point3& x) {
+    for (size_t i = 0; i < 3; ++i) {
+      x[i] = std::ldexp(x[i], k);
+      finite = finite && std::isfinite(x[i]);
+      subnormal = subnormal || (x[i] != 0 && std::fabs(x[i]) < DBL_MIN);
+    }
+  };
+  auto box_back = [&](Point3& x) {
+    for (size_t i = 0; i < 3; ++i) {
+      const double y = std::ldexp(x[i], k);
+      box_exact = box_exact && std::isfinite(y) && std::ldexp(y, -k) == x[i];
+      x[i] = y;
+    }
+    finite = finite && box_exact;
+  };
+  for (auto& br : local.branches)
+    for (auto& x : br.points)
+      back(x);
+  for (auto& x : local.isolated_points)
+    back(x);
+  local.max_residual = std::ldexp(local.max_residual, k) + (subnormal ? 0x1p-1073 : 0.0);
+  if (local.box) {
+    box_back(local.box->min);
+    box_back(local.box->max);
+    if (opt.box) local.box = opt.box;
+  }
+  local.topology = std::move(out.topology);
+  local.affine = std::move(out.affine);
+  if (!finite) {
+    local.status = Status::Undecided;
+    local.matches_topology = false;
+    local.branches.clear();
+    local.box_exits.reset();
+    local.note = "the curve or its box, traced at unit size, lies beyond the double range once "
+                 "scaled back";
+    return local;
+  }
+  if (local.box_exits && local.box) {
+    // The box scaled back exactly: its crossings are those of the scaled box, scaled back (a
+    // rounded midpoint's error joins its radius). Else they are recomputed for the box
+    // reported.
+    if (box_exact) {
+      for (auto& c : local.box_exits->points) {
+        bool sub = false;
+        for (size_t i = 0; i < 3; ++i) {
+          c.approx[i] = std::ldexp(c.approx[i], k);
+          sub = sub || (c.approx[i] != 0 && std::fabs(c.approx[i]) < DBL_MIN);
+        }
+        c.radius = std::ldexp(c.radius, k) + (sub ? 0x1p-1073 : 0.0);
+      }
+      return local;
+    }
+    local.box_exits = curve_exits(a, b, local.affine, *local.box);
+    if (local.status == Status::Certified) {
+      const std::string why =
+          local.box_exits->certified
+              ? match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal())
+              : "the crossings with the box's faces are not certified: " + local.box_exits->reason;
+      if (!why.empty()) {
+        local.status = Status::Undecided;
+        local.matches_topology = false;
+        local.note = why;
+      }
+    }
+  }
+  return local;
+}
+
 } // namespace
 
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         QsicResult topology, const TraceOptions& opt) {
+  CurveResult out = trace_curve_at(a, b, std::move(topology), opt, 0);
+  // Doubles beyond the range (a unit pair's hyperbolas followed out to a given box 1e300 wide,
+  // where f ~ x^2 overflows) make no picture: nothing half-written, an honest undecided.
+  bool finite = std::isfinite(out.max_residual);
+  for (const auto& br : out.branches)
+    for (const auto& p : br.points)
+      finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  for (const auto& p : out.isolated_points)
+    finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  if (!finite) {
+    out.branches.clear();
+    out.isolated_points.clear();
+    out.max_residual = 0;
+    out.matches_topology = false;
+    if (out.status == Status::Certified) out.status = Status::Undecided;
+    out.note = "the traced curve left the double range (a box far larger than the curve's "
+               "features, or the reverse): no points returned";
+  }
+  return out;
+}
+
+namespace {
+
+CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                           QsicResult topology, const TraceOptions& opt, int depth) {
   CurveResult out;
   out.tolerance = opt.tolerance;
   out.topology = std::move(topology);
@@ -791,6 +920,9 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   // The branches need the special points (isolated points, singular points), at every detail.
   if (t.morphology) certify::complete_special_points(t, a, b);
   out.affine = certify::affine_topology(t, a, b);
+  if (depth < 4)
+    if (const auto k = extreme_order(a, b))
+      return trace_rescaled(a, b, std::move(out), opt, *k, depth);
   if (t.pencil != algebra::PencilKind::Regular && t.pencil != algebra::PencilKind::Coincident &&
       trace_section_lines(a, b, out, opt))
     return out;
@@ -811,7 +943,8 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     if (o2.box)
       for (size_t k = 0; k < 3; ++k)
         o2.box->min[k] -= (*c)[k], o2.box->max[k] -= (*c)[k];
-    CurveResult local = trace_curve(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2);
+    CurveResult local =
+        trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1);
     auto back = [&c](Point3& x) {
       for (size_t k = 0; k < 3; ++k)
         x[k] += (*c)[k];
@@ -899,6 +1032,8 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
   }
   return out;
 }
+
+} // namespace
 
 std::string curve_caption(const CurveResult& r) {
   const QsicResult& t = r.topology;

@@ -66,6 +66,13 @@ public:
   /// congruence by the translation P = [[I, c], [0, 1]]). A shape whose centre minus c is
   /// again exactly a double stays a (lazy) shape; otherwise the exact congruence is formed.
   QuadricMatrix translated(const std::array<double, 3>& c) const;
+  /// The same surface in the coordinates u = x / 2^k, exactly: its equation in u is this one's
+  /// at x = 2^k u (the congruence by diag(2^k, 2^k, 2^k, 1)). A shape whose centre and radii
+  /// times 2^-k are again exactly doubles stays a (lazy) shape; otherwise the exact congruence
+  /// is formed, divided by a power of two near its largest entry (the same quadric). Used to bring
+  /// a pair posed at 1e-300 or 1e300 to unit size for the double computations of the tracer (a
+  /// power of two: nothing is rounded).
+  QuadricMatrix rescaled(int k) const;
   QuadricKind kind() const;
   /// True when the quadratic block is zero (a plane written as a degenerate quadric).
   bool is_plane() const;
@@ -83,6 +90,15 @@ private:
   };
   std::shared_ptr<State> state_;
 };
+
+/// The binary order of the lengths q's features lie at (its size and its distance from the
+/// origin): k with those lengths about 2^k, or nullopt when it has none (a cone or a plane pair
+/// through the origin). For a shape posed in doubles, from its centre and semi-axes; otherwise
+/// from the matrix [[A, b], [b^T, c]]: the largest of the orders of |b| / |A| (a centre's
+/// distance) and sqrt(|c| / |A|) (a radius), or of |c| / |b| for a plane. An estimate (within a
+/// few units), exact-arithmetic free of overflow: what callers need to pick a power of two that
+/// brings a pair near unit size (rescaled) before double or scale-sensitive computations.
+std::optional<long> length_order(const QuadricMatrix& q);
 
 bool is_symmetric(const Mat4& m);
 /// The exact symmetric part (D + D^T) / 2 of a matrix of finite doubles (each read exactly).

@@ -1,0 +1,188 @@
+// intersect_curve at extreme magnitudes (issue 12: 1e-300 ... 1e300 and subnormals): a pair
+// scaled by s = 2^k, |k| from 20 (pipes at 2^+-40 were undecided) up to 1060, must give the unit
+// pair's answer (status, affine counts, traced pieces, box crossings) with every returned point
+// within 1e-12 s of both exact surfaces. The scaled equations are formed here by hand (A / s^2, b /
+// s, c), the residuals checked in exact rational arithmetic (|f(p)| <= tol |grad f(p)|, squared),
+// so neither the scaling nor the check goes through the code under test. Subnormal curves keep
+// their counts and an honest max_residual (a bound on every point's exact residual).
+#include "support/distance_checks.hpp"
+#include "support/trace_boxes.hpp"
+
+#include "surfcert/trace/intersect_curve.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace surfcert;
+using certify::Mode;
+using core::Rational;
+using surfcert::testing::q;
+
+namespace {
+
+// The surface s S of the unit quadric m: its equation at x / s.
+core::QuadricMatrix at_scale(const core::QuadricMatrix& m, const Rational& s) {
+  core::Mat4 out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      Rational v = m(i, j);
+      if (i < 3) v = v / s;
+      if (j < 3) v = v / s;
+      out[static_cast<size_t>(i)][static_cast<size_t>(j)] = v;
+    }
+  return core::QuadricMatrix(out);
+}
+
+// |f(p)| <= tol |grad f(p)| exactly (p read as its exact double value).
+bool within(const core::QuadricMatrix& m, const trace::Point3& p, const Rational& tol) {
+  Rational x[4] = {Rational::exact_from_double(p[0]), Rational::exact_from_double(p[1]),
+                   Rational::exact_from_double(p[2]), Rational(1)};
+  Rational f, g2;
+  for (int i = 0; i < 4; ++i) {
+    Rational row;
+    for (int j = 0; j < 4; ++j)
+      row += m(i, j) * x[j];
+    f += x[i] * row;
+    if (i < 3) g2 += Rational(4) * row * row;
+  }
+  return f * f <= tol * tol * g2;
+}
+
+struct Pair {
+  const char* a;
+  const char* b;
+  bool given_box; // traced in [-3, 3]^3 (scaled), else in the automatic box
+};
+
+const Pair kPairs[] = {
+    {"x^2 + z^2 = 1", "y^2 + z^2 = 1", false},                                // Steinmetz
+    {"x^2 + y^2/4 + z^2/9 = 1", "(x - 1)^2 + (y - 1/10)^2 + z^2 = 1", false}, // ellipsoids
+    {"x^2 + y^2 = 1", "x^2 + y^2 + z^2 = 4", false},                          // two circles
+    {"x^2 + y^2 - z^2 = 1", "x^2 + z^2 - y^2 = 1/4", false},                  // four hyperbolas
+    {"x^2 + y^2 - z^2 = 1", "x^2 + z^2 - y^2 = 1/4", true},
+    {"x^2 + z^2 = 1", "y^2 + z^2 = 4", true}, // unequal pipes cut by the box
+};
+
+struct Summary {
+  certify::Status status;
+  std::optional<int> loops, unbounded;
+  std::vector<bool> closed;
+  size_t exits = 0;
+};
+
+Summary summary(const trace::CurveResult& r) {
+  Summary s{r.status, r.affine.loops, r.affine.unbounded_branches, {}, 0};
+  for (const auto& br : r.branches)
+    s.closed.push_back(br.closed);
+  std::sort(s.closed.begin(), s.closed.end());
+  if (r.box_exits) s.exits = r.box_exits->points.size();
+  return s;
+}
+
+trace::CurveResult run(const core::QuadricMatrix& a, const core::QuadricMatrix& b, bool box,
+                       double s) {
+  trace::TraceOptions opt;
+  if (box) opt = surfcert::testing::given_box({-3 * s, -3 * s, -3 * s}, {3 * s, 3 * s, 3 * s});
+  return trace::intersect_curve(a, b, Mode::Filtered, opt, certify::Detail::Topology);
+}
+
+} // namespace
+
+TEST(ExtremeTrace, ScaledPairsGiveTheUnitAnswerWithPointsOnBothSurfaces) {
+  for (const Pair& p : kPairs) {
+    const auto a1 = q(p.a), b1 = q(p.b);
+    const trace::CurveResult unit = run(a1, b1, p.given_box, 1.0);
+    ASSERT_EQ(unit.status, certify::Status::Certified) << p.a << " | " << p.b << ": " << unit.note;
+    const Summary want = summary(unit);
+    for (int k : {-1000, -700, -400, -70, -40, -20, 20, 40, 70, 400, 700, 1000}) {
+      const Rational s = core::pow2(k);
+      const std::string tag = std::string(p.a) + " | " + p.b + " at 2^" + std::to_string(k);
+      const auto a = at_scale(a1, s), b = at_scale(b1, s);
+      for (int swap = 0; swap < 2; ++swap) {
+        const trace::CurveResult r = swap ? run(b, a, p.given_box, std::ldexp(1.0, k))
+                                          : run(a, b, p.given_box, std::ldexp(1.0, k));
+        const Summary got = summary(r);
+        EXPECT_EQ(got.status, want.status) << tag << ": " << r.note;
+        EXPECT_EQ(got.loops, want.loops) << tag;
+        EXPECT_EQ(got.unbounded, want.unbounded) << tag;
+        EXPECT_EQ(got.closed, want.closed) << tag;
+        EXPECT_EQ(got.exits, want.exits) << tag;
+        // Points within 1e-12 s of both exact surfaces, and max_residual a geometric distance
+        // at the curve's scale (not blown up or flushed to 0).
+        const Rational tol = Rational::exact_from_double(1e-12) * s;
+        size_t off = 0, points = 0;
+        for (const auto& br : r.branches)
+          for (const auto& x : br.points) {
+            ++points;
+            if (!within(a, x, tol) || !within(b, x, tol)) ++off;
+          }
+        EXPECT_GT(points, 10u) << tag;
+        EXPECT_EQ(off, 0u) << tag;
+        EXPECT_LE(r.max_residual, std::ldexp(1e-12, k)) << tag;
+        if (r.box) { // the reported box at the curve's scale too
+          EXPECT_GT(r.box->diagonal(), std::ldexp(1.0, k)) << tag;
+          EXPECT_LT(r.box->diagonal(), std::ldexp(100.0, k)) << tag;
+        }
+      }
+    }
+  }
+}
+
+TEST(ExtremeTrace, SubnormalCurvesKeepTheirCountsAndAnHonestResidual) {
+  // s = 2^-1060: the curve's coordinates are subnormal doubles (about 14 significant bits).
+  for (const Pair& p : kPairs) {
+    if (p.given_box) continue;
+    const auto a1 = q(p.a), b1 = q(p.b);
+    const Summary want = summary(run(a1, b1, false, 1.0));
+    const Rational s = core::pow2(-1060);
+    const auto a = at_scale(a1, s), b = at_scale(b1, s);
+    const trace::CurveResult r = run(a, b, false, std::ldexp(1.0, -1060));
+    const Summary got = summary(r);
+    const std::string tag = std::string(p.a) + " | " + p.b;
+    EXPECT_EQ(got.status, want.status) << tag << ": " << r.note;
+    EXPECT_EQ(got.closed, want.closed) << tag;
+    ASSERT_GT(r.max_residual, 0) << tag;
+    const Rational bound = Rational::exact_from_double(r.max_residual) * Rational(1001, 1000);
+    for (const auto& br : r.branches)
+      for (const auto& x : br.points) {
+        EXPECT_TRUE(within(a, x, bound)) << tag;
+        EXPECT_TRUE(within(b, x, bound)) << tag;
+      }
+  }
+}
+
+TEST(ExtremeTrace, RescaledQuadricIsTheSameSurface) {
+  // A posed shape stays a shape when its doubles scale exactly; its matrix is proportional to
+  // the hand-scaled one. A rational quadric's congruence is divided down to moderate entries.
+  core::ShapeSpec sp;
+  sp.type = core::ShapeType::Ellipsoid;
+  sp.center = {0.25, -0.5, 0.75};
+  sp.radii = {0.5, 1, 1.5};
+  sp.rotated = true;
+  sp.quaternion = {0.9, 0.1, -0.3, 0.2};
+  const core::QuadricMatrix shape(sp);
+  for (int k : {-300, -1, 5, 600}) {
+    const auto r = shape.rescaled(k);
+    EXPECT_NE(r.shape(), nullptr) << k;
+    const auto hand = at_scale(shape, core::pow2(-k));
+    const Rational ratio = r(3, 3) / hand(3, 3);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        EXPECT_EQ(r(i, j), ratio * hand(i, j)) << k << " " << i << j;
+  }
+  // 2^-1100 of a subnormal-free shape would round: the exact congruence instead.
+  sp.radii = {0x1p-1000, 0x1p-1000, 0x1.8p-1000};
+  const auto tiny = core::QuadricMatrix(sp).rescaled(100);
+  const auto hand = at_scale(core::QuadricMatrix(sp), core::pow2(-100));
+  const Rational ratio = tiny(3, 3) / hand(3, 3);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      EXPECT_EQ(tiny(i, j), ratio * hand(i, j)) << i << j;
+  const auto big = q("x^2 + y^2 = 1").rescaled(-500); // entries 2^-1000 before the division
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      EXPECT_LE(core::abs(big(i, j)), Rational(2)) << i << j;
+  EXPECT_EQ(big(3, 3) / big(0, 0), -core::pow2(1000));
+}
