@@ -211,3 +211,50 @@ TEST(SolidRelation, EllipsoidAgainstAConvexQuadricSolid) {
   ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
   EXPECT_EQ(r.upper(), "0");
 }
+
+TEST(SolidRelation, TouchingSurfacesCountTheSolidsCommonPoints) {
+  // Surfaces touching at one point without crossing: the solids meet in that point only
+  // (outside each other: 1 minimizer) or one contains the other (a continuum). The surface
+  // distance's count is the solid one only in the first case.
+  struct Case {
+    core::Surface a, b;
+    const char* solid_count; // of the solid distance 0
+    const char* what;
+  };
+  const Case cases[] = {
+      {sphere(O, Rational(2)), sphere({1, 0, 0}, Rational(1)), "infinite", "inside, touching"},
+      {sphere(O, Rational(1)), sphere({2, 0, 0}, Rational(1)), "1", "outside, touching"},
+      {core::Surface(q("x^2/4 + y^2/9 + z^2/9 = 1")), sphere({1, 0, 0}, Rational(1)), "infinite",
+       "a sphere touching an ellipsoid from inside"},
+      {core::Surface(q("x^2 + y^2 = 4")), sphere({1, 0, 0}, Rational(1)), "infinite",
+       "a sphere touching a cylinder from inside"},
+      {core::Surface(q("x^2 + y^2 = 4")), sphere({3, 0, 0}, Rational(1)), "1",
+       "a sphere touching a cylinder from outside"},
+      {core::Surface(q("z = x^2 + y^2")), sphere({0, 0, Rational(1, 4)}, Rational(1, 4)),
+       "infinite", "a sphere inside a paraboloid touching its vertex"},
+      {torus(O, Z, Rational(3), Rational(1)), sphere({Rational(7, 2), 0, 0}, Rational(1, 2)),
+       "infinite", "a sphere inside the torus tube touching its outer equator"},
+      {torus(O, Z, Rational(3), Rational(1)), sphere({5, 0, 0}, Rational(1)), "1",
+       "a sphere touching the torus from outside"},
+  };
+  for (const Case& c : cases)
+    for (bool swap : {false, true}) {
+      const auto& a = swap ? c.b : c.a;
+      const auto& b = swap ? c.a : c.b;
+      const auto surf = certify::surface_distance(a, b, 20, false);
+      const auto r = certify::surface_distance(a, b, 20, true);
+      if (r.status != certify::Status::Certified) continue; // an honest undecided is allowed
+      EXPECT_EQ(r.upper(), "0") << c.what;
+      if (r.minimizers.is_undecided()) continue; // the count not proven: allowed, never wrong
+      EXPECT_EQ(r.minimizers.str(), c.solid_count)
+          << c.what << (swap ? " (swapped)" : "") << ": " << r.note;
+      if (std::string(c.solid_count) == "1" && surf.status == certify::Status::Certified) {
+        EXPECT_EQ(surf.minimizers.str(), "1") << c.what;
+      }
+    }
+  // The helper audit's case exactly (was "1", proof exact).
+  const auto r = certify::surface_distance(core::Surface(q("x^2+y^2+z^2=4")),
+                                           core::Surface(q("(x-1)^2+y^2+z^2=1")), 15, true);
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(r.minimizers.str(), "infinite") << r.note;
+}

@@ -347,6 +347,21 @@ Outcome topology_run(Query& query) {
               : Minimizers::count(static_cast<long>(m.isolated_points), Minimizers::Proof::Exact);
       if (have) out.pairs.push_back({w, w});
       out.note = "the surfaces meet (certified topology: " + std::string(m.id) + ")";
+      if (solid && !curve && a.kind() == core::QuadricKind::Ellipsoid &&
+          b.kind() == core::QuadricKind::Ellipsoid) {
+        // Touching ellipsoids: their solids meet in the touching points only when they lie
+        // outside each other; one inside the other, in the whole inner solid (the exact
+        // relation decides).
+        if (t.ellipsoid_relation == "internally_touching") {
+          out.minimizers = Minimizers::continuum(Minimizers::Proof::Exact);
+          out.note += "; solid distance: one solid contains the other, their surfaces touching";
+        } else if (t.ellipsoid_relation == "externally_touching") {
+          out.note += "; solid distance: the solids meet only where the surfaces touch";
+        } else {
+          out.minimizers = Minimizers::undecided(out.minimizers.value());
+          out.note += "; solid distance: which solid contains which was not decided";
+        }
+      }
       return Outcome::answer(std::move(out));
     }
     if (curve && meet_by_sign_change(a, b, w)) {

@@ -298,7 +298,9 @@ namespace {
 
 // An ellipsoid E and an elliptic cylinder or paraboloid Q (solid: its convex side,
 // s q <= 0 with s the sign of the trace of Q's quadratic block), their surfaces known to be
-// disjoint: +1 when E's solid lies inside Q's, -1 when the solids are disjoint, 0 otherwise
+// disjoint (or touching at finitely many points without crossing: the same argument on the
+// surface minus those points; -1 then means the solids meet only there): +1 when E's solid
+// lies inside Q's, -1 when the solids are disjoint, 0 otherwise
 // (another pair of surfaces). Decided by the exact side of E's centre c: E's surface is
 // connected and misses Q's, so it lies wholly inside or wholly outside Q's solid. Inside: E's
 // solid (the convex hull of its surface) is inside the convex solid of Q; and c inside Q's
@@ -355,6 +357,30 @@ void apply_solid_option(DistanceResult& r, const core::Surface& a, const core::S
     r.ties = Ties::None;
     r.note = "solid distance: " + why + " (surface distance " + was + ")";
   };
+  if (r.status == Status::Certified && r.distance && r.distance->is_zero() &&
+      r.minimizers.is_count()) {
+    // The surfaces touch at finitely many points and cross nowhere, so each surface minus
+    // those points (still connected) lies on one side of the other: either one solid contains
+    // the other (a continuum of common points) or the solids meet only where the surfaces
+    // touch (the count stands). The same sides as for disjoint surfaces decide it.
+    const int e = ellipsoid_in_convex_quadric(a, b);
+    const int n = e != 0 ? e : solids_nested(a, b);
+    if (n > 0) {
+      nested("one solid contains the other, their surfaces touching",
+             e != 0 ? Minimizers::Proof::Exact : Minimizers::Proof::Interval);
+      return;
+    }
+    if (n < 0) {
+      r.note += std::string(r.note.empty() ? "" : "; ") +
+                "solid distance: the solids meet only where the surfaces touch";
+      return;
+    }
+    r.minimizers = Minimizers::undecided(r.minimizers.value());
+    r.note += std::string(r.note.empty() ? "" : "; ") +
+              "solid distance 0 (the surfaces touch); whether one solid contains the other "
+              "was not decided, so the number of common points of the solids is not proven";
+    return;
+  }
   if (r.status == Status::Certified && r.distance && !r.distance->is_zero()) {
     const int n = ellipsoid_in_convex_quadric(a, b);
     if (n > 0) {

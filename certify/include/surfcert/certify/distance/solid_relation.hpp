@@ -11,6 +11,10 @@
 // and bound); the tests are certified signs (ellipsoid and torus polynomials; for a canal
 // surface the minimum over t of |p - C(t)|^2 - r(t)^2, by branch and bound with Arb).
 // Anything not certified returns 0 (undecided), never a guess.
+// The same holds when the surfaces touch at finitely many points without crossing (each
+// surface minus those points is still connected and lies on one side of the other): then -1
+// means the solids meet only at those points (the surface distance's count stands for the
+// solids) and +1 a continuum of common points (apply_solid_option uses it so).
 #pragma once
 
 #include "surfcert/certify/distance/ball.hpp"
@@ -22,8 +26,9 @@ namespace surfcert::certify {
 /// True for the surfaces that bound a solid here: real ellipsoids, tori, canal surfaces.
 bool is_closed_surface(const core::Surface& s);
 
-/// Precondition: the surfaces are disjoint. +1: one solid contains the other; -1: the solids
-/// are disjoint; 0: not decided (or a surface is not closed).
+/// Precondition: the surfaces are disjoint, or touch at finitely many points without crossing.
+/// +1: one solid contains the other; -1: the solids are disjoint (meet only at the touching
+/// points); 0: not decided (or a surface is not closed).
 int solids_nested(const core::Surface& a, const core::Surface& b);
 
 /// A ball holding the support point of the canal solid in the unit direction e (a genuine
