@@ -138,11 +138,16 @@ Singular classify(const QuadricPair& q, const V& p) {
   const double nf = norm(gf), ng = norm(gg);
   const double big = std::max(nf, ng);
   if (!(big > 0)) return s;
-  if (norm(cross(gf, gg)) > 1e-6 * nf * ng) return s; // not a singular point of the curve
+  // A gradient below 1e-6 of the other: p is (the rounding of) a singular point of that
+  // surface, a cone's apex; its computed direction is noise, so the angle between the
+  // gradients says nothing there (an apex 1e-8 of the scene off the rounded special point was
+  // read as a smooth point, and the walks crawled into it instead of passing through).
+  const bool on_apex = !(nf > 1e-6 * big && ng > 1e-6 * big);
+  if (!on_apex && norm(cross(gf, gg)) > 1e-6 * nf * ng) return s; // not singular on the curve
   // M = B - mu A (quadratic parts), with grad g = mu grad f; or the quadratic part of the
   // surface that is singular at p.
   std::array<std::array<double, 4>, 4> m{};
-  if (nf > 1e-9 * big && ng > 1e-9 * big) {
+  if (!on_apex) {
     const double mu = dot(gg, gf) / dot(gf, gf);
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j)
