@@ -360,6 +360,32 @@ TEST(BoxTrace, SteinmetzCrossingsInANarrowBox) {
   EXPECT_EQ(r.status, certify::Status::Undecided);
 }
 
+// A given box cutting closed conics: x >= 1/2 keeps one arc of each Steinmetz ellipse (in the
+// planes x = +-y; they cross at (0, 0, +-1), outside), leaving through the face x = 1/2 at
+// (1/2, +-1/2, +-sqrt(3)/2). The conics were returned whole (two loops against 4 crossings:
+// undecided); now clipped, the arcs' ends match the exact crossings.
+TEST(BoxTrace, GivenBoxCutsClosedConics) {
+  const double s = std::sqrt(3.0) / 2;
+  std::vector<trace::Point3> want;
+  for (double y : {-0.5, 0.5})
+    for (double z : {-s, s})
+      want.push_back({0.5, y, z});
+  for (bool swap : {false, true}) {
+    const auto a = q("x^2 + z^2 = 1"), b = q("y^2 + z^2 = 1");
+    const auto opt = given_box({0.5, -2, -2}, {2, 2, 2});
+    auto r = swap ? trace::intersect_curve(b, a, Mode::Exact, opt)
+                  : trace::intersect_curve(a, b, Mode::Exact, opt);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    expect_crossings(r, want, "steinmetz, x >= 1/2");
+    ASSERT_EQ(r.branches.size(), 2u);
+    for (const auto& br : r.branches) {
+      EXPECT_FALSE(br.closed);
+      for (const auto& p : br.points)
+        EXPECT_GE(p[0], 0.5 - 1e-12);
+    }
+  }
+}
+
 // Cylinder x^2 + y^2 = 1 cut by the plane z = x/2 (an ellipse): the face x = -1/2 meets it at
 // y = -+sqrt(3)/2, z = -1/4; a box containing the ellipse has no crossing at all.
 TEST(BoxTrace, CylinderPlaneCrossings) {
@@ -411,4 +437,29 @@ TEST(BoxTrace, LinesThroughOnePointCrossTheFacesExactly) {
                                 {{Rational(1), Rational(-1), Rational(0)}}, lo, hi);
   ASSERT_TRUE(ex.certified) << ex.reason;
   EXPECT_TRUE(ex.points.empty());
+}
+
+// The cone x^2 + y^2 = z^2 and the cylinder through its apex, (x - 1)^2 + y^2 = 1: a figure
+// eight whose node is the apex. Moved by a rotation and a translation 37 sizes away, then
+// scaled by 2^-k: the special point rounded to doubles lies ~1e-8 of the scene off the apex,
+// where the cone's gradient is rounding noise; it was read as a smooth point and the walks
+// crawled into it, tracing two loops (undecided at most scales, certified at 10^4 by luck).
+TEST(BoxTrace, FigureEightThroughAConeApexFarFromTheOrigin) {
+  const auto m0 =
+      scaled_motion(Rational(10000), {Rational(100000), Rational(-200000), Rational(300000)});
+  for (int k : {0, 2, 6, 10, 13, 20}) {
+    core::Mat4 m = m0;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        if (j < 3) m[i][j] = m[i][j] * core::pow2(k); // the moved curve scaled by 2^-k
+    const auto a = q("x^2 + y^2 = z^2").congruent(m), b = q("(x - 1)^2 + y^2 = 1").congruent(m);
+    for (bool swap : {false, true}) {
+      const auto r = swap ? trace::intersect_curve(b, a, Mode::Filtered, {})
+                          : trace::intersect_curve(a, b, Mode::Filtered, {});
+      ASSERT_EQ(r.status, certify::Status::Certified) << k << ": " << r.note;
+      ASSERT_EQ(r.branches.size(), 1u) << k;
+      EXPECT_TRUE(r.branches[0].closed) << k;
+      EXPECT_EQ(r.branches[0].kind, "figure_eight") << k;
+    }
+  }
 }

@@ -261,6 +261,24 @@ std::vector<Branch> clip_to_box(const QuadricPair& q, const Branch& br, const Bo
   return out;
 }
 
+// A closed polyline inside the box: itself when wholly inside, else its pieces inside (opened
+// at a point outside, so that no piece is split at the seam). A given box may cut a closed
+// conic (x = 1/2 through the Steinmetz ellipses): the arcs then end on the faces, where the
+// exact crossings are matched, instead of the whole conic counting as a loop in the box.
+std::vector<Branch> clip_closed_to_box(const QuadricPair& q, const Branch& br, const Box& box) {
+  const auto& pts = br.points;
+  size_t start = pts.size();
+  for (size_t i = 0; i < pts.size() && start == pts.size(); ++i)
+    if (!box.contains(pts[i])) start = i;
+  if (start == pts.size()) return {br};
+  Branch open = br;
+  open.closed = false;
+  open.points.clear();
+  for (size_t i = 0; i <= pts.size(); ++i)
+    open.points.push_back(pts[(start + i) % pts.size()]);
+  return clip_to_box(q, open, box);
+}
+
 certify::BoxExits exact_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                               const Box& box) {
   std::array<core::Rational, 3> lo, hi;
@@ -645,14 +663,9 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
       // Open conics sampled far enough to leave this box. (Closed ones do not depend on the
       // box: the conics sampled for the sizing are reused when all are closed.)
       if (!all_closed) conics = conic_branches(a, b, t.facts, bopt);
-      for (const auto& br : conics) {
-        if (br.closed) {
-          out.branches.push_back(br);
-          continue;
-        }
-        for (auto& piece : clip_to_box(q, br, in))
+      for (const auto& br : conics)
+        for (auto& piece : br.closed ? clip_closed_to_box(q, br, in) : clip_to_box(q, br, in))
           out.branches.push_back(std::move(piece));
-      }
     } else {
       auto run = [&](std::vector<V> st) {
         const auto faces = box_face_points(q, in);
