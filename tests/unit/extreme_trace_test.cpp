@@ -186,3 +186,20 @@ TEST(ExtremeTrace, RescaledQuadricIsTheSameSurface) {
       EXPECT_LE(core::abs(big(i, j)), Rational(2)) << i << j;
   EXPECT_EQ(big(3, 3) / big(0, 0), -core::pow2(1000));
 }
+
+TEST(ExtremeTrace, CurveBeyondTheDoubleRangeIsUndecidedNotAnError) {
+  // A unit pair's four hyperbolas followed out to a given box 1e300 wide: x^2 overflows on the
+  // way. The answer was an internal error (a non-finite point in the JSON); now undecided with
+  // no points, and its JSON writes.
+  const auto a = q("x^2 + y^2 - z^2 = 1"), b = q("x^2 + z^2 - y^2 = 1/4");
+  const auto opt = surfcert::testing::given_box({-1e300, -1e300, -1e300}, {1e300, 1e300, 1e300});
+  const auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
+  EXPECT_EQ(r.status, certify::Status::Undecided) << r.note;
+  for (const auto& br : r.branches)
+    for (const auto& p : br.points)
+      EXPECT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
+  EXPECT_TRUE(std::isfinite(r.max_residual));
+  std::string out;
+  EXPECT_NO_THROW(trace::append_curve_envelope(out, r, a, b));
+  EXPECT_FALSE(out.empty());
+}
