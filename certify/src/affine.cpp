@@ -856,55 +856,6 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
 // isolated point (it may lie on the other section). Crossing components count separately, as
 // everywhere; the points at infinity of the two sections are merged (multiplicities add).
 
-// The two planes of a rational plane pair, as 4-vectors n (n . (x, y, z, 1) = 0), or nullopt.
-// x^T M x = (C^T x)^T S^-1 (C^T x) for a rank-2 M, S a nonzero principal 2x2 minor and C its
-// two columns (checked exactly, which also proves rank 2); the binary form splits over Q when
-// its discriminant is a positive rational square.
-std::optional<std::array<std::array<Rational, 4>, 2>> rational_plane_pair(const core::Mat4& m) {
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = i + 1; j < 4; ++j) {
-      const Rational det = m[i][i] * m[j][j] - m[i][j] * m[i][j];
-      if (det.is_zero()) continue;
-      const Rational p = m[j][j] / det, q = -m[i][j] / det, r = m[i][i] / det; // S^-1
-      for (size_t a = 0; a < 4; ++a)
-        for (size_t b = 0; b < 4; ++b) {
-          const Rational v =
-              m[a][i] * (p * m[b][i] + q * m[b][j]) + m[a][j] * (q * m[b][i] + r * m[b][j]);
-          if (v != m[a][b]) return std::nullopt; // rank > 2
-        }
-      const Rational disc = q * q - p * r;
-      if (disc.sign() <= 0) return std::nullopt; // complex planes (a real line) or a double plane
-      const Integer dn = disc.num() * disc.den();
-      Integer root;
-      fmpz_sqrt(root.raw_mut(), dn.raw());
-      if (!(root * root == dn)) return std::nullopt; // planes over Q(sqrt d): not handled
-      const Rational sq = Rational(root) / Rational(disc.den());
-      std::array<std::array<Rational, 4>, 2> n;
-      for (size_t k = 0; k < 4; ++k) {
-        const Rational &al = m[k][i], &be = m[k][j]; // alpha = C_i . x, beta = C_j . x
-        if (!p.is_zero()) {
-          // p (alpha - r1 beta)(alpha - r2 beta), r = (-q +- sq) / p
-          n[0][k] = al - ((-q + sq) / p) * be;
-          n[1][k] = al - ((-q - sq) / p) * be;
-        } else {
-          // beta (2 q alpha + r beta)
-          n[0][k] = be;
-          n[1][k] = Rational(2) * q * al + r * be;
-        }
-      }
-      return n;
-    }
-  return std::nullopt;
-}
-
-core::Mat4 plane_as_quadric(const std::array<Rational, 4>& n) {
-  core::Mat4 pm;
-  for (size_t k = 0; k < 3; ++k)
-    pm[k][3] = pm[3][k] = n[k] / Rational(2);
-  pm[3][3] = n[3];
-  return pm;
-}
-
 std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
                                                const core::QuadricMatrix& quad) {
   const auto planes = rational_plane_pair(pair.matrix());
@@ -1020,6 +971,56 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
 }
 
 } // namespace
+
+// See affine.hpp.
+// The two planes of a rational plane pair, as 4-vectors n (n . (x, y, z, 1) = 0), or nullopt.
+// x^T M x = (C^T x)^T S^-1 (C^T x) for a rank-2 M, S a nonzero principal 2x2 minor and C its
+// two columns (checked exactly, which also proves rank 2); the binary form splits over Q when
+// its discriminant is a positive rational square.
+std::optional<std::array<std::array<Rational, 4>, 2>> rational_plane_pair(const core::Mat4& m) {
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i + 1; j < 4; ++j) {
+      const Rational det = m[i][i] * m[j][j] - m[i][j] * m[i][j];
+      if (det.is_zero()) continue;
+      const Rational p = m[j][j] / det, q = -m[i][j] / det, r = m[i][i] / det; // S^-1
+      for (size_t a = 0; a < 4; ++a)
+        for (size_t b = 0; b < 4; ++b) {
+          const Rational v =
+              m[a][i] * (p * m[b][i] + q * m[b][j]) + m[a][j] * (q * m[b][i] + r * m[b][j]);
+          if (v != m[a][b]) return std::nullopt; // rank > 2
+        }
+      const Rational disc = q * q - p * r;
+      if (disc.sign() <= 0) return std::nullopt; // complex planes (a real line) or a double plane
+      const Integer dn = disc.num() * disc.den();
+      Integer root;
+      fmpz_sqrt(root.raw_mut(), dn.raw());
+      if (!(root * root == dn)) return std::nullopt; // planes over Q(sqrt d): not handled
+      const Rational sq = Rational(root) / Rational(disc.den());
+      std::array<std::array<Rational, 4>, 2> n;
+      for (size_t k = 0; k < 4; ++k) {
+        const Rational &al = m[k][i], &be = m[k][j]; // alpha = C_i . x, beta = C_j . x
+        if (!p.is_zero()) {
+          // p (alpha - r1 beta)(alpha - r2 beta), r = (-q +- sq) / p
+          n[0][k] = al - ((-q + sq) / p) * be;
+          n[1][k] = al - ((-q - sq) / p) * be;
+        } else {
+          // beta (2 q alpha + r beta)
+          n[0][k] = be;
+          n[1][k] = Rational(2) * q * al + r * be;
+        }
+      }
+      return n;
+    }
+  return std::nullopt;
+}
+
+core::Mat4 plane_as_quadric(const std::array<Rational, 4>& n) {
+  core::Mat4 pm;
+  for (size_t k = 0; k < 3; ++k)
+    pm[k][3] = pm[3][k] = n[k] / Rational(2);
+  pm[3][3] = n[3];
+  return pm;
+}
 
 // The conic at infinity has no real point: an ellipsoid's quadratic part is definite. Read
 // from the shape when there is one (no exact matrix is formed for shapes posed in doubles).

@@ -31,6 +31,7 @@ constexpr std::pair<Method, const char*> kSpellings[] = {
     {Method::ImplicitBnb, "implicit_bnb"},
     {Method::SignChangeContact, "sign_change_contact"},
     {Method::ParametricReduction, "parametric_reduction"},
+    {Method::PlanePairMin, "plane_pair_min"},
 };
 
 constexpr bool in_enum_order() {
@@ -39,7 +40,7 @@ constexpr bool in_enum_order() {
   return true;
 }
 static_assert(in_enum_order(), "kSpellings must list every Method in enum order");
-static_assert(std::size(kSpellings) == static_cast<size_t>(Method::ParametricReduction) + 1,
+static_assert(std::size(kSpellings) == static_cast<size_t>(Method::PlanePairMin) + 1,
               "a Method without a JSON spelling");
 
 } // namespace

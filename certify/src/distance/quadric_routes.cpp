@@ -13,6 +13,7 @@
 #include "surfcert/certify/distance/convex_distance.hpp"
 #include "surfcert/certify/distance/cylinder_pair.hpp"
 #include "surfcert/certify/distance/nested_convex.hpp"
+#include "surfcert/certify/distance/plane_pair_distance.hpp"
 #include "surfcert/certify/distance/plane_quadric.hpp"
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/quadric_pair.hpp"
@@ -256,6 +257,23 @@ Outcome plane_run(Query& q) {
   const auto &a = qa(q), &b = qb(q);
   return Outcome::answer(
       plane_quadric_distance(a.is_plane() ? a : b, a.is_plane() ? b : a, q.digits, a.is_plane()));
+}
+
+// A rational plane pair and another quadric (plane_pair_distance.hpp): the nearer plane.
+// A posed shape is never a plane pair (no exact matrix formed for it here).
+bool splits_into_planes(const core::QuadricMatrix& q) {
+  return q.shape() == nullptr && !q.is_plane() && rational_plane_pair(q.matrix()).has_value();
+}
+bool plane_pair_apply(const Query& q) {
+  if (q.solid) return false;
+  const auto &a = qa(q), &b = qb(q);
+  return splits_into_planes(a) || splits_into_planes(b);
+}
+Outcome plane_pair_run(Query& q) {
+  const auto &a = qa(q), &b = qb(q);
+  const bool pair_is_a = splits_into_planes(a);
+  return answer_or_not(
+      plane_pair_distance(pair_is_a ? a : b, pair_is_a ? b : a, pair_is_a, q.digits, q.mode));
 }
 
 bool always(const Query&) {
@@ -776,6 +794,10 @@ void add_quadric_pair_routes(std::vector<Route>& t) {
                "a sphere and a quadric: the gap d - r (or r - d) over the exact point-quadric "
                "critical distances",
                sphere_apply, sphere_run});
+  t.push_back({Method::PlanePairMin, k, kFilteredMode | kExactMode,
+               "a rational plane pair and a quadric: the nearer of its two planes, compared "
+               "exactly on their enclosures",
+               plane_pair_apply, plane_pair_run});
   t.push_back({Method::OffsetSystem, k, kAllModes,
                "two quadrics: every critical pair covered exactly (resultants), refined",
                offset_apply, offset_run});

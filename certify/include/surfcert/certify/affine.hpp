@@ -104,6 +104,15 @@ struct AffineTopology {
   }
 };
 
+/// The two planes of a rational plane pair (a rank-2 symmetric matrix whose binary form splits
+/// over Q), as 4-vectors n with n . (x, y, z, 1) = 0 on the plane, exactly; nullopt for rank
+/// != 2, a double plane, conjugate complex planes or planes over Q(sqrt d).
+std::optional<std::array<std::array<core::Rational, 4>, 2>>
+rational_plane_pair(const core::Mat4& m);
+
+/// The plane n . (x, y, z, 1) = 0 written as a quadric (zero quadratic block).
+core::Mat4 plane_as_quadric(const std::array<core::Rational, 4>& n);
+
 /// The affine topology from a classification (special points are computed here when needed).
 AffineTopology affine_topology(QsicResult& topology, const core::QuadricMatrix& a,
                                const core::QuadricMatrix& b);

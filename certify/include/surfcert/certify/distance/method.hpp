@@ -38,6 +38,8 @@ enum class Method {
   ImplicitBnb,
   SignChangeContact,
   ParametricReduction,
+  // quadric pairs (added later; spellings keep enum order)
+  PlanePairMin,
 };
 
 /// The JSON spelling ("offset_system", ...; "" for None).
