@@ -387,6 +387,10 @@ TEST(QuadricPairDistance, SolvedAtUnitSizeWhateverTheScale) {
       "0000000000000000000000";
   const std::string e100 = std::string("1e100"), em100 = std::string("1e-100");
   const std::pair<std::string, core::Rational> scales[] = {
+      {"16", core::Rational(16)}, // both sides of the 2^+-4 threshold
+      {"64", core::Rational(64)},
+      {"0.0625", core::Rational(1, 16)},
+      {"0.015625", core::Rational(1, 64)},
       {"1e8", core::Rational(100000000)},
       {"1e-8", core::Rational(1, 100000000)},
       {e100, *core::Rational::from_string(ones)},
