@@ -810,6 +810,23 @@ std::optional<int> extreme_order(const core::QuadricMatrix& a, const core::Quadr
   return static_cast<int>(std::clamp(k, -100000L, 100000L));
 }
 
+// A result traced on a moved copy of the pair (translated or rescaled) whose box is reported
+// for the original pair: the box's exact crossings recomputed on the original pair and matched
+// again with the traced ends (the claim is about the box reported).
+void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& local) {
+  local.box_exits = curve_exits(a, b, local.affine, *local.box);
+  if (local.status != Status::Certified) return;
+  const std::string why =
+      local.box_exits->certified
+          ? match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal())
+          : "the crossings with the box's faces are not certified: " + local.box_exits->reason;
+  if (!why.empty()) {
+    local.status = Status::Undecided;
+    local.matches_topology = false;
+    local.note = why;
+  }
+}
+
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                            QsicResult topology, const TraceOptions& opt, int depth);
 
@@ -881,18 +898,7 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
       }
       return local;
     }
-    local.box_exits = curve_exits(a, b, local.affine, *local.box);
-    if (local.status == Status::Certified) {
-      const std::string why =
-          local.box_exits->certified
-              ? match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal())
-              : "the crossings with the box's faces are not certified: " + local.box_exits->reason;
-      if (!why.empty()) {
-        local.status = Status::Undecided;
-        local.matches_topology = false;
-        local.note = why;
-      }
-    }
+    rematch_exits(a, b, local);
   }
   return local;
 }
@@ -980,19 +986,7 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     if (local.box_exits && local.box) {
       // The reported box is the translated one moved back in double: its exact crossings are
       // recomputed on the original pair and matched again (the claim is about this box).
-      local.box_exits = curve_exits(a, b, local.affine, *local.box);
-      if (local.status == Status::Certified) {
-        const std::string why =
-            local.box_exits->certified
-                ? match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal())
-                : "the crossings with the box's faces are not certified: " +
-                      local.box_exits->reason;
-        if (!why.empty()) {
-          local.status = Status::Undecided;
-          local.matches_topology = false;
-          local.note = why;
-        }
-      }
+      rematch_exits(a, b, local);
     }
     return local;
   }
