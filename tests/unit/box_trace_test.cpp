@@ -463,3 +463,59 @@ TEST(BoxTrace, FigureEightThroughAConeApexFarFromTheOrigin) {
     }
   }
 }
+
+// A pair far from the origin is traced on the exactly translated pair (trace::intersect_curve's
+// far_centre); the crossings reported with the box are then the translated pair's, moved back
+// when the box moves back exactly (recomputed otherwise). Either way they must be the original
+// pair's exact crossings with the reported box: certify::box_exits on the original matrices and
+// the box read exactly, matched one to one (same face, within both radii), for an automatic
+// box and for given boxes whose faces do and do not translate exactly.
+TEST(BoxTrace, CrossingsOfAFarPairAreTheOriginalPairsCrossings) {
+  const std::pair<const char*, const char*> pairs[] = {
+      {"x^2 + y^2 - z^2 = 1", "x^2 + z^2 - y^2 = 1/4"},         // two hyperbolas
+      {"z = x*y", "z = x^2 - y^2"},                             // two parabolas
+      {"x*y = 1", "x^2 + z^2 = 4"},                             // crunode at infinity
+      {"x^2 + y^2 = z^2", "(x - 1/2)^2 + (z - 1/3)^2 = 4*y^2"}, // two cones
+  };
+  const std::array<Rational, 3> far{Rational(37), Rational(-21), Rational(13, 2)};
+  const auto m = motion(1, 2, 2, -1, far);
+  for (const auto& [ea, eb] : pairs) {
+    const auto a = q(ea).congruent(m), b = q(eb).congruent(m);
+    const trace::Point3 c{37, -21, 6.5};
+    std::vector<std::pair<std::string, trace::TraceOptions>> runs{{"automatic box", {}}};
+    runs.push_back({"dyadic box", given_box(plus(c, {-3, -3, -3}), plus(c, {3, 3, 3}))});
+    runs.push_back(
+        {"decimal box", given_box(plus(c, {-2.9, -3.1, -2.7}), plus(c, {3.3, 2.9, 3.1}))});
+    for (const auto& [name, opt] : runs) {
+      const std::string ctx = std::string(ea) + " | " + eb + ", " + name;
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      ASSERT_TRUE(r.box && r.box_exits && r.box_exits->certified) << ctx;
+      std::array<Rational, 3> lo, hi;
+      for (size_t k = 0; k < 3; ++k) {
+        lo[k] = Rational::exact_from_double(r.box->min[k]);
+        hi[k] = Rational::exact_from_double(r.box->max[k]);
+      }
+      const auto exact = certify::box_exits(a.matrix(), b.matrix(), lo, hi);
+      ASSERT_TRUE(exact.certified) << ctx << ": " << exact.reason;
+      ASSERT_EQ(r.box_exits->points.size(), exact.points.size()) << ctx;
+      EXPECT_GT(exact.points.size(), 0u) << ctx;
+      std::vector<bool> used(exact.points.size(), false);
+      for (const auto& got : r.box_exits->points) {
+        int hits = 0;
+        for (size_t i = 0; i < exact.points.size(); ++i) {
+          const auto& e = exact.points[i];
+          double d = 0;
+          for (size_t k = 0; k < 3; ++k)
+            d = std::max(d, std::fabs(got.approx[k] - e.approx[k]));
+          if (got.axis == e.axis && got.at_max == e.at_max && d <= got.radius + e.radius + 1e-13) {
+            ++hits;
+            used[i] = true;
+          }
+        }
+        EXPECT_EQ(hits, 1) << ctx << ": a reported crossing is not one exact crossing";
+      }
+      EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](bool u) { return u; })) << ctx;
+    }
+  }
+}

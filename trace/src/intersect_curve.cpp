@@ -624,10 +624,20 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   } else {
     starts = extreme_points_float(q);
     sizing.insert(sizing.end(), starts.begin(), starts.end());
-    // Closed loops are traced whole first, so that the automatic box contains them.
-    if (!opt.box)
-      for (const auto& br : march(q, starts, stops, opt))
+    // Closed loops are traced whole first, so that the automatic box contains them; none when
+    // the certified topology has no loop. A walk on an unbounded branch runs until it is 100
+    // scene sizes out (5,000 points, then dropped: 90% of a random cone pair's time), so the
+    // walks first stop 4 scene sizes out, and go the whole way only when that misses a loop.
+    if (!opt.box && !(af.loops && *af.loops == 0)) {
+      TraceOptions near = opt;
+      near.escape_scenes = 4;
+      std::vector<Branch> found = march(q, starts, stops, near);
+      const auto closed =
+          std::count_if(found.begin(), found.end(), [](const Branch& br) { return br.closed; });
+      if (!af.loops || closed < *af.loops) found = march(q, starts, stops, opt);
+      for (const auto& br : found)
         if (br.closed) sizing.insert(sizing.end(), br.points.begin(), br.points.end());
+    }
   }
   // Curve points near the origin (Gauss-Newton from a few seeds): a piece of an unbounded
   // branch without a critical point still gets into the automatic box. (Conics and lines
@@ -828,7 +838,23 @@ void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, C
 }
 
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                           QsicResult topology, const TraceOptions& opt, int depth);
+                           QsicResult topology, const TraceOptions& opt, int depth,
+                           const certify::AffineTopology* known = nullptr);
+
+// The affine reading of a pair carried to a copy moved by an exact translation or a scaling
+// by a power of two: its counts and its points at infinity (directions) do not move; routes
+// that hold coordinates (a plane, a section, an apex, a cubic and a line) are read again.
+const certify::AffineTopology* movable(const certify::AffineTopology& af) {
+  const bool coordinates = af.plane || af.plane2 || af.section_of || af.apex || af.cubic_line;
+  return coordinates ? nullptr : &af;
+}
+
+// x + y when that double sum is exact (TwoSum's error term is zero), else nullopt.
+std::optional<double> exact_sum(double x, double y) {
+  const double s = x + y, bb = s - x, err = (x - (s - bb)) + (y - bb);
+  if (err != 0 || !std::isfinite(s)) return std::nullopt;
+  return s;
+}
 
 // The pair traced at unit size: on the exact pair in the coordinates u = x / 2^k (its
 // classification re-done there: the same certified answer), every point and the box scaled
@@ -844,7 +870,8 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
       o2.box->min[i] = std::ldexp(o2.box->min[i], -k);
       o2.box->max[i] = std::ldexp(o2.box->max[i], -k);
     }
-  CurveResult local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1);
+  CurveResult local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1,
+                                     movable(out.affine));
   bool finite = true, subnormal = false, box_exact = true;
   auto back = [&](Point3& x) {
     for (size_t i = 0; i < 3; ++i) {
@@ -931,14 +958,15 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
 namespace {
 
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                           QsicResult topology, const TraceOptions& opt, int depth) {
+                           QsicResult topology, const TraceOptions& opt, int depth,
+                           const certify::AffineTopology* known) {
   CurveResult out;
   out.tolerance = opt.tolerance;
   out.topology = std::move(topology);
   QsicResult& t = out.topology;
   // The branches need the special points (isolated points, singular points), at every detail.
   if (t.morphology) certify::complete_special_points(t, a, b);
-  out.affine = certify::affine_topology(t, a, b);
+  out.affine = known ? *known : certify::affine_topology(t, a, b);
   if (depth < 4)
     if (const auto k = extreme_order(a, b))
       return trace_rescaled(a, b, std::move(out), opt, *k, depth);
@@ -962,8 +990,8 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     if (o2.box)
       for (size_t k = 0; k < 3; ++k)
         o2.box->min[k] -= (*c)[k], o2.box->max[k] -= (*c)[k];
-    CurveResult local =
-        trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1);
+    CurveResult local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1,
+                                       movable(out.affine));
     auto back = [&c](Point3& x) {
       for (size_t k = 0; k < 3; ++k)
         x[k] += (*c)[k];
@@ -973,20 +1001,40 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
         back(x);
     for (auto& x : local.isolated_points)
       back(x);
+    // The box moved back exactly (every sum exact, the given box when there was one) is the
+    // translated box moved back: the crossings found there are the original pair's, moved.
+    bool box_exact = local.box.has_value();
     if (local.box) {
-      Point3 lo = local.box->min, hi = local.box->max;
-      back(lo);
-      back(hi);
-      local.box->min = opt.box ? opt.box->min : lo;
-      local.box->max = opt.box ? opt.box->max : hi;
+      for (size_t k = 0; k < 3; ++k) {
+        const auto lo = exact_sum(local.box->min[k], (*c)[k]);
+        const auto hi = exact_sum(local.box->max[k], (*c)[k]);
+        box_exact = box_exact && lo && hi &&
+                    (!opt.box || (*lo == opt.box->min[k] && *hi == opt.box->max[k]));
+        local.box->min[k] = opt.box ? opt.box->min[k] : local.box->min[k] + (*c)[k];
+        local.box->max[k] = opt.box ? opt.box->max[k] : local.box->max[k] + (*c)[k];
+      }
     }
     local.topology = std::move(out.topology);
     local.affine = std::move(out.affine);
     finish_points(a, b, QuadricPair(a, b), local);
     if (local.box_exits && local.box) {
-      // The reported box is the translated one moved back in double: its exact crossings are
-      // recomputed on the original pair and matched again (the claim is about this box).
-      rematch_exits(a, b, local);
+      if (box_exact) {
+        // Each midpoint moved in double: a rounding of at most half an ulp per coordinate,
+        // added (twice over) to the radius.
+        for (auto& e : local.box_exits->points) {
+          double moved = 0;
+          for (size_t k = 0; k < 3; ++k) {
+            e.approx[k] += (*c)[k];
+            moved = std::max(moved, std::fabs(e.approx[k]));
+          }
+          e.radius += 0x1p-52 * moved + 0x1p-1074;
+        }
+      } else {
+        // The reported box is the translated one moved back with a rounding: its exact
+        // crossings are recomputed on the original pair and matched again (the claim is about
+        // this box).
+        rematch_exits(a, b, local);
+      }
     }
     return local;
   }

@@ -36,7 +36,8 @@
 // branch that best continues its direction (crunode) or back along the other half (cusp);
 // the outgoing point solves f = g = 0, |X - S| = r by Newton. Start points at which the curve
 // is singular (extreme_points returns them) are not starts; they join the list of singular
-// points. A walk leaving the scene by more than 100 L is on a non-compact branch and stops.
+// points. A walk further than escape_scenes (100) L from its start is on a non-compact branch
+// and stops.
 #include "surfcert/trace/curve.hpp"
 
 #include <algorithm>
@@ -402,7 +403,7 @@ public:
       }
       // Running off to infinity (a non-compact branch: every compact one has both of its
       // extreme points among the starts, so it stays within a few scene sizes of them).
-      if (dist(p, p0) > 100 * scene_) {
+      if (dist(p, p0) > opt_.escape_scenes * scene_) {
         w.dead = true;
         return w;
       }

@@ -46,6 +46,9 @@ struct Box {
 struct TraceOptions {
   double tolerance = 2e-4; ///< bound on chord error and on the step (relative to the scene size)
   int max_points_per_branch = 200000;
+  /// A walk further than this many scene sizes from its start is on a non-compact branch and
+  /// stops (without a box; with one, walks stop on its faces).
+  double escape_scenes = 100;
   /// When set, march() stops each walk where it leaves the box (the last point lies on a face)
   /// and walks starting on a face only inwards; the scene size is the box's diagonal.
   std::optional<Box> box;
