@@ -221,7 +221,7 @@ std::vector<Root> roots_of(const Chart& ch) {
       r.lo = sep.separators[j];
       r.hi = sep.separators[j + 1];
       Rational lo = r.lo, hi = r.hi;
-      algebra::refine_root(g, lo, hi, Rational(1, 1UL << 60));
+      algebra::refine_root_newton(g, lo, hi, Rational(1, 1UL << 60)); // an estimate: any bracket
       const double t0 = ((lo + hi) * Rational(1, 2)).to_double_approx();
       std::array<double, 3> ap{};
       for (size_t k = 0; k < 3; ++k)
@@ -671,7 +671,7 @@ std::vector<PointAtInfinity> cubic_points_at_infinity(const CubicAndLine& cl) {
       p.lo = sep.separators[j];
       p.hi = sep.separators[j + 1];
       Rational lo = p.lo, hi = p.hi;
-      algebra::refine_root(g, lo, hi, Rational(1, 1UL << 60));
+      algebra::refine_root_newton(g, lo, hi, Rational(1, 1UL << 60)); // an estimate: any bracket
       const double t0 = ((lo + hi) * Rational(1, 2)).to_double_approx();
       std::array<double, 3> ap{};
       for (size_t k = 0; k < 3; ++k)

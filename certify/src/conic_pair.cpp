@@ -52,8 +52,8 @@ std::vector<std::array<V3, 3>> make_charts() {
 int sign_at_root(const UPolyQ& p, const algebra::UPolyZ& f, Rational lo, Rational hi) {
   for (long bits : {32L, 128L, 512L, 2048L}) {
     if (lo != hi)
-      algebra::refine_root(f, lo, hi,
-                           (hi - lo) * Rational::exact_from_double(std::ldexp(1.0, -bits)));
+      algebra::refine_root_newton(f, lo, hi,
+                                  (hi - lo) * Rational::exact_from_double(std::ldexp(1.0, -bits)));
     const long prec = bits + 64;
     algebra::Ball x, r, v, c;
     arb_set_fmpq(x.v, ((lo + hi) * Rational(1, 2)).raw(), prec);
