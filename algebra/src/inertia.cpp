@@ -5,6 +5,7 @@
 #include <flint/fmpq_mat.h>
 #include <flint/fmpz_mat.h>
 
+#include <array>
 #include <cmath>
 
 namespace surfcert::algebra {
@@ -133,19 +134,38 @@ int QuadraticNumber::sign() const {
   return sa * diff.sign();
 }
 
+namespace {
+
+// The primes below 2000 (303 of them), sieved at compile time.
+constexpr std::array<unsigned long, 303> small_primes() {
+  std::array<bool, 2000> composite{};
+  std::array<unsigned long, 303> out{};
+  size_t n = 0;
+  for (unsigned long p = 2; p < 2000; ++p) {
+    if (composite[p]) continue;
+    out[n++] = p;
+    for (unsigned long m = p * p; m < 2000; m += p)
+      composite[m] = true;
+  }
+  return out;
+}
+
+} // namespace
+
 QuadraticNumber QuadraticNumber::normalized() const {
   QuadraticNumber r = *this;
   if (r.b.is_zero() || r.d.sign() <= 0) return r;
-  core::Integer out(1), rest = r.d, q, rem;
-  for (long p = 2; p < 2000; p += (p == 2 ? 1 : 2)) {
-    core::Integer p2(p * p);
-    for (;;) {
-      fmpz_fdiv_qr(q.raw_mut(), rem.raw_mut(), rest.raw(), p2.raw());
-      if (!rem.is_zero()) break;
-      rest = q;
-      out = out * core::Integer(p);
+  // The square factors p^2 of d for the primes p < 2000 moved out of the root (a composite's
+  // square divides no more once its primes' are out), then a perfect square rest. A machine-
+  // word remainder tests each p^2 (d has several limbs: a full division per candidate was most
+  // of a plane section's special points).
+  static constexpr auto primes = small_primes();
+  core::Integer out(1), rest = r.d;
+  for (const unsigned long p : primes)
+    while (fmpz_fdiv_ui(rest.raw(), p * p) == 0) {
+      fmpz_divexact_ui(rest.raw_mut(), rest.raw(), p * p);
+      fmpz_mul_ui(out.raw_mut(), out.raw(), p);
     }
-  }
   core::Integer s;
   fmpz_sqrt(s.raw_mut(), rest.raw());
   if (s * s == rest) {

@@ -385,3 +385,37 @@ TEST(QuadraticNumbers, ExactSigns) {
   auto n = QuadraticNumber{Rational(0), Rational(1), Integer(72)}.normalized();
   EXPECT_EQ(n.to_string(), "6*sqrt(2)");
 }
+
+// normalized() on multi-limb radicands: the same number (b^2 d unchanged, a unchanged), no
+// square of a prime below 2000 left in d (1999, 1997 and 2 included, composites' squares
+// through their primes), a large perfect-square rest folded into a.
+TEST(QuadraticNumbers, NormalizedMovesSmallPrimeSquaresOut) {
+  using algebra::QuadraticNumber;
+  const Integer big = *Integer::from_string("100000000000000000039"); // prime, > 2^64
+  auto check = [](const QuadraticNumber& in, const QuadraticNumber& out, const char* ctx) {
+    EXPECT_EQ(out.b * out.b * Rational(out.d), in.b * in.b * Rational(in.d)) << ctx;
+    if (out.d != Integer(1) && !out.b.is_zero()) {
+      EXPECT_EQ(out.a, in.a) << ctx;
+    }
+    for (long p = 2; p < 2000; ++p) {
+      const Integer p2(p * p);
+      Integer r;
+      fmpz_fdiv_r(r.raw_mut(), out.d.raw(), p2.raw());
+      if (out.d != Integer(1)) {
+        EXPECT_FALSE(r.is_zero()) << ctx << ": " << p << "^2 divides d";
+      }
+    }
+  };
+  const Integer d1 = Integer(32) * Integer(27) * Integer(1999 * 1999) * Integer(1997) *
+                     Integer(1997 * 1997) * Integer(49 * 121) * big;
+  const QuadraticNumber x{Rational(1, 3), Rational(-5, 7), d1};
+  const auto n1 = x.normalized();
+  check(x, n1, "2^5 3^3 1999^2 1997^3 7^2 11^2 p");
+  EXPECT_EQ(n1.d, Integer(2) * Integer(3) * Integer(1997) * big);
+  EXPECT_EQ(n1.b, Rational(-5, 7) * Rational(4L * 3 * 1999 * 1997 * 7 * 11));
+  // A perfect square beyond the trial primes: sqrt(4 big^2) = 2 big, into a.
+  const QuadraticNumber y{Rational(1), Rational(1, 2), Integer(4) * big * big};
+  const auto n2 = y.normalized();
+  EXPECT_TRUE(n2.b.is_zero());
+  EXPECT_EQ(n2.a, Rational(1) + Rational(big));
+}
