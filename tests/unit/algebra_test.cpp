@@ -315,6 +315,55 @@ TEST(RealRoots, RefineRootAgainstKnownRationalRoots) {
   }
 }
 
+// refine_root_newton where its double start cannot or can barely help: roots at 2^+-1500
+// (ends beyond the double range), coefficients of 3,000 bits, a root at 2^-1070 (subnormal),
+// 0 itself, and two roots 2^-200 apart. Every interval holds its known root (exact
+// comparisons), is no wider than asked and has end signs that differ.
+TEST(RealRoots, RefineRootNewtonBeyondTheDoubleRange) {
+  auto linear = [](const Rational& r) { // den x - num
+    return UPolyZ::from_coeffs({-r.num(), r.den()});
+  };
+  const std::vector<std::vector<Rational>> cases = {
+      {core::pow2(1500), Rational(3), core::pow2(-1500)},
+      {core::pow2(-1070), Rational(-1, 3), Rational(5)},
+      {Rational(0), Rational(7, 2), Rational(-7, 2)},
+      {Rational(1), Rational(1) + core::pow2(-200), Rational(-2)},
+  };
+  for (const auto& roots : cases) {
+    UPolyZ p = UPolyZ::from_coeffs({Integer(1)});
+    for (const auto& r : roots)
+      fmpz_poly_mul(p.raw_mut(), p.raw(), linear(r).raw());
+    UPolyZ big = p; // the same roots, every coefficient times 2^3000 + 1
+    Integer k;
+    fmpz_one(k.raw_mut());
+    fmpz_mul_2exp(k.raw_mut(), k.raw(), 3000);
+    fmpz_add_ui(k.raw_mut(), k.raw(), 1);
+    fmpz_poly_scalar_mul_fmpz(big.raw_mut(), big.raw(), k.raw());
+    std::vector<Rational> sorted = roots;
+    std::sort(sorted.begin(), sorted.end());
+    for (const UPolyZ* q : {&p, &big}) {
+      const auto s = algebra::isolate_real_roots(*q);
+      ASSERT_EQ(s.num_roots(), sorted.size());
+      for (size_t r = 0; r < sorted.size(); ++r)
+        for (long wbits : {10L, 80L, 300L}) {
+          const Rational width = core::pow2(-wbits) * (core::abs(sorted[r]) + core::pow2(-1100));
+          Rational lo = s.separators[r], hi = s.separators[r + 1];
+          algebra::refine_root_newton(*q, lo, hi, width);
+          const std::string ctx =
+              sorted[r].to_string().substr(0, 40) + " at 2^-" + std::to_string(wbits);
+          EXPECT_LE(hi - lo, width) << ctx;
+          EXPECT_LE(lo, sorted[r]) << ctx;
+          EXPECT_LE(sorted[r], hi) << ctx;
+          if (lo == hi) {
+            EXPECT_EQ(lo, sorted[r]) << ctx;
+          } else {
+            EXPECT_NE(q->sign_at(lo), q->sign_at(hi)) << ctx;
+          }
+        }
+    }
+  }
+}
+
 TEST(Inertia, DescartesLdltAndSylvesterAgree) {
   std::mt19937_64 rng(test_seed() + 1);
   std::uniform_int_distribution<long> e(-3, 3), dsign(-1, 1), den(1, 7);
