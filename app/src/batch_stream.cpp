@@ -554,8 +554,9 @@ run_batch_pipeline(const std::function<NextLine(std::string_view& line, bool may
                             static_cast<size_t>(threads));
   // One observer for the process, never destroyed: TBB keeps an internal proxy per observer
   // that a destroyed local observer leaked (LeakSanitizer); the static pointer keeps it
-  // reachable.
-  static FlintCleanupObserver* const cleanup = new FlintCleanupObserver();
+  // reachable (volatile: an optimised build dropped the store of a pointer never read, and
+  // LeakSanitizer reported the observer at -O1).
+  static FlintCleanupObserver* volatile cleanup = new FlintCleanupObserver();
   (void)cleanup;
   tbb::parallel_pipeline(
       static_cast<size_t>(4 * threads),
