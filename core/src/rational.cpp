@@ -141,6 +141,12 @@ std::string Rational::to_string() const {
 }
 
 double Rational::to_double_approx() const {
+  // Numerator and denominator of at most 53 bits are exact doubles, and IEEE division rounds
+  // their quotient to nearest (ties to even) as MPFR's RNDN does below: the same double,
+  // without an MPFR number per call (7% of a plane section's instructions).
+  if (fmpz_bits(fmpq_numref(v_)) <= 53 && fmpz_bits(fmpq_denref(v_)) <= 53)
+    return static_cast<double>(fmpz_get_si(fmpq_numref(v_))) /
+           static_cast<double>(fmpz_get_si(fmpq_denref(v_)));
   mpfr_t t;
   mpfr_init2(t, 53);
   fmpq_get_mpfr(t, v_, MPFR_RNDN);

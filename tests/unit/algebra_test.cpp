@@ -10,6 +10,7 @@
 
 #include <flint/fmpq_mat.h>
 #include <gtest/gtest.h>
+#include <mpfr.h>
 
 #include <algorithm>
 
@@ -361,6 +362,50 @@ TEST(RealRoots, RefineRootNewtonBeyondTheDoubleRange) {
           }
         }
     }
+  }
+}
+
+// Rational::to_double_approx (a machine-word quotient when numerator and denominator have at
+// most 53 bits, MPFR otherwise) against mpfr_set_q at 53 bits, round to nearest: the same
+// double for random sizes on both sides of 53 bits and at the boundaries 2^53 - 1, 2^53,
+// 2^53 + 1, both signs.
+TEST(Rationals, ToDoubleIsTheNearestDouble) {
+  std::mt19937_64 rng(test_seed() + 21);
+  auto check = [](const Integer& n, const Integer& d) {
+    const Rational q = Rational(n) / Rational(d);
+    mpq_t m;
+    mpq_init(m);
+    fmpq_get_mpq(m, q.raw());
+    mpfr_t f;
+    mpfr_init2(f, 53);
+    mpfr_set_q(f, m, MPFR_RNDN);
+    const double want = mpfr_get_d(f, MPFR_RNDN);
+    mpfr_clear(f);
+    mpq_clear(m);
+    EXPECT_EQ(q.to_double_approx(), want) << q.to_string();
+  };
+  const Integer two53 = Integer(1L << 53);
+  const std::vector<Integer> edges = {two53 - Integer(1), two53,      two53 + Integer(1),
+                                      Integer(3),         Integer(1), Integer((1L << 52) + 1)};
+  for (const auto& n : edges)
+    for (const auto& d : edges) {
+      check(n, d);
+      check(Integer(0) - n, d);
+    }
+  for (int it = 0; it < 20000; ++it) {
+    auto random = [&](int bits) {
+      Integer x;
+      fmpz_set_ui(x.raw_mut(), rng() >> (64 - bits));
+      if (bits > 60) {
+        fmpz_mul_2exp(x.raw_mut(), x.raw(), 40);
+        fmpz_add_ui(x.raw_mut(), x.raw(), rng() >> 24);
+      }
+      return x;
+    };
+    Integer n = random(1 + static_cast<int>(rng() % 64)),
+            d = random(1 + static_cast<int>(rng() % 64));
+    if (d.is_zero()) d = Integer(1);
+    check(rng() % 2 ? n : Integer(0) - n, d);
   }
 }
 
