@@ -9,7 +9,9 @@
 //
 // A filter first: a face is skipped when interval arithmetic (directed rounding, over a
 // subdivision of at most 256 cells) proves that the two face conics have no common point in the
-// closed face rectangle — a proof, not an estimate; a face it cannot clear goes the exact route.
+// closed face rectangle — a proof, not an estimate; a face it cannot clear goes the exact route
+// (at once when a cell 1/64 of the face on both sides may hold a common point: a crossing,
+// most likely).
 // (Such a face then carries no crossing even when the face's plane holds a component of the
 // curve outside the rectangle, which the exact route reports as not certified.)
 //
