@@ -2,6 +2,7 @@
 #include "surfcert/certify/box_exits.hpp"
 
 #include "box_exits_double_line.hpp"
+#include "box_exits_line_conic.hpp"
 
 #include "surfcert/certify/conic_pair.hpp"
 #include "surfcert/certify/enclosure.hpp"
@@ -229,6 +230,41 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Ra
           bc.approx[ku] = c.to_double_approx();
           bc.approx[i] = u.to_double_approx();
           bc.approx[j] = v.to_double_approx();
+          out.points.push_back(bc);
+        }
+        continue;
+      }
+      if (linear(ca) || linear(cb)) {
+        // One form is a line of the face (a plane's section; or a quadric such as a parabolic
+        // cylinder met along its rulings): the crossings in closed form.
+        const M3& ln = linear(ca) ? ca : cb;
+        const M3& cn = linear(ca) ? cb : ca;
+        if (ln[0][2].is_zero() && ln[1][2].is_zero()) continue; // a nonzero constant: no point
+        std::vector<detail::FacePoint> pts;
+        switch (detail::line_conic_crossings(ln, cn, lo[i], hi[i], lo[j], hi[j], pts)) {
+        case detail::LineConic::Complete:
+          break;
+        case detail::LineConic::Component:
+          out.points.clear();
+          out.reason = "the curve has a component in the plane of the " + name;
+          return out;
+        case detail::LineConic::Tangent:
+          out.points.clear();
+          out.reason = "a multiple crossing on the " + name + " (tangency)";
+          return out;
+        case detail::LineConic::Edge:
+          out.points.clear();
+          out.reason = "a crossing on an edge of the box on the " + name;
+          return out;
+        }
+        for (const auto& fp : pts) {
+          BoxCrossing bc;
+          bc.axis = k;
+          bc.at_max = side == 1;
+          bc.approx[ku] = c.to_double_approx();
+          bc.approx[i] = fp.u;
+          bc.approx[j] = fp.v;
+          bc.radius = fp.radius;
           out.points.push_back(bc);
         }
         continue;

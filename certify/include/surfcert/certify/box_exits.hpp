@@ -28,6 +28,13 @@
 // components meeting on the face, a double component crossing it), or when a crossing lies on an
 // edge of the box (or within 2^-200 of one, relative to the box).
 //
+// A face where one form has no quadratic part (a plane's section: a line of the face) is read in
+// closed form (box_exits_line_conic): the other form along that line is a quadratic whose roots
+// a +- b sqrt(D) are placed against the face rectangle by exact signs; a simple root is a
+// transversal crossing at a smooth point, a double root in the closed rectangle or a root on its
+// boundary is not certified (tangency, edge), and the line lying on the other conic is a
+// component in the face's plane.
+//
 // One exception is read differently, exactly: a plane tangent to the other quadric along a line
 // (the plane's section is a rank-1 conic: a plane along a cylinder's ruling at distance r, a
 // cone's tangent plane). The curve is then that rational line counted twice; as a set it is a

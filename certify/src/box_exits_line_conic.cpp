@@ -1,0 +1,106 @@
+// line_conic_crossings: see box_exits_line_conic.hpp.
+#include "box_exits_line_conic.hpp"
+
+#include "surfcert/algebra/arb.hpp"
+#include "surfcert/algebra/inertia.hpp"
+
+#include <algorithm>
+
+namespace surfcert::certify::detail {
+
+namespace {
+
+using algebra::QuadraticNumber;
+using core::Integer;
+using core::Rational;
+using V3 = std::array<Rational, 3>;
+
+// x^T m y for the symmetric 3x3 form m.
+Rational bilinear3(const FaceForm& m, const V3& x, const V3& y) {
+  Rational s;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      if (!x[i].is_zero() && !y[j].is_zero()) s += x[i] * m[i][j] * y[j];
+  return s;
+}
+
+// A 128-bit enclosure of a + b sqrt(d).
+algebra::Ball enclose(const QuadraticNumber& q) {
+  constexpr long prec = 128;
+  algebra::Ball x, r;
+  arb_set_fmpq(x.v, q.a.raw(), prec);
+  if (!q.b.is_zero() && !q.d.is_zero()) {
+    arb_set_fmpz(r.v, q.d.raw());
+    arb_sqrt(r.v, r.v, prec);
+    algebra::Ball b;
+    arb_set_fmpq(b.v, q.b.raw(), prec);
+    arb_addmul(x.v, r.v, b.v, prec);
+  }
+  return x;
+}
+
+} // namespace
+
+LineConic line_conic_crossings(const FaceForm& line, const FaceForm& conic, const Rational& u_lo,
+                               const Rational& u_hi, const Rational& v_lo, const Rational& v_hi,
+                               std::vector<FacePoint>& out) {
+  // The line 2 l_u u + 2 l_v v + l_1 = 0 as p + t d, p = (pu, pv, 1), d = (du, dv, 0).
+  const Rational &lu = line[0][2], &lv = line[1][2], &l1 = line[2][2];
+  V3 p, d;
+  if (!lv.is_zero()) { // v = -(2 l_u t + l_1) / (2 l_v), u = t
+    p = {Rational(0), -l1 / (Rational(2) * lv), Rational(1)};
+    d = {Rational(1), -lu / lv, Rational(0)};
+  } else { // u = -l_1 / (2 l_u), v = t
+    p = {-l1 / (Rational(2) * lu), Rational(0), Rational(1)};
+    d = {Rational(0), Rational(1), Rational(0)};
+  }
+  // The conic along the line: A t^2 + 2 B t + C.
+  const Rational a2 = bilinear3(conic, d, d), b1 = bilinear3(conic, d, p),
+                 c0 = bilinear3(conic, p, p);
+  // The roots as t = ra + rb sqrt(D); `simple` false for a double root.
+  std::vector<QuadraticNumber> roots;
+  bool simple = true;
+  if (a2.is_zero()) {
+    if (b1.is_zero()) {
+      if (c0.is_zero()) return LineConic::Component;
+      return LineConic::Complete; // no common affine point
+    }
+    roots.push_back({-c0 / (Rational(2) * b1), Rational(0), Integer(0)});
+  } else {
+    const Rational disc = b1 * b1 - a2 * c0; // (2B)^2 - 4AC over 4
+    if (disc.sign() < 0) return LineConic::Complete;
+    if (disc.is_zero()) {
+      simple = false;
+      roots.push_back({-b1 / a2, Rational(0), Integer(0)});
+    } else {
+      // sqrt(n / m) = sqrt(n m) / m: t = (-B +- sqrt(n m) / m) / A.
+      const Integer nm = disc.num() * disc.den();
+      const Rational s = Rational(1) / (Rational(disc.den()) * a2);
+      roots.push_back({-b1 / a2, s, nm});
+      roots.push_back({-b1 / a2, Rational(0) - s, nm});
+    }
+  }
+  for (const QuadraticNumber& t : roots) {
+    // u = pu + du t, v = pv + dv t: exact numbers of the same field.
+    const QuadraticNumber u{p[0] + d[0] * t.a, d[0] * t.b, t.d};
+    const QuadraticNumber v{p[1] + d[1] * t.a, d[1] * t.b, t.d};
+    auto minus = [](const QuadraticNumber& x, const Rational& c) {
+      return QuadraticNumber{x.a - c, x.b, x.d};
+    };
+    const int su0 = minus(u, u_lo).sign(), su1 = minus(u, u_hi).sign();
+    const int sv0 = minus(v, v_lo).sign(), sv1 = minus(v, v_hi).sign();
+    const bool outside = su0 < 0 || su1 > 0 || sv0 < 0 || sv1 > 0;
+    if (outside) continue; // not on this face (a tangency there touches no face point)
+    if (!simple) return LineConic::Tangent;
+    if (su0 == 0 || su1 == 0 || sv0 == 0 || sv1 == 0) return LineConic::Edge;
+    const algebra::Ball bu = enclose(u), bv = enclose(v);
+    FacePoint fp;
+    fp.u = arf_get_d(arb_midref(bu.v), ARF_RND_NEAR);
+    fp.v = arf_get_d(arb_midref(bv.v), ARF_RND_NEAR);
+    fp.radius = std::max(mag_get_d(arb_radref(bu.v)), mag_get_d(arb_radref(bv.v)));
+    out.push_back(fp);
+  }
+  return LineConic::Complete;
+}
+
+} // namespace surfcert::certify::detail
