@@ -458,6 +458,16 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
     why = "the affine topology is not certified";
   } else if (!special_points_complete) {
     why = "special points not all computed exactly";
+  } else if (!(out.max_residual <= 1e-9 * box.diagonal())) {
+    // The points are corrected onto the exact surfaces to ~1e-13 of their extent; one that
+    // stays off them (a hyperbola sampled through its centre at a far offset, its pieces
+    // joining crossings on different halves: helper-11's audit) is no picture of the curve,
+    // whatever its ends match.
+    tracer_fault = true;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g", out.max_residual / box.diagonal());
+    why = std::string("traced points lie up to ") + buf +
+          " box diagonals off the surfaces (a picture of another curve)";
   } else if (!(automatic ? closed == *af.loops && open >= *af.unbounded_branches
                          : loops_in_given_box(a, b, box, *out.box_exits, closed, *af.loops, why))) {
     tracer_fault = true;
@@ -739,7 +749,8 @@ namespace {
 // (plane pairs from eigenvectors of singular members, conic centres, start points, step
 // bounds) lose the curve's digits to a large translation (a quartic loop 14 sizes off the
 // origin was lost); they run on the exactly translated pair instead.
-std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
+std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                 bool size_checks = true) {
   // Normal equations sum_q (A_q^T A_q) c = -sum_q A_q^T b_q, each quadric scaled to max
   // |A_q| = 1.
   algebra::Mat4d n{};
@@ -778,6 +789,7 @@ std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::Quadr
       c[i] += vb / w[k] * v[i][k];
   }
   if (!std::isfinite(c[0] + c[1] + c[2])) return std::nullopt;
+  if (!size_checks) return c; // the least-squares centre alone (a cone's apex, say)
   const double far = std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])});
   double size = 0;
   for (const auto& m : ms) {
@@ -967,9 +979,20 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   // The branches need the special points (isolated points, singular points), at every detail.
   if (t.morphology) certify::complete_special_points(t, a, b);
   out.affine = known ? *known : certify::affine_topology(t, a, b);
+  // A pair whose features are of moderate size but lie up to 2^40 from the origin is traced
+  // where it is (translated below when it has a centre), not scaled down by its distance:
+  // scaled by 2^-10, a unit cone-plane parabola 1000 units out became a curve of 2^-10 next to
+  // the tracer's absolute seeds and floors, its automatic box grew to 596,000 wide and nothing
+  // was traced (helper-11's audit; before the rescaling such pairs were certified). Its size:
+  // the order of the pair moved to its least-squares centre (a cone's apex).
   if (depth < 4)
-    if (const auto k = extreme_order(a, b))
-      return trace_rescaled(a, b, std::move(out), opt, *k, depth);
+    if (const auto k = extreme_order(a, b)) {
+      bool moderate = false;
+      if (*k > 8 && *k <= 40)
+        if (const auto c = far_centre(a, b, false))
+          moderate = !extreme_order(a.translated(*c), b.translated(*c));
+      if (!moderate) return trace_rescaled(a, b, std::move(out), opt, *k, depth);
+    }
   if (t.pencil != algebra::PencilKind::Regular && t.pencil != algebra::PencilKind::Coincident &&
       trace_section_lines(a, b, out, opt))
     return out;
