@@ -99,26 +99,16 @@ std::vector<Pt> mpfr_crossings(const V4& n, const Mat4& q, const R3& lo, const R
     ~F() { mpfr_clear(v); }
     double d() const { return mpfr_get_d(v, MPFR_RNDN); }
   };
-  auto add = [](const F& a, const F& b) {
-    F r;
-    mpfr_add(r.v, a.v, b.v, MPFR_RNDN);
-    return r;
+  // r = a op b, rounded to nearest, for op one of MPFR's binary operations.
+  using Op = int (*)(mpfr_ptr, mpfr_srcptr, mpfr_srcptr, mpfr_rnd_t);
+  auto op = [](Op f) {
+    return [f](const F& a, const F& b) {
+      F r;
+      f(r.v, a.v, b.v, MPFR_RNDN);
+      return r;
+    };
   };
-  auto sub = [](const F& a, const F& b) {
-    F r;
-    mpfr_sub(r.v, a.v, b.v, MPFR_RNDN);
-    return r;
-  };
-  auto mul = [](const F& a, const F& b) {
-    F r;
-    mpfr_mul(r.v, a.v, b.v, MPFR_RNDN);
-    return r;
-  };
-  auto div = [](const F& a, const F& b) {
-    F r;
-    mpfr_div(r.v, a.v, b.v, MPFR_RNDN);
-    return r;
-  };
+  const auto add = op(mpfr_add), sub = op(mpfr_sub), mul = op(mpfr_mul), div = op(mpfr_div);
   auto small = [](const F& a) { return mpfr_zero_p(a.v) || mpfr_get_exp(a.v) < -100; };
   std::vector<Pt> out;
   clear = true;
