@@ -558,8 +558,10 @@ TEST(BoxTrace, CertifiedPointsLieOnTheCurveFarFromTheOrigin) {
   EXPECT_GE(certified, 1); // the unit hyperbola at the origin at least
 }
 
-// Pairs of unit size 300 to 2^20 units from the origin are traced where they are, with the
-// counts of the same pair at the origin and an automatic box of the curve's size. Scaled down
+// Pairs of unit size 300 to 2^20 units from the origin are certified with the counts of the
+// same pair at the origin and an automatic box of the curve's size: traced where they are, and
+// at unit size when that is undecided (helper-12: 15 such pairs were lost without the second
+// reading). Scaled down
 // by their distance (2^-10 for 1000 units) they became curves of 2^-10 next to the tracer's
 // absolute floors: automatic boxes 596,000 wide, no branch traced, undecided (helper-11's audit
 // of the rescaling for extreme magnitudes).
@@ -574,6 +576,9 @@ TEST(BoxTrace, FarPairsOfUnitSizeAreTracedWhereTheyAre) {
       {"Z = X^2 + Y^2", "X = 1", 300, 0, 0},                     // a parabola of a paraboloid
       {"Z = X^2 + Y^2", "X + Y = 1/2", 1000, 0, -250},           // another
       {"X^2 + Y^2 = Z^2", "(X - 2)^2 + Y^2 = 1", 1048576, 0, 0}, // two loops
+      // Certified only at unit size (the other reading, tried when the first is undecided).
+      {"Z = X^2 + Y^2", "(X - 1)^2 + Z^2 = 1", 1048576, 0, 0},   // one loop
+      {"X^2 + Y^2 = Z^2", "(X - 1)^2 + Y^2 = 1", 1048576, 0, 0}, // a figure eight at the apex
   };
   auto moved = [](std::string e, const Far& f) {
     auto sub = [](double v) {

@@ -985,6 +985,9 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   // the tracer's absolute seeds and floors, its automatic box grew to 596,000 wide and nothing
   // was traced (helper-11's audit; before the rescaling such pairs were certified). Its size:
   // the order of the pair moved to its least-squares centre (a cone's apex).
+  // Either reading is sound (the exact parts judge both), and neither suits every far pair (a
+  // cylinder pair 2^20 out is certified at unit size and not where it is, a parabola the other
+  // way round): when the first is undecided the other is tried, and a certified one returned.
   if (depth < 4)
     if (const auto k = extreme_order(a, b)) {
       bool moderate = false;
@@ -992,6 +995,10 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
         if (const auto c = far_centre(a, b, false))
           moderate = !extreme_order(a.translated(*c), b.translated(*c));
       if (!moderate) return trace_rescaled(a, b, std::move(out), opt, *k, depth);
+      CurveResult here = trace_curve_at(a, b, out.topology, opt, 4, &out.affine);
+      if (here.status == Status::Certified) return here;
+      CurveResult scaled = trace_rescaled(a, b, std::move(out), opt, *k, depth);
+      return scaled.status == Status::Certified ? scaled : here;
     }
   if (t.pencil != algebra::PencilKind::Regular && t.pencil != algebra::PencilKind::Coincident &&
       trace_section_lines(a, b, out, opt))
