@@ -22,8 +22,12 @@
 // curve with the box's faces are certified (certify/box_exits.hpp: complete, transversal, off
 // the edges) and the traced open pieces are exactly half as many, their ends matched one to
 // one with those crossings (so a branch crossing the box twice is two certified pieces); an
-// automatic box must also show at least one piece per unbounded branch. The automatic box has
-// short dyadic faces, moved a little when a face meets the curve non-generically.
+// automatic box must also show at least one piece per unbounded branch, and no point may stay
+// more than 1e-9 of the box's diagonal off the surfaces (a picture of another curve whose ends
+// happen to match). The automatic box has short dyadic faces, moved a little when a face meets
+// the curve non-generically. Pairs beyond 2^+-8 are traced at unit size (exact power-of-two
+// scaling), or, when only their distance from the origin (up to 2^40) is large, where they are
+// first and at unit size when that is undecided (docs/methods.md).
 // Degenerate pencils and two planes whose affine curve is lines (certify/affine.hpp routes
 // plane_section / pencil_plane with a degenerate section, plane_plane, plane_pair,
 // common_apex) are answered with those lines in closed form, clipped to the box and checked
