@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 
 namespace surfcert::trace {
 
@@ -741,6 +742,41 @@ CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMat
 
 namespace {
 
+// Moves each coordinate of the centre c of a translation, for a pair of shapes posed in doubles,
+// into the range where every shape's centre minus c is again exactly a double (|x - c| <=
+// 2^ilogb(x) for a centre coordinate x, c a multiple of x's ulp): the translated shapes then
+// stay lazy (QuadricMatrix::translated), and the exact matrices of double quaternions (hundreds
+// of digits) are never formed: on random unit-size ellipsoid pairs, where a small ellipsoid half
+// a unit out counts as far, that was 23% of an intersect. Where both shapes lie far out in a
+// coordinate (the case the translation is for) the range holds the least-squares centre and
+// nothing moves; a coordinate clamped towards a centre near the origin moves less, and the pair
+// is traced that much nearer its original place (translated() checks the exactness anyway).
+void keep_shapes_lazy(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Point3& c) {
+  const core::ShapeSpec* sa = a.shape();
+  const core::ShapeSpec* sb = b.shape();
+  if (!sa || !sb) return;
+  for (size_t k = 0; k < 3; ++k) {
+    double lo = -std::numeric_limits<double>::infinity(), hi = -lo, grid = 0;
+    for (const core::ShapeSpec* s : {sa, sb}) {
+      const double x = s->center[k];
+      if (x == 0 || !std::isfinite(x)) continue;
+      const double reach = std::ldexp(1.0, std::ilogb(x));
+      lo = std::max(lo, x - reach);
+      hi = std::min(hi, x + reach);
+      grid = std::max(grid, std::ldexp(1.0, std::ilogb(x) - 52)); // x's ulp
+    }
+    if (!(grid > 0)) continue;
+    if (!(lo <= hi)) { // no common range: no translation in this coordinate
+      c[k] = 0;
+      continue;
+    }
+    // Inside [lo, hi], on the coarser grid (the ends of the range are multiples of it).
+    double y = std::clamp(c[k], lo, hi);
+    y = std::nearbyint(y / grid) * grid;
+    c[k] = std::clamp(y, lo, hi);
+  }
+}
+
 // A point near which the curve lives, when the pair lies far from the origin relative to its
 // size; nullopt otherwise: the point nearest (least squares, minimum norm) to the centres of
 // both quadrics (A c = -b: a sphere's centre, a cylinder's axis, a cone's apex), far when its
@@ -814,6 +850,9 @@ std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::Quadr
   const double unit = std::ldexp(1.0, std::ilogb(size) - 24);
   for (double& x : c)
     x = std::nearbyint(x / unit) * unit;
+  keep_shapes_lazy(a, b, c);
+  if (!(std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}) > 4 * size))
+    return std::nullopt; // kept near the origin: traced where it is
   return c;
 }
 
