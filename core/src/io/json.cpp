@@ -686,7 +686,8 @@ void append_json_double(std::string& out, double x) {
     if (r.ec != std::errc()) throw InternalError("Json::number_double: not a finite double");
     at = r.ptr;
   }
-  out.append(buf, at);
+  out.append(buf, static_cast<size_t>(at - buf)); // (pointer, length): not the iterator
+                                                  // overload, which goes through replace()
 }
 
 Json Json::number_double(double x) {
