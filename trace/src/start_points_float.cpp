@@ -8,43 +8,63 @@
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/trace/curve.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
+#include <initializer_list>
+#include <stdexcept>
+#include <vector>
 
 namespace surfcert::trace {
 
 namespace {
 
-using Poly = std::vector<double>; // coefficients, constant term first
+// Coefficients, constant term first, in place: at most degree 8 (the discriminant of a cubic
+// in lambda whose coefficients are quadratics in c). Fixed storage: as std::vector the
+// arithmetic below allocated ~40 times per pair, ~5% of a traced ellipsoid pair.
+struct Poly {
+  std::array<double, 9> c{};
+  size_t n = 0; ///< coefficients in use
+  Poly() = default;
+  Poly(std::initializer_list<double> l) : n(l.size()) { std::copy(l.begin(), l.end(), c.begin()); }
+  size_t size() const { return n; }
+  double operator[](size_t i) const { return c[i]; }
+  double& operator[](size_t i) { return c[i]; }
+};
 
 Poly pmul(const Poly& a, const Poly& b) {
-  Poly r(a.size() + b.size() - 1, 0.0);
-  for (size_t i = 0; i < a.size(); ++i)
-    for (size_t j = 0; j < b.size(); ++j)
-      r[i + j] += a[i] * b[j];
+  Poly r;
+  if (a.n == 0 || b.n == 0 || a.n + b.n - 1 > r.c.size())
+    throw std::logic_error("extreme_points_float: product beyond degree 8");
+  r.n = a.n + b.n - 1; // at most 9 below: 5 x 5 and 3 x 7 coefficients
+  for (size_t i = 0; i < a.n; ++i)
+    for (size_t j = 0; j < b.n; ++j)
+      r.c[i + j] += a.c[i] * b.c[j];
   return r;
 }
 
 Poly padd(const Poly& a, const Poly& b, double sb = 1) {
-  Poly r(std::max(a.size(), b.size()), 0.0);
-  for (size_t i = 0; i < a.size(); ++i)
-    r[i] += a[i];
-  for (size_t i = 0; i < b.size(); ++i)
-    r[i] += sb * b[i];
+  Poly r;
+  r.n = std::max(a.n, b.n);
+  for (size_t i = 0; i < a.n; ++i)
+    r.c[i] += a.c[i];
+  for (size_t i = 0; i < b.n; ++i)
+    r.c[i] += sb * b.c[i];
   return r;
 }
 
 Poly pscale(const Poly& a, double s) {
   Poly r = a;
-  for (double& x : r)
-    x *= s;
+  for (size_t i = 0; i < r.n; ++i)
+    r.c[i] *= s;
   return r;
 }
 
 double peval(const Poly& p, double x) {
   double v = 0;
-  for (size_t i = p.size(); i-- > 0;)
-    v = v * x + p[i];
+  for (size_t i = p.n; i-- > 0;)
+    v = v * x + p.c[i];
   return v;
 }
 
@@ -119,13 +139,14 @@ std::vector<Point3> extreme_points_float(const QuadricPair& q) {
                         pscale(pmul(pmul(h0, h1), pmul(h2, h3)), 18)),
                    pscale(pmul(pmul(h0, h0), pmul(h3, h3)), -27));
   double scale = 0;
-  for (double x : disc)
-    scale = std::max(scale, std::fabs(x));
-  while (disc.size() > 1 && std::fabs(disc.back()) <= 1e-14 * scale)
-    disc.pop_back();
+  for (size_t i = 0; i < disc.n; ++i)
+    scale = std::max(scale, std::fabs(disc.c[i]));
+  while (disc.n > 1 && std::fabs(disc.c[disc.n - 1]) <= 1e-14 * scale)
+    --disc.n;
   std::vector<Point3> out;
-  if (disc.size() < 2 || scale == 0) return out;
-  for (auto z : algebra::approx_complex_roots(disc)) {
+  if (disc.n < 2 || scale == 0) return out;
+  for (auto z : algebra::approx_complex_roots(
+           std::vector<double>(disc.c.begin(), disc.c.begin() + disc.n))) {
     if (std::fabs(z.imag()) > 1e-6 * (1 + std::abs(z))) continue;
     const double c = z.real();
     const double H0 = peval(h0, c), H1 = peval(h1, c), H2 = peval(h2, c), H3 = peval(h3, c);
