@@ -393,6 +393,11 @@ public:
   Walk walk(const V& p0, double s0) const {
     Walk w;
     w.passes.assign(sing.size(), 0);
+    // Room for a typical loop at the usual tolerances (~100 points): grown by doubling from
+    // empty, a walk's points were copied ~8 times, each large reallocation consolidating
+    // malloc's free lists (6% and 5% of a pipe pair's intersect).
+    w.pts.reserve(256);
+    w.sg.reserve(256);
     w.pts.push_back(p0);
     w.sg.push_back(s0);
     V p = p0;
