@@ -518,9 +518,9 @@ std::optional<ComponentAtInfinity> conic_at_infinity(const M3& m) {
       V3 k;
       for (size_t r1 = 0; r1 < 3; ++r1)
         for (size_t r2 = r1 + 1; r2 < 3; ++r2) {
-          V3 x{m[r1][1] * m[r2][2] - m[r1][2] * m[r2][1], m[r1][2] * m[r2][0] - m[r1][0] * m[r2][2],
+          if (!(k[0].is_zero() && k[1].is_zero() && k[2].is_zero())) break; // found
+          k = {m[r1][1] * m[r2][2] - m[r1][2] * m[r2][1], m[r1][2] * m[r2][0] - m[r1][0] * m[r2][2],
                m[r1][0] * m[r2][1] - m[r1][1] * m[r2][0]};
-          if (k[0].is_zero() && k[1].is_zero() && k[2].is_zero()) k = x;
         }
       k = normalise(k);
       c.kind = "point";

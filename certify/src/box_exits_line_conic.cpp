@@ -2,6 +2,7 @@
 #include "box_exits_line_conic.hpp"
 
 #include "surfcert/algebra/arb.hpp"
+#include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
 
 #include <algorithm>
@@ -14,15 +15,6 @@ using algebra::QuadraticNumber;
 using core::Integer;
 using core::Rational;
 using V3 = std::array<Rational, 3>;
-
-// x^T m y for the symmetric 3x3 form m.
-Rational bilinear3(const FaceForm& m, const V3& x, const V3& y) {
-  Rational s;
-  for (size_t i = 0; i < 3; ++i)
-    for (size_t j = 0; j < 3; ++j)
-      if (!x[i].is_zero() && !y[j].is_zero()) s += x[i] * m[i][j] * y[j];
-  return s;
-}
 
 // A 128-bit enclosure of a + b sqrt(d).
 algebra::Ball enclose(const QuadraticNumber& q) {
@@ -55,8 +47,9 @@ LineConic line_conic_crossings(const FaceForm& line, const FaceForm& conic, cons
     d = {Rational(0), Rational(1), Rational(0)};
   }
   // The conic along the line: A t^2 + 2 B t + C.
-  const Rational a2 = bilinear3(conic, d, d), b1 = bilinear3(conic, d, p),
-                 c0 = bilinear3(conic, p, p);
+  // (The conic restricted to span(d, p) at once: its common denominator found once.)
+  const auto dp = algebra::restrict_form(conic, std::array<V3, 2>{d, p});
+  const Rational &a2 = dp[0][0], &b1 = dp[0][1], &c0 = dp[1][1];
   // The roots as t = ra + rb sqrt(D); `simple` false for a double root.
   std::vector<QuadraticNumber> roots;
   bool simple = true;

@@ -1,0 +1,133 @@
+// algebra::restrict_form and algebra::bilinear over core::Rational (integer sums over common
+// denominators, one canonicalisation per entry) against the plain rational sums written out
+// here, on random rationals with unrelated, shared and unit denominators, zeros, and the
+// ~150-digit entries of a quadric posed in doubles; over double the template's own sums.
+#include "support/canonical.hpp"
+
+#include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/core/quadric.hpp"
+#include "surfcert/core/shape.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace surfcert;
+using core::Integer;
+using core::Rational;
+
+namespace {
+
+// A random rational: zero, an integer, a fraction with a small or a large denominator, or one
+// over a denominator shared with others (`shared`), signs mixed.
+Rational random_rational(std::mt19937_64& rng, const Rational& shared) {
+  std::uniform_int_distribution<int> kind(0, 5);
+  std::uniform_int_distribution<long> small(-40, 40);
+  std::uniform_int_distribution<unsigned long> den(1, 1000);
+  switch (kind(rng)) {
+  case 0:
+    return Rational(0);
+  case 1:
+    return Rational(small(rng));
+  case 2:
+    return Rational(small(rng), den(rng));
+  case 3: { // a large numerator and denominator (~60 digits each)
+    Rational x(1);
+    for (int i = 0; i < 6; ++i)
+      x = x * Rational(static_cast<long>(den(rng)) * 1000003 + 1, den(rng) * 999983 + 7);
+    return small(rng) % 2 ? x : -x;
+  }
+  case 4:
+    return shared * Rational(small(rng));
+  default:
+    return Rational::exact_from_double(std::ldexp(static_cast<double>(small(rng)), -60));
+  }
+}
+
+template <size_t N, size_t M>
+void expect_restriction_equals_plain_sums(const std::array<std::array<Rational, N>, N>& q,
+                                          const std::array<std::array<Rational, N>, M>& cols) {
+  const auto r = algebra::restrict_form(q, cols);
+  for (size_t i = 0; i < M; ++i)
+    for (size_t j = 0; j < M; ++j) {
+      Rational s;
+      for (size_t a = 0; a < N; ++a)
+        for (size_t b = 0; b < N; ++b)
+          s = s + cols[i][a] * q[a][b] * cols[j][b];
+      EXPECT_EQ(r[i][j], s) << i << " " << j;
+      // Canonical: denominator positive and coprime to the numerator.
+      EXPECT_GT(fmpz_sgn(fmpq_denref(r[i][j].raw())), 0);
+      EXPECT_TRUE(fmpq_is_canonical(r[i][j].raw()));
+      const std::array<Rational, N>& u = cols[i];
+      const std::array<Rational, N>& v = cols[j];
+      EXPECT_EQ(algebra::bilinear(q, u, v), s);
+    }
+}
+
+} // namespace
+
+TEST(FormRestriction, RationalSumsOverCommonDenominatorsEqualThePlainSums) {
+  std::mt19937_64 rng(surfcert::testing::test_seed());
+  for (int trial = 0; trial < 200; ++trial) {
+    const Rational shared(1, 3 * 7 * 11 * 13 * 1024 + static_cast<unsigned long>(trial));
+    std::array<std::array<Rational, 4>, 4> q4;
+    std::array<std::array<Rational, 3>, 3> q3;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j)
+        q4[i][j] = q4[j][i] = random_rational(rng, shared);
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = i; j < 3; ++j)
+        q3[i][j] = q3[j][i] = random_rational(rng, shared);
+    std::array<std::array<Rational, 4>, 3> c43;
+    std::array<std::array<Rational, 3>, 2> c32;
+    for (auto& c : c43)
+      for (auto& x : c)
+        x = random_rational(rng, shared);
+    for (auto& c : c32)
+      for (auto& x : c)
+        x = random_rational(rng, shared);
+    expect_restriction_equals_plain_sums(q4, c43);
+    expect_restriction_equals_plain_sums(q3, c32);
+  }
+}
+
+TEST(FormRestriction, ZeroFormsAndVectorsGiveCanonicalZero) {
+  std::array<std::array<Rational, 3>, 3> q{};
+  const std::array<std::array<Rational, 3>, 2> cols{
+      {{Rational(1, 3), Rational(2), Rational(0)}, {Rational(0), Rational(0), Rational(0)}}};
+  const auto r = algebra::restrict_form(q, cols);
+  for (const auto& row : r)
+    for (const Rational& x : row) {
+      EXPECT_TRUE(x.is_zero());
+      EXPECT_TRUE(fmpz_is_one(fmpq_denref(x.raw())));
+    }
+  q[0][0] = Rational(5, 7);
+  EXPECT_EQ(algebra::bilinear(q, cols[1], cols[0]), Rational(0));
+  EXPECT_EQ(algebra::bilinear(q, cols[0], cols[0]), Rational(5, 63));
+}
+
+TEST(FormRestriction, PosedQuadricInDoublesAgainstPlainSums) {
+  // A cylinder posed by a double quaternion: entries of ~150 digits over related denominators.
+  core::ShapeSpec s;
+  s.type = core::ShapeType::Cylinder;
+  s.center = {0.123456789012345, -0.3141592653589793, 0.2718281828459045};
+  s.radii = {0.7071067811865476, 0.7071067811865476, 1};
+  s.rotated = true;
+  s.quaternion = {0.4123105625617661, -0.8246211251235321, 0.2, 0.3316624790355400};
+  const core::QuadricMatrix m(s);
+  const auto& q = m.matrix();
+  std::array<std::array<Rational, 4>, 3> cols{};
+  cols[0] = {Rational(1), Rational(0), Rational(0), Rational(0)};
+  cols[1] = {Rational(0), Rational(1), Rational(0), Rational::exact_from_double(0.1)};
+  cols[2] = {Rational(0), Rational(0), Rational(1, 3), Rational(1)};
+  expect_restriction_equals_plain_sums(q, cols);
+}
+
+TEST(FormRestriction, DoublesKeepTheTemplateSums) {
+  const std::array<std::array<double, 3>, 3> q{{{1, 0.5, 0}, {0.5, 2, -1}, {0, -1, 3}}};
+  const std::array<std::array<double, 3>, 2> cols{{{1, 2, 3}, {0, 1, -1}}};
+  const auto r = algebra::restrict_form(q, cols);
+  EXPECT_DOUBLE_EQ(r[0][0], 1 + 2 * 0.5 * 2 + 2 * 4 - 2 * 2 * 3 + 3 * 9);
+  EXPECT_DOUBLE_EQ(r[0][1], algebra::bilinear(q, cols[0], cols[1]));
+  EXPECT_DOUBLE_EQ(r[1][1], 2 + 2 + 3);
+}
