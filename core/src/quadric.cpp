@@ -51,15 +51,35 @@ Mat4 operator*(const Mat4& a, const Mat4& b) {
 }
 
 Mat4 congruence(const Mat4& p, const Mat4& m) {
-  const Mat4 mp = m * p;
+  // On integers: P = pn / dp and M = mn / dm over their common denominators, the products
+  // summed in FLINT integers, each entry of P^T M P = pn^T mn pn / (dm dp^2) canonicalised once.
+  std::array<const Rational*, 16> pp{}, mp{};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      pp[4 * i + j] = &p[i][j];
+      mp[4 * i + j] = &m[i][j];
+    }
+  std::array<Integer, 16> pn, mn, t; // t = mn pn
+  Integer dp, dm;
+  over_common_denominator(pp.data(), 16, pn.data(), dp);
+  over_common_denominator(mp.data(), 16, mn.data(), dm);
+  for (size_t k = 0; k < 4; ++k)
+    for (size_t j = 0; j < 4; ++j)
+      for (size_t l = 0; l < 4; ++l)
+        if (!mn[4 * k + l].is_zero() && !pn[4 * l + j].is_zero())
+          fmpz_addmul(t[4 * k + j].raw_mut(), mn[4 * k + l].raw(), pn[4 * l + j].raw());
+  Integer den, s;
+  fmpz_mul(den.raw_mut(), dp.raw(), dp.raw());
+  fmpz_mul(den.raw_mut(), den.raw(), dm.raw());
   Mat4 r;
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = i; j < 4; ++j) {
-      Rational s;
+      fmpz_zero(s.raw_mut());
       for (size_t k = 0; k < 4; ++k)
-        if (!p[k][i].is_zero() && !mp[k][j].is_zero()) s += p[k][i] * mp[k][j];
-      r[i][j] = s;
-      if (j != i) r[j][i] = s;
+        if (!pn[4 * k + i].is_zero() && !t[4 * k + j].is_zero())
+          fmpz_addmul(s.raw_mut(), pn[4 * k + i].raw(), t[4 * k + j].raw());
+      fmpq_set_fmpz_frac(r[i][j].raw_mut(), s.raw(), den.raw());
+      if (j != i) r[j][i] = r[i][j];
     }
   return r;
 }

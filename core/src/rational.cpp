@@ -196,4 +196,23 @@ Rational abs(const Rational& x) {
   return x.sign() < 0 ? -x : x;
 }
 
+void over_common_denominator(const Rational* const* x, size_t n, Integer* nums, Integer& den) {
+  fmpz_one(den.raw_mut());
+  for (size_t k = 0; k < n; ++k) {
+    const fmpz* d = fmpq_denref(x[k]->raw());
+    // Equal denominators (a posed shape's entries share theirs) cost no gcd.
+    if (!fmpz_is_one(d) && !fmpz_equal(d, den.raw())) fmpz_lcm(den.raw_mut(), den.raw(), d);
+  }
+  Integer t;
+  for (size_t k = 0; k < n; ++k) {
+    const fmpz* d = fmpq_denref(x[k]->raw());
+    if (fmpz_equal(d, den.raw())) {
+      fmpz_set(nums[k].raw_mut(), fmpq_numref(x[k]->raw()));
+    } else {
+      fmpz_divexact(t.raw_mut(), den.raw(), d);
+      fmpz_mul(nums[k].raw_mut(), t.raw(), fmpq_numref(x[k]->raw()));
+    }
+  }
+}
+
 } // namespace surfcert::core

@@ -1,7 +1,9 @@
-// algebra::restrict_form and algebra::bilinear over core::Rational (integer sums over common
-// denominators, one canonicalisation per entry) against the plain rational sums written out
-// here, on random rationals with unrelated, shared and unit denominators, zeros, and the
-// ~150-digit entries of a quadric posed in doubles; over double the template's own sums.
+// The exact sums over common denominators (core::over_common_denominator: integer sums, one
+// canonicalisation per entry): algebra::restrict_form and algebra::bilinear over core::Rational
+// against the plain rational sums written out here, and core::congruence against
+// transpose(p) * m * p by core's rational matrix products, on random rationals with unrelated,
+// shared and unit denominators, zeros, and the ~150-digit entries of a quadric posed in
+// doubles; over double the template's own sums.
 #include "support/canonical.hpp"
 
 #include "surfcert/algebra/form_restriction.hpp"
@@ -130,4 +132,40 @@ TEST(FormRestriction, DoublesKeepTheTemplateSums) {
   EXPECT_DOUBLE_EQ(r[0][0], 1 + 2 * 0.5 * 2 + 2 * 4 - 2 * 2 * 3 + 3 * 9);
   EXPECT_DOUBLE_EQ(r[0][1], algebra::bilinear(q, cols[0], cols[1]));
   EXPECT_DOUBLE_EQ(r[1][1], 2 + 2 + 3);
+}
+
+TEST(FormRestriction, CongruenceEqualsTheRationalMatrixProducts) {
+  std::mt19937_64 rng(surfcert::testing::test_seed() + 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Rational shared(1, 5 * 17 * 4096 + static_cast<unsigned long>(trial));
+    core::Mat4 m, p;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j)
+        m[i][j] = m[j][i] = random_rational(rng, shared);
+    for (auto& row : p)
+      for (auto& x : row)
+        x = random_rational(rng, shared);
+    const core::Mat4 want = core::transpose(p) * m * p;
+    const core::Mat4 got = core::congruence(p, m);
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        EXPECT_EQ(got[i][j], want[i][j]) << trial << " " << i << " " << j;
+        EXPECT_TRUE(fmpq_is_canonical(got[i][j].raw()));
+      }
+  }
+  // A posed shape's exact matrix is formed by congruence: the same as the products.
+  core::ShapeSpec s;
+  s.type = core::ShapeType::Ellipsoid;
+  s.center = {0.5, -0.25, 0.1};
+  s.radii = {0.3, 0.7, 0.9};
+  s.rotated = true;
+  s.quaternion = {0.1, 0.2, -0.3, 0.9};
+  const core::QuadricMatrix q(s), moved = q.translated({0.3, 0.0, -0.7});
+  core::Mat4 t = core::identity4();
+  t[0][3] = Rational::exact_from_double(0.3);
+  t[2][3] = Rational::exact_from_double(-0.7);
+  const core::Mat4 want = core::transpose(t) * q.matrix() * t;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      EXPECT_EQ(moved.matrix()[i][j], want[i][j]);
 }

@@ -27,25 +27,7 @@ namespace surfcert::algebra {
 
 namespace detail {
 
-// x[k] = nums[k] / den for k < n, den the least common denominator of the x[k].
-inline void over_common_denominator(const core::Rational* const* x, size_t n, core::Integer* nums,
-                                    core::Integer& den) {
-  fmpz_one(den.raw_mut());
-  for (size_t k = 0; k < n; ++k) {
-    const fmpz* d = fmpq_denref(x[k]->raw());
-    if (!fmpz_is_one(d) && !fmpz_equal(d, den.raw())) fmpz_lcm(den.raw_mut(), den.raw(), d);
-  }
-  core::Integer t;
-  for (size_t k = 0; k < n; ++k) {
-    const fmpz* d = fmpq_denref(x[k]->raw());
-    if (fmpz_equal(d, den.raw())) {
-      fmpz_set(nums[k].raw_mut(), fmpq_numref(x[k]->raw()));
-    } else {
-      fmpz_divexact(t.raw_mut(), den.raw(), d);
-      fmpz_mul(nums[k].raw_mut(), t.raw(), fmpq_numref(x[k]->raw()));
-    }
-  }
-}
+using core::over_common_denominator;
 
 template <size_t N, size_t M>
 std::array<std::array<core::Rational, M>, M>

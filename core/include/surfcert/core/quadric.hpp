@@ -109,7 +109,8 @@ Mat4 transpose(const Mat4& m);
 Mat4 operator*(const Mat4& a, const Mat4& b);
 /// p^T m p for a symmetric m (not checked; the result is then symmetric), exactly: the same
 /// value as transpose(p) * m * p, computed on the upper triangle with the zero entries skipped
-/// (a translation or a posed diagonal form costs a fraction of the full products).
+/// (a translation or a posed diagonal form costs a fraction of the full products), on integers
+/// over the matrices' common denominators (over_common_denominator).
 Mat4 congruence(const Mat4& p, const Mat4& m);
 Mat4 operator+(const Mat4& a, const Mat4& b);
 Mat4 scaled(const Mat4& a, const Rational& c);

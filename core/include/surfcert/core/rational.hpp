@@ -11,6 +11,7 @@
 #include <flint/fmpq.h>
 #include <flint/fmpz.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <ostream>
@@ -172,6 +173,11 @@ private:
 /// 2^e as a rational (e may be negative).
 Rational pow2(long e);
 Rational abs(const Rational& x);
+/// Writes x[k] = nums[k] / den (k < n) with den > 0 the least common denominator of the x[k]:
+/// sums of products of rationals then run on integers, canonicalised once per result (exact
+/// linear algebra on the ~150-digit rationals of surfaces posed in doubles spent most of its
+/// time in the gcd that reduces every rational product and sum).
+void over_common_denominator(const Rational* const* x, size_t n, Integer* nums, Integer& den);
 
 inline std::ostream& operator<<(std::ostream& os, const Integer& x) {
   return os << x.to_string();
