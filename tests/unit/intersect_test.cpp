@@ -352,21 +352,25 @@ double exact_distance(const core::QuadricMatrix& m, const trace::Point3& p) {
   return std::fabs(f.to_double_approx()) / std::sqrt(g2);
 }
 
+// A random ellipsoid of seed 002 5.1.3 posed in doubles: centre in [-1/2, 1/2]^3, semi-axes in
+// [1/10, 1], a random double quaternion (as the double_path benchmark draws them).
+core::ShapeSpec random_posed_ellipsoid(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> c(-0.5, 0.5), r(0.1, 1.0);
+  std::normal_distribution<double> g(0, 1);
+  core::ShapeSpec s;
+  s.type = core::ShapeType::Ellipsoid;
+  s.center = {c(rng), c(rng), c(rng)};
+  s.radii = {r(rng), r(rng), r(rng)};
+  s.rotated = true;
+  s.quaternion = {g(rng), g(rng), g(rng), g(rng)};
+  return s;
+}
+
 } // namespace
 
 TEST(Intersect, RandomDoubleEllipsoidPairsPointsAndChords) {
   std::mt19937_64 rng(1225);
-  std::uniform_real_distribution<double> c(-0.5, 0.5), r(0.1, 1.0);
-  std::normal_distribution<double> g(0, 1);
-  auto shape = [&] {
-    core::ShapeSpec s;
-    s.type = core::ShapeType::Ellipsoid;
-    s.center = {c(rng), c(rng), c(rng)};
-    s.radii = {r(rng), r(rng), r(rng)};
-    s.rotated = true;
-    s.quaternion = {g(rng), g(rng), g(rng), g(rng)};
-    return s;
-  };
+  auto shape = [&] { return random_posed_ellipsoid(rng); };
   const double tol = 2e-4;
   int traced = 0, certified = 0;
   for (int i = 0; i < 40; ++i) {
@@ -418,17 +422,7 @@ TEST(Intersect, RandomDoubleEllipsoidPairsPointsAndChords) {
 // certified counts, every point on both exact surfaces.
 TEST(Intersect, PosedPairsOffTheOriginMatchTheirExactMatrices) {
   std::mt19937_64 rng(20261202);
-  std::uniform_real_distribution<double> c(-0.5, 0.5), r(0.1, 1.0);
-  std::normal_distribution<double> g(0, 1);
-  auto shape = [&] {
-    core::ShapeSpec s;
-    s.type = core::ShapeType::Ellipsoid;
-    s.center = {c(rng), c(rng), c(rng)};
-    s.radii = {r(rng), r(rng), r(rng)};
-    s.rotated = true;
-    s.quaternion = {g(rng), g(rng), g(rng), g(rng)};
-    return s;
-  };
+  auto shape = [&] { return random_posed_ellipsoid(rng); };
   int compared = 0, curves = 0;
   for (int i = 0; i < 60; ++i) {
     const core::QuadricMatrix pa(shape()), pb(shape());
