@@ -3,6 +3,7 @@
 #include "surfcert/trace/intersect_curve.hpp"
 
 #include "surfcert/algebra/eigen4.hpp"
+#include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/inner_loops.hpp"
 #include "surfcert/certify/report.hpp"
@@ -792,12 +793,15 @@ std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::Quadr
   algebra::Mat4d n{};
   Point3 rhs{0, 0, 0};
   std::array<algebra::Mat4d, 2> ms{certify::approx(a), certify::approx(b)};
-  for (auto& m : ms) {
+  std::array<double, 2> norms{0, 0}; // the divisor of each (0: a plane, not divided)
+  for (size_t q = 0; q < 2; ++q) {
+    auto& m = ms[q];
     double s = 0;
     for (size_t i = 0; i < 3; ++i)
       for (size_t j = 0; j < 3; ++j)
         s = std::max(s, std::fabs(m[i][j]));
     if (!(s > 0) || !std::isfinite(s)) continue; // a plane: no centre
+    norms[q] = s;
     for (auto& row : m)
       for (double& x : row)
         x /= s;
@@ -828,7 +832,9 @@ std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::Quadr
   if (!size_checks) return c; // the least-squares centre alone (a cone's apex, say)
   const double far = std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])});
   double size = 0;
-  for (const auto& m : ms) {
+  const std::array<const core::QuadricMatrix*, 2> qs{&a, &b};
+  for (size_t q = 0; q < 2; ++q) {
+    const auto& m = ms[q];
     double lq = 0, f = m[3][3];
     for (size_t i = 0; i < 3; ++i) {
       f += 2 * m[i][3] * c[i];
@@ -837,11 +843,22 @@ std::optional<Point3> far_centre(const core::QuadricMatrix& a, const core::Quadr
         lq = std::max(lq, std::fabs(m[i][j]));
       }
     }
-    // f(c) carries a rounding error ~1e-16 |c|^2: sizes below 1e-6 |c| are a cone's 0.
-    const double sq = lq > 0 ? std::sqrt(std::fabs(f) / lq) : 0;
-    if (sq > 1e-6 * far && (size == 0 || sq < size))
-      size = sq; // the smaller (a saddle's is
-                 // inflated)
+    // f(c) carries a rounding error ~1e-16 |c|^2: sizes below 1e-6 |c| can be a cone's 0.
+    double sq = lq > 0 ? std::sqrt(std::fabs(f) / lq) : 0;
+    if (lq > 0 && !(sq > 1e-6 * far) && norms[q] > 0) {
+      // Then f(c) exactly, on the exact quadric (a unit pipe 2^20 out has size 1 = 1e-6 |c|:
+      // read as a cone, it was not translated, and its curves were lost in the doubles). A
+      // cone's apex rounded into c leaves |c - apex| ~ 1e-16 |c|: sizes below 1e-12 |c| stay 0.
+      const std::array<core::Rational, 4> x{
+          core::Rational::exact_from_double(c[0]), core::Rational::exact_from_double(c[1]),
+          core::Rational::exact_from_double(c[2]), core::Rational(1)};
+      const double fe = algebra::bilinear(qs[q]->matrix(), x, x).to_double_approx() / norms[q];
+      sq = std::sqrt(std::fabs(fe) / lq);
+      if (!(sq > 1e-12 * far)) sq = 0;
+    } else if (!(sq > 1e-6 * far)) {
+      sq = 0;
+    }
+    if (sq > 0 && (size == 0 || sq < size)) size = sq; // the smaller (a saddle's is inflated)
   }
   if (!(size > 0) || !(far > 4 * size)) return std::nullopt; // size 0: cones and planes only
   // Rounded to a multiple of a power of two near size * 2^-24: shorter dyadic rationals for
@@ -890,7 +907,8 @@ void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, C
 
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                            QsicResult topology, const TraceOptions& opt, int depth,
-                           const certify::AffineTopology* known = nullptr);
+                           const certify::AffineTopology* known = nullptr,
+                           const Point3* centre = nullptr);
 
 // The affine reading of a pair carried to a copy moved by an exact translation or a scaling
 // by a power of two: its counts and its points at infinity (directions) do not move; routes
@@ -1010,7 +1028,7 @@ namespace {
 
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                            QsicResult topology, const TraceOptions& opt, int depth,
-                           const certify::AffineTopology* known) {
+                           const certify::AffineTopology* known, const Point3* centre) {
   CurveResult out;
   out.tolerance = opt.tolerance;
   out.topology = std::move(topology);
@@ -1030,11 +1048,27 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   if (depth < 4)
     if (const auto k = extreme_order(a, b)) {
       bool moderate = false;
+      std::optional<Point3> centre_here;
       if (*k > 8 && *k <= 40)
-        if (const auto c = far_centre(a, b, false))
+        if (const auto c = far_centre(a, b, false)) {
           moderate = !extreme_order(a.translated(*c), b.translated(*c));
+          // The translation used where the sizes at that centre are none (a paraboloid's
+          // vertex, a cone's apex: far_centre's size test finds nothing to compare the
+          // distance with), on a dyadic grid 2^-30 of the distance: a unit paraboloid's circle
+          // 2^20 out was lost in the doubles of its offset.
+          const double far = std::max({std::fabs((*c)[0]), std::fabs((*c)[1]), std::fabs((*c)[2])});
+          if (moderate && far > 0) {
+            Point3 g = *c;
+            const double unit = std::ldexp(1.0, std::ilogb(far) - 30);
+            for (double& x : g)
+              x = std::nearbyint(x / unit) * unit;
+            keep_shapes_lazy(a, b, g);
+            if (g[0] != 0 || g[1] != 0 || g[2] != 0) centre_here = g;
+          }
+        }
       if (!moderate) return trace_rescaled(a, b, std::move(out), opt, *k, depth);
-      CurveResult here = trace_curve_at(a, b, out.topology, opt, 4, &out.affine);
+      CurveResult here = trace_curve_at(a, b, out.topology, opt, 4, &out.affine,
+                                        centre_here ? &*centre_here : nullptr);
       if (here.status == Status::Certified) return here;
       CurveResult scaled = trace_rescaled(a, b, std::move(out), opt, *k, depth);
       return scaled.status == Status::Certified ? scaled : here;
@@ -1049,7 +1083,9 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
                    : "no regular pencil: curves of degenerate pencils are not traced";
     return out;
   }
-  if (const auto c = far_centre(a, b)) {
+  std::optional<Point3> far = far_centre(a, b);
+  if (!far && centre) far = *centre;
+  if (const auto& c = far) {
     // Traced on the pair translated exactly by -c (its classification re-done there: the same
     // certified answer, the special points and singular members in the new coordinates), the
     // points moved back (adding c in double: an error ~1e-16 |c|) and corrected on the

@@ -27,7 +27,9 @@
 // happen to match). The automatic box has short dyadic faces, moved a little when a face meets
 // the curve non-generically. Pairs beyond 2^+-8 are traced at unit size (exact power-of-two
 // scaling), or, when only their distance from the origin (up to 2^40) is large, where they are
-// first and at unit size when that is undecided (docs/methods.md).
+// first — on the pair translated exactly to its least-squares centre (a centre, an apex, a
+// vertex) — and at unit size when that is undecided (docs/methods.md). Points that far out
+// are doubles: max_residual then includes their rounding (~2^-53 of the distance).
 // Degenerate pencils and two planes whose affine curve is lines (certify/affine.hpp routes
 // plane_section / pencil_plane with a degenerate section, plane_plane, plane_pair,
 // common_apex) are answered with those lines in closed form, clipped to the box and checked
