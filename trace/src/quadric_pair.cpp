@@ -145,11 +145,18 @@ double residual(const QuadricPair& q, const Point3& x) {
   return std::max(std::abs(q.f(x)), std::abs(q.g(x)));
 }
 
+// The terms' sizes of both forms at a point (see term_size).
+struct TermSizes {
+  double f, g;
+};
+TermSizes term_sizes(const QuadricPair& q, const Point3& x) {
+  return {term_size(q.a, x), term_size(q.b, x)};
+}
+
 // max(|f| / F, |g| / G): the residual relative to the terms' size (see term_size).
-double relative_residual(const QuadricPair& q, const Point3& x, double fv, double gv) {
-  const double fa = term_size(q.a, x), ga = term_size(q.b, x);
-  return std::max(fa > 0 ? std::abs(fv) / fa : std::abs(fv),
-                  ga > 0 ? std::abs(gv) / ga : std::abs(gv));
+double relative_residual(const TermSizes& t, double fv, double gv) {
+  return std::max(t.f > 0 ? std::abs(fv) / t.f : std::abs(fv),
+                  t.g > 0 ? std::abs(gv) / t.g : std::abs(gv));
 }
 
 // Once within the tolerance: up to two more steps while the residual keeps dropping. Where the
@@ -177,6 +184,22 @@ void polish(const QuadricPair& q, Point3& p) {
 } // namespace
 
 bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
+  // The terms' sizes once, at the point given: the steps move it by a small fraction of its
+  // distance from the origin and of the curve's size (a predictor lands within its step's
+  // sagitta of the curve), so the sizes, which only scale the tests' tolerances, barely change
+  // (recomputed per test they were 8% of a traced ellipsoid pair). Recomputed after a step
+  // that moves p further than 1/16 of its norm plus the terms' own scale would allow.
+  TermSizes ts = term_sizes(q, p);
+  Point3 at = p;
+  auto sizes = [&]() -> const TermSizes& {
+    const double d2 = (p[0] - at[0]) * (p[0] - at[0]) + (p[1] - at[1]) * (p[1] - at[1]) +
+                      (p[2] - at[2]) * (p[2] - at[2]);
+    if (d2 > (1.0 / 256) * (1 + dot(at, at))) {
+      ts = term_sizes(q, p);
+      at = p;
+    }
+    return ts;
+  };
   // Double-precision steps while the residual is far above the rounding floor, then the
   // extended-precision loop below decides convergence. From within 1e-11 one more double step
   // is taken: Newton's quadratic convergence puts it at the double evaluation's floor (~1e-16),
@@ -185,7 +208,7 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
   for (int it = 0; it < iterations; ++it) {
     const double fv = form_fast(q.a, p), gv = form_fast(q.b, p);
     if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
-    const double rel = relative_residual(q, p, fv, gv);
+    const double rel = relative_residual(sizes(), fv, gv);
     if (rel <= 1e-14) break; // at the double floor already
     Point3 x{};
     double sn = 0;
@@ -199,7 +222,7 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
   for (int it = 0; it <= iterations; ++it) {
     const double fv = q.f(p), gv = q.g(p);
     if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
-    if (relative_residual(q, p, fv, gv) <= 1e-15) {
+    if (relative_residual(sizes(), fv, gv) <= 1e-15) {
       polish(q, p);
       return true;
     }
@@ -210,7 +233,7 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
     p = x;
     if (sn <= 1e-16 * (1 + std::sqrt(dot(p, p)))) {
       // The steps no longer move p: accept it at a little above the rounding floor.
-      return relative_residual(q, p, q.f(p), q.g(p)) <= 1e-13;
+      return relative_residual(sizes(), q.f(p), q.g(p)) <= 1e-13;
     }
   }
   return false;
