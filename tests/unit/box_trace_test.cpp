@@ -646,3 +646,25 @@ TEST(BoxTrace, FarPairsOfUnitSizeAreTracedWhereTheyAre) {
         << ctx;
   }
 }
+
+// max_residual bounds every returned point's first-order distance (exact f over |grad f|),
+// also where the double-double evaluation cannot resolve it: a parabola on a paraboloid 2^30
+// out, whose points (z = 1 + y^2 is rarely a double) lie ~1e-17 off, read max_residual 0. And
+// the helper-13 audit's box, given.
+TEST(BoxTrace, MaxResidualBoundsThePointsFarFromTheOrigin) {
+  const auto a = q("z = (x - 1073741824)^2 + y^2"), b = q("x = 1073741825");
+  for (const auto& opt :
+       {trace::TraceOptions{}, given_box({1073741824, -1.060546875, 0.0029296875},
+                                         {1073741826, 0.9404296875, 2.00390625})}) {
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    ASSERT_FALSE(r.branches.empty());
+    double worst = 0;
+    for (const auto& br : r.branches)
+      for (const auto& p : br.points)
+        worst = std::max({worst, geometric_residual(a, p), geometric_residual(b, p)});
+    EXPECT_GT(worst, 0); // the test has teeth: points off the paraboloid
+    EXPECT_GE(r.max_residual, worst);
+    EXPECT_LE(r.max_residual, 1e-9 * r.box->diagonal() + 0x1p-51 * 1073741826.0);
+  }
+}

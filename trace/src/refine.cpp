@@ -93,7 +93,15 @@ Point3 RefinedPair::gradient(const Form& m, const Point3& p) {
 }
 
 double RefinedPair::distance(const Form& m, const Point3& p) {
-  const double f = std::fabs(value(m, p));
+  // The evaluation error of value(): ten double-double products and sums of terms of size
+  // |m_ij x_i x_j|, each good to ~2^-104 of the running sum: 2^-98 of the terms' size bounds it
+  // with room (the size itself in double: an estimate of the bound's scale, rounded up).
+  const double x[4] = {p[0], p[1], p[2], 1.0};
+  double terms = 0;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j)
+      terms += (i == j ? 1 : 2) * std::fabs(m.hi[i][j] * x[i] * x[j]);
+  const double f = std::fabs(value(m, p)) + 0x1p-98 * terms;
   const Point3 g = gradient(m, p);
   const double gn = std::sqrt(dot3(g, g));
   return gn > 0 ? f / gn : f; // at a vanishing gradient (a cone's apex) f itself, as 0 there

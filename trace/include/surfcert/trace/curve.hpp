@@ -78,7 +78,11 @@ class RefinedPair {
 public:
   RefinedPair(const core::QuadricMatrix& a, const core::QuadricMatrix& b);
   /// Geometric residual max(|f| / |grad f|, |g| / |grad g|) at p (first-order distance to the
-  /// farther surface; |f| where a gradient vanishes).
+  /// farther surface; |f| where a gradient vanishes), |f| enlarged by a bound on its
+  /// double-double evaluation error (2^-98 of the terms' size): never 0 for a point off the
+  /// surfaces that the evaluation cannot resolve (far from the origin the terms are ~|p|^2:
+  /// a point 5e-17 off a paraboloid 2^30 out read 0). First order: near a cone's apex the
+  /// true distance can exceed it (by up to ~5x seen).
   double distance(const Point3& p) const;
   /// Gauss-Newton steps on the exact pair while they reduce distance(p) and it is above
   /// `target`; p is left at the best point found. Returns distance(p). With face_axis k in
