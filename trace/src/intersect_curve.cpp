@@ -771,7 +771,8 @@ void keep_shapes_lazy(const core::QuadricMatrix& a, const core::QuadricMatrix& b
       c[k] = 0;
       continue;
     }
-    // Inside [lo, hi], on the coarser grid (the ends of the range are multiples of it).
+    // Inside [lo, hi], on the coarser grid (an end of the range on the finer grid of the other
+    // centre may leave c off it: then translated() forms the exact congruence, as before).
     double y = std::clamp(c[k], lo, hi);
     y = std::nearbyint(y / grid) * grid;
     c[k] = std::clamp(y, lo, hi);
