@@ -67,6 +67,32 @@ bool isolated_kind(const std::string& k) {
   return k == "acnode" || k == "isolated_point";
 }
 
+// max(|f| / |grad f|, |g| / |grad g|) at the double point p, f, g and their gradients exact
+// (rationals): for the few points where double-double cannot resolve it. Next to a cone's apex
+// f ~ r^2 sinks below double-double's evaluation error (2^-98 of the terms' size) while
+// |grad f| ~ r: a point 1e-16 off the exact curve, 1e-18 from an apex at |c| ~ 1, read 7.7e-12.
+double exact_residual(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Point3& p) {
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) return HUGE_VAL;
+  const std::array<core::Rational, 4> x{core::Rational::exact_from_double(p[0]),
+                                        core::Rational::exact_from_double(p[1]),
+                                        core::Rational::exact_from_double(p[2]), core::Rational(1)};
+  double worst = 0;
+  for (const core::QuadricMatrix* q : {&a, &b}) {
+    const auto& m = q->matrix();
+    const double f = std::fabs(algebra::bilinear(m, x, x).to_double_approx());
+    if (f == 0) continue; // on the surface exactly
+    double g2 = 0;
+    for (size_t i = 0; i < 3; ++i) {
+      std::array<core::Rational, 4> e{};
+      e[i] = core::Rational(1);
+      const double gi = 2 * algebra::bilinear(m, e, x).to_double_approx();
+      g2 += gi * gi;
+    }
+    worst = std::max(worst, g2 > 0 ? f / std::sqrt(g2) : f);
+  }
+  return worst;
+}
+
 // Every returned point brought within 1e-13 of the curve's size of both EXACT surfaces, and
 // max_residual measured geometrically (the largest max(|f| / |grad f|, |g| / |grad g|)). The
 // tracer walks on the coefficients rounded to doubles; where their error bound shows that
@@ -107,6 +133,7 @@ void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
         if (!exact) exact.emplace(a, b);
         const bool end = !br.closed && (i == 0 || i + 1 == br.points.size());
         d = exact->refine(p, target, end ? face_axis(p) : -1);
+        if (!(d <= target)) d = std::min(d, exact_residual(a, b, p));
       }
       out.max_residual = std::max(out.max_residual, d);
     }
@@ -115,6 +142,7 @@ void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
     if (!(d <= target)) {
       if (!exact) exact.emplace(a, b);
       d = exact->distance(p);
+      if (!(d <= target)) d = std::min(d, exact_residual(a, b, p));
     }
     out.max_residual = std::max(out.max_residual, d);
   }
@@ -911,6 +939,44 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
                            const certify::AffineTopology* known = nullptr,
                            const Point3* centre = nullptr);
 
+void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
+                const TraceOptions& opt);
+
+// The centre of the quadric s (least squares, minimum norm: a cone's apex, a sphere's centre,
+// the point of a cylinder's axis nearest the origin) to double precision (an apex 12345.678
+// out rounded to a grid of 2^-40 of its distance stayed 1e-8 off the origin, too far for a
+// neck of 1e-20), kept where the pair's shapes stay lazy; nullopt for a plane or a centre at
+// the origin.
+std::optional<Point3> own_centre(const core::QuadricMatrix& s, const core::QuadricMatrix& a,
+                                 const core::QuadricMatrix& b) {
+  std::optional<Point3> c;
+  // A central quadric's centre -A^-1 b exactly (Cramer's rule over Q), then rounded: the
+  // least-squares one in double is off by ~1e-16 of its distance, which leaves a neck of 2^-100
+  // next to an apex at |c| ~ 1 unresolved.
+  const auto& m = s.matrix();
+  auto det3 = [&m](size_t col, bool replace) {
+    // det of the 3x3 block with column col replaced by -b when replace
+    auto e = [&](size_t i, size_t j) { return replace && j == col ? -m[i][3] : m[i][j]; };
+    return e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1)) -
+           e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0)) +
+           e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0));
+  };
+  const core::Rational d = det3(0, false);
+  if (!d.is_zero()) {
+    c = Point3{};
+    for (size_t k = 0; k < 3; ++k)
+      (*c)[k] = (det3(k, true) / d).to_double_approx();
+  } else {
+    c = far_centre(s, s, false);
+  }
+  if (!c) return std::nullopt;
+  const double far = std::max({std::fabs((*c)[0]), std::fabs((*c)[1]), std::fabs((*c)[2])});
+  if (!(far > 0) || !std::isfinite(far)) return std::nullopt;
+  keep_shapes_lazy(a, b, *c);
+  if ((*c)[0] == 0 && (*c)[1] == 0 && (*c)[2] == 0) return std::nullopt;
+  return c;
+}
+
 // The affine reading of a pair carried to a copy moved by an exact translation or a scaling
 // by a power of two: its counts and its points at infinity (directions) do not move; routes
 // that hold coordinates (a plane, a section, an apex, a cubic and a line) are read again.
@@ -1144,9 +1210,30 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     }
     return local;
   }
+  trace_here(a, b, out, opt);
+  // Undecided where it is: once more in the frame of either quadric's own centre (a cone's
+  // apex, a sphere's centre, the point of a cylinder's axis nearest the origin), translated
+  // exactly. Next to an apex at |c| ~ 1 the rounded cone's zero set is noise within ~1e-8 of
+  // it (f ~ r^2 against a rounding of ~1e-16 |c|^2), so a curve passing an apex that close
+  // (a cylinder 1e-10 off it: two loops whose necks are 2e-10 apart) cannot be walked there;
+  // at the origin the same cone is exact to ~1e-16 r^2. Depth 8 marks the retry (no further
+  // retries inside it).
+  if (out.status != Status::Certified && !centre && depth < 8)
+    for (const core::QuadricMatrix* s : {&a, &b})
+      if (const auto c = own_centre(*s, a, b)) {
+        CurveResult again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c);
+        if (again.status == Status::Certified) return again;
+      }
+  return out;
+}
+
+// The curve of a regular pencil traced where the pair lies: in a box (no ellipsoid) or whole.
+void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
+                const TraceOptions& opt) {
+  const QsicResult& t = out.topology;
   if (a.kind() != core::QuadricKind::Ellipsoid && b.kind() != core::QuadricKind::Ellipsoid) {
     trace_in_box(a, b, out, opt);
-    return out;
+    return;
   }
   QuadricPair q(a, b);
   std::vector<Point3> singular = split_special_points(t, out.isolated_points);
@@ -1191,7 +1278,6 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
                (closed_ok ? "" : "; an open branch was returned") +
                (t.special_points_complete ? "" : "; special points not all computed exactly");
   }
-  return out;
 }
 
 } // namespace

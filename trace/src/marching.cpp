@@ -21,11 +21,13 @@
 // from the end tangents: len/4 times the sine of the tangent-chord angle; the closing chord
 // too), it lies within h/2 of the predictor and 1.5h of p, the
 // step made progress, the tangent (grad f x grad g with the walk's orientation sign) turned by
-// less than ~45 degrees, and h is not too long for the curvature and d_sep at the new point;
-// otherwise h is halved. The orientation test is what keeps the walk on its own piece where
-// two pieces of curve run closer than the step: next to each other the field grad f x grad g
-// runs in opposite directions on them (they are neighbouring zero sets of one function on the
-// surface), so a jump shows up as a reversed tangent.
+// less than ~45 degrees, h is not too long for the curvature and d_sep at the new point, and
+// the rounded coefficients resolve the curve there (QuadricPair::noise_radius <= d_sep / 4);
+// otherwise h is halved, down to 2^-40 of |p| (a neck of 2^-100 at the origin is walked). The
+// orientation test is what keeps the walk on its own piece where two pieces of curve run closer
+// than the step: next to each other the field grad f x grad g runs in opposite directions on them
+// (they are neighbouring zero sets of one function on the surface), so a jump shows up as a
+// reversed tangent.
 //
 // Singular points (crunode, cusp, acnode) are classified locally from the pair: there the
 // gradients are parallel, g - mu f is singular at S, and the tangent cone of the curve is
@@ -326,7 +328,8 @@ public:
   }
 
   // Target step at p; h_free excludes the separation bound (used for snapping).
-  double target(const V& p, const V& t, double kappa_est, double* h_free) const {
+  double target(const V& p, const V& t, double kappa_est, double* h_free,
+                double* d_sep = nullptr) const {
     const V gf = q_.grad_f(p), gg = q_.grad_g(p); // shared by the two bounds below
     const double att = quad(q_.a, t, t), btt = quad(q_.b, t, t);
     const double kappa = std::max(curvature(t, gf, gg, att, btt), kappa_est);
@@ -339,12 +342,13 @@ public:
     // grad f x grad g runs in opposite directions), so it never shrinks the step below
     // h_free / 20: the point count stays bounded when two pieces run close for long.
     const double sep = separation(t, gf, gg, att, btt);
+    if (d_sep) *d_sep = sep;
     if (kappa > 0 && std::isfinite(sep))
       h = std::min(h, std::max(std::sqrt(0.5 * sep / kappa), 0.05 * h));
     return h;
   }
 
-  double hmin(const V& p) const { return std::max(1e-11 * scene_, 1e-14 * (1 + norm(p))); }
+  double hmin(const V& p) const { return std::max(1e-290, 0x1p-40 * norm(p)); }
 
   // Through singular point sp (index si) arriving from p: returns the first point after it.
   bool pass_singular(const Singular& s, const V& p, double h_free, V& out) const {
@@ -494,8 +498,8 @@ public:
               dot(dq, t) > 0.5 * len && dot(tx, t) > 0.7) {
             const double ang = small_angle(t, tx);
             const double k2 = ang / len;
-            double hx_free = 0;
-            const double hx = target(x, tx, k2, &hx_free);
+            double hx_free = 0, sep_x = 0;
+            const double hx = target(x, tx, k2, &hx_free, &sep_x);
             // The chord p-x must stay within the tolerance of the curve. The curvature
             // estimates at its ends can miss a sharper bend in between; the end tangents
             // cannot: a smooth arc leaves its chord by about len/4 times the sine of the
@@ -503,6 +507,17 @@ public:
             const V cdir = mul(1 / len, dq);
             const double sag = 0.25 * len * std::max(norm(cross(t, cdir)), norm(cross(tx, cdir)));
             const bool chord_ok = sag <= tol_;
+            // Where the rounded pair's curve may lie farther from the exact one than a quarter
+            // of the distance to the next piece of curve (next to a cone's apex at |c| ~ 1:
+            // the rounded cone's zero set there is a hyperboloid's neck of ~1e-8, whatever the
+            // exact pair does), the walk follows the rounded pair's topology, not the exact
+            // one's: a loop made of two pieces passed every other test. The step shrinks there
+            // until the walk ends (undecided).
+            const bool resolved = !(q_.noise_radius(x) > 0.25 * sep_x);
+            if (!resolved) {
+              h *= 0.5;
+              continue;
+            }
             if (h <= 2 * hx && chord_ok) {
               ok = true;
               have_next = true;

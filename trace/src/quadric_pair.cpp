@@ -109,6 +109,17 @@ Point3 QuadricPair::grad_g(const Point3& p) const {
   return gradient(b, p);
 }
 
+double QuadricPair::noise_radius(const Point3& p) const {
+  const Point3 gf = gradient(a, p), gg = gradient(b, p);
+  const double nf = std::sqrt(dot(gf, gf)), ng = std::sqrt(dot(gg, gg));
+  const Point3 c{gf[1] * gg[2] - gf[2] * gg[1], gf[2] * gg[0] - gf[0] * gg[2],
+                 gf[0] * gg[1] - gf[1] * gg[0]};
+  const double sine_nf_ng = std::sqrt(dot(c, c)); // sin(angle) |grad f| |grad g|
+  if (!(sine_nf_ng > 0)) return HUGE_VAL;
+  // max(Fa / nf, Fb / ng) / sin = max(Fa ng, Fb nf) / (sin nf ng)
+  return 0x1p-53 * std::max(term_size(a, p) * ng, term_size(b, p) * nf) / sine_nf_ng;
+}
+
 double QuadricPair::distance_bound(const Point3& p) const {
   auto one = [&p](const M4& m) {
     const Point3 g = gradient(m, p);

@@ -66,6 +66,13 @@ struct QuadricPair {
   /// max over f, g of (|f(p)| + 2^-53 F) / |grad f(p)|, F = sum |a_ij x_i x_j| bounding how
   /// far the rounding of the coefficients moves f at p (infinite where a gradient vanishes).
   double distance_bound(const Point3& p) const;
+  /// How far the curve of these rounded coefficients may lie from the exact curve near p: the
+  /// rounding moves f by up to 2^-53 F, so the surface by that over |grad f| along its normal,
+  /// and the curve by the larger of the two surfaces' moves over the sine of the angle between
+  /// them (infinite where a gradient vanishes or they are parallel). Large near a cone's apex
+  /// (at distance r from an apex ~1 from the origin, ~1e-16 / r) and where the surfaces are
+  /// nearly tangent: there a walk cannot tell two pieces of curve apart.
+  double noise_radius(const Point3& p) const;
 };
 
 /// The pair's exact coefficients in double-double (each entry hi + lo, read from the exact

@@ -30,6 +30,9 @@
 // first — on the pair translated exactly to its least-squares centre (a centre, an apex, a
 // vertex) — and at unit size when that is undecided (docs/methods.md). Points that far out
 // are doubles: max_residual then includes their rounding (~2^-53 of the distance).
+// A regular pair undecided where it is (the curve passing a cone's apex closer than the rounded
+// cone resolves, ~1e-8 at |apex| ~ 1) is traced once more translated exactly to either
+// quadric's own centre (the apex to double precision) and returned when certified there.
 // Degenerate pencils and two planes whose affine curve is lines (certify/affine.hpp routes
 // plane_section / pencil_plane with a degenerate section, plane_plane, plane_pair,
 // common_apex) are answered with those lines in closed form, clipped to the box and checked
