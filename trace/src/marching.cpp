@@ -413,6 +413,7 @@ public:
     bool have_next = false;
     double next_h = 0, next_hfree = 0;
     bool away = false;
+    int stalled = 0; // consecutive accepted steps far below their target
     const size_t cap = static_cast<size_t>(std::max(opt_.max_points_per_branch, 2));
     if (leaving_at(p0, t)) { // started on a face, heading out: nothing inside this way
       w.exited = true;
@@ -519,6 +520,17 @@ public:
               continue;
             }
             if (h <= 2 * hx && chord_ok) {
+              // A walk whose steps stay far below their target (each longer one failing, e.g.
+              // Newton not converging between two nearly tangent surfaces around a loop of
+              // 1e-8) crawls: 290,000 points and 9 s for one such pair once the step floor fell
+              // to 2^-40 |p|. It ends instead (undecided). Not too soon: a walk closing in on a
+              // cone's apex passed by 2^-100 halves its steps ~100 times in a row, each far
+              // below the target of the nearly straight curve there.
+              stalled = len < 1e-4 * hx ? stalled + 1 : 0;
+              if (stalled > 2048) {
+                w.dead = true;
+                return w;
+              }
               ok = true;
               have_next = true;
               next_h = hx;
