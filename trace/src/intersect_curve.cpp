@@ -945,10 +945,10 @@ void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
 // The centre of the quadric s (least squares, minimum norm: a cone's apex, a sphere's centre,
 // the point of a cylinder's axis nearest the origin) to double precision (an apex 12345.678
 // out rounded to a grid of 2^-40 of its distance stayed 1e-8 off the origin, too far for a
-// neck of 1e-20), kept where the pair's shapes stay lazy; nullopt for a plane or a centre at
-// the origin.
-std::optional<Point3> own_centre(const core::QuadricMatrix& s, const core::QuadricMatrix& a,
-                                 const core::QuadricMatrix& b) {
+// neck of 1e-20); nullopt for a plane or a centre at the origin. Not moved to keep a pair of
+// double-posed shapes lazy (as far_centre does): that put a cone's apex up to ~1 off the origin,
+// and only the retry of an undecided pair pays for the exact matrices.
+std::optional<Point3> own_centre(const core::QuadricMatrix& s) {
   std::optional<Point3> c;
   // A central quadric's centre -A^-1 b exactly (Cramer's rule over Q), then rounded: the
   // least-squares one in double is off by ~1e-16 of its distance, which leaves a neck of 2^-100
@@ -972,8 +972,6 @@ std::optional<Point3> own_centre(const core::QuadricMatrix& s, const core::Quadr
   if (!c) return std::nullopt;
   const double far = std::max({std::fabs((*c)[0]), std::fabs((*c)[1]), std::fabs((*c)[2])});
   if (!(far > 0) || !std::isfinite(far)) return std::nullopt;
-  keep_shapes_lazy(a, b, *c);
-  if ((*c)[0] == 0 && (*c)[1] == 0 && (*c)[2] == 0) return std::nullopt;
   return c;
 }
 
@@ -1220,7 +1218,7 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   // retries inside it).
   if (out.status != Status::Certified && !centre && depth < 8)
     for (const core::QuadricMatrix* s : {&a, &b})
-      if (const auto c = own_centre(*s, a, b)) {
+      if (const auto c = own_centre(*s)) {
         CurveResult again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c);
         if (again.status == Status::Certified) return again;
       }
