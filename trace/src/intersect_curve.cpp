@@ -125,6 +125,7 @@ void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
     return -1;
   };
   out.max_residual = 0;
+  out.branch_residual = 0;
   for (auto& br : out.branches)
     for (size_t i = 0; i < br.points.size(); ++i) {
       Point3& p = br.points[i];
@@ -136,6 +137,7 @@ void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
         if (!(d <= target)) d = std::min(d, exact_residual(a, b, p));
       }
       out.max_residual = std::max(out.max_residual, d);
+      out.branch_residual = std::max(out.branch_residual, d);
     }
   for (const auto& p : out.isolated_points) { // exact points rounded: measured, not moved
     double d = q.distance_bound(p);
@@ -939,6 +941,58 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
                            const certify::AffineTopology* known = nullptr,
                            const Point3* centre = nullptr);
 
+// Two checks of a certified picture against what it must be, whatever route drew it: (1) no
+// branch drawn as a straight line when the certified affine reading has no line (a plane
+// passing a cone's apex by 1e-10 at |apex| ~ 1: its hyperbola's centre value fell below a float
+// threshold and the section was drawn as its two asymptotes, each crossing from one branch of
+// the hyperbola to the other, matched to the exact box exits and certified); (2) every point
+// traced point within 1e-9 of the curve's own size (plus 16 ulps of the coordinates) of both
+// surfaces (isolated points are exact points rounded, not checked here): the
+// check against the box's diagonal passed a circle 0.25 off a paraboloid in a box 3.7e9 wide,
+// and a loop of radius 2^-100 drawn 4e-6 wide. A failed check makes the answer undecided.
+void check_picture(CurveResult& out) {
+  if (out.status != Status::Certified) return;
+  std::string why;
+  if (out.affine.lines && *out.affine.lines == 0)
+    for (const auto& br : out.branches)
+      if (br.kind == "line") {
+        why = "a branch was drawn as a straight line where the certified affine topology has no "
+              "line (a conic within the doubles' reach of a line pair)";
+        break;
+      }
+  if (why.empty()) {
+    Point3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    double big = 0;
+    auto grow = [&](const Point3& p) {
+      for (size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+        big = std::max(big, std::fabs(p[k]));
+      }
+    };
+    for (const auto& br : out.branches)
+      for (const auto& p : br.points)
+        grow(p);
+    double size = 0;
+    for (size_t k = 0; k < 3; ++k)
+      if (hi[k] >= lo[k]) size += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    size = std::sqrt(size);
+    const double ulp = big > 0 ? std::ldexp(1.0, std::ilogb(big) - 52) : 0.0;
+    const double bound = 1e-9 * size + 16 * ulp + 0x1p-1070;
+    if (!(out.branch_residual <= bound)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "traced points lie up to %.3g off the surfaces, more than 1e-9 of the "
+                    "curve's size (%.3g) and the doubles' spacing there",
+                    out.branch_residual, size);
+      why = buf;
+    }
+  }
+  if (why.empty()) return;
+  out.status = Status::Undecided;
+  out.matches_topology = false;
+  out.note = why;
+}
+
 void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
                 const TraceOptions& opt);
 
@@ -1028,6 +1082,7 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
   for (auto& x : local.isolated_points)
     back(x);
   local.max_residual = std::ldexp(local.max_residual, k) + (subnormal ? 0x1p-1073 : 0.0);
+  local.branch_residual = std::ldexp(local.branch_residual, k) + (subnormal ? 0x1p-1073 : 0.0);
   if (local.box) {
     box_back(local.box->min);
     box_back(local.box->max);
@@ -1069,6 +1124,7 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         QsicResult topology, const TraceOptions& opt) {
   CurveResult out = trace_curve_at(a, b, std::move(topology), opt, 0);
+  check_picture(out);
   // Doubles beyond the range (a unit pair's hyperbolas followed out to a given box 1e300 wide,
   // where f ~ x^2 overflows) make no picture: nothing half-written, an honest undecided.
   bool finite = std::isfinite(out.max_residual);
@@ -1209,6 +1265,7 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     return local;
   }
   trace_here(a, b, out, opt);
+  check_picture(out);
   // Undecided where it is: once more in the frame of either quadric's own centre (a cone's
   // apex, a sphere's centre, the point of a cylinder's axis nearest the origin), translated
   // exactly. Next to an apex at |c| ~ 1 the rounded cone's zero set is noise within ~1e-8 of

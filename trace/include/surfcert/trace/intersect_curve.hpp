@@ -67,6 +67,9 @@ struct CurveResult {
   /// points, on the exact quadrics: a distance in the input's length unit. Every point is
   /// brought within 1e-13 of the curve's size where Newton on the exact pair can.
   double max_residual = 0;
+  /// The same over the traced branches' points alone (max_residual also counts the isolated
+  /// points, exact points rounded); not in the JSON: the tracer's own check of its picture.
+  double branch_residual = 0;
   double tolerance = 2e-4;
   bool matches_topology = false;
   bool exact_start_points = false; ///< the float start points missed a branch: exact ones used

@@ -1,0 +1,107 @@
+// The tracer's own check of a certified picture (trace/src/intersect_curve.cpp, check_picture):
+// inputs of helper-14's audit (2026-12-02) that were certified with a wrong picture.
+//  - A plane passing a cone's apex by g at |apex| ~ 1 (x = 1/3 + g against the cone with apex
+//    (1/3, 0, -1)): the section is a hyperbola, one branch per nappe, but a float threshold drew
+//    it as its two asymptotes, each crossing the apex (half on each nappe), matched to the exact
+//    box exits and certified (160 of 1152 audited pairs). Closed form: two unbounded branches,
+//    no line; each branch on one nappe (the sign of z + 1) beyond 1e-9 of the apex.
+//  - A paraboloid near a cone's apex 1e9 out (audit id 6242): a circle 0.25 off the paraboloid,
+//    certified because the residual test compared with the automatic box's diagonal (3.7e9).
+//  - A loop of radius 2^-100 next to an apex (audit id 1703) drawn 4e-6 wide, certified with
+//    max_residual 2.1e-6 (no residual test on the ellipsoid route).
+// Each must be certified with a right picture or undecided with a reason.
+#include "support/distance_checks.hpp"
+
+#include "surfcert/trace/intersect_curve.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+using namespace surfcert;
+using certify::Mode;
+using surfcert::testing::q;
+
+namespace {
+
+void expect_certified_or_undecided(const trace::CurveResult& r, const std::string& ctx) {
+  if (r.status != certify::Status::Certified) {
+    EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+    EXPECT_FALSE(r.note.empty()) << ctx;
+  }
+}
+
+} // namespace
+
+TEST(PictureCheck, HyperbolaNearTheApexIsNotItsAsymptotes) {
+  struct Case {
+    std::string o, g; // apex (o + 1/3, o, o - 1), plane x = o + 1/3 + g
+  };
+  int certified = 0;
+  for (const Case& c : {Case{"0", "1/10000000000"}, Case{"0", "-1/10000000000"},
+                        Case{"12345.678", "1/1000000"}, Case{"12345.678", "-1/1000000"}})
+    for (bool swapped : {false, true}) {
+      const std::string ctx = "offset " + c.o + ", gap " + c.g + (swapped ? " swapped" : "");
+      auto a = q("(x - " + c.o + " - 1/3)^2 + (y - " + c.o + ")^2 = (z - " + c.o + " + 1)^2");
+      auto b = q("x = " + c.o + " + 1/3 + (" + c.g + ")");
+      if (swapped) std::swap(a, b);
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, {});
+      ASSERT_TRUE(r.affine.certified()) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, 2) << ctx;
+      EXPECT_EQ(*r.affine.lines, 0) << ctx;
+      expect_certified_or_undecided(r, ctx);
+      if (r.status != certify::Status::Certified) continue;
+      ++certified;
+      const double o = std::stod(c.o), ax = o + 1.0 / 3, az = o - 1;
+      int upper = 0, lower = 0;
+      for (const auto& br : r.branches) {
+        EXPECT_NE(br.kind, "line") << ctx;
+        int pos = 0, neg = 0;
+        for (const auto& p : br.points) {
+          const double d = std::sqrt((p[0] - ax) * (p[0] - ax) + (p[1] - o) * (p[1] - o) +
+                                     (p[2] - az) * (p[2] - az));
+          if (d <= 1e-9) continue;
+          (p[2] > az ? pos : neg) += 1;
+        }
+        EXPECT_TRUE(pos == 0 || neg == 0) << ctx << ": a branch on both nappes";
+        upper += pos > 0 ? 1 : 0;
+        lower += neg > 0 ? 1 : 0;
+      }
+      EXPECT_EQ(upper, 1) << ctx;
+      EXPECT_EQ(lower, 1) << ctx;
+    }
+  EXPECT_GE(certified, 4); // at the origin the apex-frame retry draws the hyperbola
+}
+
+TEST(PictureCheck, ResidualAgainstTheCurvesSizeNotTheBox) {
+  // audit id 6242 (cone and paraboloid near its apex, rotated, 1e9 out)
+  const auto a = q("(-17/225)*x*x + (-88/45)*x*y + (-88/225)*x*z + (22480000000/9)*x + (1/9)*y*y + "
+                   "(-16/45)*y*z + (18800000000/9)*y + (217/225)*z*z + (-10640000000/9)*z + "
+                   "(-15320000000000000000/9)");
+  const auto b =
+      q("(-104/225)*x*x + (44/45)*x*y + (44/225)*x*z + (-11199999967/45)*x + (-5/9)*y*y + "
+        "(8/45)*y*z + (-399999994/9)*y + (-221/225)*z*z + (71600000006/45)*z + "
+        "(-584000001380000000000000000000000000009/900000000000000000000)");
+  const auto r = trace::intersect_curve(a, b, Mode::Filtered, {});
+  expect_certified_or_undecided(r, "6242");
+  if (r.status == certify::Status::Certified) {
+    EXPECT_LE(r.max_residual, 2e-6); // 16 ulps at 1e9
+  }
+}
+
+TEST(PictureCheck, TinyLoopNextToAnApexIsNotDrawnWide) {
+  // audit id 1703 (sphere against a cone, a loop of radius ~2^-100 at (1/3, 0, -1) rotated)
+  const auto a =
+      q("1*x*x + (-2/57)*x + 1*y*y + (12/19)*y + 1*z*z + (4/19)*z + (-12855504354071922204335696738"
+        "752118530981732079489283340107785/14462442398330912479877658831070463422699826944045135517"
+        "712384)");
+  const auto b =
+      q("(289/361)*x*x + (-144/361)*x*y + (408/361)*x*z + (34/57)*x + (289/361)*y*y + (408/361)*y*z"
+        " + (24/19)*y + (-217/361)*z*z + (-30/19)*z + (-8/9)");
+  const auto r = trace::intersect_curve(a, b, Mode::Filtered, {});
+  expect_certified_or_undecided(r, "1703");
+  if (r.status == certify::Status::Certified) {
+    EXPECT_LE(r.max_residual, 1e-12);
+  }
+}
