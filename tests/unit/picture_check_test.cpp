@@ -105,3 +105,45 @@ TEST(PictureCheck, TinyLoopNextToAnApexIsNotDrawnWide) {
     EXPECT_LE(r.max_residual, 1e-12);
   }
 }
+
+// A unit sphere in a cylinder of radius 1 - g, rotated by the integer quaternion (1, 2, 3, 4):
+// two circles in the planes z' = +-sqrt(2g - g^2) of the cylinder's frame (2.8e-10 apart for
+// g = 1e-20). The planes came from the eigenvectors of the rounded singular member, whose
+// eigenvalue -(2g - g^2) sank into the rounding noise of its zero eigenvalues: circles drawn in
+// planes tilted by 4.5e-9, half of each on either side, certified (helper-14: 32 answers).
+// Certified with each circle on one side of z' = 0 beyond 1e-9 of the contact circle's plane,
+// or undecided; g = 1e-10 (planes 2.8e-5 apart) must stay certified.
+TEST(PictureCheck, NearDoubleConicPlanesAreNotNoise) {
+  const long w = 1, x = 2, y = 3, z = 4, n = w * w + x * x + y * y + z * z;
+  // The cylinder's axis R e_z (the rotation x -> R x of motion()).
+  const double axis[3] = {2.0 * (x * z + w * y) / n, 2.0 * (y * z - w * x) / n,
+                          static_cast<double>(w * w - x * x - y * y + z * z) / n};
+  for (const std::string g :
+       {"1/10000000000", "1/100000000000000000000", "1/1152921504606846976"}) {
+    const auto m = surfcert::testing::motion(w, x, y, z, {});
+    const auto a = q("x^2 + y^2 + z^2 = 1").congruent(m);
+    const auto b = q("x^2 + y^2 = (1 - " + g + ")^2").congruent(m);
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, {});
+    const std::string ctx = "g = " + g;
+    expect_certified_or_undecided(r, ctx);
+    if (g == "1/10000000000") {
+      EXPECT_EQ(r.status, certify::Status::Certified) << ctx;
+    }
+    if (r.status != certify::Status::Certified) continue;
+    ASSERT_EQ(r.branches.size(), 2u) << ctx;
+    int above = 0, below = 0;
+    for (const auto& br : r.branches) {
+      int pos = 0, neg = 0;
+      for (const auto& p : br.points) {
+        const double h = p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2];
+        pos += h > 1e-15 ? 1 : 0;
+        neg += h < -1e-15 ? 1 : 0;
+      }
+      EXPECT_TRUE(pos == 0 || neg == 0) << ctx << ": a circle on both sides";
+      above += pos > 0 ? 1 : 0;
+      below += neg > 0 ? 1 : 0;
+    }
+    EXPECT_EQ(above, 1) << ctx;
+    EXPECT_EQ(below, 1) << ctx;
+  }
+}

@@ -428,6 +428,14 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
         continue; // (2,0) / (0,2): a pair of complex conjugate planes
       double l1 = w[idx[0]], l2 = w[idx[3]];
       if (!(l1 > 0 && l2 < 0)) continue;
+      // The member is rounded (and its root, when irrational): its two zero eigenvalues come
+      // out as noise. Where l1 or |l2| is not far above that noise (and 2^-52 of the other), the
+      // planes' directions are noise too: a sphere in a cylinder of radius 1 - 1e-20, rotated,
+      // had its two circles (planes 2.8e-10 apart) drawn in planes tilted by 4.5e-9, certified.
+      // No conics then (undecided).
+      const double noise = std::max(std::fabs(w[idx[1]]), std::fabs(w[idx[2]])) +
+                           0x1p-52 * std::max(l1, -l2);
+      if (!(std::min(l1, -l2) > 4 * noise)) continue;
       V4 v1 = column(v, idx[0]), v2 = column(v, idx[3]);
       double s1 = std::sqrt(l1), s2 = std::sqrt(-l2);
       V4 p{}, q{};
