@@ -433,8 +433,8 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
       // planes' directions are noise too: a sphere in a cylinder of radius 1 - 1e-20, rotated,
       // had its two circles (planes 2.8e-10 apart) drawn in planes tilted by 4.5e-9, certified.
       // No conics then (undecided).
-      const double noise = std::max(std::fabs(w[idx[1]]), std::fabs(w[idx[2]])) +
-                           0x1p-52 * std::max(l1, -l2);
+      const double noise =
+          std::max(std::fabs(w[idx[1]]), std::fabs(w[idx[2]])) + 0x1p-52 * std::max(l1, -l2);
       if (!(std::min(l1, -l2) > 4 * noise)) continue;
       V4 v1 = column(v, idx[0]), v2 = column(v, idx[3]);
       double s1 = std::sqrt(l1), s2 = std::sqrt(-l2);
