@@ -99,22 +99,33 @@ double exact_residual(const core::QuadricMatrix& a, const core::QuadricMatrix& b
 // may leave a point too far off (near a cone's apex, where a rounded cone is a hyperboloid
 // with a waist ~1e-8), the point is corrected by Newton on the double-double coefficients
 // (RefinedPair); endpoints on a box face stay on it.
-void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const QuadricPair& q,
-                   CurveResult& out) {
+// The diagonal of the bounding box of the branches' points (and the isolated points when
+// asked); *big, when given, receives the largest |coordinate|.
+double points_size(const CurveResult& out, bool isolated_too, double* big = nullptr) {
   Point3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  auto grow = [&lo, &hi](const Point3& p) {
-    for (size_t k = 0; k < 3; ++k)
+  double m = 0;
+  auto grow = [&](const Point3& p) {
+    for (size_t k = 0; k < 3; ++k) {
       lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+      m = std::max(m, std::fabs(p[k]));
+    }
   };
   for (const auto& br : out.branches)
     for (const auto& p : br.points)
       grow(p);
-  for (const auto& p : out.isolated_points)
-    grow(p);
+  if (isolated_too)
+    for (const auto& p : out.isolated_points)
+      grow(p);
   double size = 0;
   for (size_t k = 0; k < 3; ++k)
     if (hi[k] >= lo[k]) size += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-  size = std::sqrt(size);
+  if (big) *big = m;
+  return std::sqrt(size);
+}
+
+void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const QuadricPair& q,
+                   CurveResult& out) {
+  double size = points_size(out, true);
   if (!(size > 0)) size = out.box ? out.box->diagonal() : 1.0;
   const double target = 1e-13 * size;
   std::optional<RefinedPair> exact; // built on first need (reads the exact rationals)
@@ -961,21 +972,8 @@ void check_picture(CurveResult& out) {
         break;
       }
   if (why.empty()) {
-    Point3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     double big = 0;
-    auto grow = [&](const Point3& p) {
-      for (size_t k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-        big = std::max(big, std::fabs(p[k]));
-      }
-    };
-    for (const auto& br : out.branches)
-      for (const auto& p : br.points)
-        grow(p);
-    double size = 0;
-    for (size_t k = 0; k < 3; ++k)
-      if (hi[k] >= lo[k]) size += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-    size = std::sqrt(size);
+    const double size = points_size(out, false, &big);
     const double ulp = big > 0 ? std::ldexp(1.0, std::ilogb(big) - 52) : 0.0;
     const double bound = 1e-9 * size + 16 * ulp + 0x1p-1070;
     if (!(out.branch_residual <= bound)) {
