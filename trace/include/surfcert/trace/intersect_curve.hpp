@@ -30,6 +30,9 @@
 // first — on the pair translated exactly to its least-squares centre (a centre, an apex, a
 // vertex) — and at unit size when that is undecided (docs/methods.md). Points that far out
 // are doubles: max_residual then includes their rounding (~2^-53 of the distance).
+// Whatever the route, a certified picture has no straight-line branch where the affine reading
+// has no line, and every traced point lies within 1e-9 of the curve's own size (plus 16 ulps of
+// its coordinates) of both exact surfaces; otherwise it is undecided.
 // A regular pair undecided where it is (the curve passing a cone's apex closer than the rounded
 // cone resolves, ~1e-8 at |apex| ~ 1) is traced once more translated exactly to either
 // quadric's own centre (the apex to double precision) and returned when certified there.
