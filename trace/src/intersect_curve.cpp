@@ -1262,7 +1262,12 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     }
     return local;
   }
-  trace_here(a, b, out, opt);
+  // The exact special points are all the curve has (when computed): a start at which the
+  // rounded pair looks singular elsewhere is a near-crossing the rounding closed, not a
+  // singular point to walk through.
+  TraceOptions here = opt;
+  here.singular_points_complete = t.special_points_complete;
+  trace_here(a, b, out, here);
   check_picture(out);
   // Undecided where it is: once more in the frame of either quadric's own centre (a cone's
   // apex, a sphere's centre, the point of a cylinder's axis nearest the origin), translated

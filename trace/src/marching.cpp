@@ -650,7 +650,9 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
     if (sin_angle(q, p) <= 1e-9) {
       Singular s = classify(q, p);
       if (s.kind != SKind::Other) {
-        tr.sing.push_back(s);
+        // Not a start either way; with the exact list complete, not a singular point to pass
+        // through: the walks from the other starts meet it and end there (noise test).
+        if (!opt.singular_points_complete) tr.sing.push_back(s);
         continue;
       }
     }

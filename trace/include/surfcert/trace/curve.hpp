@@ -52,6 +52,11 @@ struct TraceOptions {
   /// When set, march() stops each walk where it leaves the box (the last point lies on a face)
   /// and walks starting on a face only inwards; the scene size is the box's diagonal.
   std::optional<Box> box;
+  /// The singular points given to march() are all the curve has (computed exactly). A start
+  /// at which the rounded pair's curve looks singular is then not made one: the exact curve is
+  /// smooth there and the rounded pair cannot tell its pieces apart (a cylinder pair 1e-20 off
+  /// Steinmetz rounds to Steinmetz, whose crossing joined the two loops into two mixed ones).
+  bool singular_points_complete = false;
 };
 
 /// The pair as float data, normalised; shared by the tracer's parts.
