@@ -18,6 +18,7 @@
 using namespace surfcert;
 using certify::Mode;
 using core::Rational;
+using surfcert::testing::geometric_residual;
 using surfcert::testing::given_box;
 using surfcert::testing::motion;
 using surfcert::testing::q;
@@ -66,24 +67,6 @@ const Want kPairs[] = {
     {"(x - z)*(x + z) = 0", "x^2 + y^2 = z^2", 0, 2, 0}, // tangent planes through the apex
     {"x^2 + y^2 = z^2", "x^2 + 2*y^2 = z^2", 0, 2, 0},   // two cones tangent along two rulings
 };
-
-// |f(p)| / |grad f(p)|, with f(p) exact (the double point read exactly): the first-order
-// distance from p to the surface. Exact f matters at a cone's apex, where the gradient
-// vanishes and the rounding error of a float f would dominate the quotient.
-double geometric_residual(const core::QuadricMatrix& m, const trace::Point3& p) {
-  const Rational x[4] = {Rational::exact_from_double(p[0]), Rational::exact_from_double(p[1]),
-                         Rational::exact_from_double(p[2]), Rational(1)};
-  Rational f;
-  double g[3] = {0, 0, 0};
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      f += x[i] * m(i, j) * x[j];
-      if (i < 3) g[i] += 2 * (m(i, j) * x[j]).to_double_approx();
-    }
-  const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  const double fa = std::fabs(f.to_double_approx());
-  return gn > 0 ? fa / gn : fa;
-}
 
 void expect_traced(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Want& w,
                    const std::string& ctx, const trace::TraceOptions& opt = {}) {

@@ -347,8 +347,10 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
   bool first = std::fabs(mu1) >= std::fabs(mu2);
   double mu = first ? mu1 : mu2, ls = first ? lw1 : lw2, lt = first ? lw2 : lw1;
   auto ws = first ? w1 : w2, wt = first ? w2 : w1;
-  if (std::fabs(lt) <= 1e-10 * (std::fabs(mu) + std::fabs(ls) + std::fabs(c0)))
-    return out; // parallel lines or empty
+  if (std::fabs(lt) <= 1e-13 * (std::fabs(mu) + std::fabs(ls) + std::fabs(c0)))
+    return out; // parallel lines or empty (below 1e-13 the linear term is the rounding's:
+                // at 1e-10 a plane 1e-10 off a cone's generator, its apex at (1/3, 0, -1),
+                // lost its parabola)
   // t = -(mu s^2 + 2 ls s + c0) / (2 lt); vertex at s* = -ls/mu.
   double sv = -ls / mu;
   double tv = -(mu * sv * sv + 2 * ls * sv + c0) / (2 * lt);
@@ -462,15 +464,22 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
   if (conics.empty()) return out;
   if (opt.box) {
     // Open conics reach beyond the box: every point at parameter t_max is farther from the
-    // conic's centre than the box's farthest corner.
+    // conic's centre than the box's farthest corner. Either coordinate of the parametrisation
+    // alone may carry it there (|c + t e1 + k t^2 e2 - c| >= max(|t|, |k| t^2)): the smaller
+    // parameter is taken. (t_max = reach for a parabola of focal length 3.5e-7 in a box 256
+    // wide put its ends 1e11 out; the scene, and with it the sampling step, followed, and
+    // its nine samples left nothing in the box: undecided.)
     const Box& bx = *opt.box;
     const V3 bc{(bx.min[0] + bx.max[0]) / 2, (bx.min[1] + bx.max[1]) / 2,
                 (bx.min[2] + bx.max[2]) / 2};
     for (auto& pc : conics) {
       const double reach = 1.01 * (norm(sub(pc.c, bc)) + bx.diagonal());
       if (pc.type == PlaneConic::Hyperbola)
-        pc.t_max = std::max(pc.t_max, std::acosh(std::max(1.0, reach / std::fabs(pc.r1))));
-      else if (pc.type == PlaneConic::Parabola || pc.type == PlaneConic::Line)
+        pc.t_max = std::max(pc.t_max, std::min(std::acosh(std::max(1.0, reach / std::fabs(pc.r1))),
+                                               std::asinh(reach / std::fabs(pc.r2))));
+      else if (pc.type == PlaneConic::Parabola)
+        pc.t_max = std::max(pc.t_max, std::min(reach, std::sqrt(reach / std::fabs(pc.k))));
+      else if (pc.type == PlaneConic::Line)
         pc.t_max = std::max(pc.t_max, reach);
     }
   }

@@ -1,0 +1,121 @@
+// A cone and a plane parallel to one of its generators, a gap g from the apex (issue 15's
+// degenerate inputs): x^2 + y^2 = z^2 and z = x + g meet in the parabola y^2 = 2 g x + g^2
+// (z = x + g), of focal length |g| / 2, which opens towards +x for g > 0 and towards -x for
+// g < 0 from its vertex (-g/2, 0, g/2). Moved off the origin, the tracer's parabola was sampled
+// out to a parameter equal to the box's reach, 1e11 out for g = 1e-6 in a box 256 wide, and
+// none of its nine samples lay in the box (undecided at every pose but the origin's); and for
+// g <= 1e-10 the plane's linear term fell below a threshold (1e-10 of the conic's size) and
+// no conic was drawn. Closed-form check: one open conic, its two ends on the box's faces, every
+// point on both exact surfaces (exact f over |grad f|) and on the parabola's side of the
+// vertex; certified for |g| >= 1e-12 at every pose, certified or undecided below.
+#include "support/distance_checks.hpp"
+#include "support/trace_boxes.hpp"
+
+#include "surfcert/trace/intersect_curve.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace surfcert;
+using certify::Mode;
+using core::Rational;
+using surfcert::testing::geometric_residual;
+using surfcert::testing::motion;
+using surfcert::testing::q;
+
+TEST(ConeParabola, OpensAwayFromTheApexOrUndecided) {
+  struct Pose {
+    long w, x, y, z;
+    std::array<Rational, 3> t;
+  };
+  const std::vector<Pose> poses = {{1, 0, 0, 0, {}},
+                                   {1, 0, 0, 0, {Rational(1, 3), Rational(0), Rational(-1)}},
+                                   {1, 1, 1, 1, {}},
+                                   {1, 2, 3, 4, {Rational(1, 3), Rational(0), Rational(-1)}},
+                                   {9, -1, 2, 3, {Rational(-1, 2), Rational(1), Rational(1, 4)}}};
+  struct Gap {
+    std::string g;
+    double value;
+    bool must_certify;
+  };
+  const std::vector<Gap> gaps = {{"1/1000000", 1e-6, true},
+                                 {"-1/1000000", -1e-6, true},
+                                 {"1/10000000000", 1e-10, true},
+                                 {"-1/10000000000", -1e-10, true},
+                                 {"1/1000000000000", 1e-12, true},
+                                 {"-1/1000000000000", -1e-12, true},
+                                 {"1/1000000000000000", 1e-15, false},
+                                 {"-1/1000000000000000", -1e-15, false},
+                                 {"1/100000000000000000000", 1e-20, false},
+                                 {"-1/100000000000000000000", -1e-20, false},
+                                 {"1/1267650600228229401496703205376", 0x1p-100, false},
+                                 {"-1/1267650600228229401496703205376", -0x1p-100, false}};
+  int certified = 0, tried = 0;
+  for (const auto& gap : gaps)
+    for (const auto& ps : poses)
+      for (bool swapped : {false, true}) {
+        const std::string ctx = "gap " + gap.g + ", pose (" + std::to_string(ps.w) + "," +
+                                std::to_string(ps.x) + "," + std::to_string(ps.y) + "," +
+                                std::to_string(ps.z) + ")" + (swapped ? " swapped" : "");
+        const auto m = motion(ps.w, ps.x, ps.y, ps.z, ps.t);
+        auto a = q("x^2 + y^2 = z^2").congruent(m);
+        auto b = q("z = x + (" + gap.g + ")").congruent(m);
+        if (swapped) std::swap(a, b);
+        const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
+        ++tried;
+        ASSERT_TRUE(r.affine.certified()) << ctx;
+        EXPECT_EQ(*r.affine.loops, 0) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, 1) << ctx;
+        if (r.status != certify::Status::Certified) {
+          EXPECT_FALSE(gap.must_certify) << ctx << ": " << r.note;
+          EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+          EXPECT_FALSE(r.note.empty()) << ctx;
+          continue;
+        }
+        ++certified;
+        ASSERT_EQ(r.branches.size(), 1u) << ctx;
+        const auto& br = r.branches[0];
+        EXPECT_FALSE(br.closed) << ctx;
+        EXPECT_EQ(br.kind, "conic") << ctx;
+        ASSERT_TRUE(r.box.has_value()) << ctx;
+        ASSERT_TRUE(r.box_exits.has_value()) << ctx;
+        EXPECT_TRUE(r.box_exits->certified) << ctx;
+        EXPECT_EQ(r.box_exits->points.size(), 2u) << ctx;
+        const double diag = r.box->diagonal();
+        // Local coordinates R^T (p - t) / n in doubles: exact to a few ulps of |p|.
+        const double w = static_cast<double>(ps.w), x = static_cast<double>(ps.x),
+                     y = static_cast<double>(ps.y), z = static_cast<double>(ps.z);
+        const double n = w * w + x * x + y * y + z * z;
+        const double R[3][3] = {
+            {w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
+            {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
+            {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
+        const double t[3] = {ps.t[0].to_double_approx(), ps.t[1].to_double_approx(),
+                             ps.t[2].to_double_approx()};
+        const double far = std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) + diag;
+        const double slack = 1e-9 * diag + 0x1p-48 * far;
+        // The ends on the box's faces; the points on both surfaces and beyond the vertex
+        // (x >= -g/2 for g > 0, x <= -g/2 for g < 0): a parabola opening the wrong way, or
+        // a pair of its asymptotic lines, reaches the other side by the box's size.
+        for (const auto* e : {&br.points.front(), &br.points.back()}) {
+          double face = HUGE_VAL;
+          for (size_t k = 0; k < 3; ++k)
+            face = std::min(
+                {face, std::abs((*e)[k] - r.box->min[k]), std::abs((*e)[k] - r.box->max[k])});
+          EXPECT_LE(face, 1e-9 * diag) << ctx;
+        }
+        double behind = 0;
+        for (const auto& p : br.points) {
+          EXPECT_LE(geometric_residual(a, p), 1e-9 * diag + 0x1p-48 * far) << ctx;
+          EXPECT_LE(geometric_residual(b, p), 1e-9 * diag + 0x1p-48 * far) << ctx;
+          double lx = 0;
+          for (size_t k = 0; k < 3; ++k)
+            lx += R[k][0] * (p[k] - t[k]) / n;
+          behind = std::max(behind, gap.value > 0 ? -gap.value / 2 - lx : lx + gap.value / 2);
+        }
+        EXPECT_LE(behind, slack) << ctx << ": points behind the vertex";
+      }
+  EXPECT_EQ(tried, 120);
+  EXPECT_GE(certified, 60); // every pair with |g| >= 1e-12
+}
