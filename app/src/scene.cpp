@@ -368,8 +368,8 @@ Json run_query(const Scene& s, const Query& q, std::string* text_summary) {
   o.set("op", Json::string(q.op));
   o.set("a", Json::string(q.a));
   o.set("b", Json::string(q.b));
-  for (const auto& [k, v] : env.members())
-    o.set(k, v);
+  for (auto& [k, v] : env.take_members())
+    o.set(k, std::move(v));
   return o;
 }
 
@@ -410,9 +410,9 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       const Json* op = doc.find("op");
       // generate (app/generate.hpp): no surfaces; the answer's result holds the generated lines.
       if (op && op->is_string() && op->text() == "generate") {
-        const Json env = generate_envelope(read_generate_line(doc, source), doc, source);
-        for (const auto& [k, v] : env.members())
-          out.set(k, v);
+        Json env = generate_envelope(read_generate_line(doc, source), doc, source);
+        for (auto& [k, v] : env.take_members())
+          out.set(k, std::move(v));
         return timed(std::move(out));
       }
       check_fields(doc,
@@ -462,13 +462,12 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
           q.tolerance = read_tolerance(*t, source, "$.tolerance");
         if (const Json* bx = doc.find("box")) q.box = read_box(*bx, source, "$.box");
       }
-      const Json env =
-          q.op == "verify"
-              ? budget_limited(q.budget_ms,
-                               [&] { return verify_claims(sa, sb, doc, source, mode); })
-              : batch_envelope(q, sa, sb, fallback);
-      for (const auto& [k, v] : env.members())
-        out.set(k, v);
+      Json env = q.op == "verify"
+                     ? budget_limited(q.budget_ms,
+                                      [&] { return verify_claims(sa, sb, doc, source, mode); })
+                     : batch_envelope(q, sa, sb, fallback);
+      for (auto& [k, v] : env.take_members()) // moved: the branches' points are most of it
+        out.set(k, std::move(v));
       if (!readings.empty()) out.set("readings", core::io::readings_json(readings));
       // A line's "label" (any JSON, e.g. what `surfcert generate` wrote) is echoed untouched,
       // so answers and expectations travel together.

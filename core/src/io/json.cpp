@@ -743,6 +743,11 @@ const std::vector<Json::Member>& Json::members() const {
   return members_;
 }
 
+std::vector<Json::Member> Json::take_members() {
+  if (type_ != Type::Object) misuse("take_members", type_);
+  return std::exchange(members_, {});
+}
+
 const Json* Json::find(const std::string& key) const {
   if (type_ != Type::Object) misuse("find", type_);
   for (const auto& m : members_)

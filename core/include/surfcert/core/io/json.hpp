@@ -58,6 +58,9 @@ public:
   const std::string& text() const;
   const std::vector<Json>& items() const;
   const std::vector<Member>& members() const;
+  /// Moves an object's members out (the object is left with none): for a writer that merges
+  /// one built envelope into another without copying its tree (an answer's branches).
+  std::vector<Member> take_members();
   /// The member named `key` of an object, or nullptr when there is none.
   const Json* find(const std::string& key) const;
   /// Number of items of an array or members of an object.
