@@ -50,6 +50,18 @@ struct IntegerPencil {
       }
   }
 
+  // q*L*(s*A - B) = p*a - q*b for s = p/q (q > 0): the member up to a positive factor, with
+  // integer entries (its rank and inertia are the member's; no gcd of the posed doubles'
+  // ~150-digit denominators in the elimination).
+  Mat4 member_multiple(const Rational& s) const {
+    const Integer p = s.num(), q = s.den();
+    Mat4 m;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        m[i][j] = Rational(p * a[i][j] - q * b[i][j]);
+    return m;
+  }
+
   // Number of positive eigenvalues of s*A - B, s = p/q: q*L*(s*A - B) = p*a - q*b has the
   // same inertia (positive factor). `sign_det` = sign of f(s) (also the sign of det(p*a - q*b)).
   // Fast route: Jacobi's rule on the leading principal minors (negative eigenvalues = sign
@@ -378,7 +390,7 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
       r.sigma =
           Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
     } else if (r.rational_value) {
-      Mat4 m = member(*r.rational_value, out.a, out.b);
+      const Mat4 m = ip->member_multiple(*r.rational_value);
       r.rank = rank_exact(m);
       r.sigma = inertia_descartes(m);
       if (r.multiplicity == 4 && r.rank == 2)

@@ -506,7 +506,8 @@ std::optional<ComponentAtInfinity> conic_at_infinity(const M3& m) {
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = 0; j < 3; ++j)
       m4[i][j] = m[i][j];
-  algebra::Inertia in = algebra::inertia_ldlt(m4);
+  // Inertia of an integer multiple (the same): no gcd of the posed doubles' denominators.
+  algebra::Inertia in = algebra::inertia_ldlt(core::integer_multiple(m4));
   ComponentAtInfinity c;
   c.equation = conic_text(m);
   if (in.rank() == 3) {
@@ -785,7 +786,11 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
     return out;
   }
   const std::array<std::array<Rational, 4>, 3>& col = *chart;
-  const M3 cm = algebra::restrict_form(q, col);
+  // The section's conic, and an integer multiple of it for the decisions below (signs of its
+  // determinants: no gcd of the posed doubles' denominators in their products). The
+  // directions at infinity are written from the conic itself (their text is the answer's).
+  const M3 cm_exact = algebra::restrict_form(q, col);
+  const M3 cm = core::integer_multiple(cm_exact);
   out.computed = true;
   out.points_at_infinity_complete = true;
   if (auto inf = conic_at_infinity(top_left(q))) out.at_infinity_only.push_back(*inf);
@@ -800,7 +805,7 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
   const Rational big = a * (d * g - f * f) - b * (b * g - f * e) + e * (b * f - d * e);
   // Directions at infinity of the section (section_directions): listed where the section
   // has real affine points running to them.
-  auto directions = [&] { out.points_at_infinity = section_directions(cm, col); };
+  auto directions = [&] { out.points_at_infinity = section_directions(cm_exact, col); };
   int loops = 0, unbounded = 0, isolated = 0, lines = 0, conics = 0;
   const bool quad_zero = a.is_zero() && b.is_zero() && d.is_zero();
   if (quad_zero) {

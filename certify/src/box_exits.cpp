@@ -181,8 +181,12 @@ bool no_common_point(const M3& ca, const M3& cb, const Rational& u_lo, const Rat
 
 } // namespace
 
-BoxExits box_exits(const core::Mat4& a, const core::Mat4& b, const std::array<Rational, 3>& lo,
-                   const std::array<Rational, 3>& hi) {
+BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
+                   const std::array<Rational, 3>& lo, const std::array<Rational, 3>& hi) {
+  // Integer multiples (the same curve): the face forms and the crossings' polynomials then
+  // have the box's dyadic denominators only, and their products skip most gcds (on a pair
+  // posed in doubles this was ~30% of an intersect, in gcds of ~150-digit denominators).
+  const core::Mat4 a = core::integer_multiple(a_in), b = core::integer_multiple(b_in);
   if (auto dl = detail::double_line_exits(a, b, lo, hi)) return std::move(*dl);
   BoxExits out;
   Rational scale;

@@ -11,6 +11,7 @@
 #include <flint/fmpq.h>
 #include <flint/fmpz.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -178,6 +179,28 @@ Rational abs(const Rational& x);
 /// linear algebra on the ~150-digit rationals of surfaces posed in doubles spent most of its
 /// time in the gcd that reduces every rational product and sum).
 void over_common_denominator(const Rational* const* x, size_t n, Integer* nums, Integer& den);
+
+/// L * m with L > 0 the least common denominator of the square matrix m's entries: integer
+/// entries, the same zero set, signs, inertia and kernel. For exact work that needs a form
+/// only up to a positive factor: products and sums of integers skip the gcd that reduces every
+/// rational one (the ~150-digit denominators of a surface posed in doubles made it most of the
+/// cost of box crossings and plane sections).
+template <size_t N>
+std::array<std::array<Rational, N>, N>
+integer_multiple(const std::array<std::array<Rational, N>, N>& m) {
+  std::array<const Rational*, N * N> x;
+  for (size_t i = 0; i < N; ++i)
+    for (size_t j = 0; j < N; ++j)
+      x[N * i + j] = &m[i][j];
+  std::array<Integer, N * N> nums;
+  Integer den;
+  over_common_denominator(x.data(), x.size(), nums.data(), den);
+  std::array<std::array<Rational, N>, N> r;
+  for (size_t i = 0; i < N; ++i)
+    for (size_t j = 0; j < N; ++j)
+      r[i][j] = Rational(nums[N * i + j]);
+  return r;
+}
 
 inline std::ostream& operator<<(std::ostream& os, const Integer& x) {
   return os << x.to_string();
