@@ -3,7 +3,8 @@
 // against the plain rational sums written out here, and core::congruence against
 // transpose(p) * m * p by core's rational matrix products, on random rationals with unrelated,
 // shared and unit denominators, zeros, and the ~150-digit entries of a quadric posed in
-// doubles; over double the template's own sums.
+// doubles; over double the template's own sums; core::integer_multiple (the positive lcm
+// multiple the exact box crossings and plane sections work on).
 #include "support/canonical.hpp"
 
 #include "surfcert/algebra/form_restriction.hpp"
@@ -12,7 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <random>
+#include <string>
 
 using namespace surfcert;
 using core::Integer;
@@ -168,4 +171,45 @@ TEST(FormRestriction, CongruenceEqualsTheRationalMatrixProducts) {
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j)
       EXPECT_EQ(moved.matrix()[i][j], want[i][j]);
+}
+
+// core::integer_multiple: integer entries, every one L times the original for one L > 0 (the
+// same form up to a positive factor: signs, zero set, inertia), L the least common
+// denominator (the entries' gcd with L is 1 overall); random rationals and a posed quadric.
+TEST(FormRestriction, IntegerMultipleIsThePositiveLcmMultiple) {
+  auto check = [](const std::array<std::array<Rational, 4>, 4>& m, const std::string& ctx) {
+    const auto r = core::integer_multiple(m);
+    std::optional<Rational> factor;
+    Integer lcm(1);
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        EXPECT_TRUE(r[i][j].den() == Integer(1)) << ctx;
+        EXPECT_EQ(r[i][j].sign(), m[i][j].sign()) << ctx;
+        fmpz_lcm(lcm.raw_mut(), lcm.raw(), m[i][j].den().raw());
+        if (m[i][j].is_zero()) continue;
+        const Rational f = r[i][j] / m[i][j];
+        if (!factor) factor = f;
+        EXPECT_TRUE(*factor == f) << ctx << ": not one factor";
+      }
+    if (factor) {
+      EXPECT_TRUE(*factor == Rational(lcm)) << ctx << ": not the lcm";
+    }
+  };
+  std::mt19937_64 rng(17);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Rational shared(1, static_cast<long>(trial % 7 + 2));
+    std::array<std::array<Rational, 4>, 4> m;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j)
+        m[i][j] = m[j][i] = random_rational(rng, shared);
+    check(m, "trial " + std::to_string(trial));
+  }
+  check(std::array<std::array<Rational, 4>, 4>{}, "zero");
+  core::ShapeSpec s;
+  s.type = core::ShapeType::Cone;
+  s.center = {0.123456789012345, -0.3141592653589793, 0.2718281828459045};
+  s.radii = {0.7071067811865476, 0.5, 1};
+  s.rotated = true;
+  s.quaternion = {0.4123105625617661, -0.8246211251235321, 0.2, 0.3316624790355400};
+  check(core::QuadricMatrix(s).matrix(), "posed cone");
 }
