@@ -8,7 +8,7 @@
 // no conic was drawn. Closed-form check: one open conic, its two ends on the box's faces, every
 // point on both exact surfaces (exact f over |grad f|) and on the parabola's side of the
 // vertex; certified for |g| >= 1e-12 at every pose, certified or undecided below.
-#include "support/distance_checks.hpp"
+#include "support/posed_pairs.hpp"
 #include "support/trace_boxes.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
@@ -20,15 +20,12 @@
 using namespace surfcert;
 using certify::Mode;
 using core::Rational;
+using surfcert::testing::certified_or_undecided;
 using surfcert::testing::geometric_residual;
-using surfcert::testing::motion;
+using surfcert::testing::Pose;
 using surfcert::testing::q;
 
 TEST(ConeParabola, OpensAwayFromTheApexOrUndecided) {
-  struct Pose {
-    long w, x, y, z;
-    std::array<Rational, 3> t;
-  };
   const std::vector<Pose> poses = {{1, 0, 0, 0, {}},
                                    {1, 0, 0, 0, {Rational(1, 3), Rational(0), Rational(-1)}},
                                    {1, 1, 1, 1, {}},
@@ -55,24 +52,16 @@ TEST(ConeParabola, OpensAwayFromTheApexOrUndecided) {
   for (const auto& gap : gaps)
     for (const auto& ps : poses)
       for (bool swapped : {false, true}) {
-        const std::string ctx = "gap " + gap.g + ", pose (" + std::to_string(ps.w) + "," +
-                                std::to_string(ps.x) + "," + std::to_string(ps.y) + "," +
-                                std::to_string(ps.z) + ")" + (swapped ? " swapped" : "");
-        const auto m = motion(ps.w, ps.x, ps.y, ps.z, ps.t);
-        auto a = q("x^2 + y^2 = z^2").congruent(m);
-        auto b = q("z = x + (" + gap.g + ")").congruent(m);
+        const std::string ctx = ps.name(gap.g, swapped);
+        auto a = q("x^2 + y^2 = z^2").congruent(ps.matrix());
+        auto b = q("z = x + (" + gap.g + ")").congruent(ps.matrix());
         if (swapped) std::swap(a, b);
         const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
         ++tried;
         ASSERT_TRUE(r.affine.certified()) << ctx;
         EXPECT_EQ(*r.affine.loops, 0) << ctx;
         EXPECT_EQ(*r.affine.unbounded_branches, 1) << ctx;
-        if (r.status != certify::Status::Certified) {
-          EXPECT_FALSE(gap.must_certify) << ctx << ": " << r.note;
-          EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
-          EXPECT_FALSE(r.note.empty()) << ctx;
-          continue;
-        }
+        if (!certified_or_undecided(r, gap.must_certify, ctx)) continue;
         ++certified;
         ASSERT_EQ(r.branches.size(), 1u) << ctx;
         const auto& br = r.branches[0];
@@ -83,18 +72,7 @@ TEST(ConeParabola, OpensAwayFromTheApexOrUndecided) {
         EXPECT_TRUE(r.box_exits->certified) << ctx;
         EXPECT_EQ(r.box_exits->points.size(), 2u) << ctx;
         const double diag = r.box->diagonal();
-        // Local coordinates R^T (p - t) / n in doubles: exact to a few ulps of |p|.
-        const double w = static_cast<double>(ps.w), x = static_cast<double>(ps.x),
-                     y = static_cast<double>(ps.y), z = static_cast<double>(ps.z);
-        const double n = w * w + x * x + y * y + z * z;
-        const double R[3][3] = {
-            {w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
-            {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
-            {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
-        const double t[3] = {ps.t[0].to_double_approx(), ps.t[1].to_double_approx(),
-                             ps.t[2].to_double_approx()};
-        const double far = std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) + diag;
-        const double slack = 1e-9 * diag + 0x1p-48 * far;
+        const double slack = 1e-9 * diag + 0x1p-48 * (ps.offset() + diag);
         // The ends on the box's faces; the points on both surfaces and beyond the vertex
         // (x >= -g/2 for g > 0, x <= -g/2 for g < 0): a parabola opening the wrong way, or
         // a pair of its asymptotic lines, reaches the other side by the box's size.
@@ -107,11 +85,9 @@ TEST(ConeParabola, OpensAwayFromTheApexOrUndecided) {
         }
         double behind = 0;
         for (const auto& p : br.points) {
-          EXPECT_LE(geometric_residual(a, p), 1e-9 * diag + 0x1p-48 * far) << ctx;
-          EXPECT_LE(geometric_residual(b, p), 1e-9 * diag + 0x1p-48 * far) << ctx;
-          double lx = 0;
-          for (size_t k = 0; k < 3; ++k)
-            lx += R[k][0] * (p[k] - t[k]) / n;
+          EXPECT_LE(geometric_residual(a, p), slack) << ctx;
+          EXPECT_LE(geometric_residual(b, p), slack) << ctx;
+          const double lx = ps.local(p)[0];
           behind = std::max(behind, gap.value > 0 ? -gap.value / 2 - lx : lx + gap.value / 2);
         }
         EXPECT_LE(behind, slack) << ctx << ": points behind the vertex";

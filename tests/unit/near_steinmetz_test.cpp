@@ -9,7 +9,7 @@
 // and 4.5e-8, resolved by the doubles) it is certified.
 // Each pair is posed by rational rigid motions, in both orders; the separating plane is
 // checked in the local coordinates R^T (p - t).
-#include "support/distance_checks.hpp"
+#include "support/posed_pairs.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -20,14 +20,11 @@
 using namespace surfcert;
 using certify::Mode;
 using core::Rational;
-using surfcert::testing::motion;
+using surfcert::testing::certified_or_undecided;
+using surfcert::testing::Pose;
 using surfcert::testing::q;
 
 TEST(NearSteinmetz, EachOvalOnItsSideOrUndecided) {
-  struct Pose {
-    long w, x, y, z;
-    std::array<Rational, 3> t;
-  };
   const std::vector<Pose> poses = {{1, 0, 0, 0, {}},
                                    {1, 1, 1, 1, {}},
                                    {1, 2, 3, 4, {Rational(1, 3), Rational(0), Rational(-1)}},
@@ -51,48 +48,28 @@ TEST(NearSteinmetz, EachOvalOnItsSideOrUndecided) {
   for (const auto& gap : gaps)
     for (const auto& ps : poses)
       for (bool swapped : {false, true}) {
-        const std::string ctx = "gap " + gap.g + ", pose (" + std::to_string(ps.w) + "," +
-                                std::to_string(ps.x) + "," + std::to_string(ps.y) + "," +
-                                std::to_string(ps.z) + ")" + (swapped ? " swapped" : "");
-        const auto m = motion(ps.w, ps.x, ps.y, ps.z, ps.t);
-        auto a = q("x^2 + y^2 = 1").congruent(m);
-        auto b = q("y^2 + z^2 = (1 + (" + gap.g + "))^2").congruent(m);
+        const std::string ctx = ps.name(gap.g, swapped);
+        auto a = q("x^2 + y^2 = 1").congruent(ps.matrix());
+        auto b = q("y^2 + z^2 = (1 + (" + gap.g + "))^2").congruent(ps.matrix());
         if (swapped) std::swap(a, b);
         const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
         ++tried;
         ASSERT_TRUE(r.affine.certified()) << ctx;
         EXPECT_EQ(*r.affine.loops, 2) << ctx;
         EXPECT_EQ(*r.affine.unbounded_branches, 0) << ctx;
-        if (r.status != certify::Status::Certified) {
-          EXPECT_FALSE(gap.must_certify) << ctx << ": " << r.note;
-          EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
-          EXPECT_FALSE(r.note.empty()) << ctx;
-          continue;
-        }
+        if (!certified_or_undecided(r, gap.must_certify, ctx)) continue;
         ++certified;
         ASSERT_EQ(r.branches.size(), 2u) << ctx;
-        // R^T (p - t) from the unit quaternion's matrix, in doubles: the local coordinates to
-        // ~1e-16 of |p|, far below the 1e-9 counted as off the plane (the ovals of a wrong
-        // picture reach ~0.7 on both sides).
-        const double w = static_cast<double>(ps.w), x = static_cast<double>(ps.x),
-                     y = static_cast<double>(ps.y), z = static_cast<double>(ps.z);
-        const double n = w * w + x * x + y * y + z * z;
-        const double R[3][3] = {
-            {w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)},
-            {2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)},
-            {2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z}};
-        const double t[3] = {ps.t[0].to_double_approx(), ps.t[1].to_double_approx(),
-                             ps.t[2].to_double_approx()};
+        // Local coordinates to ~1e-16 of |p|, far below the 1e-9 counted as off the plane
+        // (the ovals of a wrong picture reach ~0.7 on both sides).
         const size_t axis = gap.g[0] == '-' ? 0 : 2; // x = 0 or z = 0 separates the ovals
-        const double slack = 1e-9 * (1 + std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]));
+        const double slack = 1e-9 * (1 + ps.offset());
         int pos_loops = 0, neg_loops = 0;
         for (const auto& br : r.branches) {
           EXPECT_TRUE(br.closed) << ctx;
           int pos = 0, neg = 0;
           for (const auto& p : br.points) {
-            double s = 0;
-            for (size_t k = 0; k < 3; ++k)
-              s += R[k][axis] * (p[k] - t[k]) / n;
+            const double s = ps.local(p)[axis];
             pos += s > slack ? 1 : 0;
             neg += s < -slack ? 1 : 0;
           }

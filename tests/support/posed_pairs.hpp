@@ -1,0 +1,63 @@
+// Helpers shared by the near-degenerate curve tests (a closed-form pair at a gap g, posed by
+// rational rigid motions, in both orders): a pose, its name for failure messages, the local
+// coordinates R^T (p - t) of a traced point, and the verdict check every such test makes
+// (certified, or undecided with a reason where that is allowed).
+#pragma once
+
+#include "support/distance_checks.hpp"
+
+#include "surfcert/trace/intersect_curve.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <string>
+
+namespace surfcert::testing {
+
+/// x -> R x + t with R from the integer quaternion (w, x, y, z) (see motion()).
+struct Pose {
+  long w = 1, x = 0, y = 0, z = 0;
+  std::array<core::Rational, 3> t{};
+  core::Mat4 matrix() const { return motion(w, x, y, z, t); }
+  /// "gap G, pose (w,x,y,z)[ swapped]": the context of a failure message.
+  std::string name(const std::string& gap, bool swapped) const {
+    return "gap " + gap + ", pose (" + std::to_string(w) + "," + std::to_string(x) + "," +
+           std::to_string(y) + "," + std::to_string(z) + ")" + (swapped ? " swapped" : "");
+  }
+  /// R^T (p - t), in doubles (exact to a few ulps of |p|).
+  std::array<double, 3> local(const trace::Point3& p) const {
+    const double W = static_cast<double>(w), X = static_cast<double>(x), Y = static_cast<double>(y),
+                 Z = static_cast<double>(z);
+    const double n = W * W + X * X + Y * Y + Z * Z;
+    const double R[3][3] = {
+        {W * W + X * X - Y * Y - Z * Z, 2 * (X * Y - W * Z), 2 * (X * Z + W * Y)},
+        {2 * (X * Y + W * Z), W * W - X * X + Y * Y - Z * Z, 2 * (Y * Z - W * X)},
+        {2 * (X * Z - W * Y), 2 * (Y * Z + W * X), W * W - X * X - Y * Y + Z * Z}};
+    std::array<double, 3> out{};
+    for (size_t j = 0; j < 3; ++j)
+      for (size_t k = 0; k < 3; ++k)
+        out[j] += R[k][j] * (p[k] - t[k].to_double_approx()) / n;
+    return out;
+  }
+  /// |t|_1: the scale of the coordinates' rounding.
+  double offset() const {
+    double s = 0;
+    for (const auto& c : t)
+      s += std::abs(c.to_double_approx());
+    return s;
+  }
+};
+
+/// True when r is certified; otherwise checks it is undecided with a reason, and not a pair
+/// that must be certified.
+inline bool certified_or_undecided(const trace::CurveResult& r, bool must_certify,
+                                   const std::string& ctx) {
+  if (r.status == certify::Status::Certified) return true;
+  EXPECT_FALSE(must_certify) << ctx << ": " << r.note;
+  EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+  EXPECT_FALSE(r.note.empty()) << ctx;
+  return false;
+}
+
+} // namespace surfcert::testing
