@@ -111,15 +111,21 @@ TEST(FormRestriction, ZeroFormsAndVectorsGiveCanonicalZero) {
   EXPECT_EQ(algebra::bilinear(q, cols[0], cols[0]), Rational(5, 63));
 }
 
-TEST(FormRestriction, PosedQuadricInDoublesAgainstPlainSums) {
-  // A cylinder posed by a double quaternion: entries of ~150 digits over related denominators.
+// A shape of the given type and radii posed in doubles (centre and quaternion doubles).
+core::QuadricMatrix posed(core::ShapeType type, const std::array<double, 3>& radii) {
   core::ShapeSpec s;
-  s.type = core::ShapeType::Cylinder;
+  s.type = type;
   s.center = {0.123456789012345, -0.3141592653589793, 0.2718281828459045};
-  s.radii = {0.7071067811865476, 0.7071067811865476, 1};
+  s.radii = radii;
   s.rotated = true;
   s.quaternion = {0.4123105625617661, -0.8246211251235321, 0.2, 0.3316624790355400};
-  const core::QuadricMatrix m(s);
+  return core::QuadricMatrix(s);
+}
+
+TEST(FormRestriction, PosedQuadricInDoublesAgainstPlainSums) {
+  // A cylinder posed by a double quaternion: entries of ~150 digits over related denominators.
+  const core::QuadricMatrix m =
+      posed(core::ShapeType::Cylinder, {0.7071067811865476, 0.7071067811865476, 1});
   const auto& q = m.matrix();
   std::array<std::array<Rational, 4>, 3> cols{};
   cols[0] = {Rational(1), Rational(0), Rational(0), Rational(0)};
@@ -205,11 +211,5 @@ TEST(FormRestriction, IntegerMultipleIsThePositiveLcmMultiple) {
     check(m, "trial " + std::to_string(trial));
   }
   check(std::array<std::array<Rational, 4>, 4>{}, "zero");
-  core::ShapeSpec s;
-  s.type = core::ShapeType::Cone;
-  s.center = {0.123456789012345, -0.3141592653589793, 0.2718281828459045};
-  s.radii = {0.7071067811865476, 0.5, 1};
-  s.rotated = true;
-  s.quaternion = {0.4123105625617661, -0.8246211251235321, 0.2, 0.3316624790355400};
-  check(core::QuadricMatrix(s).matrix(), "posed cone");
+  check(posed(core::ShapeType::Cone, {0.7071067811865476, 0.5, 1}).matrix(), "posed cone");
 }
