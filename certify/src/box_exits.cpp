@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 
 namespace surfcert::certify {
 
@@ -179,6 +180,19 @@ bool no_common_point(const M3& ca, const M3& cb, const Rational& u_lo, const Rat
   return true;
 }
 
+// A box with lo >= hi in some coordinate: not certified, with the reason (its crossings would
+// be refined towards a width of 0 without end). Nullopt for a proper box.
+std::optional<BoxExits> flat_box(const std::array<Rational, 3>& lo,
+                                 const std::array<Rational, 3>& hi) {
+  for (size_t k = 0; k < 3; ++k)
+    if (!(lo[k] < hi[k])) {
+      BoxExits out;
+      out.reason = "the box is flat or empty along axis " + std::to_string(k) + " (min >= max)";
+      return out;
+    }
+  return std::nullopt;
+}
+
 } // namespace
 
 BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
@@ -186,6 +200,7 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
   // Integer multiples (the same curve): the face forms and the crossings' polynomials then
   // have the box's dyadic denominators only, and their products skip most gcds (on a pair
   // posed in doubles this was ~30% of an intersect, in gcds of ~150-digit denominators).
+  if (auto flat = flat_box(lo, hi)) return std::move(*flat);
   const core::Mat4 a = core::integer_multiple(a_in), b = core::integer_multiple(b_in);
   if (auto dl = detail::double_line_exits(a, b, lo, hi)) return std::move(*dl);
   BoxExits out;
@@ -364,6 +379,7 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
 
 BoxExits lines_box_exits(const std::array<Rational, 3>& p, const std::vector<V3>& directions,
                          const std::array<Rational, 3>& lo, const std::array<Rational, 3>& hi) {
+  if (auto flat = flat_box(lo, hi)) return std::move(*flat);
   BoxExits out;
   bool within = true, inside = true;
   for (size_t k = 0; k < 3; ++k) {

@@ -423,6 +423,36 @@ TEST(BoxTrace, LinesThroughOnePointCrossTheFacesExactly) {
   EXPECT_TRUE(ex.points.empty());
 }
 
+// A flat box (min = max along an axis: a tiny box moved back by a rounded translation can
+// collapse so) or an empty one is answered at once, not certified, with the reason. Before,
+// box_exits certified the crossings of a flat or empty box, and refined those of a box
+// flat along every axis towards a width of 0 for ever (a hang seen in an experiment: a box
+// 1e-10 wide moved 1e9 out). The Steinmetz pair crosses a plane x = 1/2.
+TEST(BoxTrace, FlatOrEmptyBoxIsNotCertified) {
+  using R3 = std::array<Rational, 3>;
+  const auto a = q("x^2 + y^2 = 1"), b = q("y^2 + z^2 = 1");
+  for (int axis = 0; axis < 3; ++axis)
+    for (const Rational& width : {Rational(0), Rational(-1, 1000)}) {
+      R3 lo{Rational(-2), Rational(-2), Rational(-2)}, hi{Rational(2), Rational(2), Rational(2)};
+      lo[static_cast<size_t>(axis)] = Rational(1, 2);
+      hi[static_cast<size_t>(axis)] = Rational(1, 2) + width;
+      const auto ex = certify::box_exits(a.matrix(), b.matrix(), lo, hi);
+      EXPECT_FALSE(ex.certified) << axis;
+      EXPECT_TRUE(ex.points.empty()) << axis;
+      EXPECT_FALSE(ex.reason.empty()) << axis;
+      const auto lx = certify::lines_box_exits({Rational(0), Rational(0), Rational(0)},
+                                               {{Rational(1), Rational(1), Rational(1)}}, lo, hi);
+      EXPECT_FALSE(lx.certified) << axis;
+      EXPECT_FALSE(lx.reason.empty()) << axis;
+    }
+  const R3 point{Rational(1, 2), Rational(0), Rational(0)};
+  EXPECT_FALSE(certify::box_exits(a.matrix(), b.matrix(), point, point).certified);
+  // The proper box around it: certified (the guard does not refuse good boxes).
+  const R3 lo{Rational(1, 2), Rational(-2), Rational(-2)},
+      hi{Rational(2), Rational(2), Rational(2)};
+  EXPECT_TRUE(certify::box_exits(a.matrix(), b.matrix(), lo, hi).certified);
+}
+
 // The cone x^2 + y^2 = z^2 and the cylinder through its apex, (x - 1)^2 + y^2 = 1: a figure
 // eight whose node is the apex. Moved by a rotation and a translation 37 sizes away, then
 // scaled by 2^-k: the special point rounded to doubles lies ~1e-8 of the scene off the apex,

@@ -65,7 +65,9 @@ struct BoxExits {
   std::string reason;              ///< why not certified
 };
 
-/// The crossings of Q_A ∩ Q_B with the faces of [lo, hi] (lo < hi coordinate-wise).
+/// The crossings of Q_A ∩ Q_B with the faces of [lo, hi] (lo < hi coordinate-wise; a flat or
+/// empty box, lo >= hi somewhere, is answered not certified with that reason: its crossings
+/// would be refined to a width of 0, for ever).
 BoxExits box_exits(const core::Mat4& a, const core::Mat4& b,
                    const std::array<core::Rational, 3>& lo,
                    const std::array<core::Rational, 3>& hi);
@@ -76,6 +78,7 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b,
 /// in a face's open rectangle, no line lies in a face's plane, and p is not on the boundary
 /// (the lines meet only at p, so their crossings are then distinct). A line counts once
 /// whatever its multiplicity on the surfaces (a tangency along it is no multiple crossing).
+/// A flat or empty box is not certified, as for box_exits.
 BoxExits lines_box_exits(const std::array<core::Rational, 3>& p,
                          const std::vector<std::array<core::Rational, 3>>& directions,
                          const std::array<core::Rational, 3>& lo,
