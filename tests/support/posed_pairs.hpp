@@ -20,10 +20,11 @@ struct Pose {
   long w = 1, x = 0, y = 0, z = 0;
   std::array<core::Rational, 3> t{};
   core::Mat4 matrix() const { return motion(w, x, y, z, t); }
-  /// "gap G, pose (w,x,y,z)[ swapped]": the context of a failure message.
+  /// "gap G, pose (w,x,y,z) + (tx,ty,tz)[ swapped]": the context of a failure message.
   std::string name(const std::string& gap, bool swapped) const {
     return "gap " + gap + ", pose (" + std::to_string(w) + "," + std::to_string(x) + "," +
-           std::to_string(y) + "," + std::to_string(z) + ")" + (swapped ? " swapped" : "");
+           std::to_string(y) + "," + std::to_string(z) + ") + (" + t[0].to_string() + "," +
+           t[1].to_string() + "," + t[2].to_string() + ")" + (swapped ? " swapped" : "");
   }
   /// R^T (p - t), in doubles (exact to a few ulps of |p|).
   std::array<double, 3> local(const trace::Point3& p) const {

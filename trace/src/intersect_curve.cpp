@@ -950,7 +950,7 @@ void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, C
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                            QsicResult topology, const TraceOptions& opt, int depth,
                            const certify::AffineTopology* known = nullptr,
-                           const Point3* centre = nullptr);
+                           const Point3* centre = nullptr, bool unit_size_there = false);
 
 // Two checks of a certified picture against what it must be, whatever route drew it: (1) no
 // branch drawn as a straight line when the certified affine reading has no line (a plane
@@ -1147,7 +1147,8 @@ namespace {
 
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                            QsicResult topology, const TraceOptions& opt, int depth,
-                           const certify::AffineTopology* known, const Point3* centre) {
+                           const certify::AffineTopology* known, const Point3* centre,
+                           bool unit_size_there) {
   CurveResult out;
   out.tolerance = opt.tolerance;
   out.topology = std::move(topology);
@@ -1214,8 +1215,23 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     if (o2.box)
       for (size_t k = 0; k < 3; ++k)
         o2.box->min[k] -= (*c)[k], o2.box->max[k] -= (*c)[k];
-    CurveResult local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1,
-                                       movable(out.affine));
+    // Asked by the retry below (unit_size_there): a pair whose features are extreme in a
+    // quadric's own frame is traced there at unit size: a cone and a plane 1e-15 off a
+    // generator, the apex at (1/3, 0, -1), is the pair at the origin once moved (certified at
+    // unit size), but the retry (depth >= 4) did not rescale and the parabola 1e-15 wide was
+    // lost in the doubles. (Second, after the plain retry: rescaled first, 512 answers of an
+    // audit of near-degenerate pairs that the plain retry certifies were lost.)
+    const int k_there = unit_size_there ? extreme_order(a2, b2).value_or(0) : 0;
+    CurveResult local;
+    if (k_there != 0) {
+      CurveResult moved;
+      moved.topology = classify_qsic(a2, b2, Mode::Filtered);
+      moved.affine = out.affine; // read there through movable(); replaced below
+      local = trace_rescaled(a2, b2, std::move(moved), o2, k_there, depth + 1);
+    } else {
+      local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1,
+                             movable(out.affine));
+    }
     auto back = [&c](Point3& x) {
       for (size_t k = 0; k < 3; ++k)
         x[k] += (*c)[k];
@@ -1280,6 +1296,8 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     for (const core::QuadricMatrix* s : {&a, &b})
       if (const auto c = own_centre(*s)) {
         CurveResult again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c);
+        if (again.status == Status::Certified) return again;
+        again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c, true);
         if (again.status == Status::Certified) return again;
       }
   return out;

@@ -35,7 +35,9 @@
 // its coordinates) of both exact surfaces; otherwise it is undecided.
 // A regular pair undecided where it is (the curve passing a cone's apex closer than the rounded
 // cone resolves, ~1e-8 at |apex| ~ 1) is traced once more translated exactly to either
-// quadric's own centre (the apex to double precision) and returned when certified there.
+// quadric's own centre (the apex to double precision) and returned when certified there; if
+// not, and its features are extreme in that frame (a plane 1e-15 off a cone's generator), it
+// is traced there once more at unit size.
 // Degenerate pencils and two planes whose affine curve is lines (certify/affine.hpp routes
 // plane_section / pencil_plane with a degenerate section, plane_plane, plane_pair,
 // common_apex) are answered with those lines in closed form, clipped to the box and checked
