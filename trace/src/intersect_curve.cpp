@@ -394,6 +394,9 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
 
 // Matches each end of each open piece with exactly one exact crossing (within tol) and each
 // crossing with exactly one end; sets the pieces' `exits`. Empty string on success, else why.
+// Crossings closer together than tol (two lines 2e-10 apart, in a box 3 wide) are told apart
+// when each one's nearest end is within tol and the next nearest 8 times farther (plus the
+// crossing's radius): the traced ends of such lines are their exact points rounded.
 std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& ex, double tol) {
   std::vector<const Point3*> ends;
   for (auto& br : branches) {
@@ -411,13 +414,19 @@ std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& 
   };
   std::vector<int> of_end(ends.size(), -1);
   for (size_t c = 0; c < ex.points.size(); ++c) {
-    int hit = -1, hits = 0;
-    for (size_t e = 0; e < ends.size(); ++e)
-      if (dist(*ends[e], ex.points[c].approx) <= tol) {
+    int hit = -1;
+    double d1 = INFINITY, d2 = INFINITY; // the nearest end's distance, the next nearest's
+    for (size_t e = 0; e < ends.size(); ++e) {
+      const double d = dist(*ends[e], ex.points[c].approx);
+      if (d < d1) {
+        d2 = d1, d1 = d;
         hit = static_cast<int>(e);
-        ++hits;
+      } else if (d < d2) {
+        d2 = d;
       }
-    if (hits != 1 || of_end[static_cast<size_t>(hit)] >= 0)
+    }
+    const bool unique = d2 > tol || d2 > 8 * d1 + 2 * ex.points[c].radius;
+    if (hit < 0 || !(d1 <= tol) || !unique || of_end[static_cast<size_t>(hit)] >= 0)
       return "a traced end does not match exactly one exact crossing with the box's faces";
     of_end[static_cast<size_t>(hit)] = static_cast<int>(c);
   }
