@@ -1,11 +1,13 @@
 // surfcert::trace::conic_branches: conic components as plane ∩ quadric (see conics.hpp).
 //
 // Route: at each real multiple root theta of det(l*A - B) with rank(theta*A - B) <= 2 the
-// member M = theta*A - B (in double, from the exact theta) is split by a 4x4 Jacobi
-// eigen-decomposition into its planes (rank 2, inertia (1,1): p, q = sqrt(l1) v1 +- sqrt(-l2) v2,
-// so X^T M X = (p.X)(q.X); rank 1: the eigenvector, a double plane). Each affine plane is given
-// an orthonormal frame, the better conditioned of the two input quadrics is restricted to it
-// (on the plane the restrictions of A and B are proportional), and the 2D conic is analysed:
+// member M = theta*A - B is split into its planes: for a rational theta from the exact member
+// (exact_planes: completing the square, each coefficient rounded once), else (theta in Q(sqrt d)
+// or irrational) by a 4x4 Jacobi eigen-decomposition of M in double (rank 2, inertia (1,1):
+// p, q = sqrt(l1) v1 +- sqrt(-l2) v2, so X^T M X = (p.X)(q.X); rank 1: the eigenvector, a double
+// plane). Each affine plane is given an orthonormal frame, the input quadric whose restriction's
+// constant term is less sensitive to the plane's rounding is restricted to it (on the plane the
+// restrictions of A and B are proportional), and the 2D conic is analysed:
 // a real ellipse is sampled uniformly in its angle parameter with step sqrt(8 h / r_max)
 // (chord error <= r_max dt^2 / 8 <= h, h = tolerance * scene size, the scene being the
 // bounding box of the conics produced); a hyperbola or parabola (non-ellipsoid inputs only) is
@@ -101,6 +103,69 @@ std::optional<M4> member_at(const algebra::PencilFacts& facts, const algebra::Ro
   }
   if (max_abs(m) == 0 || !std::isfinite(max_abs(m))) return std::nullopt;
   return normalised(m);
+}
+
+/// alpha + beta sqrt(s) (alpha, beta, s >= 0 rational) to double precision relative to the
+/// result: where the two terms cancel, as (alpha^2 - beta^2 s) / (alpha - beta sqrt(s)), whose
+/// numerator is exact and whose denominator does not cancel.
+double plus_root(const core::Rational& alpha, const core::Rational& beta, const core::Rational& s,
+                 double root) {
+  const double a = alpha.to_double_approx(), b = beta.to_double_approx() * root;
+  if (alpha.sign() * beta.sign() >= 0) return a + b;
+  return (alpha * alpha - beta * beta * s).to_double_approx() / (a - b);
+}
+
+/// The planes of a rank-2 member of inertia (1,1) (or the plane of a rank-1 member), from the
+/// exact member e. Completing the square at the largest diagonal entry e_kk: e_kk X^T e X =
+/// (e_k.X)^2 - (R_j.X)^2 / S, where R = e_kk e - e_k e_k^T has rank 1 and S = -R_jj > 0 at
+/// inertia (1,1) (exact rationals), so the planes are e_k sqrt(S) +- R_j, each coefficient
+/// rounded once (plus_root: no cancellation, so a plane at infinity comes out exactly at
+/// infinity and two planes 1e-10 apart keep their normals to the last bits). The eigenvectors
+/// of the rounded member tilt such planes by the rounding noise over the gap between its
+/// eigenvalues: two circles 2.8e-10 apart (a sphere in a cylinder of radius 1 - 1e-20) came
+/// out in planes tilted by 4.5e-9, or not at all. Rank 1: the row of the largest diagonal
+/// entry. Nullopt when no diagonal entry is non-zero or the doubles overflow or vanish (the
+/// eigen route then).
+std::optional<std::vector<V4>> exact_planes(const core::Mat4& e, int rank) {
+  auto largest_diagonal = [](const auto& m) {
+    size_t k = 4;
+    double best = 0;
+    for (size_t i = 0; i < 4; ++i)
+      if (!m[i][i].is_zero() && (k == 4 || std::fabs(m[i][i].to_double_approx()) > best)) {
+        k = i;
+        best = std::fabs(m[i][i].to_double_approx());
+      }
+    return k;
+  };
+  auto usable = [](const V4& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }) &&
+           std::any_of(v.begin(), v.end(), [](double x) { return x != 0; });
+  };
+  const size_t k = largest_diagonal(e);
+  if (k == 4) return std::nullopt;
+  if (rank == 1) {
+    V4 v{};
+    for (size_t i = 0; i < 4; ++i)
+      v[i] = e[k][i].to_double_approx();
+    return usable(v) ? std::optional<std::vector<V4>>(std::vector<V4>{v}) : std::nullopt;
+  }
+  core::Mat4 r;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t c = 0; c < 4; ++c)
+      r[i][c] = e[k][k] * e[i][c] - e[k][i] * e[k][c];
+  const size_t j = largest_diagonal(r);
+  if (j == 4 || r[j][j].sign() >= 0) return std::nullopt; // not two real planes
+  const core::Rational S = -r[j][j];
+  const double root = std::sqrt(S.to_double_approx());
+  std::vector<V4> planes;
+  for (int sg : {1, -1}) {
+    V4 p{};
+    for (size_t i = 0; i < 4; ++i)
+      p[i] = plus_root(sg > 0 ? r[j][i] : -r[j][i], e[k][i], S, root);
+    if (!usable(p)) return std::nullopt;
+    planes.push_back(p);
+  }
+  return planes;
 }
 
 double quad_form(const M4& q, const V4& x) {
@@ -241,7 +306,28 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
         s = std::max(s, std::fabs(v));
     return s;
   };
-  bool use_a = fro(ca) >= fro(cb);
+  // The better conditioned restriction: on the plane the two are proportional, but the
+  // plane is rounded, and its constant term moves with the plane's offset by |grad q . n| per
+  // unit (plus the evaluation's rounding). Next to a cone's apex the cone's conic is exact to
+  // the last bits where a sphere's (gradient ~1 there) is noise: the circle of radius 1e-20
+  // at z = -1e-20 of a sphere through the apex came out imaginary from the sphere.
+  auto const_error = [&](const M4& q, const std::array<std::array<double, 3>, 3>& c) {
+    const double cs_q = fro(c);
+    if (!(cs_q > 0)) return HUGE_VAL;
+    const V4 xh{x0[0], x0[1], x0[2], 1.0};
+    double slope = 0, eval = 0;
+    for (size_t i = 0; i < 4; ++i) {
+      double gi = 0;
+      for (size_t j = 0; j < 4; ++j) {
+        gi += q[i][j] * xh[j];
+        eval += std::fabs(xh[i] * q[i][j] * xh[j]);
+      }
+      if (i < 3) slope += 2 * gi * un[i];
+    }
+    return (std::fabs(slope) * (std::fabs(d) + 1e-300) + eval) / cs_q;
+  };
+  const double ea = const_error(qa, ca), eb = const_error(qb, cb);
+  bool use_a = ea != eb ? ea < eb : fro(ca) >= fro(cb);
   auto c = use_a ? ca : cb;
   double cs = fro(c);
   if (cs == 0) return out; // the plane lies on both quadrics (not a regular pencil)
@@ -416,40 +502,46 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
   std::vector<PlaneConic> conics;
   for (const auto& r : facts.real_roots) {
     if (r.multiplicity < 2 || r.rank > 2 || r.rank < 1) continue;
-    auto m = member_at(facts, r);
-    if (!m) continue;
-    V4 w;
-    M4 v;
-    algebra::jacobi4(*m, w, v);
-    std::array<size_t, 4> idx{0, 1, 2, 3};
-    std::sort(idx.begin(), idx.end(), [&](size_t i, size_t j) { return w[i] > w[j]; });
     std::vector<V4> planes;
-    bool doubled = false;
-    if (r.rank == 2) {
-      if (r.sigma.p != 1 || r.sigma.n != 1)
-        continue; // (2,0) / (0,2): a pair of complex conjugate planes
-      double l1 = w[idx[0]], l2 = w[idx[3]];
-      if (!(l1 > 0 && l2 < 0)) continue;
-      // The member is rounded (and its root, when irrational): its two zero eigenvalues come
-      // out as noise. Where l1 or |l2| is not far above that noise (and 2^-52 of the other), the
-      // planes' directions are noise too: a sphere in a cylinder of radius 1 - 1e-20, rotated,
-      // had its two circles (planes 2.8e-10 apart) drawn in planes tilted by 4.5e-9, certified.
-      // No conics then (undecided).
-      const double noise =
-          std::max(std::fabs(w[idx[1]]), std::fabs(w[idx[2]])) + 0x1p-52 * std::max(l1, -l2);
-      if (!(std::min(l1, -l2) > 4 * noise)) continue;
-      V4 v1 = column(v, idx[0]), v2 = column(v, idx[3]);
-      double s1 = std::sqrt(l1), s2 = std::sqrt(-l2);
-      V4 p{}, q{};
-      for (size_t i = 0; i < 4; ++i) {
-        p[i] = s1 * v1[i] + s2 * v2[i];
-        q[i] = s1 * v1[i] - s2 * v2[i];
+    const bool doubled = r.rank == 1;
+    if (r.rank == 2 && (r.sigma.p != 1 || r.sigma.n != 1))
+      continue; // (2,0) / (0,2): a pair of complex conjugate planes
+    if (r.rational_value) {
+      const core::Mat4 e = core::scaled(facts.a, *r.rational_value) + core::scaled(facts.b, -1);
+      if (auto exact = exact_planes(e, r.rank)) planes = std::move(*exact);
+    }
+    if (planes.empty()) {
+      // The eigen route: the member rounded (an irrational root, or no non-zero diagonal).
+      auto m = member_at(facts, r);
+      if (!m) continue;
+      V4 w;
+      M4 v;
+      algebra::jacobi4(*m, w, v);
+      std::array<size_t, 4> idx{0, 1, 2, 3};
+      std::sort(idx.begin(), idx.end(), [&](size_t i, size_t j) { return w[i] > w[j]; });
+      if (r.rank == 2) {
+        double l1 = w[idx[0]], l2 = w[idx[3]];
+        if (!(l1 > 0 && l2 < 0)) continue;
+        // The member is rounded (and its root, when irrational): its two zero eigenvalues come
+        // out as noise. Where l1 or |l2| is not far above that noise (and 2^-52 of the other),
+        // the planes' directions are noise too: a sphere in a cylinder of radius 1 - 1e-20,
+        // rotated, had its two circles (planes 2.8e-10 apart) drawn in planes tilted by
+        // 4.5e-9, certified. No conics then (undecided).
+        const double noise =
+            std::max(std::fabs(w[idx[1]]), std::fabs(w[idx[2]])) + 0x1p-52 * std::max(l1, -l2);
+        if (!(std::min(l1, -l2) > 4 * noise)) continue;
+        V4 v1 = column(v, idx[0]), v2 = column(v, idx[3]);
+        double s1 = std::sqrt(l1), s2 = std::sqrt(-l2);
+        V4 p{}, q{};
+        for (size_t i = 0; i < 4; ++i) {
+          p[i] = s1 * v1[i] + s2 * v2[i];
+          q[i] = s1 * v1[i] - s2 * v2[i];
+        }
+        planes = {p, q};
+      } else { // rank 1: a double plane
+        size_t k = std::fabs(w[idx[0]]) >= std::fabs(w[idx[3]]) ? idx[0] : idx[3];
+        planes = {column(v, k)};
       }
-      planes = {p, q};
-    } else { // rank 1: a double plane
-      size_t k = std::fabs(w[idx[0]]) >= std::fabs(w[idx[3]]) ? idx[0] : idx[3];
-      planes = {column(v, k)};
-      doubled = true;
     }
     for (const V4& p : planes) {
       bool seen = false;
