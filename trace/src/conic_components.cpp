@@ -278,9 +278,12 @@ std::array<std::array<double, 3>, 3> restrict_to_plane(const M4& q, const V3& e1
   return algebra::restrict_form(q, t);
 }
 
-/// Real, non-degenerate conics of the plane p.X = 0 with the quadric qa (or qb). Empty when the
-/// plane is at infinity or the conic is imaginary or degenerate. Hyperbolas give two entries.
-std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb, bool doubled) {
+/// The real conic of the plane p.X = 0 with the quadric qa (or qb): an ellipse, a parabola,
+/// a hyperbola (two entries), or the affine lines of a degenerate one (two crossing, two
+/// parallel, one; every section when lines_only). Empty when the plane is at infinity or the
+/// conic is imaginary or a point.
+std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb, bool doubled,
+                                        bool lines_only) {
   std::vector<PlaneConic> out;
   V3 n{p[0], p[1], p[2]};
   double nn = norm(n), pn = std::hypot(nn, p[3]);
@@ -311,25 +314,33 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
   // unit (plus the evaluation's rounding). Next to a cone's apex the cone's conic is exact to
   // the last bits where a sphere's (gradient ~1 there) is noise: the circle of radius 1e-20
   // at z = -1e-20 of a sphere through the apex came out imaginary from the sphere.
+  // A restriction that is rounding noise (the plane lies on that quadric: a plane of a plane
+  // pair restricted to the pair) is never chosen.
+  const V4 xh{x0[0], x0[1], x0[2], 1.0};
+  // The sum of |terms| of q(x0): the scale of the constant term's rounding.
+  auto eval_terms = [&xh](const M4& q) {
+    double e = 0;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        e += std::fabs(xh[i] * q[i][j] * xh[j]);
+    return e;
+  };
   auto const_error = [&](const M4& q, const std::array<std::array<double, 3>, 3>& c) {
-    const double cs_q = fro(c);
-    if (!(cs_q > 0)) return HUGE_VAL;
-    const V4 xh{x0[0], x0[1], x0[2], 1.0};
-    double slope = 0, eval = 0;
-    for (size_t i = 0; i < 4; ++i) {
-      double gi = 0;
-      for (size_t j = 0; j < 4; ++j) {
-        gi += q[i][j] * xh[j];
-        eval += std::fabs(xh[i] * q[i][j] * xh[j]);
-      }
-      if (i < 3) slope += 2 * gi * un[i];
-    }
-    return (std::fabs(slope) * (std::fabs(d) + 1e-300) + eval) / cs_q;
+    const double cs_q = fro(c), reach = 1 + norm(x0);
+    if (!(cs_q > 1e-12 * max_abs(q) * reach * reach)) return HUGE_VAL;
+    double slope = 0;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        slope += 2 * q[i][j] * xh[j] * un[i];
+    return (std::fabs(slope) * (std::fabs(d) + 1e-300) + eval_terms(q)) / cs_q;
   };
   const double ea = const_error(qa, ca), eb = const_error(qb, cb);
-  bool use_a = ea != eb ? ea < eb : fro(ca) >= fro(cb);
+  bool use_a = ea != eb ? ea < eb : fro(ca) >= fro(cb); // both noise: the larger
   auto c = use_a ? ca : cb;
   double cs = fro(c);
+  // The constant term's own cancellation (a tangent plane's point conic: c0 ~ 1e-16 of terms
+  // ~1), in the units of the normalised conic.
+  const double c0_terms = cs > 0 ? eval_terms(use_a ? qa : qb) / cs : 0.0;
   if (cs == 0) return out; // the plane lies on both quadrics (not a regular pencil)
   for (auto& r : c)
     for (double& v : r)
@@ -375,7 +386,11 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
     double mag = std::fabs(c0) + std::fabs(lw1 * s1) + std::fabs(lw2 * s2); // cancellation
     double u = s1 * w1[0] + s2 * w2[0], v = s1 * w1[1] + s2 * w2[1];
     V3 centre = plane_point(u, v);
-    if (std::fabs(cc) <= 1e-10 * mag || cc == 0) {
+    // lines_only: the certified morphology has lines and no proper conic, so a centre value
+    // the rounding left at 2e-16 of a conic of size 1 (four lines, posed) is not a hyperbola.
+    // (The constant's own rounding too: 64 ulps of its terms.)
+    if (lines_only || std::fabs(cc) <= 1e-10 * mag || std::fabs(cc) <= 0x1p-46 * c0_terms ||
+        cc == 0) {
       // A point (tangent plane, mu1 mu2 > 0) or two lines crossing at the centre:
       // mu1 s1^2 + mu2 s2^2 = 0, s2 / s1 = +-sqrt(-mu1 / mu2) (open, clipped by the caller).
       if ((mu1 > 0) == (mu2 > 0)) return out;
@@ -427,16 +442,49 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
     out.push_back(h);
     return out;
   }
-  if (mumax <= eps)
-    return out; // the restriction is (nearly) linear: the plane lies on the quadric's cone
+  auto line = [&](double u, double v, const std::array<double, 2>& dir) {
+    PlaneConic ln = base;
+    ln.type = PlaneConic::Line;
+    ln.c = plane_point(u, v);
+    ln.e1 = to3(dir);
+    ln.t_max = 1e3 * (1 + norm(ln.c));
+    out.push_back(ln);
+  };
+  if (mumax <= eps) {
+    // The restriction is (nearly) linear, 2 l.(u, v) + c0 = 0: the conic is the line at
+    // infinity and one affine line (a plane x = 1 through z = xy: the line z = y), or nothing
+    // when l vanishes too (the plane lies on the quadric's asymptotic cone).
+    // (l above its own rounding, ~|x0| |q| ulps: a plane 2^20 out, nearly on the cone, put
+    // its "line" 1e17 out.)
+    const double ll = std::hypot(l[0], l[1]);
+    const double l_terms = cs > 0 ? (1 + norm(x0)) * max_abs(use_a ? qa : qb) / cs : 0.0;
+    if (!(ll > 1e-13 * (std::fabs(c0) + mumax)) || !(ll > 0x1p-40 * l_terms) || !std::isfinite(ll))
+      return out;
+    const double f = -c0 / (2 * ll * ll);
+    line(f * l[0], f * l[1], {-l[1] / ll, l[0] / ll});
+    return out;
+  }
   // Parabola: mu s^2 + 2 ls s + 2 lt t + c0 = 0 (s along the non-null eigenvector).
   bool first = std::fabs(mu1) >= std::fabs(mu2);
   double mu = first ? mu1 : mu2, ls = first ? lw1 : lw2, lt = first ? lw2 : lw1;
   auto ws = first ? w1 : w2, wt = first ? w2 : w1;
-  if (std::fabs(lt) <= 1e-13 * (std::fabs(mu) + std::fabs(ls) + std::fabs(c0)))
-    return out; // parallel lines or empty (below 1e-13 the linear term is the rounding's:
-                // at 1e-10 a plane 1e-10 off a cone's generator, its apex at (1/3, 0, -1),
-                // lost its parabola)
+  if (lines_only || std::fabs(lt) <= 1e-13 * (std::fabs(mu) + std::fabs(ls) + std::fabs(c0))) {
+    // Below 1e-13 the linear term is the rounding's (at 1e-10 a plane 1e-10 off a cone's
+    // generator, its apex at (1/3, 0, -1), lost its parabola): mu s^2 + 2 ls s + c0 = 0, two
+    // parallel lines along wt (a plane through a hyperboloid along an asymptotic direction),
+    // one (a double root: a tangent plane along a ruling) or none.
+    const double disc = ls * ls - mu * c0, mag = ls * ls + std::fabs(mu * c0);
+    if (disc < -1e-13 * mag) return out;
+    if (disc <= 1e-13 * mag) {
+      line(-ls / mu * ws[0], -ls / mu * ws[1], wt);
+      return out;
+    }
+    // The roots without cancellation: q = -(ls + sign(ls) sqrt(disc)), s = q / mu, c0 / q.
+    const double qv = -(ls + std::copysign(std::sqrt(disc), ls));
+    for (double sr : {qv / mu, c0 / qv})
+      line(sr * ws[0], sr * ws[1], wt);
+    return out;
+  }
   // t = -(mu s^2 + 2 ls s + c0) / (2 lt); vertex at s* = -ls/mu.
   double sv = -ls / mu;
   double tv = -(mu * sv * sv + 2 * ls * sv + c0) / (2 * lt);
@@ -493,7 +541,8 @@ bool same_plane(const V4& p, const V4& q) {
 } // namespace
 
 std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                                   const algebra::PencilFacts& facts, const TraceOptions& opt) {
+                                   const algebra::PencilFacts& facts, const TraceOptions& opt,
+                                   bool lines_only) {
   std::vector<Branch> out;
   if (facts.kind != algebra::PencilKind::Regular) return out;
   const M4 qa = normalised(to_double(a.matrix())), qb = normalised(to_double(b.matrix()));
@@ -549,8 +598,25 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
         seen = seen || same_plane(p, u);
       if (seen) continue;
       planes_used.push_back(p);
-      for (auto& pc : conics_in_plane(p, qa, qb, doubled))
+      for (auto& pc : conics_in_plane(p, qa, qb, doubled, lines_only))
         conics.push_back(pc);
+    }
+  }
+  // A line lies in two planes of the pencil's plane pairs (four lines: each in a plane of
+  // either pair): the second copy is dropped, else each line was drawn twice.
+  for (size_t i = 0; i < conics.size(); ++i) {
+    if (conics[i].type != PlaneConic::Line) continue;
+    for (size_t j = 0; j < i; ++j) {
+      const PlaneConic& u = conics[j];
+      if (u.type != PlaneConic::Line) continue;
+      const V3 off = sub(conics[i].c, u.c);
+      const double along = dot(off, u.e1), size = 1 + norm(u.c) + norm(conics[i].c);
+      const V3 across = axpy(off, -along, u.e1);
+      if (norm(cross(conics[i].e1, u.e1)) <= 1e-12 && norm(across) <= 1e-12 * size) {
+        conics.erase(conics.begin() + static_cast<long>(i));
+        --i;
+        break;
+      }
     }
   }
   if (conics.empty()) return out;

@@ -202,6 +202,12 @@ double diameter(const Branch& br) {
 // certified topology has, the extra ones may be dropped only if each is smaller than the
 // tolerance and surrounds an exact isolated special point; otherwise everything is kept and
 // the mismatch makes the result undecided.
+// Whether the certified morphology has lines and no proper conic (four lines, two lines and a
+// double line, ...): its plane sections are then drawn as lines.
+bool lines_only(const QsicResult& t) {
+  return t.morphology && t.morphology->conics == 0 && t.morphology->lines > 0;
+}
+
 void drop_point_sections(CurveResult& out, int expected_conics, double tol) {
   auto& br = out.branches;
   if (static_cast<int>(br.size()) <= expected_conics) return;
@@ -676,7 +682,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   stops.insert(stops.end(), out.isolated_points.begin(), out.isolated_points.end());
   std::vector<V> starts;
   if (curve_by_conics) {
-    conics = conic_branches(a, b, t.facts, opt);
+    conics = conic_branches(a, b, t.facts, opt, lines_only(t));
     for (const auto& br : conics) {
       if (br.closed)
         sizing.insert(sizing.end(), br.points.begin(), br.points.end());
@@ -734,7 +740,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
     if (curve_by_conics) {
       // Open conics sampled far enough to leave this box. (Closed ones do not depend on the
       // box: the conics sampled for the sizing are reused when all are closed.)
-      if (!all_closed) conics = conic_branches(a, b, t.facts, bopt);
+      if (!all_closed) conics = conic_branches(a, b, t.facts, bopt, lines_only(t));
       for (const auto& br : conics)
         for (auto& piece : br.closed ? clip_closed_to_box(q, br, in) : clip_to_box(q, br, in))
           out.branches.push_back(std::move(piece));
@@ -1332,7 +1338,7 @@ void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
       out.exact_start_points = true;
     }
   } else if (t.morphology->conics > 0) {
-    out.branches = conic_branches(a, b, t.facts, opt);
+    out.branches = conic_branches(a, b, t.facts, opt, lines_only(t));
     drop_point_sections(out, t.morphology->conics, opt.tolerance);
   }
   finish_points(a, b, q, out);

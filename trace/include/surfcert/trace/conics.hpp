@@ -48,9 +48,14 @@ std::vector<Branch> cubic_in_box(const certify::CubicAndLine& cl, const Box& box
 /// One point of each affine arc of that cubic (a sample near the origin), for sizing a box.
 std::vector<Point3> cubic_arc_points(const certify::CubicAndLine& cl);
 
-/// Conic branches (kind "conic" or "double_conic", closed) for the exact pencil facts of a
-/// pair whose morphology has conic components. Empty when there are none.
+/// Conic branches (kind "conic" or "double_conic"; "line" for the lines of a plane's
+/// degenerate section: crossing, parallel, or one affine line and the line at infinity) for the
+/// exact pencil facts of a pair whose morphology has conic or line components; a line found in
+/// two planes is returned once. `lines_only`: the certified morphology has lines and no proper
+/// conic, so every section is drawn as lines whatever the rounding says. Empty when there are
+/// none.
 std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                                   const algebra::PencilFacts& facts, const TraceOptions& opt);
+                                   const algebra::PencilFacts& facts, const TraceOptions& opt,
+                                   bool lines_only = false);
 
 } // namespace surfcert::trace
