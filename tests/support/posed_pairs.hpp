@@ -12,6 +12,8 @@
 
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace surfcert::testing {
 
@@ -49,6 +51,26 @@ struct Pose {
     return s;
   }
 };
+
+/// The five rational poses of the near-degenerate curve tests: the identity, a rotation, two
+/// rotations with small rational translations ((1/3, 0, -1) is not a double), and 2^20 out.
+inline const std::vector<Pose>& five_poses() {
+  static const std::vector<Pose> p = {
+      {1, 0, 0, 0, {}},
+      {1, 1, 1, 1, {}},
+      {1, 2, 3, 4, {core::Rational(1, 3), core::Rational(0), core::Rational(-1)}},
+      {9, -1, 2, 3, {core::Rational(-1, 2), core::Rational(1), core::Rational(1, 4)}},
+      {1, 0, 0, 0, {core::Rational(1048576), core::Rational(0), core::Rational(0)}}};
+  return p;
+}
+
+/// The quadrics of the equations a and b posed by ps, in the order (b, a) when swapped.
+inline std::pair<core::QuadricMatrix, core::QuadricMatrix>
+posed_pair(const std::string& a, const std::string& b, const Pose& ps, bool swapped) {
+  auto qa = q(a).congruent(ps.matrix()), qb = q(b).congruent(ps.matrix());
+  if (swapped) std::swap(qa, qb);
+  return {qa, qb};
+}
 
 /// True when r is certified; otherwise checks it is undecided with a reason, and not a pair
 /// that must be certified.

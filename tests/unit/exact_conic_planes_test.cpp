@@ -26,15 +26,6 @@ using surfcert::testing::q;
 
 namespace {
 
-const std::vector<Pose>& poses() {
-  static const std::vector<Pose> p = {{1, 0, 0, 0, {}},
-                                      {1, 1, 1, 1, {}},
-                                      {1, 2, 3, 4, {Rational(1, 3), Rational(0), Rational(-1)}},
-                                      {9, -1, 2, 3, {Rational(-1, 2), Rational(1), Rational(1, 4)}},
-                                      {1, 0, 0, 0, {Rational(1048576), Rational(0), Rational(0)}}};
-  return p;
-}
-
 struct Gap {
   std::string g;
   double value;
@@ -56,12 +47,11 @@ TEST(ExactConicPlanes, SphereInACylinderJustNarrowerThanIt) {
   // z = +-z0, z0 = sqrt(2g - g^2) (1.4e-10 at g = 1e-20, 1.3e-15 at 2^-100).
   int certified = 0, tried = 0;
   for (const auto& gap : gaps())
-    for (const auto& ps : poses())
+    for (const auto& ps : surfcert::testing::five_poses())
       for (bool swapped : {false, true}) {
         const std::string ctx = ps.name(gap.g, swapped);
-        auto a = q("x^2 + y^2 + z^2 = 1").congruent(ps.matrix());
-        auto b = q("x^2 + y^2 = (1 - (" + gap.g + "))^2").congruent(ps.matrix());
-        if (swapped) std::swap(a, b);
+        const auto [a, b] = surfcert::testing::posed_pair(
+            "x^2 + y^2 + z^2 = 1", "x^2 + y^2 = (1 - (" + gap.g + "))^2", ps, swapped);
         const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
         ++tried;
         ASSERT_TRUE(r.affine.certified()) << ctx;
@@ -105,12 +95,11 @@ TEST(ExactConicPlanes, TinyCircleWhereASphereMeetsAConeNextToItsApex) {
   for (const auto& gap : gaps())
     for (size_t pi = 0; pi < 4; ++pi)
       for (bool swapped : {false, true}) {
-        const Pose& ps = poses()[pi];
+        const Pose& ps = surfcert::testing::five_poses()[pi];
         const std::string ctx = ps.name(gap.g, swapped);
         const std::string g = "(" + gap.g + ")";
-        auto a = q("x^2 + y^2 = z^2").congruent(ps.matrix());
-        auto b = q("x^2 + y^2 + z^2 - 2*z = 2*" + g + " + " + g + "^2").congruent(ps.matrix());
-        if (swapped) std::swap(a, b);
+        const auto [a, b] = surfcert::testing::posed_pair(
+            "x^2 + y^2 = z^2", "x^2 + y^2 + z^2 - 2*z = 2*" + g + " + " + g + "^2", ps, swapped);
         const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
         ++tried;
         ASSERT_TRUE(r.affine.certified()) << ctx;

@@ -25,11 +25,7 @@ using surfcert::testing::Pose;
 using surfcert::testing::q;
 
 TEST(NearSteinmetz, EachOvalOnItsSideOrUndecided) {
-  const std::vector<Pose> poses = {{1, 0, 0, 0, {}},
-                                   {1, 1, 1, 1, {}},
-                                   {1, 2, 3, 4, {Rational(1, 3), Rational(0), Rational(-1)}},
-                                   {9, -1, 2, 3, {Rational(-1, 2), Rational(1), Rational(1, 4)}},
-                                   {1, 0, 0, 0, {Rational(1048576), Rational(0), Rational(0)}}};
+  const std::vector<Pose>& poses = surfcert::testing::five_poses();
   struct Gap {
     std::string g;
     bool must_certify;
@@ -49,9 +45,8 @@ TEST(NearSteinmetz, EachOvalOnItsSideOrUndecided) {
     for (const auto& ps : poses)
       for (bool swapped : {false, true}) {
         const std::string ctx = ps.name(gap.g, swapped);
-        auto a = q("x^2 + y^2 = 1").congruent(ps.matrix());
-        auto b = q("y^2 + z^2 = (1 + (" + gap.g + "))^2").congruent(ps.matrix());
-        if (swapped) std::swap(a, b);
+        const auto [a, b] = surfcert::testing::posed_pair(
+            "x^2 + y^2 = 1", "y^2 + z^2 = (1 + (" + gap.g + "))^2", ps, swapped);
         const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
         ++tried;
         ASSERT_TRUE(r.affine.certified()) << ctx;

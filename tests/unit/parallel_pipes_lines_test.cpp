@@ -27,11 +27,7 @@ using surfcert::testing::Pose;
 using surfcert::testing::q;
 
 TEST(ParallelPipes, TwoLinesCloseTogetherAreCertifiedOnTheirSides) {
-  const std::vector<Pose> poses = {{1, 0, 0, 0, {}},
-                                   {1, 1, 1, 1, {}},
-                                   {1, 2, 3, 4, {Rational(1, 3), Rational(0), Rational(-1)}},
-                                   {9, -1, 2, 3, {Rational(-1, 2), Rational(1), Rational(1, 4)}},
-                                   {1, 0, 0, 0, {Rational(1048576), Rational(0), Rational(0)}}};
+  const std::vector<Pose>& poses = surfcert::testing::five_poses();
   struct Gap {
     std::string g;
     double y0;             // sqrt(g - g^2/4)
@@ -49,9 +45,8 @@ TEST(ParallelPipes, TwoLinesCloseTogetherAreCertifiedOnTheirSides) {
     for (const auto& ps : poses)
       for (bool swapped : {false, true}) {
         const std::string ctx = ps.name(gap.g, swapped);
-        auto a = q("x^2 + y^2 = 1").congruent(ps.matrix());
-        auto b = q("(x - 2 + (" + gap.g + "))^2 + y^2 = 1").congruent(ps.matrix());
-        if (swapped) std::swap(a, b);
+        const auto [a, b] = surfcert::testing::posed_pair(
+            "x^2 + y^2 = 1", "(x - 2 + (" + gap.g + "))^2 + y^2 = 1", ps, swapped);
         const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
         ++tried;
         ASSERT_TRUE(r.affine.certified()) << ctx;
