@@ -85,6 +85,41 @@ TEST(TorusDistance, SphereClosedForms) {
   EXPECT_EQ(p.lower().substr(0, 90), s34.substr(0, 90));
 }
 
+TEST(TorusDistance, SphereCentreJustOffTheAxisHasItsPairOnItsSide) {
+  // Centre (e, 0, 1/3), radius 1/2, e = +-1e-10 ... +-2^-100: one minimizer (the meridian
+  // through the centre), d = sqrt((3 - |e|)^2 + 1/9) - 3/2. The approximate pair must be the
+  // closest pair: the torus point was read from balls where |w|^2 - h^2 cancelled, and came
+  // out 1.9 off the torus (the two points 0.37 apart) from e = 1e-20 down. Checked against the
+  // closed form: the torus point on the torus, the sphere point on the sphere, their distance
+  // the certified one, both on the side of x = 0 the centre is on.
+  auto t = torus(kTorus);
+  const std::pair<const char*, double> offsets[] = {
+      {"1/10000000000", 1e-10},
+      {"1/100000000000000000000", 1e-20},
+      {"1/10^30", 1e-30},
+      {"1/1267650600228229401496703205376", 0x1p-100}};
+  for (const auto& [e, ev] : offsets)
+    for (int sg : {1, -1}) {
+      const std::string x = std::string(sg < 0 ? "-" : "") + "(" + e + ")";
+      const std::string ctx = std::string("x0 = ") + x;
+      auto r = certify::surface_distance(eq("(x - " + x + ")^2 + y^2 + (z - 1/3)^2 = 1/4"), t, 15,
+                                         false);
+      const double d = std::sqrt((3 - ev) * (3 - ev) + 1.0 / 9) - 1.5;
+      const double cx = sg * ev;
+      expect_value(r, d, ctx);
+      EXPECT_EQ(r.minimizers, "1") << ctx;
+      ASSERT_EQ(r.pairs.size(), 1u) << ctx;
+      const auto& s = r.pairs[0][0];
+      const auto& k = r.pairs[0][1];
+      const double rho = std::hypot(k[0], k[1]);
+      EXPECT_NEAR(std::hypot(rho - 3, k[2]), 1.0, 1e-12) << ctx;                   // on the torus
+      EXPECT_NEAR(std::hypot(s[0] - cx, s[1], s[2] - 1.0 / 3), 0.5, 1e-12) << ctx; // on the sphere
+      EXPECT_NEAR(std::hypot(k[0] - s[0], k[1] - s[1], k[2] - s[2]), d, 1e-12) << ctx;
+      EXPECT_GT(sg * k[0], 2.0) << ctx;
+      EXPECT_GT(sg * s[0], 0.4) << ctx;
+    }
+}
+
 TEST(TorusDistance, PlaneClosedFormsAndTouching) {
   auto t = torus(kTorus);
   expect_value(certify::surface_distance(eq("z = 5"), t, 15, false), 4.0, "z=5");

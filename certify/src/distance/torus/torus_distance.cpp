@@ -124,6 +124,27 @@ private:
   const core::Torus& t_;
 };
 
+// The point of K nearest a point c off the axis, to double precision: the radial direction
+// u = w - (w.a / a.a) a (w = c - centre) exact over Q, divided by its largest component before
+// rounding. (Read from balls, rho^2 = |w|^2 - h^2 cancelled: a sphere's centre 1e-20 off the
+// axis gave a "closest" torus point 1.9 off the torus.)
+std::array<double, 3> nearest_on_circle(const core::Torus& t, const std::array<Rational, 3>& c,
+                                        const Rational& wa, const Rational& aa) {
+  std::array<Rational, 3> u;
+  Rational big;
+  for (size_t i = 0; i < 3; ++i) {
+    u[i] = c[i] - t.centre[i] - wa * t.axis[i] / aa;
+    if (core::abs(u[i]) > big) big = core::abs(u[i]);
+  }
+  std::array<double, 3> v{}, k{};
+  for (size_t i = 0; i < 3; ++i)
+    v[i] = (u[i] / big).to_double_approx();
+  const double n = std::hypot(v[0], v[1], v[2]), R = t.R.to_double_approx();
+  for (size_t i = 0; i < 3; ++i)
+    k[i] = t.centre[i].to_double_approx() + R * v[i] / n;
+  return k;
+}
+
 // ---- sphere vs torus (closed form) ----------------------------------------------------------
 
 DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, long digits,
@@ -208,9 +229,7 @@ DistanceResult sphere_torus(const core::QuadricMatrix& s, const core::Torus& t, 
       out.minimizers = (on_axis || on_circle) ? Minimizers::continuum(Minimizers::Proof::Exact)
                                               : Minimizers::count(1, Minimizers::Proof::Exact);
       if (!on_axis && !on_circle) { // the pair, approximately
-        std::array<double, 3> kk{};
-        Ball dd;
-        circle_distance(dd.v, t, p, prec, &kk);
+        std::array<double, 3> kk = nearest_on_circle(t, c, wa, aa);
         const std::array<double, 3> cd{c[0].to_double_approx(), c[1].to_double_approx(),
                                        c[2].to_double_approx()};
         const double rr = t.r.to_double_approx(), rsd = std::sqrt(rs2.to_double_approx());
