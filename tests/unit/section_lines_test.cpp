@@ -132,3 +132,50 @@ TEST(SectionLines, DrawnOnceEachInClosedForm) {
   EXPECT_EQ(tried, 40);
   EXPECT_EQ(certified, 40);
 }
+
+TEST(SectionLines, TangentSectionFarOutAndParabolasAtSmallScale) {
+  // Two poses an audit of general quadric pairs found undecided after the sections were read
+  // as lines: a hyperbolic paraboloid 9x^2 - 4y^2 = 36z and its tangent plane z = 0 (the lines
+  // 3x = +-2y) posed 2^20 out, where the rescaled pair's quadratic part in one plane was noise
+  // and its "crossing lines" were drawn 1e11 out (now: one line and the line at infinity); and
+  // the two parabolas of y = x^2, y = z^2 posed at scale 2^-7, where a piece's cut onto a face
+  // failed from a sample far off it (now retried with finer samples, as traced curves are).
+  struct Pair {
+    std::string a, b;
+    const char* kind;
+    int pieces;
+  };
+  const Pair pairs[] = {
+      {"-12*x + 60*y + 10*z + 62902422 = 0",
+       "-84375*x^2 - 16500*x*y - 103500*x*z + 5600*y^2 - 87000*y*z + 198900*z^2 - 174695"
+       "55750*x + 11727260700*y - 91332393480*z + 6139575334103409 = 0",
+       "line", 2},
+      {"-294912*x^2 - 786432*x*y - 2359296*x*z - 524288*y^2 - 3145728*y*z - 4718592*z^2 "
+       "+ 193536*x + 214784*y + 601088*z - 19753 = 0",
+       "-524288*x^2 + 3145728*x*y - 786432*x*z - 4718592*y^2 + 2359296*y*z - 294912*z^2 "
+       "+ 117760*x - 223488*y + 45056*z - 2641 = 0",
+       "conic", 2}};
+  for (const auto& pr : pairs)
+    for (bool swapped : {false, true}) {
+      auto a = q(pr.a), b = q(pr.b);
+      if (swapped) std::swap(a, b);
+      const std::string ctx = std::string(pr.kind) + (swapped ? " swapped" : "");
+      const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
+      ASSERT_TRUE(r.affine.certified()) << ctx;
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      ASSERT_EQ(static_cast<int>(r.branches.size()), pr.pieces) << ctx;
+      ASSERT_TRUE(r.box_exits && r.box_exits->certified) << ctx;
+      std::set<int> used;
+      for (const auto& br : r.branches) {
+        EXPECT_EQ(br.kind, pr.kind) << ctx;
+        ASSERT_EQ(br.exits.size(), 2u) << ctx;
+        used.insert(br.exits.begin(), br.exits.end());
+        for (const auto& p : br.points) {
+          const double ulps = 0x1p-46 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2]));
+          EXPECT_LE(geometric_residual(a, p), 1e-12 * r.box->diagonal() + ulps) << ctx;
+          EXPECT_LE(geometric_residual(b, p), 1e-12 * r.box->diagonal() + ulps) << ctx;
+        }
+      }
+      EXPECT_EQ(static_cast<int>(used.size()), 2 * pr.pieces) << ctx;
+    }
+}

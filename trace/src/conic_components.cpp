@@ -379,6 +379,27 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
   base.q = use_a ? &qa : &qb;
   base.doubled = doubled;
 
+  auto line = [&](double u, double v, const std::array<double, 2>& dir) {
+    PlaneConic ln = base;
+    ln.type = PlaneConic::Line;
+    ln.c = plane_point(u, v);
+    ln.e1 = to3(dir);
+    ln.t_max = 1e3 * (1 + norm(ln.c));
+    out.push_back(ln);
+  };
+  auto linear = [&]() -> std::vector<PlaneConic>& {
+    // The restriction is (nearly) linear, 2 l.(u, v) + c0 = 0: the conic is the line at
+    // infinity and one affine line (a plane x = 1 through z = xy: the line z = y), or nothing
+    // when l vanishes too (the plane lies on the quadric's asymptotic cone).
+    // (l must stand above its own rounding, ~|x0| |q| ulps.)
+    const double ll = std::hypot(l[0], l[1]);
+    const double l_terms = cs > 0 ? (1 + norm(x0)) * max_abs(use_a ? qa : qb) / cs : 0.0;
+    if (!(ll > 1e-13 * (std::fabs(c0) + mumax)) || !(ll > 0x1p-40 * l_terms) || !std::isfinite(ll))
+      return out;
+    const double f = -c0 / (2 * ll * ll);
+    line(f * l[0], f * l[1], {-l[1] / ll, l[0] / ll});
+    return out;
+  };
   if (std::fabs(mu1) > eps * mumax && std::fabs(mu2) > eps * mumax && mumax > eps) {
     // Central conic: centre m (in eigen coordinates s1 = -lw1/mu1, s2 = -lw2/mu2).
     double s1 = -lw1 / mu1, s2 = -lw2 / mu2;
@@ -386,6 +407,10 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
     double mag = std::fabs(c0) + std::fabs(lw1 * s1) + std::fabs(lw2 * s2); // cancellation
     double u = s1 * w1[0] + s2 * w2[0], v = s1 * w1[1] + s2 * w2[1];
     V3 centre = plane_point(u, v);
+    // lines_only with a centre beyond 1e6 reaches: a noise quadratic part; the section is
+    // one line and the line at infinity (a hyperbolic paraboloid's tangent plane 2^20 out,
+    // rescaled, drew its "crossing lines" 1e11 out).
+    if (lines_only && std::hypot(s1, s2) > 1e6 * (1 + norm(x0))) return linear();
     // lines_only: the certified morphology has lines and no proper conic, so a centre value
     // the rounding left at 2e-16 of a conic of size 1 (four lines, posed) is not a hyperbola.
     // (The constant's own rounding too: 64 ulps of its terms.)
@@ -442,28 +467,7 @@ std::vector<PlaneConic> conics_in_plane(const V4& p, const M4& qa, const M4& qb,
     out.push_back(h);
     return out;
   }
-  auto line = [&](double u, double v, const std::array<double, 2>& dir) {
-    PlaneConic ln = base;
-    ln.type = PlaneConic::Line;
-    ln.c = plane_point(u, v);
-    ln.e1 = to3(dir);
-    ln.t_max = 1e3 * (1 + norm(ln.c));
-    out.push_back(ln);
-  };
-  if (mumax <= eps) {
-    // The restriction is (nearly) linear, 2 l.(u, v) + c0 = 0: the conic is the line at
-    // infinity and one affine line (a plane x = 1 through z = xy: the line z = y), or nothing
-    // when l vanishes too (the plane lies on the quadric's asymptotic cone).
-    // (l above its own rounding, ~|x0| |q| ulps: a plane 2^20 out, nearly on the cone, put
-    // its "line" 1e17 out.)
-    const double ll = std::hypot(l[0], l[1]);
-    const double l_terms = cs > 0 ? (1 + norm(x0)) * max_abs(use_a ? qa : qb) / cs : 0.0;
-    if (!(ll > 1e-13 * (std::fabs(c0) + mumax)) || !(ll > 0x1p-40 * l_terms) || !std::isfinite(ll))
-      return out;
-    const double f = -c0 / (2 * ll * ll);
-    line(f * l[0], f * l[1], {-l[1] / ll, l[0] / ll});
-    return out;
-  }
+  if (mumax <= eps) return linear();
   // Parabola: mu s^2 + 2 ls s + 2 lt t + c0 = 0 (s along the non-null eigenvector).
   bool first = std::fabs(mu1) >= std::fabs(mu2);
   double mu = first ? mu1 : mu2, ls = first ? lw1 : lw2, lt = first ? lw2 : lw1;

@@ -779,8 +779,10 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   // automatic box holding a loop 200 across, around two pieces 0.9 apart: pair 139 of
   // natural_box_pairs.py --seed 6) a long step from one smooth, nearly straight stretch lands
   // on another piece running the same way, which neither end of the step can see. The exact
-  // crossings and the topology stay the judges; only the float picture is redone.
-  for (int refine = 0; refine < 2 && retry && !curve_by_conics; ++refine) {
+  // crossings and the topology stay the judges; only the float picture is redone. Conics too:
+  // sampled more finely, a piece's cut onto a face (Newton from the last sample inside) that
+  // failed from a sample far off the face may succeed (two parabolas posed at 2^-7 scale).
+  for (int refine = 0; refine < 2 && retry; ++refine) {
     topt.tolerance /= 8;
     trace_at(box);
     retry = settle_box(a, b, out, box, !opt.box, trace_at, t.special_points_complete);
