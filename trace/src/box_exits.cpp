@@ -70,6 +70,34 @@ bool newton_on_face(const QuadricPair& q, size_t k, double c, Point3& x) {
   return false;
 }
 
+bool newton_on_face_in_plane(const QuadricPair& q, size_t k, double c,
+                             const std::array<double, 4>& plane, Point3& x) {
+  const size_t i = (k + 1) % 3, j = (k + 2) % 3;
+  for (int which = 0; which < 2; ++which) {
+    Point3 y = x;
+    y[k] = c;
+    bool done = false;
+    for (int it = 0; it < 50 && !done; ++it) {
+      const double pv = plane[0] * y[0] + plane[1] * y[1] + plane[2] * y[2] + plane[3];
+      const double fv = which == 0 ? q.f(y) : q.g(y);
+      if (!std::isfinite(pv) || !std::isfinite(fv)) break;
+      const Point3 gf = which == 0 ? q.grad_f(y) : q.grad_g(y);
+      const double det = plane[i] * gf[j] - plane[j] * gf[i];
+      const double sc = std::hypot(plane[i], plane[j]) * std::sqrt(dot3(gf, gf));
+      if (!(std::abs(det) > 1e-10 * sc)) break; // the plane or the surface along the face
+      const double di = (pv * gf[j] - fv * plane[j]) / det, dj = (fv * plane[i] - pv * gf[i]) / det;
+      y[i] -= di;
+      y[j] -= dj;
+      done = std::hypot(di, dj) <= 1e-16 * (1 + std::sqrt(dot3(y, y)));
+    }
+    if (done) {
+      x = y;
+      return true;
+    }
+  }
+  return false;
+}
+
 std::vector<Point3> box_face_points(const QuadricPair& q, const Box& box) {
   std::vector<Point3> out;
   const double diag = box.diagonal();

@@ -659,6 +659,7 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
   for (const auto& pc : conics) {
     Branch br;
     br.kind = pc.type == PlaneConic::Line ? "line" : pc.doubled ? "double_conic" : "conic";
+    br.plane = std::array<double, 4>{pc.n[0], pc.n[1], pc.n[2], pc.d};
     bool ellipse = pc.type == PlaneConic::Ellipse;
     if (pc.type == PlaneConic::Line) { // straight: a few points, cut to the box by the caller
       // Geometric spacing away from the crossing point (dense near it, where the box is).

@@ -287,8 +287,31 @@ std::vector<Branch> clip_to_box(const QuadricPair& q, const Branch& br, const Bo
   Branch cur;
   cur.kind = br.kind;
   cur.closed = false;
+  cur.plane = br.plane;
+  // A planar piece (a conic) that f = g = 0 cannot cut (a double conic: the surfaces tangent
+  // along it) is cut on its plane: the segment's crossing of the face, by Newton on
+  // {face, plane, one surface}.
   auto cut = [&](const V& in, const V& outp, V& y) {
-    return face_crossing(q, box, in, outp, y) && box.contains(y, 1e-9 * box.diagonal());
+    if (face_crossing(q, box, in, outp, y) && box.contains(y, 1e-9 * box.diagonal())) return true;
+    if (!br.plane) return false;
+    for (size_t k = 0; k < 3; ++k)
+      for (double c : {box.min[k], box.max[k]}) {
+        const double den = outp[k] - in[k];
+        const bool outward = c == box.min[k] ? den < 0 : den > 0;
+        if (!outward) continue;
+        const double lam = (c - in[k]) / den;
+        if (!(lam >= 0 && lam <= 1)) continue;
+        V z{};
+        for (size_t m = 0; m < 3; ++m)
+          z[m] = in[m] + lam * (outp[m] - in[m]);
+        if (newton_on_face_in_plane(q, k, c, *br.plane, z) &&
+            box.contains(z, 1e-9 * box.diagonal())) {
+          z[k] = c;
+          y = z;
+          return true;
+        }
+      }
+    return false;
   };
   for (size_t i = 0; i < br.points.size(); ++i) {
     const V& p = br.points[i];
@@ -346,8 +369,35 @@ certify::BoxExits exact_exits(const core::QuadricMatrix& a, const core::QuadricM
 // parallel cylinders touching along a ruling). Route "plane_pair": the crossings of the two
 // sections together, certified when each is and no crossing of one may be one of the other
 // (disjoint enclosures: the curve is smooth there).
+// The plane of a curve that is one double conic (the surfaces tangent along it): the rank-1
+// member at a rational root, exactly (the row of its largest diagonal entry), as a quadric;
+// nullopt otherwise. Its crossings with a face are double roots of f = g = 0 there ("a
+// multiple crossing"), simple ones of that plane and either surface.
+std::optional<core::QuadricMatrix> double_conic_plane(const QsicResult& t) {
+  if (t.status != Status::Certified || !t.morphology) return std::nullopt;
+  const certify::Morphology& m = *t.morphology;
+  if (m.conics != 1 || m.double_components != 1 || m.loops || m.lines || m.cubics)
+    return std::nullopt;
+  for (const auto& r : t.facts.real_roots) {
+    if (r.rank != 1 || !r.rational_value) continue;
+    const core::Mat4 e = core::scaled(t.facts.a, *r.rational_value) + core::scaled(t.facts.b, -1);
+    size_t k = 4;
+    for (size_t i = 0; i < 4; ++i)
+      if (!e[i][i].is_zero() && (k == 4 || core::abs(e[i][i]) > core::abs(e[k][k]))) k = i;
+    if (k == 4) return std::nullopt;
+    core::Mat4 p{};
+    for (size_t i = 0; i < 3; ++i)
+      p[i][3] = p[3][i] = e[k][i] * core::Rational(1, 2);
+    p[3][3] = e[k][3];
+    if (p[0][3].is_zero() && p[1][3].is_zero() && p[2][3].is_zero()) return std::nullopt;
+    return core::QuadricMatrix(p);
+  }
+  return std::nullopt;
+}
+
 certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                              const certify::AffineTopology& af, const Box& box) {
+                              const certify::AffineTopology& af, const Box& box,
+                              const QsicResult& t) {
   if (af.certified() && af.apex) {
     // Route common_apex: the lines from the apex, exact when every direction is rational (a
     // line along which the surfaces are tangent is then no multiple crossing).
@@ -371,6 +421,9 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
       return certify::lines_box_exits(*af.apex, dirs, lo, hi);
     }
   }
+  if (af.certified() && !af.plane)
+    if (const auto plane = double_conic_plane(t))
+      return exact_exits(*plane, a.is_plane() ? b : a, box);
   if (!af.certified() || !af.plane || !af.section_of) return exact_exits(a, b, box);
   const core::QuadricMatrix plane(*af.plane), other(*af.section_of);
   certify::BoxExits ex = exact_exits(plane, other, box);
@@ -476,7 +529,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
                 Box& box, bool automatic, const std::function<void(const Box&)>& retrace,
                 bool special_points_complete) {
   const certify::AffineTopology& af = out.affine;
-  out.box_exits = curve_exits(a, b, af, box);
+  out.box_exits = curve_exits(a, b, af, box, out.topology);
   for (int nudge = 1; nudge <= 3 && automatic && !out.box_exits->certified; ++nudge) {
     Box wider = box;
     for (size_t k = 0; k < 3; ++k) {
@@ -485,7 +538,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
       wider.max[k] += h * 0.0253 * nudge * static_cast<double>(3 - k);
     }
     wider = dyadic_outward(wider);
-    certify::BoxExits ex = curve_exits(a, b, af, wider);
+    certify::BoxExits ex = curve_exits(a, b, af, wider, out.topology);
     if (!ex.certified) continue;
     box = wider;
     retrace(box);
@@ -951,7 +1004,7 @@ std::optional<int> extreme_order(const core::QuadricMatrix& a, const core::Quadr
 // for the original pair: the box's exact crossings recomputed on the original pair and matched
 // again with the traced ends (the claim is about the box reported).
 void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& local) {
-  local.box_exits = curve_exits(a, b, local.affine, *local.box);
+  local.box_exits = curve_exits(a, b, local.affine, *local.box, local.topology);
   if (local.status != Status::Certified) return;
   const std::string why =
       local.box_exits->certified

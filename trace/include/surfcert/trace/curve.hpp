@@ -30,6 +30,10 @@ struct Branch {
   /// Open pieces in a box: the indices, in the exact box crossings (certify/box_exits.hpp),
   /// of the crossings its two ends were matched with (empty when not matched).
   std::vector<int> exits;
+  /// The plane n.x + d = 0 (|n| = 1) of a conic or line component, when known (not in the
+  /// JSON): a piece is cut at a box face on {face, plane, one surface}, transversal even along a
+  /// double conic, where the two surfaces are tangent and f = g = 0 on the face is singular.
+  std::optional<std::array<double, 4>> plane;
 };
 
 /// An axis-aligned box: the region in which unbounded curves are traced.
@@ -136,6 +140,12 @@ std::vector<Point3> box_face_points(const QuadricPair& q, const Box& box);
 
 /// Newton on f = g = 0, x_k = c from x (x_k is set to c). False when it does not converge.
 bool newton_on_face(const QuadricPair& q, size_t k, double c, Point3& x);
+
+/// Newton on x_k = c, n.x + d = 0 and f = 0 (or g = 0 where f's gradient is nearly normal to
+/// the plane) from x: the point of a planar component (a conic in plane) on a face. False when
+/// it does not converge.
+bool newton_on_face_in_plane(const QuadricPair& q, size_t k, double c,
+                             const std::array<double, 4>& plane, Point3& x);
 
 /// Where the segment from `in` (inside the box) to `out` first leaves the box: the curve's
 /// point on that face, by newton_on_face from the segment's crossing (y[k] = c exactly).
