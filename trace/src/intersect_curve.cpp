@@ -385,12 +385,8 @@ std::optional<core::QuadricMatrix> double_conic_plane(const QsicResult& t) {
     for (size_t i = 0; i < 4; ++i)
       if (!e[i][i].is_zero() && (k == 4 || core::abs(e[i][i]) > core::abs(e[k][k]))) k = i;
     if (k == 4) return std::nullopt;
-    core::Mat4 p{};
-    for (size_t i = 0; i < 3; ++i)
-      p[i][3] = p[3][i] = e[k][i] * core::Rational(1, 2);
-    p[3][3] = e[k][3];
-    if (p[0][3].is_zero() && p[1][3].is_zero() && p[2][3].is_zero()) return std::nullopt;
-    return core::QuadricMatrix(p);
+    if (e[k][0].is_zero() && e[k][1].is_zero() && e[k][2].is_zero()) return std::nullopt;
+    return core::QuadricMatrix(certify::plane_as_quadric({e[k][0], e[k][1], e[k][2], e[k][3]}));
   }
   return std::nullopt;
 }
