@@ -2,6 +2,7 @@
 #include "surfcert/certify/affine.hpp"
 
 #include "surfcert/certify/cone_ovals.hpp"
+#include "surfcert/certify/distance/quadratic_forms.hpp"
 
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
@@ -585,6 +586,205 @@ AffineTopology common_apex_route(const V3& apex, const Chart& ch) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Two cylinders along one rational direction d (see affine.hpp): the lines b + t d over the
+// real common points b of the sections by x_k = 0, read in that plane's coordinates
+// (x_i, x_j, w) with the chart machinery of the points at infinity (the same problem: two
+// conics of a projective plane).
+
+std::optional<V3> common_ruling(const core::QuadricMatrix& a, const core::QuadricMatrix& b) {
+  const auto ker = common_kernel(a, b, 3);
+  if (ker.empty()) return std::nullopt;
+  return V3{ker[0][0], ker[0][1], ker[0][2]};
+}
+
+// A member lambda A - B of two parallel cylinders' pencil that is a rational plane pair (the
+// planes as quadrics) or a double plane (second nullopt), found among the rational roots of
+// det(lambda FA - FB) (FA, FB: the cross-sections). When the sections touch at a rational point
+// and meet at two conjugate ones, the double root of that cubic is rational and its member is
+// the tangent line and the line through the conjugate points; when they touch at two conjugate
+// points, the member is the double line through them.
+std::optional<std::pair<core::Mat4, std::optional<core::Mat4>>>
+ruling_member(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const M3& fa,
+              const M3& fb) {
+  std::array<std::array<UPolyQ, 3>, 3> m;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      m[i][j] = UPolyQ::linear(fa[i][j], -fb[i][j]);
+  const UPolyQ det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  if (det.is_zero()) return std::nullopt;
+  for (const Rational& l : algebra::rational_roots(det)) {
+    const core::Mat4 e = core::scaled(a.matrix(), l) + core::scaled(b.matrix(), Rational(-1));
+    if (const auto planes = rational_plane_pair(e))
+      return std::make_pair(plane_as_quadric((*planes)[0]),
+                            std::optional<core::Mat4>(plane_as_quadric((*planes)[1])));
+    // A double plane: every 2x2 minor vanishes; its plane is the row of the largest diagonal.
+    size_t k = 4;
+    for (size_t i = 0; i < 4; ++i)
+      if (!e[i][i].is_zero() && (k == 4 || core::abs(e[i][i]) > core::abs(e[k][k]))) k = i;
+    if (k == 4) continue;
+    bool rank1 = true;
+    for (size_t i = 0; i < 4 && rank1; ++i)
+      for (size_t j = 0; j < 4 && rank1; ++j)
+        rank1 = (e[i][j] * e[k][k] - e[i][k] * e[k][j]).is_zero();
+    if (rank1 && !(e[k][0].is_zero() && e[k][1].is_zero() && e[k][2].is_zero()))
+      return std::make_pair(plane_as_quadric({e[k][0], e[k][1], e[k][2], e[k][3]}),
+                            std::optional<core::Mat4>());
+  }
+  return std::nullopt;
+}
+
+AffineTopology parallel_cylinders_route(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                        const V3& d) {
+  AffineTopology out;
+  out.route = "parallel_cylinders";
+  size_t k = 0;
+  for (size_t i = 1; i < 3; ++i)
+    if (core::abs(d[i]) > core::abs(d[k])) k = i;
+  const std::array<size_t, 3> idx{(k + 1) % 3, (k + 2) % 3, 3};
+  M3 fa, fb;
+  for (size_t p = 0; p < 3; ++p)
+    for (size_t q = 0; q < 3; ++q) {
+      fa[p][q] = a.matrix()[idx[p]][idx[q]];
+      fb[p][q] = b.matrix()[idx[p]][idx[q]];
+    }
+  Chart ch;
+  const ChartOutcome co = find_chart(fa, fb, ch);
+  if (co == ChartOutcome::SharedComponent) {
+    out.reason = "the cylinders share a plane along their common ruling direction: part of the "
+                 "intersection is a surface";
+    return out;
+  }
+  if (co == ChartOutcome::Failed) {
+    out.reason = "no chart of the section plane separated the lines of the parallel cylinders";
+    return out;
+  }
+  // w of the chart point (u, v, 1), as a polynomial in u where the first subresultant gives v.
+  const UPolyQ upoly = UPolyQ::linear(Rational(1), Rational(0));
+  const UPolyQ wpoly = UPolyQ(ch.t[2][0]) * upoly * ch.s11 - UPolyQ(ch.t[2][1]) * ch.s10 +
+                       UPolyQ(ch.t[2][2]) * ch.s11;
+  auto point_of = [&](const Rational& u0) {
+    const Rational v0 = ch.v_at(u0);
+    V3 x;
+    for (size_t r = 0; r < 3; ++r)
+      x[r] = ch.t[r][0] * u0 + ch.t[r][1] * v0 + ch.t[r][2];
+    return x;
+  };
+  auto as_q = [](const UPolyZ& g) {
+    std::vector<Rational> c;
+    for (long i = 0; i <= g.degree(); ++i)
+      c.emplace_back(g.coeff(i));
+    return UPolyQ::from_coeffs(c);
+  };
+  // The multiplicity of the common points at infinity of the two sections (over C): the
+  // factors of R whose points have w = 0.
+  int at_infinity = 0;
+  for (const algebra::IrreducibleFactor& fac :
+       algebra::irreducible_factors(ch.r.primitive_integer())) {
+    const UPolyZ& g = fac.poly;
+    bool on_w0 = false;
+    if (g.degree() == 1) {
+      on_w0 = point_of(-Rational(g.coeff(0)) / Rational(g.coeff(1)))[2].is_zero();
+    } else {
+      on_w0 = wpoly.rem(as_q(g)).is_zero();
+    }
+    if (on_w0) at_infinity += fac.exponent * static_cast<int>(g.degree());
+  }
+  auto to3 = [&](const Rational& xi, const Rational& xj) {
+    V3 p;
+    p[idx[0]] = xi;
+    p[idx[1]] = xj;
+    return p; // x_k = 0
+  };
+  const V3 dn = normalise(d);
+  bool irrational = false, multiple = false; // an irrational line; a line of multiplicity > 1
+  for (const Root& r : roots_of(ch)) {
+    if (r.lo == r.hi) {
+      const V3 x = point_of(r.lo);
+      if (x[2].is_zero()) {
+        // A line at infinity through d and (x_i, x_j): n . (x, y, z) = 0, n = d x e.
+        const V3 e = to3(x[0], x[1]);
+        const V3 n = normalise(
+            {d[1] * e[2] - d[2] * e[1], d[2] * e[0] - d[0] * e[2], d[0] * e[1] - d[1] * e[0]});
+        ComponentAtInfinity li;
+        li.kind = "line";
+        li.equation = n[0].to_string() + "*x + " + n[1].to_string() + "*y + " + n[2].to_string() +
+                      "*z = 0 (w = 0)";
+        out.at_infinity_only.push_back(li);
+        continue;
+      }
+      multiple = multiple || r.p.multiplicity > 1;
+      AffineTopology::RulingLine l;
+      l.base = to3(x[0] / x[2], x[1] / x[2]);
+      for (size_t c = 0; c < 3; ++c)
+        l.approx[c] = (*l.base)[c].to_double_approx();
+      out.ruling_lines.push_back(l);
+      continue;
+    }
+    // An algebraic point: at infinity only when its factor divides w (then the two sections'
+    // quadratic parts would share an irrational root pair, i.e. be proportional: a case
+    // routed to "pencil_plane" before this one; not read here).
+    if (wpoly.rem(as_q(r.factor)).is_zero()) {
+      out.reason = "an irrational line at infinity of two parallel cylinders (not analysed)";
+      out.at_infinity_only.clear();
+      out.ruling_lines.clear();
+      return out;
+    }
+    // The base point to double precision: from the root refined to 2^-120 of its size and the
+    // point there computed exactly (the unit vector r.p.approx, evaluated in doubles, put a
+    // line 10^6 out some hundred ulps off).
+    Rational lo = r.lo, hi = r.hi;
+    const Rational size = core::abs(lo) + core::abs(hi) + Rational(1);
+    algebra::refine_root_newton(r.factor, lo, hi, size * core::pow2(-120));
+    const V3 x = point_of((lo + hi) / Rational(2));
+    AffineTopology::RulingLine l;
+    const V3 base = to3(x[0] / x[2], x[1] / x[2]);
+    for (size_t c = 0; c < 3; ++c)
+      l.approx[c] = base[c].to_double_approx();
+    out.ruling_lines.push_back(l);
+    irrational = true;
+    multiple = multiple || r.p.multiplicity > 1;
+  }
+  const int n = static_cast<int>(out.ruling_lines.size());
+  const int through_d = 4 - at_infinity; // affine lines over C, with multiplicity
+  std::array<double, 3> dap{};
+  for (size_t c = 0; c < 3; ++c)
+    dap[c] = dn[c].to_double_approx();
+  if (n > 0) {
+    PointAtInfinity p;
+    p.multiplicity = through_d;
+    p.rational = true;
+    for (size_t c = 0; c < 3; ++c)
+      p.direction[c] = dn[c].to_string();
+    p.approx = unit_approx(dap);
+    out.points_at_infinity.push_back(p);
+  } else if (through_d > 0) {
+    ComponentAtInfinity pt; // conjugate lines meeting at d only
+    pt.kind = "point";
+    for (size_t c = 0; c < 3; ++c)
+      pt.direction[c] = dn[c].to_string();
+    out.at_infinity_only.push_back(pt);
+  }
+  if (irrational && multiple) {
+    // The crossings with a box then come from a rational member of the pencil that is a plane
+    // pair or a double plane (see ruling_member) cut with A: the general reading of A and B
+    // on a face sees the multiple line as a multiple crossing.
+    if (const auto m = ruling_member(a, b, fa, fb)) {
+      out.plane = m->first;
+      out.plane2 = m->second;
+      out.section_of = a.matrix();
+    }
+  }
+  out.ruling = d;
+  out.computed = true;
+  out.points_at_infinity_complete = true;
+  out.lines = out.unbounded_branches = n;
+  out.loops = out.conics = out.isolated_points = 0;
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------
 // Two planes: one line (direction n_a x n_b), none (parallel) or a surface (the same plane).
 // Written as quadrics both contain the plane at infinity too; that common part is not listed.
 
@@ -1130,6 +1330,8 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
         }
       }
     }
+    if (t.pencil == algebra::PencilKind::Degenerate)
+      if (auto d = common_ruling(a, b)) return parallel_cylinders_route(a, b, *d);
     out.reason = "the conics at infinity share a component: part of the curve lies at infinity "
                  "(not analysed)";
     return out;
@@ -1137,9 +1339,17 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   if (t.pencil == algebra::PencilKind::Degenerate && co == ChartOutcome::Ok)
     if (auto apex = common_apex(a.matrix(), b.matrix())) return common_apex_route(*apex, ch);
   if (t.status != Status::Certified || !t.morphology) {
-    // A degenerate pencil with a pair of rational planes: the union of two plane sections.
-    if (auto pp = plane_pair_route(a, b)) return *pp;
-    if (auto pp = plane_pair_route(b, a)) return *pp;
+    // A degenerate pencil with a pair of rational planes: the union of two plane sections;
+    // else (or when those are not read exactly) two cylinders along one direction.
+    std::optional<AffineTopology> pp = plane_pair_route(a, b);
+    if (!pp) pp = plane_pair_route(b, a);
+    if (pp && pp->certified()) return *pp;
+    if (t.pencil == algebra::PencilKind::Degenerate)
+      if (auto d = common_ruling(a, b)) {
+        AffineTopology pc = parallel_cylinders_route(a, b, *d);
+        if (pc.certified() || !pp) return pc;
+      }
+    if (pp) return *pp;
     out.reason = "no certified projective topology";
     return out;
   }

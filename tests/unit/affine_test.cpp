@@ -213,15 +213,24 @@ TEST(Affine, SharedComponentAtInfinityIsUndecided) {
   EXPECT_FALSE(t.reason.empty());
 }
 
-TEST(Affine, PlanePairsNotReadExactlyStayUndecided) {
-  // (x - 1) y = 0: the planes meet along x = 1, y = 0, a ruling of the cylinder that both
-  // sections hold (a line counted twice); x^2 = 2: planes over Q(sqrt 2), not split here.
-  for (const auto& [a, b] : {std::pair<const char*, const char*>{"(x - 1)*y = 0", "x^2 + y^2 = 1"},
-                             {"x^2 = 2", "x^2 + y^2 = 1"}}) {
-    const auto t = affine(q(a), q(b));
-    EXPECT_FALSE(t.certified()) << a << " | " << b;
-    const auto u = affine(q(b), q(a));
-    EXPECT_FALSE(u.certified()) << b << " | " << a;
+TEST(Affine, PlanePairsAlongACylinder) {
+  // Plane pairs the plane-pair route does not read, read as parallel cylinders (both
+  // singular at (0 : 0 : 1 : 0)): (x - 1) y = 0, whose planes meet along x = 1, y = 0, a
+  // ruling of the cylinder that both sections hold (a line counted twice; with y = 0's other
+  // ruling x = -1: two lines); x^2 = 2, planes over Q(sqrt 2) missing the cylinder (four
+  // conjugate lines x = +-sqrt 2, y = +-i meeting only at (0 : 0 : 1) at infinity).
+  for (const auto& [a, b, lines] :
+       {std::tuple<const char*, const char*, int>{"(x - 1)*y = 0", "x^2 + y^2 = 1", 2},
+        {"x^2 = 2", "x^2 + y^2 = 1", 0}}) {
+    for (bool swap : {false, true}) {
+      const auto t = swap ? affine(q(b), q(a)) : affine(q(a), q(b));
+      ASSERT_TRUE(t.certified()) << a << " | " << b << " " << t.reason;
+      EXPECT_EQ(t.route, "parallel_cylinders");
+      EXPECT_EQ(*t.lines, lines) << a;
+      EXPECT_EQ(*t.unbounded_branches, lines) << a;
+      EXPECT_EQ(t.points_at_infinity.size(), lines ? 1u : 0u) << a;
+      EXPECT_EQ(t.at_infinity_only.size(), lines ? 0u : 1u) << a;
+    }
   }
   // A real point at infinity no affine branch reaches lies at infinity only; one that a
   // branch reaches does not.

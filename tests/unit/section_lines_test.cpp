@@ -43,10 +43,6 @@ struct Case {
   std::function<double(const Local&)> off_lines;
 };
 
-double norm3(double x, double y, double z) {
-  return std::sqrt(x * x + y * y + z * z);
-}
-
 const std::vector<Case>& cases() {
   static const std::vector<Case> c = {
       {"9*x^2 + 4*y^2 - 36*z^2 = 36", "x = 2*z", 2,
@@ -82,52 +78,11 @@ TEST(SectionLines, DrawnOnceEachInClosedForm) {
         EXPECT_EQ(*r.affine.unbounded_branches, cs.lines) << ctx;
         if (!certified_or_undecided(r, true, ctx)) continue;
         ++certified;
-        ASSERT_EQ(static_cast<int>(r.branches.size()), cs.lines) << ctx;
-        ASSERT_TRUE(r.box && r.box_exits && r.box_exits->certified) << ctx;
-        ASSERT_EQ(static_cast<int>(r.box_exits->points.size()), 2 * cs.lines) << ctx;
-        const double size = r.box->diagonal();
-        const double near = 1e-12 * size + 0x1p-48 * ps.offset();
-        std::set<int> used;
-        std::vector<std::array<trace::Point3, 2>> seen; // each line's ends
-        for (const auto& br : r.branches) {
-          EXPECT_EQ(br.kind, "line") << ctx;
-          EXPECT_FALSE(br.closed) << ctx;
-          ASSERT_GE(br.points.size(), 2u) << ctx;
-          ASSERT_EQ(br.exits.size(), 2u) << ctx;
-          used.insert(br.exits.begin(), br.exits.end());
-          const trace::Point3 p0 = br.points.front(), p1 = br.points.back();
-          const double len = norm3(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
-          ASSERT_GT(len, 1e-3 * size) << ctx;
-          for (const auto& p : br.points) {
-            // straight: distance from the chord through the ends
-            const double t = ((p[0] - p0[0]) * (p1[0] - p0[0]) + (p[1] - p0[1]) * (p1[1] - p0[1]) +
-                              (p[2] - p0[2]) * (p1[2] - p0[2])) /
-                             (len * len);
-            const double dx = p[0] - p0[0] - t * (p1[0] - p0[0]),
-                         dy = p[1] - p0[1] - t * (p1[1] - p0[1]),
-                         dz = p[2] - p0[2] - t * (p1[2] - p0[2]);
-            EXPECT_LE(norm3(dx, dy, dz), near) << ctx;
-            EXPECT_LE(geometric_residual(a, p), near) << ctx;
-            EXPECT_LE(geometric_residual(b, p), near) << ctx;
-            if (cs.off_lines) {
-              EXPECT_LE(cs.off_lines(ps.local(p)), 1e-9 * size) << ctx;
-            }
-          }
-          for (const auto& e : seen) {
-            // distinct: the other line's ends are not both on this one
-            const auto off = [&](const trace::Point3& x) {
-              const double t =
-                  ((x[0] - p0[0]) * (p1[0] - p0[0]) + (x[1] - p0[1]) * (p1[1] - p0[1]) +
-                   (x[2] - p0[2]) * (p1[2] - p0[2])) /
-                  (len * len);
-              return norm3(x[0] - p0[0] - t * (p1[0] - p0[0]), x[1] - p0[1] - t * (p1[1] - p0[1]),
-                           x[2] - p0[2] - t * (p1[2] - p0[2]));
-            };
-            EXPECT_GT(std::max(off(e[0]), off(e[1])), 1e-6 * size) << ctx << ": a line twice";
-          }
-          seen.push_back({p0, p1});
-        }
-        EXPECT_EQ(static_cast<int>(used.size()), 2 * cs.lines) << ctx;
+        ASSERT_TRUE(r.box) << ctx;
+        std::function<double(const trace::Point3&)> off;
+        if (cs.off_lines) off = [&](const trace::Point3& p) { return cs.off_lines(ps.local(p)); };
+        surfcert::testing::expect_open_pieces(r, a, b, cs.lines, "line", ctx, off,
+                                              1e-9 * r.box->diagonal());
       }
   EXPECT_EQ(tried, 40);
   EXPECT_EQ(certified, 40);
@@ -163,19 +118,6 @@ TEST(SectionLines, TangentSectionFarOutAndParabolasAtSmallScale) {
       const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
       ASSERT_TRUE(r.affine.certified()) << ctx;
       ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
-      ASSERT_EQ(static_cast<int>(r.branches.size()), pr.pieces) << ctx;
-      ASSERT_TRUE(r.box_exits && r.box_exits->certified) << ctx;
-      std::set<int> used;
-      for (const auto& br : r.branches) {
-        EXPECT_EQ(br.kind, pr.kind) << ctx;
-        ASSERT_EQ(br.exits.size(), 2u) << ctx;
-        used.insert(br.exits.begin(), br.exits.end());
-        for (const auto& p : br.points) {
-          const double ulps = 0x1p-46 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2]));
-          EXPECT_LE(geometric_residual(a, p), 1e-12 * r.box->diagonal() + ulps) << ctx;
-          EXPECT_LE(geometric_residual(b, p), 1e-12 * r.box->diagonal() + ulps) << ctx;
-        }
-      }
-      EXPECT_EQ(static_cast<int>(used.size()), 2 * pr.pieces) << ctx;
+      surfcert::testing::expect_open_pieces(r, a, b, pr.pieces, pr.kind, ctx);
     }
 }

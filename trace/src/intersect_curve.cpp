@@ -369,15 +369,17 @@ certify::BoxExits exact_exits(const core::QuadricMatrix& a, const core::QuadricM
 // parallel cylinders touching along a ruling). Route "plane_pair": the crossings of the two
 // sections together, certified when each is and no crossing of one may be one of the other
 // (disjoint enclosures: the curve is smooth there).
-// The plane of a curve that is one double conic (the surfaces tangent along it): the rank-1
-// member at a rational root, exactly (the row of its largest diagonal entry), as a quadric;
-// nullopt otherwise. Its crossings with a face are double roots of f = g = 0 there ("a
-// multiple crossing"), simple ones of that plane and either surface.
+// The plane of a curve that is one double conic or two double lines crossing (the surfaces
+// tangent along it): the rank-1 member at a rational root, exactly (the row of its largest
+// diagonal entry), as a quadric; nullopt otherwise. Its crossings with a face are double
+// roots of f = g = 0 there ("a multiple crossing"), simple ones of that plane and either
+// surface (as a set the curve is A ∩ B = A ∩ (B - lambda A) = A ∩ plane).
 std::optional<core::QuadricMatrix> double_conic_plane(const QsicResult& t) {
   if (t.status != Status::Certified || !t.morphology) return std::nullopt;
   const certify::Morphology& m = *t.morphology;
-  if (m.conics != 1 || m.double_components != 1 || m.loops || m.lines || m.cubics)
-    return std::nullopt;
+  const bool conic = m.conics == 1 && m.double_components == 1 && !m.lines;
+  const bool line_pair = m.lines == 2 && m.double_components == 2 && !m.conics;
+  if (!(conic || line_pair) || m.loops || m.cubics) return std::nullopt;
   for (const auto& r : t.facts.real_roots) {
     if (r.rank != 1 || !r.rational_value) continue;
     const core::Mat4 e = core::scaled(t.facts.a, *r.rational_value) + core::scaled(t.facts.b, -1);
@@ -415,6 +417,30 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
         hi[k] = core::Rational::exact_from_double(box.max[k]);
       }
       return certify::lines_box_exits(*af.apex, dirs, lo, hi);
+    }
+  }
+  if (af.certified() && af.ruling) {
+    // Route parallel_cylinders: the lines b + t d, exact when every base point is rational (a
+    // line along which the cylinders touch is then no multiple crossing); parallel lines
+    // with distinct base points cross the faces at distinct points. Otherwise A and B, or a
+    // plane pair of their pencil cut with A (af.plane, when a line is multiple), below.
+    std::array<core::Rational, 3> lo, hi;
+    for (size_t k = 0; k < 3; ++k) {
+      lo[k] = core::Rational::exact_from_double(box.min[k]);
+      hi[k] = core::Rational::exact_from_double(box.max[k]);
+    }
+    bool rational = true;
+    for (const auto& l : af.ruling_lines)
+      rational = rational && l.base.has_value();
+    if (rational) {
+      certify::BoxExits all;
+      all.certified = true;
+      for (const auto& l : af.ruling_lines) {
+        certify::BoxExits one = certify::lines_box_exits(*l.base, {*af.ruling}, lo, hi);
+        if (!one.certified) return one;
+        all.points.insert(all.points.end(), one.points.begin(), one.points.end());
+      }
+      return all;
     }
   }
   if (af.certified() && !af.plane)
@@ -603,15 +629,24 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
 }
 
 // Degenerate pencils whose affine curve is made of lines: a plane section (a plane along a
-// cylinder's rulings or through a cone's apex, equal parallel cylinders, two planes) or two
-// cones with a common apex: the lines in closed form from exact data, clipped to the box,
-// checked like any box.
+// cylinder's rulings or through a cone's apex, equal parallel cylinders, two planes), two
+// cones with a common apex, or two cylinders along one direction: the lines in closed form
+// from exact data, clipped to the box, checked like any box.
 bool trace_section_lines(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                          CurveResult& out, const TraceOptions& opt) {
   const certify::AffineTopology& af = out.affine;
   if (!af.certified()) return false;
   std::optional<SectionComponents> sec;
-  if (af.plane && af.section_of) {
+  if (af.ruling) {
+    // Parallel cylinders: the lines from their base points along the common ruling (a plane
+    // pair of their pencil, when one is kept, serves the box's crossings only).
+    sec.emplace();
+    Point3 d;
+    for (size_t k = 0; k < 3; ++k)
+      d[k] = (*af.ruling)[k].to_double_approx();
+    for (const auto& l : af.ruling_lines)
+      sec->lines.push_back({l.approx, d});
+  } else if (af.plane && af.section_of) {
     sec = section_lines(*af.plane, *af.section_of);
     if (sec && af.plane2) { // route plane_pair: the second plane's section too
       const auto sec2 = section_lines(*af.plane2, *af.section_of);
@@ -1097,7 +1132,8 @@ std::optional<Point3> own_centre(const core::QuadricMatrix& s) {
 // by a power of two: its counts and its points at infinity (directions) do not move; routes
 // that hold coordinates (a plane, a section, an apex, a cubic and a line) are read again.
 const certify::AffineTopology* movable(const certify::AffineTopology& af) {
-  const bool coordinates = af.plane || af.plane2 || af.section_of || af.apex || af.cubic_line;
+  const bool coordinates =
+      af.plane || af.plane2 || af.section_of || af.apex || af.ruling || af.cubic_line;
   return coordinates ? nullptr : &af;
 }
 

@@ -35,7 +35,17 @@
 // none; the apex is read off whichever quadric is a cone, the other may be a plane pair or a
 // cylinder through it). A rational plane pair in a degenerate pencil (route "plane_pair": x y
 // = 0 or x^2 = 1/4 against a cylinder or a cone): the union of the two plane sections, when it
-// is read off them exactly (see plane_pair_route). A twisted cubic and a line (cases 10-12,
+// is read off them exactly (see plane_pair_route). Two cylinders (or plane pairs) along one
+// rational direction d, both matrices vanishing on (d, 0) (a degenerate pencil, route
+// "parallel_cylinders": an elliptic against a parabolic cylinder, pipes of unequal shapes with
+// parallel axes): f(x + t d) = f(x) on each, so the curve is the union of the lines b + t d
+// over the real common points b of the two sections by the plane x_k = 0 (d_k != 0), exactly
+// (the resultant of the two conics of that plane, roots isolated exactly); a common point of
+// the sections at infinity is a line at infinity (listed in at_infinity_only, kind "line"), and
+// every affine line meets infinity at d (one point at infinity, multiplicity the number of
+// affine lines over C with multiplicity; d alone at infinity, kind "point", when none of them
+// is real). The two sections sharing a line (the cylinders share a plane: part of the
+// intersection is a surface) is not certified. A twisted cubic and a line (cases 10-12,
 // route "cubic_line"): the counts come from
 // their exact parametrisations (certify/cubic_line.hpp): one unbounded branch per distinct
 // real point at infinity of the cubic, one for the line; when the line lies at infinity (the
@@ -81,7 +91,7 @@ struct ComponentAtInfinity {
 struct AffineTopology {
   bool computed = false; ///< false: nothing established (see reason)
   std::string route;     ///< "pencil", "plane_section", "pencil_plane", "plane_plane",
-                         ///< "plane_pair", "common_apex" or "cubic_line"
+                         ///< "plane_pair", "common_apex", "parallel_cylinders" or "cubic_line"
   std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
   std::vector<PointAtInfinity> points_at_infinity;
   bool points_at_infinity_complete = false;
@@ -96,6 +106,15 @@ struct AffineTopology {
   /// Route "common_apex" (a degenerate pencil of two cones with one affine apex): the apex;
   /// the curve is the lines from it along the points at infinity (the apex alone if none).
   std::optional<std::array<core::Rational, 3>> apex;
+  /// Route "parallel_cylinders": the common ruling direction d and the lines' base points b in
+  /// the plane x_k = 0 (the curve is the lines b + t d): exact when rational, else (an
+  /// algebraic common point of the two sections) to double precision only.
+  std::optional<std::array<core::Rational, 3>> ruling;
+  struct RulingLine {
+    std::optional<std::array<core::Rational, 3>> base; ///< exact base point, when rational
+    std::array<double, 3> approx{};                    ///< base point, to double
+  };
+  std::vector<RulingLine> ruling_lines;
   /// Route "cubic_line": the exact line and cubic.
   std::optional<CubicAndLine> cubic_line;
   bool certified() const {
