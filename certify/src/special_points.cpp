@@ -6,6 +6,8 @@
 
 #include <flint/fmpq_mat.h>
 
+#include <optional>
+
 namespace surfcert::certify {
 
 using algebra::QuadraticNumber;
@@ -29,6 +31,51 @@ QuadraticNumber qdiv(const QuadraticNumber& x, const QuadraticNumber& y, const I
   Rational n = y.a * y.a - y.b * y.b * dd; // nonzero: y != 0 and d is not a square (or b = 0)
   QuadraticNumber p = qmul(x, conj, d);
   return {p.a / n, p.b / n, d};
+}
+
+QuadraticNumber qadd(const QuadraticNumber& x, const QuadraticNumber& y, int sign = 1) {
+  return {x.a + Rational(sign) * y.a, x.b + Rational(sign) * y.b, x.d};
+}
+
+// The kernel point of theta A - B (rank 3, theta = a + b sqrt d) when it lies on Q_A: the
+// first nonzero row of the adjugate (its rows span the kernel of a rank-3 symmetric matrix).
+std::optional<QVec4> quadratic_vertex(const algebra::PencilFacts& f, const QuadraticNumber& th) {
+  const Integer& d = th.d;
+  std::array<std::array<QuadraticNumber, 4>, 4> m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = {th.a * f.a[i][j] - f.b[i][j], th.b * f.a[i][j], d};
+  auto minor = [&](size_t r, size_t c) { // det of m without row r and column c
+    std::array<size_t, 3> rs{}, cs{};
+    for (size_t i = 0, k = 0; i < 4; ++i)
+      if (i != r) rs[k++] = i;
+    for (size_t j = 0, k = 0; j < 4; ++j)
+      if (j != c) cs[k++] = j;
+    auto e = [&](size_t i, size_t j) { return m[rs[i]][cs[j]]; };
+    auto m2 = [&](size_t i1, size_t j1, size_t i2, size_t j2) {
+      return qadd(qmul(e(i1, j1), e(i2, j2), d), qmul(e(i1, j2), e(i2, j1), d), -1);
+    };
+    QuadraticNumber t = qmul(e(0, 0), m2(1, 1, 2, 2), d);
+    t = qadd(t, qmul(e(0, 1), m2(1, 0, 2, 2), d), -1);
+    return qadd(t, qmul(e(0, 2), m2(1, 0, 2, 1), d));
+  };
+  for (size_t r = 0; r < 4; ++r) {
+    QVec4 x;
+    bool zero = true;
+    for (size_t c = 0; c < 4; ++c) {
+      x[c] = minor(r, c);
+      if ((r + c) % 2) x[c] = {-x[c].a, -x[c].b, d};
+      zero = zero && x[c].a.is_zero() && x[c].b.is_zero();
+    }
+    if (zero) continue;
+    QuadraticNumber q{Rational(0), Rational(0), d}; // x^T A x
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        q = qadd(q, qmul(qmul(x[i], x[j], d), {f.a[i][j], Rational(0), d}, d));
+    if (!(q.a.is_zero() && q.b.is_zero())) return std::nullopt;
+    return x;
+  }
+  return std::nullopt;
 }
 
 SpecialPoint make_point(const std::string& kind, const QVec4& x, const Integer& d) {
@@ -116,6 +163,15 @@ std::vector<SpecialPoint> special_points(const algebra::PencilFacts& f, int tu_c
   for (const auto& root : f.real_roots) {
     if (root.multiplicity < 2) continue;
     if (!root.rational_value) {
+      // A conjugate pair of multiple roots theta = a +- b sqrt(d): where theta A - B has rank
+      // 3 its kernel (a row of its adjugate, over Q(sqrt d)) is the singular point (a
+      // cubic's crossings with its secant line, case 10); a kernel line would need a square
+      // root over Q(sqrt d): not computed.
+      if (root.quadratic && root.rank == 3) {
+        if (auto x = quadratic_vertex(f, *root.quadratic))
+          out.push_back(make_point(vertex_kind(tu_case), *x, root.quadratic->d));
+        continue;
+      }
       complete = false;
       continue;
     }

@@ -14,6 +14,7 @@
 #include "support/canonical.hpp"
 #include "support/distance_checks.hpp"
 #include "support/fixtures.hpp"
+#include "support/posed_pairs.hpp"
 
 #include "surfcert/certify/cubic_line.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
@@ -100,8 +101,10 @@ void expect_pieces(const trace::CurveResult& r, const Mat4& a, const Mat4& b,
     else
       EXPECT_EQ(br.kind, "cubic") << ctx;
     EXPECT_EQ(br.exits.size(), 2u) << ctx;
-    for (const auto& p : br.points)
-      EXPECT_LE(geometric_residual(a, b, p), 1e-12 * diag) << ctx;
+    for (const auto& p : br.points) // (plus a few ulps of the coordinates, for far poses)
+      EXPECT_LE(geometric_residual(a, b, p),
+                1e-12 * diag + 0x1p-46 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2])))
+          << ctx;
   }
   EXPECT_EQ(lines, 1) << ctx;
   EXPECT_EQ(2 * open, static_cast<int>(r.box_exits->points.size())) << ctx;
@@ -248,4 +251,43 @@ TEST(CubicLine, LineAtInfinity) {
       }
     }
   }
+}
+
+TEST(CubicLine, CrossingsAtConjugateRoots) {
+  // x^2 + y^2 - z^2 = 1 and 12xy - 4xz + 6x - 4y - 4z = 6 share the line x = 1, y = z; along it
+  // grad A = (2, 2y, -2y) and grad B = (8y + 6, 8, -8) are parallel where 4y^2 + 3y - 4 = 0,
+  // y = (-3 +- sqrt 73) / 8: the cubic's two crossings with its secant line (case 10), at the
+  // members of the conjugate double roots of f. Those points were not computed (irrational
+  // roots), so every such pair was undecided. Points at infinity by hand: x (3y - z) = 0 on the
+  // cone x^2 + y^2 = z^2 gives (0 : 1 : +-1) and (+-2 sqrt 2 : 1 : 3); (0 : 1 : 1) is the
+  // line's, so the cubic has three unbounded arcs and the curve four unbounded branches.
+  const std::string sa = "x^2 + y^2 - z^2 = 1", sb = "12*x*y - 4*x*z + 6*x - 4*y - 4*z = 6";
+  const double ys[2] = {(-3 - std::sqrt(73.0)) / 8, (-3 + std::sqrt(73.0)) / 8};
+  int certified = 0;
+  for (const auto& ps : surfcert::testing::five_poses())
+    for (bool swapped : {false, true}) {
+      const std::string ctx = sa + " | " + sb + ", " + ps.name("-", swapped);
+      const auto [a, b] = surfcert::testing::posed_pair(sa, sb, ps, swapped);
+      const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
+      ASSERT_EQ(r.topology.tu_case, 10) << ctx;
+      EXPECT_TRUE(r.topology.special_points_complete) << ctx;
+      ASSERT_EQ(r.topology.special_points.size(), 2u) << ctx;
+      for (const auto& sp : r.topology.special_points) {
+        EXPECT_TRUE(sp.exact) << ctx;
+        EXPECT_NE((sp.coords[0] + sp.coords[1] + sp.coords[2]).find("sqrt(73)"), std::string::npos)
+            << ctx;
+        const auto l = ps.local(sp.approx);
+        const double off = std::min(std::fabs(l[1] - ys[0]), std::fabs(l[1] - ys[1]));
+        EXPECT_LE(std::fabs(l[0] - 1) + std::fabs(l[1] - l[2]) + off, 1e-9 * (1 + ps.offset()))
+            << ctx;
+      }
+      ASSERT_TRUE(r.affine.certified()) << ctx;
+      EXPECT_EQ(*r.affine.loops, 0) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, 4) << ctx;
+      EXPECT_EQ(*r.affine.lines, 1) << ctx;
+      if (!surfcert::testing::certified_or_undecided(r, true, ctx)) continue;
+      ++certified;
+      expect_pieces(r, a.matrix(), b.matrix(), ctx);
+    }
+  EXPECT_EQ(certified, 10);
 }

@@ -5,8 +5,10 @@
 // computed over Q: rank 3 gives one point (cone vertex: node, acnode, cusp, crossing of two
 // lines), rank 2 a line meeting Q_A in at most two points (crossings of conics, contact
 // points, vertices of line quadrilaterals), rank 1 a plane whose pole is the crossing point
-// of two double lines. Coordinates are rational or in Q(sqrt d). Points from roots in
-// Q(sqrt d) (conjugate double roots) are not computed: `complete` is then set to false.
+// of two double lines. Coordinates are rational or in Q(sqrt d). At conjugate multiple roots
+// in Q(sqrt d) only a rank-3 member's kernel point is computed (over Q(sqrt d): the crossings
+// of a twisted cubic with its secant line, case 10); other points there (a kernel line's
+// points would need a square root over Q(sqrt d)) are not, and `complete` is then false.
 #pragma once
 
 #include "surfcert/certify/qsic.hpp"
