@@ -6,6 +6,8 @@
 // x^2 + y^2 = z^2 and x^2 + z^2 = 4 y^2 in four lines through the apex with 2 x^2 = 3 y^2;
 // a/b swapped and rational rigid motions (counts invariant, points moved alike).
 #include "support/distance_checks.hpp"
+#include "support/posed_pairs.hpp"
+#include "support/trace_boxes.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -141,4 +143,44 @@ TEST(DegenerateTrace, CoincidentPlanesAreNotACurve) {
   auto r = trace::intersect_curve(q("x = 1"), q("2x = 2"), Mode::Exact, {});
   EXPECT_NE(r.status, certify::Status::Certified);
   EXPECT_FALSE(r.affine.certified());
+}
+
+TEST(DegenerateTrace, ParabolicCylinderCutAcrossItsRulings) {
+  // y = x^2 against a plane not along its rulings (z): the pencil is degenerate (every member
+  // singular, with no common singular point), the affine curve the plane's parabola. It was
+  // certified as one conic and one unbounded branch but never drawn (undecided). Closed
+  // forms: in the plane z = 2 the parabola y = x^2; in x + y + z = 1, z = 1 - x - x^2.
+  struct Case {
+    std::string plane;
+    std::function<double(const std::array<double, 3>&)> off; // from the closed form
+  };
+  const Case cases[] = {{"z = 2",
+                         [](const std::array<double, 3>& l) {
+                           return std::fabs(l[2] - 2) + std::fabs(l[1] - l[0] * l[0]);
+                         }},
+                        {"x + y + z = 1", [](const std::array<double, 3>& l) {
+                           return std::fabs(l[1] - l[0] * l[0]) +
+                                  std::fabs(l[2] - (1 - l[0] - l[1]));
+                         }}};
+  int certified = 0;
+  for (const auto& cs : cases)
+    for (const auto& ps : surfcert::testing::five_poses())
+      for (bool swapped : {false, true}) {
+        const std::string ctx = "y = x^2 | " + cs.plane + ", " + ps.name("-", swapped);
+        const auto [a, b] = surfcert::testing::posed_pair("y = x^2", cs.plane, ps, swapped);
+        const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
+        ASSERT_TRUE(r.affine.certified()) << ctx;
+        EXPECT_EQ(*r.affine.conics, 1) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, 1) << ctx;
+        EXPECT_EQ(*r.affine.loops, 0) << ctx;
+        if (!surfcert::testing::certified_or_undecided(r, true, ctx)) continue;
+        ++certified;
+        ASSERT_TRUE(r.box) << ctx;
+        // Near the vertex the parabola is within 1e-9 of the box of its closed form; farther
+        // out its slope 2x multiplies a point's rounding.
+        surfcert::testing::expect_open_pieces(
+            r, a, b, 1, "conic", ctx, [&](const trace::Point3& p) { return cs.off(ps.local(p)); },
+            1e-9 * r.box->diagonal() * (1 + r.box->diagonal()) + 0x1p-40 * ps.offset());
+      }
+  EXPECT_EQ(certified, 20);
 }

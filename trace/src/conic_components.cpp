@@ -542,6 +542,10 @@ bool same_plane(const V4& p, const V4& q) {
   return std::fabs(dp - dq) <= 1e-12 * std::max(std::fabs(dp), std::fabs(dq));
 }
 
+// The branches of the collected conics: open ones sampled past the box, every one at the
+// tolerance's spacing, each point corrected onto the surfaces (defined below).
+std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const TraceOptions& opt);
+
 } // namespace
 
 std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
@@ -623,6 +627,23 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
       }
     }
   }
+  return sampled_branches(std::move(conics), opt);
+}
+
+std::vector<Branch> section_branches(const core::Mat4& plane, const core::QuadricMatrix& other,
+                                     const TraceOptions& opt) {
+  const M4 q = normalised(to_double(other.matrix()));
+  // The plane n . x + d = 0 written as a quadric holds n / 2 in its last column.
+  const V4 p{(core::Rational(2) * plane[0][3]).to_double_approx(),
+             (core::Rational(2) * plane[1][3]).to_double_approx(),
+             (core::Rational(2) * plane[2][3]).to_double_approx(), plane[3][3].to_double_approx()};
+  return sampled_branches(conics_in_plane(p, q, q, false, false), opt);
+}
+
+namespace {
+
+std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const TraceOptions& opt) {
+  std::vector<Branch> out;
   if (conics.empty()) return out;
   if (opt.box) {
     // Open conics reach beyond the box: every point at parameter t_max is farther from the
@@ -703,5 +724,7 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
   }
   return out;
 }
+
+} // namespace
 
 } // namespace surfcert::trace

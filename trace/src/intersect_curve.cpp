@@ -742,19 +742,27 @@ void trace_cubic_line(const core::QuadricMatrix& a, const core::QuadricMatrix& b
   settle_box(a, b, out, box, !opt.box, trace_at, t.special_points_complete);
 }
 
-// Non-ellipsoid pairs: the curve inside a box, checked against the affine topology.
+// Non-ellipsoid pairs: the curve inside a box, checked against the affine topology. With
+// `section` (a degenerate pencil whose curve is one plane's proper conic, as a plane across a
+// parabolic cylinder's rulings: no morphology) the conic is that plane's section of the
+// other quadric; otherwise the conics come from the pencil's singular members.
 void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
-                  const TraceOptions& opt) {
+                  const TraceOptions& opt,
+                  const std::optional<std::pair<core::Mat4, core::Mat4>>& section = std::nullopt) {
   const QsicResult& t = out.topology;
   const certify::AffineTopology& af = out.affine;
-  const Morphology& m = *t.morphology;
-  if (m.cubics > 0) {
+  if (!section && t.morphology->cubics > 0) {
     trace_cubic_line(a, b, out, opt);
     return;
   }
+  auto conic_branches_at = [&](const TraceOptions& o) {
+    return section ? section_branches(section->first, core::QuadricMatrix(section->second), o)
+                   : conic_branches(a, b, t.facts, o, lines_only(t));
+  };
   QuadricPair q(a, b);
   std::vector<Point3> singular = split_special_points(t, out.isolated_points);
-  const bool curve_by_conics = m.conics > 0 || m.lines > 0 || m.cubics > 0;
+  const bool curve_by_conics =
+      section || t.morphology->conics > 0 || t.morphology->lines > 0 || t.morphology->cubics > 0;
   std::vector<Branch> conics;
   std::vector<V> sizing = out.isolated_points;
   sizing.insert(sizing.end(), singular.begin(), singular.end());
@@ -766,7 +774,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   stops.insert(stops.end(), out.isolated_points.begin(), out.isolated_points.end());
   std::vector<V> starts;
   if (curve_by_conics) {
-    conics = conic_branches(a, b, t.facts, opt, lines_only(t));
+    conics = conic_branches_at(opt);
     for (const auto& br : conics) {
       if (br.closed)
         sizing.insert(sizing.end(), br.points.begin(), br.points.end());
@@ -824,7 +832,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
     if (curve_by_conics) {
       // Open conics sampled far enough to leave this box. (Closed ones do not depend on the
       // box: the conics sampled for the sizing are reused when all are closed.)
-      if (!all_closed) conics = conic_branches(a, b, t.facts, bopt, lines_only(t));
+      if (!all_closed) conics = conic_branches_at(bopt);
       for (const auto& br : conics)
         for (auto& piece : br.closed ? clip_closed_to_box(q, br, in) : clip_to_box(q, br, in))
           out.branches.push_back(std::move(piece));
@@ -1295,9 +1303,15 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
       CurveResult scaled = trace_rescaled(a, b, std::move(out), opt, *k, depth);
       return scaled.status == Status::Certified ? scaled : here;
     }
-  if (t.pencil != algebra::PencilKind::Regular && t.pencil != algebra::PencilKind::Coincident &&
-      trace_section_lines(a, b, out, opt))
-    return out;
+  if (t.pencil != algebra::PencilKind::Regular && t.pencil != algebra::PencilKind::Coincident) {
+    if (trace_section_lines(a, b, out, opt)) return out;
+    const certify::AffineTopology& af = out.affine;
+    if (af.certified() && af.plane && af.section_of && !af.plane2 && *af.conics == 1) {
+      // One plane's proper conic (a plane across a parabolic cylinder's rulings).
+      trace_in_box(a, b, out, opt, std::make_pair(*af.plane, *af.section_of));
+      return out;
+    }
+  }
   if (t.status != Status::Certified || t.pencil != algebra::PencilKind::Regular || !t.morphology) {
     out.status = t.status == Status::Certified ? Status::Undecided : t.status;
     out.note = t.pencil == algebra::PencilKind::Coincident

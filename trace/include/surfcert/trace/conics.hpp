@@ -58,4 +58,10 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
                                    const algebra::PencilFacts& facts, const TraceOptions& opt,
                                    bool lines_only = false);
 
+/// The section of `other` by one exact plane (written as a quadric: n / 2 in its last column,
+/// d in its corner) as branches, as conic_branches draws each plane's conic: for degenerate
+/// pencils whose curve is that plane section (a plane across a parabolic cylinder's rulings).
+std::vector<Branch> section_branches(const core::Mat4& plane, const core::QuadricMatrix& other,
+                                     const TraceOptions& opt);
+
 } // namespace surfcert::trace
