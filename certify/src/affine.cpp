@@ -1078,15 +1078,23 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
   const auto& n2 = (*planes)[1];
   AffineTopology sec[2];
   std::vector<PointAtInfinity> dirs[2]; // every real point at infinity of each section
+  std::vector<ComponentAtInfinity> at_infinity_lines;
   for (size_t k = 0; k < 2; ++k) {
     const core::Mat4 pm = plane_as_quadric((*planes)[k]);
     const auto chart = algebra::plane_chart(pm);
     if (!chart) return std::nullopt; // the plane at infinity: not a pair of affine planes
     const M3 cm = algebra::restrict_form(quad.matrix(), *chart);
     if (cm[0][0].is_zero() && cm[0][1].is_zero() && cm[1][1].is_zero()) {
-      out.reason = "a plane of the pair meets the other quadric in its line at infinity (a "
-                   "component at infinity; not analysed)";
-      return out;
+      // The plane's line at infinity lies on the other quadric: a component of the curve at
+      // infinity (listed apart); the plane's affine section is a line or nothing.
+      const V3 n = normalise({(*planes)[k][0], (*planes)[k][1], (*planes)[k][2]});
+      ComponentAtInfinity li;
+      li.kind = "line";
+      li.equation = n[0].to_string() + "*x + " + n[1].to_string() + "*y + " + n[2].to_string() +
+                    "*z = 0 (w = 0)";
+      // (Parallel planes share their line at infinity: listed once.)
+      if (at_infinity_lines.empty() || at_infinity_lines[0].equation != li.equation)
+        at_infinity_lines.push_back(li);
     }
     dirs[k] = section_directions(cm, *chart);
     sec[k] = plane_route(core::QuadricMatrix(pm), quad);
@@ -1169,6 +1177,8 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
     c.direction = pt.direction;
     out.at_infinity_only.push_back(c);
   }
+  out.at_infinity_only.insert(out.at_infinity_only.end(), at_infinity_lines.begin(),
+                              at_infinity_lines.end());
   if (open) {
     AffineTopology undecided;
     undecided.route = "plane_pair";
@@ -1332,6 +1342,23 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     }
     if (t.pencil == algebra::PencilKind::Degenerate)
       if (auto d = common_ruling(a, b)) return parallel_cylinders_route(a, b, *d);
+    if (t.status == Status::Certified && t.pencil == algebra::PencilKind::Regular) {
+      // A rational plane pair in the pencil (z = xy against z = xy + (x - 1)(y + z - 2), whose
+      // member A - B is one; x^2 = 1/4 against z = xy): the curve is the other quadric cut by
+      // its two planes, read as the plane-pair route reads it.
+      std::vector<std::pair<core::Mat4, const core::QuadricMatrix*>> pairs{{a.matrix(), &b},
+                                                                           {b.matrix(), &a}};
+      for (const auto& r : t.facts.real_roots)
+        if (r.rank == 2 && r.rational_value)
+          pairs.emplace_back(core::scaled(a.matrix(), *r.rational_value) +
+                                 core::scaled(b.matrix(), Rational(-1)),
+                             &a);
+      for (const auto& [pm, quad] : pairs) {
+        if (quad->is_plane()) continue;
+        if (auto pp = plane_pair_route(core::QuadricMatrix(pm), *quad); pp && pp->certified())
+          return *pp;
+      }
+    }
     out.reason = "the conics at infinity share a component: part of the curve lies at infinity "
                  "(not analysed)";
     return out;

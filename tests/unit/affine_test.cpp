@@ -207,10 +207,21 @@ TEST(Affine, MultiplicitiesOfRealPointsAtInfinity) {
 }
 
 // Where the exact facts do not decide, the field stays unset with a reason.
-TEST(Affine, SharedComponentAtInfinityIsUndecided) {
-  auto t = affine(q("x*y = z"), q("x*z = y")); // both contain the line x = 0 at infinity
-  EXPECT_FALSE(t.certified());
-  EXPECT_FALSE(t.reason.empty());
+TEST(Affine, SharedComponentAtInfinityReadFromAPlanePair) {
+  // Both contain the line x = 0 at infinity (once "not analysed"): z = x^2 z, so z = 0 (the x
+  // axis) or x = +-1 (the lines (1, t, t) and (-1, t, -t)): three affine lines of a skew
+  // quadrilateral whose fourth side lies at infinity; the member A - B = (x + 1)(y - z) is a
+  // rational plane pair, whose planes' sections give them.
+  for (bool swap : {false, true}) {
+    const auto t = swap ? affine(q("x*z = y"), q("x*y = z")) : affine(q("x*y = z"), q("x*z = y"));
+    ASSERT_TRUE(t.certified()) << t.reason;
+    EXPECT_EQ(*t.lines, 3);
+    EXPECT_EQ(*t.unbounded_branches, 3);
+    EXPECT_EQ(*t.loops, 0);
+    EXPECT_EQ(t.points_at_infinity.size(), 3u);
+    ASSERT_EQ(t.at_infinity_only.size(), 1u);
+    EXPECT_EQ(t.at_infinity_only[0].kind, "line");
+  }
 }
 
 TEST(Affine, PlanePairsAlongACylinder) {
@@ -253,4 +264,27 @@ TEST(Affine, PlanePairsAlongACylinder) {
   ASSERT_TRUE(t.plane && t.plane2 && t.section_of);
   ASSERT_EQ(t.points_at_infinity.size(), 1u);
   EXPECT_EQ(t.points_at_infinity[0].multiplicity, 4);
+}
+
+TEST(Affine, PlanePairWhoseLineAtInfinityLiesOnTheOther) {
+  // x^2 = 1/4 against z = xy: the lines x = +-1/2, z = +-y/2 (directions (0, 1, +-1/2)) and the
+  // double line at infinity x = 0 (w = 0) that both planes share and z = xy holds: listed once.
+  // It was "not analysed" (the conics at infinity share that line).
+  for (bool swap : {false, true}) {
+    const auto t =
+        swap ? affine(q("z = x*y"), q("x^2 = 1/4")) : affine(q("x^2 = 1/4"), q("z = x*y"));
+    ASSERT_TRUE(t.certified()) << t.reason;
+    EXPECT_EQ(t.route, "plane_pair");
+    EXPECT_EQ(*t.lines, 2);
+    EXPECT_EQ(*t.unbounded_branches, 2);
+    EXPECT_EQ(*t.loops, 0);
+    ASSERT_EQ(t.points_at_infinity.size(), 2u);
+    for (const auto& p : t.points_at_infinity) {
+      EXPECT_EQ(p.direction[0], "0");
+      EXPECT_EQ(p.direction[1], "1");
+      EXPECT_TRUE(p.direction[2] == "1/2" || p.direction[2] == "-1/2") << p.direction[2];
+    }
+    ASSERT_EQ(t.at_infinity_only.size(), 1u);
+    EXPECT_EQ(t.at_infinity_only[0].kind, "line");
+  }
 }
