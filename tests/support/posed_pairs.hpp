@@ -83,4 +83,19 @@ inline bool certified_or_undecided(const trace::CurveResult& r, bool must_certif
   return false;
 }
 
+/// The pair (sa, sb) in each of the five poses and both orders: f(pose, ctx, a, b, r) with r
+/// its exact intersect_curve answer and ctx the pair's and pose's name. Returns the number of
+/// answers (10). (An ASSERT in f ends that pose's check only.)
+template <class F> int each_posed_curve(const std::string& sa, const std::string& sb, F&& f) {
+  int n = 0;
+  for (const auto& ps : five_poses())
+    for (bool swapped : {false, true}) {
+      const std::string ctx = sa + " | " + sb + ", " + ps.name("-", swapped);
+      const auto [a, b] = posed_pair(sa, sb, ps, swapped);
+      f(ps, ctx, a, b, trace::intersect_curve(a, b, certify::Mode::Exact, {}));
+      ++n;
+    }
+  return n;
+}
+
 } // namespace surfcert::testing

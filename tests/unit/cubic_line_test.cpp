@@ -264,30 +264,29 @@ TEST(CubicLine, CrossingsAtConjugateRoots) {
   const std::string sa = "x^2 + y^2 - z^2 = 1", sb = "12*x*y - 4*x*z + 6*x - 4*y - 4*z = 6";
   const double ys[2] = {(-3 - std::sqrt(73.0)) / 8, (-3 + std::sqrt(73.0)) / 8};
   int certified = 0;
-  for (const auto& ps : surfcert::testing::five_poses())
-    for (bool swapped : {false, true}) {
-      const std::string ctx = sa + " | " + sb + ", " + ps.name("-", swapped);
-      const auto [a, b] = surfcert::testing::posed_pair(sa, sb, ps, swapped);
-      const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
-      ASSERT_EQ(r.topology.tu_case, 10) << ctx;
-      EXPECT_TRUE(r.topology.special_points_complete) << ctx;
-      ASSERT_EQ(r.topology.special_points.size(), 2u) << ctx;
-      for (const auto& sp : r.topology.special_points) {
-        EXPECT_TRUE(sp.exact) << ctx;
-        EXPECT_NE((sp.coords[0] + sp.coords[1] + sp.coords[2]).find("sqrt(73)"), std::string::npos)
-            << ctx;
-        const auto l = ps.local(sp.approx);
-        const double off = std::min(std::fabs(l[1] - ys[0]), std::fabs(l[1] - ys[1]));
-        EXPECT_LE(std::fabs(l[0] - 1) + std::fabs(l[1] - l[2]) + off, 1e-9 * (1 + ps.offset()))
-            << ctx;
-      }
-      ASSERT_TRUE(r.affine.certified()) << ctx;
-      EXPECT_EQ(*r.affine.loops, 0) << ctx;
-      EXPECT_EQ(*r.affine.unbounded_branches, 4) << ctx;
-      EXPECT_EQ(*r.affine.lines, 1) << ctx;
-      if (!surfcert::testing::certified_or_undecided(r, true, ctx)) continue;
-      ++certified;
-      expect_pieces(r, a.matrix(), b.matrix(), ctx);
-    }
+  surfcert::testing::each_posed_curve(
+      sa, sb,
+      [&](const auto& ps, const std::string& ctx, const auto& a, const auto& b, const auto& r) {
+        ASSERT_EQ(r.topology.tu_case, 10) << ctx;
+        EXPECT_TRUE(r.topology.special_points_complete) << ctx;
+        ASSERT_EQ(r.topology.special_points.size(), 2u) << ctx;
+        for (const auto& sp : r.topology.special_points) {
+          EXPECT_TRUE(sp.exact) << ctx;
+          EXPECT_NE((sp.coords[0] + sp.coords[1] + sp.coords[2]).find("sqrt(73)"),
+                    std::string::npos)
+              << ctx;
+          const auto l = ps.local(sp.approx);
+          const double off = std::min(std::fabs(l[1] - ys[0]), std::fabs(l[1] - ys[1]));
+          EXPECT_LE(std::fabs(l[0] - 1) + std::fabs(l[1] - l[2]) + off, 1e-9 * (1 + ps.offset()))
+              << ctx;
+        }
+        ASSERT_TRUE(r.affine.certified()) << ctx;
+        EXPECT_EQ(*r.affine.loops, 0) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, 4) << ctx;
+        EXPECT_EQ(*r.affine.lines, 1) << ctx;
+        if (!surfcert::testing::certified_or_undecided(r, true, ctx)) return;
+        ++certified;
+        expect_pieces(r, a.matrix(), b.matrix(), ctx);
+      });
   EXPECT_EQ(certified, 10);
 }

@@ -164,23 +164,21 @@ TEST(DegenerateTrace, ParabolicCylinderCutAcrossItsRulings) {
                          }}};
   int certified = 0;
   for (const auto& cs : cases)
-    for (const auto& ps : surfcert::testing::five_poses())
-      for (bool swapped : {false, true}) {
-        const std::string ctx = "y = x^2 | " + cs.plane + ", " + ps.name("-", swapped);
-        const auto [a, b] = surfcert::testing::posed_pair("y = x^2", cs.plane, ps, swapped);
-        const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
-        ASSERT_TRUE(r.affine.certified()) << ctx;
-        EXPECT_EQ(*r.affine.conics, 1) << ctx;
-        EXPECT_EQ(*r.affine.unbounded_branches, 1) << ctx;
-        EXPECT_EQ(*r.affine.loops, 0) << ctx;
-        if (!surfcert::testing::certified_or_undecided(r, true, ctx)) continue;
-        ++certified;
-        ASSERT_TRUE(r.box) << ctx;
-        // Near the vertex the parabola is within 1e-9 of the box of its closed form; farther
-        // out its slope 2x multiplies a point's rounding.
-        surfcert::testing::expect_open_pieces(
-            r, a, b, 1, "conic", ctx, [&](const trace::Point3& p) { return cs.off(ps.local(p)); },
-            1e-9 * r.box->diagonal() * (1 + r.box->diagonal()) + 0x1p-40 * ps.offset());
-      }
+    surfcert::testing::each_posed_curve(
+        "y = x^2", cs.plane,
+        [&](const auto& ps, const std::string& ctx, const auto& a, const auto& b, const auto& r) {
+          ASSERT_TRUE(r.affine.certified()) << ctx;
+          EXPECT_EQ(*r.affine.conics, 1) << ctx;
+          EXPECT_EQ(*r.affine.unbounded_branches, 1) << ctx;
+          EXPECT_EQ(*r.affine.loops, 0) << ctx;
+          if (!surfcert::testing::certified_or_undecided(r, true, ctx)) return;
+          ++certified;
+          ASSERT_TRUE(r.box) << ctx;
+          // Near the vertex the parabola is within 1e-9 of the box of its closed form; farther
+          // out its slope 2x multiplies a point's rounding.
+          surfcert::testing::expect_open_pieces(
+              r, a, b, 1, "conic", ctx, [&](const trace::Point3& p) { return cs.off(ps.local(p)); },
+              1e-9 * r.box->diagonal() * (1 + r.box->diagonal()) + 0x1p-40 * ps.offset());
+        });
   EXPECT_EQ(certified, 20);
 }

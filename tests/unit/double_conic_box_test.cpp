@@ -74,24 +74,22 @@ TEST(DoubleConicBox, TwoDoubleLinesCrossing) {
   const std::string sa = "9*x^2 + 4*y^2 - 36*z^2 = 36",
                     sb = "45*x^2 + 4*y^2 - 36*z^2 - 144*x + 108 = 0";
   int certified = 0;
-  for (const auto& ps : surfcert::testing::five_poses())
-    for (bool swapped : {false, true}) {
-      const std::string ctx = sa + " | " + sb + ", " + ps.name("-", swapped);
-      const auto [a, b] = surfcert::testing::posed_pair(sa, sb, ps, swapped);
-      const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
-      ASSERT_TRUE(r.affine.certified()) << ctx;
-      EXPECT_EQ(*r.affine.lines, 2) << ctx;
-      EXPECT_EQ(*r.affine.unbounded_branches, 2) << ctx;
-      if (!certified_or_undecided(r, true, ctx)) continue;
-      ++certified;
-      ASSERT_TRUE(r.box) << ctx;
-      surfcert::testing::expect_open_pieces(
-          r, a, b, 2, "line", ctx,
-          [&](const trace::Point3& p) {
-            const auto l = ps.local(p);
-            return std::fabs(l[0] - 2) + std::fabs(std::fabs(l[1]) - 3 * std::fabs(l[2]));
-          },
-          1e-9 * r.box->diagonal() + 0x1p-40 * ps.offset());
-    }
+  surfcert::testing::each_posed_curve(
+      sa, sb,
+      [&](const auto& ps, const std::string& ctx, const auto& a, const auto& b, const auto& r) {
+        ASSERT_TRUE(r.affine.certified()) << ctx;
+        EXPECT_EQ(*r.affine.lines, 2) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, 2) << ctx;
+        if (!certified_or_undecided(r, true, ctx)) return;
+        ++certified;
+        ASSERT_TRUE(r.box) << ctx;
+        surfcert::testing::expect_open_pieces(
+            r, a, b, 2, "line", ctx,
+            [&](const trace::Point3& p) {
+              const auto l = ps.local(p);
+              return std::fabs(l[0] - 2) + std::fabs(std::fabs(l[1]) - 3 * std::fabs(l[2]));
+            },
+            1e-9 * r.box->diagonal() + 0x1p-40 * ps.offset());
+      });
   EXPECT_EQ(certified, 10);
 }

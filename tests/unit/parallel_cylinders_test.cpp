@@ -153,27 +153,24 @@ TEST(ParallelCylinders, ConicCrossSectionsOfEveryKind) {
        {{0, 3}, {std::sqrt(3.84), 0.6}, {-std::sqrt(3.84), 0.6}}}};
   int tried = 0, certified = 0;
   for (const auto& cs : cases)
-    for (const auto& ps : surfcert::testing::five_poses())
-      for (bool swapped : {false, true}) {
-        const std::string ctx = cs.a + " | " + cs.b + ", " + ps.name("-", swapped);
-        const auto [qa, qb] = surfcert::testing::posed_pair(cs.a, cs.b, ps, swapped);
-        const auto r = trace::intersect_curve(qa, qb, Mode::Exact, {});
-        ++tried;
-        expect_lines_along_z(r, ps, cs.lines, ctx);
-        if (!certified_or_undecided(r, true, ctx)) continue;
-        ++certified;
-        ASSERT_TRUE(r.box) << ctx;
-        surfcert::testing::expect_open_pieces(
-            r, qa, qb, cs.lines, "line", ctx,
-            [&](const trace::Point3& p) {
-              const Local l = ps.local(p);
-              double best = HUGE_VAL;
-              for (const auto& bp : cs.bases)
-                best = std::min(best, std::hypot(l[0] - bp[0], l[1] - bp[1]));
-              return best;
-            },
-            1e-9 * r.box->diagonal() + 0x1p-40 * ps.offset());
-      }
+    tried += surfcert::testing::each_posed_curve(
+        cs.a, cs.b,
+        [&](const auto& ps, const std::string& ctx, const auto& qa, const auto& qb, const auto& r) {
+          expect_lines_along_z(r, ps, cs.lines, ctx);
+          if (!certified_or_undecided(r, true, ctx)) return;
+          ++certified;
+          ASSERT_TRUE(r.box) << ctx;
+          surfcert::testing::expect_open_pieces(
+              r, qa, qb, cs.lines, "line", ctx,
+              [&](const trace::Point3& p) {
+                const Local l = ps.local(p);
+                double best = HUGE_VAL;
+                for (const auto& bp : cs.bases)
+                  best = std::min(best, std::hypot(l[0] - bp[0], l[1] - bp[1]));
+                return best;
+              },
+              1e-9 * r.box->diagonal() + 0x1p-40 * ps.offset());
+        });
   EXPECT_EQ(tried, 40);
   EXPECT_EQ(certified, 40);
 }

@@ -130,45 +130,44 @@ TEST(SectionLines, APlanePairMemberWithALineAtInfinity) {
   // line, and the pair was left unread ("not analysed") in every pose.
   const std::string sa = "z = x*y", sb = "x*y - z + (x - 1)*(y + z - 2) = 0";
   int certified = 0;
-  for (const auto& ps : surfcert::testing::five_poses())
-    for (bool swapped : {false, true}) {
-      const std::string ctx = sa + " | " + sb + ", " + ps.name("-", swapped);
-      const auto [a, b] = surfcert::testing::posed_pair(sa, sb, ps, swapped);
-      const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
-      ASSERT_TRUE(r.affine.certified()) << ctx << ": " << r.affine.reason;
-      EXPECT_EQ(*r.affine.loops, 0) << ctx;
-      EXPECT_EQ(*r.affine.lines, 1) << ctx;
-      EXPECT_EQ(*r.affine.conics, 1) << ctx;
-      EXPECT_EQ(*r.affine.unbounded_branches, 3) << ctx;
-      EXPECT_EQ(r.affine.points_at_infinity.size(), 3u) << ctx;
-      int lines_at_infinity = 0;
-      for (const auto& c : r.affine.at_infinity_only)
-        lines_at_infinity += c.kind == "line";
-      EXPECT_EQ(lines_at_infinity, 1) << ctx;
-      if (!certified_or_undecided(r, true, ctx)) continue;
-      ++certified;
-      ASSERT_TRUE(r.box && r.box_exits && r.box_exits->certified) << ctx;
-      int line_pieces = 0, conic_pieces = 0;
-      for (const auto& br : r.branches) {
-        line_pieces += br.kind == "line";
-        conic_pieces += br.kind == "conic";
-        for (const auto& p : br.points) {
-          const double tol = 1e-12 * r.box->diagonal() +
-                             0x1p-46 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2]));
-          EXPECT_LE(geometric_residual(a, p), tol) << ctx;
-          EXPECT_LE(geometric_residual(b, p), tol) << ctx;
-          const auto l = ps.local(p); // on x = 1, z = y or on y + z = 2, y (x + 1) = 2
-          const double off =
-              std::min(std::fabs(l[0] - 1) + std::fabs(l[2] - l[1]),
-                       std::fabs(l[1] + l[2] - 2) + std::fabs(l[1] * (l[0] + 1) - 2));
-          EXPECT_LE(off, 1e-9 * r.box->diagonal() * (1 + r.box->diagonal()) + 0x1p-40 * ps.offset())
-              << ctx;
+  surfcert::testing::each_posed_curve(
+      sa, sb,
+      [&](const auto& ps, const std::string& ctx, const auto& a, const auto& b, const auto& r) {
+        ASSERT_TRUE(r.affine.certified()) << ctx << ": " << r.affine.reason;
+        EXPECT_EQ(*r.affine.loops, 0) << ctx;
+        EXPECT_EQ(*r.affine.lines, 1) << ctx;
+        EXPECT_EQ(*r.affine.conics, 1) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, 3) << ctx;
+        EXPECT_EQ(r.affine.points_at_infinity.size(), 3u) << ctx;
+        int lines_at_infinity = 0;
+        for (const auto& c : r.affine.at_infinity_only)
+          lines_at_infinity += c.kind == "line";
+        EXPECT_EQ(lines_at_infinity, 1) << ctx;
+        if (!certified_or_undecided(r, true, ctx)) return;
+        ++certified;
+        ASSERT_TRUE(r.box && r.box_exits && r.box_exits->certified) << ctx;
+        int line_pieces = 0, conic_pieces = 0;
+        for (const auto& br : r.branches) {
+          line_pieces += br.kind == "line";
+          conic_pieces += br.kind == "conic";
+          for (const auto& p : br.points) {
+            const double tol = 1e-12 * r.box->diagonal() +
+                               0x1p-46 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2]));
+            EXPECT_LE(geometric_residual(a, p), tol) << ctx;
+            EXPECT_LE(geometric_residual(b, p), tol) << ctx;
+            const auto l = ps.local(p); // on x = 1, z = y or on y + z = 2, y (x + 1) = 2
+            const double off =
+                std::min(std::fabs(l[0] - 1) + std::fabs(l[2] - l[1]),
+                         std::fabs(l[1] + l[2] - 2) + std::fabs(l[1] * (l[0] + 1) - 2));
+            EXPECT_LE(off,
+                      1e-9 * r.box->diagonal() * (1 + r.box->diagonal()) + 0x1p-40 * ps.offset())
+                << ctx;
+          }
         }
-      }
-      EXPECT_EQ(line_pieces, 1) << ctx;
-      EXPECT_EQ(conic_pieces, 2) << ctx;
-      EXPECT_EQ(2 * (line_pieces + conic_pieces), static_cast<int>(r.box_exits->points.size()))
-          << ctx;
-    }
+        EXPECT_EQ(line_pieces, 1) << ctx;
+        EXPECT_EQ(conic_pieces, 2) << ctx;
+        EXPECT_EQ(2 * (line_pieces + conic_pieces), static_cast<int>(r.box_exits->points.size()))
+            << ctx;
+      });
   EXPECT_EQ(certified, 10);
 }
