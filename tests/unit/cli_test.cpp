@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 using surfcert::core::io::Json;
 
@@ -384,4 +385,40 @@ TEST(Cli, BoxCornersThatRoundAreNamed) {
   r = run("intersect " + pair + " --box -0.1,-2,-2,2,2,2");
   EXPECT_NE(r.err.find("--box -0.1 is used as the double -0.10000000000000001"), std::string::npos)
       << r.err;
+}
+
+// --box corners are exact numbers of the equation grammar (docs/input.md), as a surface's are:
+// 1-1/2^64 is read and rounds onto 1 (the same box as 1). A bad corner is an input error
+// located in the --box value ("--box:1:COLUMN", the offending character), never a message
+// about min < max.
+TEST(Cli, BoxCornersAreExactNumbersAndBadOnesAreLocated) {
+  const std::string pair = quote("x^2+y^2=1") + " " + quote("x^2+z^2=1");
+  for (const char* box : {"-2,-2,-2,1-1/2^64,2,2", "-2,-2,-2,(1+1/3)/2,2,2",
+                          "-2,-2,-2,1+1/2^50/2^50,2,2", "-2, -2, -2, 3/4, 2, 2"}) {
+    auto r = run("intersect " + pair + " --box " + quote(box));
+    EXPECT_TRUE(r.code == 0 || r.code == 3) << box << ": " << r.code << " " << r.err;
+  }
+  auto rounded = run("intersect --json " + pair + " --box " + quote("-2,-2,-2,1-1/2^64,2,2"));
+  auto exact = run("intersect --json " + pair + " --box -2,-2,-2,1,2,2");
+  EXPECT_EQ(rounded.code, exact.code);
+  EXPECT_EQ(rounded.out, exact.out);
+  struct Bad {
+    const char* box;
+    const char* at;
+  } bad[] = {
+      {"-2,-2,-2,1-2^-100,2,2", "--box:1:14"}, // the exponent's '-' (exponents are 0..64)
+      {"-2,-2,-2,x,2,2", "--box:1:10"},        // not a number
+      {"-2,-2,-2,,2,2", "--box:1:10"},         // empty corner
+      {"-2,-2,-2,1e400,2,2", "--box:1:10"},    // beyond the double range
+      {"-2,-2,-2,2,2,-3", "--box:1:14"},       // Z1 below Z0: located at Z1
+      {"-2,1,-2,2,1+1/2^64,2", "--box:1:11"},  // Y1 above Y0, but rounds onto it
+      {"-2,-2,-2,1,2", "--box:1:1"},           // five corners
+  };
+  for (const auto& b : bad) {
+    auto r = run("intersect " + pair + " --box " + quote(b.box));
+    EXPECT_EQ(r.code, 2) << b.box;
+    EXPECT_NE(r.err.find(std::string("error: ") + b.at + ":"), std::string::npos)
+        << b.box << " -> " << r.err;
+    EXPECT_TRUE(r.out.empty()) << b.box;
+  }
 }
