@@ -68,8 +68,9 @@ const std::string kUsage =
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
     "  mpirun [--enable-recovery] -n P surfcert batch --mpi [--checkpoint F]\n"
     "                   [--retry-undecided MS] [--rank-timeout S] [batch options]\n"
-    "  surfcert generate [--case N|all|ellipsoid|natural|distance] [--count K] [--seed S]\n"
-    "                   [--encoding exact|double|shape] [--family F --gaps 10,20,40]\n"
+    "  surfcert generate [--case N|all|degenerate_pencil|coincident|ellipsoid|natural|distance]\n"
+    "                   [--count K] [--seed S] [--encoding exact|double|shape]\n"
+    "                   [--family F --gaps 10,20,40]\n"
     "                                              (labelled test cases as batch lines)\n"
     "  surfcert --help | --version | COMMAND --help\n"
     "\n"
@@ -810,7 +811,7 @@ int main(int argc, char** argv) {
           "1..35, all (the 35 + degenerate_pencil + coincident), degenerate_pencil, "
           "coincident, ellipsoid, natural (cylinders, cones, paraboloids, hyperboloids) or "
           "distance (default all)")
-      ->type_name("N|all|ellipsoid|natural|distance");
+      ->type_name("N|all|degenerate_pencil|coincident|ellipsoid|natural|distance");
   generate->add_option("--count", o.gen.count, "random instances per case, 1 to 1000000")
       ->check(CLI::Range(1L, 1000000L));
   generate->add_option("--seed", o.gen.seed, "the seed (same seed, same lines)");

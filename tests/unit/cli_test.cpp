@@ -422,3 +422,27 @@ TEST(Cli, BoxCornersAreExactNumbersAndBadOnesAreLocated) {
     EXPECT_TRUE(r.out.empty()) << b.box;
   }
 }
+
+// The --case line of the usage lists every value generate accepts.
+TEST(Cli, HelpListsEveryGenerateCase) {
+  auto h = run("--help");
+  ASSERT_EQ(h.code, 0);
+  const size_t at = h.out.find("--case ");
+  ASSERT_NE(at, std::string::npos) << h.out;
+  const std::string line = h.out.substr(at, h.out.find('\n', at) - at);
+  // "[--case N|all|...|distance]": the values between "--case " and "]", split at '|'.
+  const std::string values = line.substr(7, line.find(']') - 7);
+  std::vector<std::string> listed;
+  std::istringstream vs(values);
+  for (std::string v; std::getline(vs, v, '|');)
+    listed.push_back(v);
+  for (const char* c :
+       {"N", "all", "degenerate_pencil", "coincident", "ellipsoid", "natural", "distance"}) {
+    EXPECT_NE(std::find(listed.begin(), listed.end(), c), listed.end())
+        << c << " missing from: " << line;
+    if (std::string(c) == "N") continue;
+    auto g = run(std::string("generate --count 1 --case ") + c);
+    EXPECT_TRUE(g.code == 0 || g.code == 3) << c << ": " << g.err;
+  }
+  EXPECT_EQ(listed.size(), 7u) << line;
+}
