@@ -87,7 +87,7 @@ const core::QuadricMatrix& need_quadric(const Surface& s, const std::string& op,
                                         const std::string& key) {
   if (const core::QuadricMatrix* q = s.quadric()) return *q;
   throw InputError(Location{"<" + key + ">", 0, 0, "$." + key},
-                   "a quadric (\"" + op + "\" needs two quadrics)", "a " + s.kind());
+                   "a quadric (\"" + op + "\" needs two quadrics)", core::surface_found(s.value()));
 }
 
 template <class A> void start(A& ans, const Surface& a, const Surface& b, const Options& o) {

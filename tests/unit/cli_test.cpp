@@ -423,6 +423,44 @@ TEST(Cli, BoxCornersAreExactNumbersAndBadOnesAreLocated) {
   }
 }
 
+// classify and intersect need two quadrics: a batch line with another surface is an input
+// error at that surface's path whose "found" tells what it is, the same for both ops, and
+// different for different kinds (and degrees) of surface.
+TEST(Cli, BatchNonQuadricErrorsSayWhatWasFound) {
+  const std::vector<std::string> others = {
+      "\"x^3+y^2=1\"", "\"x^4+y^4+z^4=1\"",
+      R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})",
+      R"({"type":"capsule","from":[0,0,0],"to":[1,0,0],"radius":"1/2"})",
+      R"J({"type":"parametric","x":"2u","y":"4v","z":"-6(u^2+v^2)","w":"1+u^2+v^2"})J"};
+  std::string in;
+  for (const auto& s : others)
+    for (const char* op : {"classify", "intersect"}) {
+      in += std::string("{\"op\":\"") + op + "\",\"a\":" + s + ",\"b\":\"x^2+y^2+z^2=1\"}\n";
+      in += std::string("{\"op\":\"") + op + "\",\"a\":\"x^2+y^2+z^2=1\",\"b\":" + s + "}\n";
+    }
+  auto r = run("batch", in);
+  ASSERT_EQ(r.code, 2) << r.err;
+  std::istringstream lines(r.out);
+  std::vector<std::string> found;
+  std::string l;
+  for (int n = 0; std::getline(lines, l); ++n) {
+    Json o = surfcert::core::io::parse_json(l, "out");
+    ASSERT_EQ(o.find("status")->text(), "error") << l;
+    const Json& e = *o.find("error");
+    EXPECT_EQ(e.find("kind")->text(), "input");
+    EXPECT_EQ(e.find("json_path")->text(), n % 2 == 0 ? "$.a" : "$.b") << l;
+    EXPECT_EQ(e.find("line")->text(), std::to_string(n + 1));
+    found.push_back(e.find("found")->text());
+  }
+  ASSERT_EQ(found.size(), 4 * others.size());
+  for (size_t i = 0; i < others.size(); ++i)
+    for (size_t k = 1; k < 4; ++k)
+      EXPECT_EQ(found[4 * i + k], found[4 * i]) << others[i];
+  for (size_t i = 0; i < others.size(); ++i)
+    for (size_t j = i + 1; j < others.size(); ++j)
+      EXPECT_NE(found[4 * i], found[4 * j]) << others[i] << " / " << others[j];
+}
+
 // The --case line of the usage lists every value generate accepts.
 TEST(Cli, HelpListsEveryGenerateCase) {
   auto h = run("--help");
