@@ -478,7 +478,11 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
     }
   } catch (const InputError& e) {
     out.set("status", Json::string("error"));
-    out.set("error", input_error_json(e));
+    // Every input error of a line has a JSON path: "$", the line as a whole, when it is not in
+    // one value (a line that is not JSON; its column says where parsing stopped).
+    Location w = e.where();
+    if (w.json_path.empty()) w.json_path = "$";
+    out.set("error", input_error_json(InputError(w, e.expected(), e.found())));
   } catch (const std::exception& e) {
     return timed(internal_error_line(*out.find("id"), e.what()));
   }

@@ -461,6 +461,25 @@ TEST(Cli, BatchNonQuadricErrorsSayWhatWasFound) {
       EXPECT_NE(found[4 * i], found[4 * j]) << others[i] << " / " << others[j];
 }
 
+// Every input error of a batch line has a json_path: "$" for a line that is not JSON (or not an
+// object), with its line number.
+TEST(Cli, BatchErrorsAlwaysHaveAJsonPath) {
+  auto r = run("batch", "this is not json\n[1, 2]\n{\"id\": 1, \"op\": \"classify\"\n");
+  ASSERT_EQ(r.code, 2) << r.err;
+  std::istringstream lines(r.out);
+  std::string l;
+  int n = 0;
+  for (; std::getline(lines, l); ++n) {
+    Json o = surfcert::core::io::parse_json(l, "out");
+    EXPECT_EQ(o.find("status")->text(), "error") << l;
+    const Json* path = o.find("error")->find("json_path");
+    ASSERT_NE(path, nullptr) << l;
+    EXPECT_EQ(path->text(), "$") << l;
+    EXPECT_EQ(o.find("error")->find("line")->text(), std::to_string(n + 1)) << l;
+  }
+  EXPECT_EQ(n, 3);
+}
+
 // The --case line of the usage lists every value generate accepts.
 TEST(Cli, HelpListsEveryGenerateCase) {
   auto h = run("--help");
