@@ -503,3 +503,33 @@ TEST(Cli, HelpListsEveryGenerateCase) {
   }
   EXPECT_EQ(listed.size(), 7u) << line;
 }
+
+// Every distance answer that is not certified says "minimizers": "undecided" (with proof
+// "unproven"), also one stopped by its budget before any route answered.
+TEST(Cli, UndecidedDistanceAnswersSayMinimizersUndecided) {
+  const std::string torus =
+      R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})";
+  const std::string near =
+      R"({"type":"torus","center":["7.999999999999999999",0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})";
+  std::string in;
+  for (const char* extra : {"", ",\"detail\":\"value\"", ",\"solid\":true"})
+    in += "{\"op\":\"distance\",\"a\":" + torus + ",\"b\":" + near + ",\"budget_ms\":1" + extra +
+          "}\n";
+  auto r = run("batch --threads 1", in);
+  ASSERT_EQ(r.code, 3) << r.err << r.out;
+  std::istringstream lines(r.out);
+  std::string l;
+  int n = 0;
+  for (; std::getline(lines, l); ++n) {
+    Json o = surfcert::core::io::parse_json(l, "out");
+    ASSERT_EQ(o.find("status")->text(), "undecided") << l;
+    const Json* res = o.find("result");
+    ASSERT_NE(res, nullptr) << l;
+    const Json* m = res->find("minimizers");
+    ASSERT_NE(m, nullptr) << l;
+    EXPECT_EQ(m->text(), "undecided") << l;
+    ASSERT_NE(res->find("minimizers_proof"), nullptr) << l;
+    EXPECT_EQ(res->find("minimizers_proof")->text(), "unproven") << l;
+  }
+  EXPECT_EQ(n, 3);
+}
