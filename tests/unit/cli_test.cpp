@@ -533,3 +533,22 @@ TEST(Cli, UndecidedDistanceAnswersSayMinimizersUndecided) {
   }
   EXPECT_EQ(n, 3);
 }
+
+// Exact mode gives a root in closed form from its own irreducible factor over Q: f = (4l - 9)
+// (l - 36)(l^2 - 9l + 9) is square-free, and its roots 9/4 and 36 are rationals, 9/2 -+
+// sqrt(45)/2 quadratic numbers (docs/json-contract.md, "real_roots[].exact").
+TEST(Cli, ExactModeRootsAreInClosedForm) {
+  auto r = run("classify --json --mode exact " + quote("x^2 + y^2/4 + z^2 = 1") + " " +
+               quote("x^2 - 2x + 9y^2 + 9/4 z^2 = 8"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  Json doc = surfcert::core::io::parse_json(r.out, "stdout");
+  const auto& roots = doc.find("result")->find("real_roots")->items();
+  ASSERT_EQ(roots.size(), 4u) << r.out;
+  EXPECT_EQ(roots[1].find("exact")->text(), "9/4");
+  EXPECT_EQ(roots[3].find("exact")->text(), "36");
+  for (size_t i : {0, 2}) {
+    const std::string ex = roots[i].find("exact")->text();
+    EXPECT_NE(ex.find("sqrt("), std::string::npos) << ex;
+    EXPECT_EQ(ex.find("root of"), std::string::npos) << ex;
+  }
+}
