@@ -282,8 +282,15 @@ std::vector<GeneratedCase> generate(const GenerateOptions& opt) {
     throw InputError(option_at("encoding"), "an encoding: \"exact\", \"double\" or \"shape\"",
                      "\"" + opt.encoding + "\"");
   r.encoding = *enc;
+  std::vector<Json> lines;
+  try {
+    lines = app::generate(r);
+  } catch (const app::GenerateRefusal& e) {
+    // The option at fault by its JSON path ($.case, $.gaps[1], ...), as for the other options.
+    throw InputError(Location{"<options>", 0, 0, e.option_path()}, e.expected(), e.found());
+  }
   std::vector<GeneratedCase> out;
-  for (Json& line : app::generate(r)) {
+  for (Json& line : lines) {
     GeneratedCase c;
     c.id = line.find("id")->text();
     c.op = line.find("op")->text();

@@ -307,3 +307,21 @@ def test_generate_errors_are_input_errors():
         surfcert.generate(encoding="float")
     with pytest.raises(surfcert.InputError):
         surfcert.generate(family="tangency", gaps=[0])
+
+
+@pytest.mark.parametrize("kwargs,path", [
+    (dict(case="bogus"), "$.case"),
+    (dict(case="36"), "$.case"),
+    (dict(family="bogus"), "$.family"),
+    (dict(encoding="float"), "$.encoding"),
+    (dict(count=0), "$.count"),
+    (dict(family="tangency", gaps=[10, 0]), "$.gaps[1]"),
+    (dict(family="tangency", gaps=[]), "$.gaps"),
+    # 3/2 + 2^-53, the touching family's centre, is no binary64
+    (dict(family="touching", gaps=[53], encoding="double"), "$.encoding"),
+])
+def test_generate_errors_name_the_option(kwargs, path):
+    with pytest.raises(surfcert.InputError) as e:
+        surfcert.generate(**kwargs, threads=1)
+    assert e.value.json_path == path
+    assert e.value.source == "<options>"
