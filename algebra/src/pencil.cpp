@@ -7,6 +7,7 @@
 #include <flint/fmpz_poly_factor.h>
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 namespace surfcert::algebra {
@@ -409,6 +410,30 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
         out.minimal_poly_split = quadratic_annihilates(need_x(), parts[j]);
   }
   return out;
+}
+
+RootFacts simplest_root_form(RootFacts r) {
+  if (r.rational_value || r.quadratic || r.factor.degree() < 2 || !(r.lo < r.hi)) return r;
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor(fac, r.factor.raw());
+  std::optional<UPolyZ> holder; // the irreducible factor holding the root
+  for (slong i = 0; i < fac->num && !holder; ++i) {
+    UPolyZ g;
+    fmpz_poly_set(g.raw_mut(), fac->p + i);
+    if (g.degree() < 1) continue;
+    const int sl = g.sign_at(r.lo), sh = g.sign_at(r.hi);
+    if (sl != 0 && sh != 0 && sl != sh) holder = std::move(g);
+  }
+  fmpz_poly_factor_clear(fac);
+  if (!holder || holder->degree() == r.factor.degree()) return r; // irreducible already
+  const UPolyZ g = holder->primitive_part();                      // positive leading coefficient
+  r.factor = g;
+  if (g.degree() == 1)
+    r.rational_value = Rational(-g.coeff(0), g.coeff(1));
+  else if (g.degree() == 2)
+    locate_in_quadratic(g, r.lo, r.hi, r);
+  return r;
 }
 
 } // namespace surfcert::algebra

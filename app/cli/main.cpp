@@ -20,6 +20,7 @@
 #include <CLI/CLI.hpp>
 #include <flint/flint.h>
 
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -30,6 +31,9 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -64,8 +68,9 @@ const std::string kUsage =
     "                                              (JSON lines on stdin -> JSON lines on stdout)\n"
     "  mpirun [--enable-recovery] -n P surfcert batch --mpi [--checkpoint F]\n"
     "                   [--retry-undecided MS] [--rank-timeout S] [batch options]\n"
-    "  surfcert generate [--case N|all|ellipsoid|natural|distance] [--count K] [--seed S]\n"
-    "                   [--encoding exact|double|shape] [--family F --gaps 10,20,40]\n"
+    "  surfcert generate [--case N|all|degenerate_pencil|coincident|ellipsoid|natural|distance]\n"
+    "                   [--count K] [--seed S] [--encoding exact|double|shape]\n"
+    "                   [--family F --gaps 10,20,40]\n"
     "                                              (labelled test cases as batch lines)\n"
     "  surfcert --help | --version | COMMAND --help\n"
     "\n"
@@ -230,6 +235,66 @@ double tol_value(const std::string& v) {
   return d >= 1e-12 && d <= 1 ? d : 0;
 }
 
+// --box X0,Y0,Z0,X1,Y1,Z1: six exact numbers, each any constant the equation reader takes
+// (docs/input.md: "1/3", "0.1", "2e-3", "1-1/2^64", "(1+1/3)/2"), rounded once to a double;
+// min < max in every coordinate. An error is located at the column of the --box value where
+// it is (source "--box") and names the corner.
+trace::Box box_arg(const std::string& text) {
+  static const char* const kCorner[6] = {"X0", "Y0", "Z0", "X1", "Y1", "Z1"};
+  const std::string src = "--box";
+  std::vector<std::pair<std::string, int>> items; // a corner's text, its 1-based column
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = text.find(',', start);
+    items.emplace_back(text.substr(start, comma == std::string::npos ? comma : comma - start),
+                       static_cast<int>(start) + 1);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (items.size() != 6)
+    throw InputError(Location{src, 1, 1, ""},
+                     "--box X0,Y0,Z0,X1,Y1,Z1: six corners separated by commas",
+                     std::to_string(items.size()) + " corners in \"" + text + "\"");
+  std::array<double, 6> v{};
+  for (std::size_t i = 0; i < 6; ++i) {
+    const auto& [item, column] = items[i];
+    const std::string corner = std::string("--box corner ") + kCorner[i] + ": ";
+    core::Poly3 p;
+    try {
+      p = core::io::parse_polynomial(item, Location{src, 1, column, ""});
+    } catch (const InputError& e) {
+      throw InputError(e.where(), corner + e.expected(), e.found());
+    }
+    if (p.total_degree() > 0)
+      throw InputError(Location{src, 1, column, ""}, corner + "a number (no x, y or z)",
+                       "\"" + item + "\"");
+    const core::Rational r = p.is_zero() ? core::Rational(0) : p.coeff(0, 0, 0);
+    v[i] = r.to_double_approx();
+    if (!std::isfinite(v[i]))
+      throw InputError(Location{src, 1, column, ""}, corner + "a number in the double range",
+                       "\"" + item + "\"");
+    // The box is one of doubles (its exits are certified for that box, which the answer
+    // reports): say so when a corner moved, e.g. 1-1/2^64 onto 1, a node's plane.
+    if (!(core::Rational::exact_from_double(v[i]) == r))
+      std::cerr << "note: --box " << item << " is used as the double " << std::setprecision(17)
+                << v[i] << "\n";
+  }
+  trace::Box bx;
+  for (std::size_t k = 0; k < 3; ++k) {
+    bx.min[k] = v[k];
+    bx.max[k] = v[k + 3];
+    if (!(v[k] < v[k + 3])) {
+      std::ostringstream found;
+      found << std::setprecision(17) << kCorner[k + 3] << " = " << v[k + 3] << ", " << kCorner[k]
+            << " = " << v[k] << " (as doubles)";
+      throw InputError(Location{src, 1, items[k + 3].second, ""},
+                       std::string("--box corner ") + kCorner[k + 3] + ": greater than " +
+                           kCorner[k] + " (min < max in every coordinate)",
+                       found.str());
+    }
+  }
+  return bx;
+}
+
 int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   certify::Mode mode = mode_arg(o.mode);
   bool json = o.json;
@@ -237,34 +302,7 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   const std::string& svg_path = o.svg_path;
   trace::TraceOptions opt;
   if (!o.tol.empty()) opt.tolerance = tol_value(o.tol);
-  if (!o.box.empty()) {
-    // Six numbers separated by commas (read exactly, rounded once), min < max per coordinate.
-    std::vector<double> v;
-    std::stringstream ss(o.box);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-      auto r = core::Rational::from_string(item);
-      if (!r) break;
-      v.push_back(r->to_double_approx());
-      // The box is one of doubles (its exits are certified for that box, which the answer
-      // reports): say so when a corner moved, e.g. 1-2^-100 onto 1, a node's plane.
-      if (std::isfinite(v.back()) && !(core::Rational::exact_from_double(v.back()) == *r))
-        std::cerr << "note: --box " << item << " is used as the double " << std::setprecision(17)
-                  << v.back() << "\n";
-    }
-    trace::Box bx;
-    bool ok = v.size() == 6;
-    for (size_t k = 0; ok && k < 3; ++k) {
-      bx.min[k] = v[k];
-      bx.max[k] = v[k + 3];
-      ok = std::isfinite(v[k]) && std::isfinite(v[k + 3]) && v[k] < v[k + 3];
-    }
-    if (!ok)
-      throw InputError(Location{"<command line>", 0, 0, ""},
-                       "--box X0,Y0,Z0,X1,Y1,Z1 with min < max in every coordinate",
-                       "\"" + o.box + "\"");
-    opt.box = bx;
-  }
+  if (!o.box.empty()) opt.box = box_arg(o.box);
   if (eq.size() != 2) throw UsageError("intersect needs exactly two surfaces");
   auto ends_with = [](const std::string& s, const std::string& e) {
     return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
@@ -695,6 +733,7 @@ int main(int argc, char** argv) {
   intersect->add_option("--svg", o.svg_path, "draw the curve to F.svg");
   intersect->add_option("--box", o.box,
                         "trace unbounded curves in the box X0,Y0,Z0,X1,Y1,Z1 (min then max; "
+                        "exact numbers such as 1/3 or 1-1/2^64, rounded once to doubles; "
                         "default: chosen automatically)");
 
   CLI::App* distance = cli.add_subcommand(
@@ -772,7 +811,7 @@ int main(int argc, char** argv) {
           "1..35, all (the 35 + degenerate_pencil + coincident), degenerate_pencil, "
           "coincident, ellipsoid, natural (cylinders, cones, paraboloids, hyperboloids) or "
           "distance (default all)")
-      ->type_name("N|all|ellipsoid|natural|distance");
+      ->type_name("N|all|degenerate_pencil|coincident|ellipsoid|natural|distance");
   generate->add_option("--count", o.gen.count, "random instances per case, 1 to 1000000")
       ->check(CLI::Range(1L, 1000000L));
   generate->add_option("--seed", o.gen.seed, "the seed (same seed, same lines)");

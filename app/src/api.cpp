@@ -87,7 +87,7 @@ const core::QuadricMatrix& need_quadric(const Surface& s, const std::string& op,
                                         const std::string& key) {
   if (const core::QuadricMatrix* q = s.quadric()) return *q;
   throw InputError(Location{"<" + key + ">", 0, 0, "$." + key},
-                   "a quadric (\"" + op + "\" needs two quadrics)", "a " + s.kind());
+                   "a quadric (\"" + op + "\" needs two quadrics)", core::surface_found(s.value()));
 }
 
 template <class A> void start(A& ans, const Surface& a, const Surface& b, const Options& o) {
@@ -282,8 +282,15 @@ std::vector<GeneratedCase> generate(const GenerateOptions& opt) {
     throw InputError(option_at("encoding"), "an encoding: \"exact\", \"double\" or \"shape\"",
                      "\"" + opt.encoding + "\"");
   r.encoding = *enc;
+  std::vector<Json> lines;
+  try {
+    lines = app::generate(r);
+  } catch (const app::GenerateRefusal& e) {
+    // The option at fault by its JSON path ($.case, $.gaps[1], ...), as for the other options.
+    throw InputError(Location{"<options>", 0, 0, e.option_path()}, e.expected(), e.found());
+  }
   std::vector<GeneratedCase> out;
-  for (Json& line : app::generate(r)) {
+  for (Json& line : lines) {
     GeneratedCase c;
     c.id = line.find("id")->text();
     c.op = line.find("op")->text();

@@ -61,8 +61,10 @@ const std::vector<std::string>& family_names() {
 
 namespace {
 
-[[noreturn]] void refuse(const std::string& expected, const std::string& found) {
-  throw InputError(Location{"<command line>", 0, 0, ""}, expected, found);
+// `option`: the option's JSON path as a batch line's field (GenerateRefusal).
+[[noreturn]] void refuse(const std::string& option, const std::string& expected,
+                         const std::string& found) {
+  throw GenerateRefusal(option, expected, found);
 }
 
 // ---- numbers -------------------------------------------------------------------------------
@@ -117,7 +119,7 @@ Json number_json(const Rational& r, Encoding enc, const std::string& where) {
   if (enc == Encoding::Exact)
     return r.is_integer() ? Json::number_text(r.to_string()) : Json::string(r.to_string());
   if (!is_binary64(r))
-    refuse("a case the double encoding holds exactly (or --encoding exact)",
+    refuse("$.encoding", "a case the double encoding holds exactly (or --encoding exact)",
            where + " needs " + r.to_string() + ", not a binary64");
   return Json::number_text(exact_decimal(r));
 }
@@ -890,16 +892,20 @@ Json label_of(const Job& j) {
 } // namespace
 
 std::vector<Json> generate(const GenerateRequest& r) {
-  if (r.count < 1 || r.count > 1000000) refuse("--count 1..1000000", std::to_string(r.count));
-  for (int k : r.gaps)
-    if (k < 1 || k > 1000) refuse("gaps k from 1 to 1000", std::to_string(k));
+  if (r.count < 1 || r.count > 1000000)
+    refuse("$.count", "--count 1..1000000", std::to_string(r.count));
+  for (std::size_t i = 0; i < r.gaps.size(); ++i)
+    if (r.gaps[i] < 1 || r.gaps[i] > 1000)
+      refuse(core::io::json_path_index("$.gaps", i), "gaps k from 1 to 1000",
+             std::to_string(r.gaps[i]));
   std::vector<Job> jobs;
   if (!r.family.empty()) {
     const auto& names = family_names();
     if (r.family != "all" && std::find(names.begin(), names.end(), r.family) == names.end())
-      refuse("--family all, tangency, node, acnode, cusp, double_conic, touching or nested",
+      refuse("$.family",
+             "--family all, tangency, node, acnode, cusp, double_conic, touching or nested",
              "\"" + r.family + "\"");
-    if (r.gaps.empty()) refuse("--gaps: at least one k", "none");
+    if (r.gaps.empty()) refuse("$.gaps", "--gaps: at least one k", "none");
     for (const PencilFamily& f : pencil_families())
       if (r.family == "all" || r.family == f.name) pencil_family_jobs(f, r, jobs);
     for (const char* name : {"touching", "nested"})
@@ -923,7 +929,8 @@ std::vector<Json> generate(const GenerateRequest& r) {
         !r.what.empty())
       c = std::stoi(r.what);
     if (c < 1 || c > 35)
-      refuse("--case 1..35, all, degenerate_pencil, coincident, ellipsoid, natural or distance",
+      refuse("$.case",
+             "--case 1..35, all, degenerate_pencil, coincident, ellipsoid, natural or distance",
              "\"" + r.what + "\"");
     pencil_case_jobs(c, r, jobs);
   }

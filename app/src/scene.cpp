@@ -293,7 +293,7 @@ Scene read_scene(const Json& doc, const std::string& source, Mode default_mode) 
       if (query.op != "distance" && query.op != "verify" &&
           !std::holds_alternative<core::QuadricMatrix>(*found))
         throw InputError(at(*n, source, kp), "a quadric (\"" + query.op + "\" needs two quadrics)",
-                         "\"" + n->text() + "\" (a " + core::surface_kind(*found) + ")");
+                         "\"" + n->text() + "\" (" + core::surface_found(*found) + ")");
       (std::string(key) == "a" ? query.a : query.b) = n->text();
     }
     if (const Json* m = q.find("mode"))
@@ -442,11 +442,12 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
       const core::QuadricMatrix* b = std::get_if<core::QuadricMatrix>(&sb);
       // distance and verify take any two surfaces (verify refuses a quadric-only claim).
       if (op->text() != "distance" && op->text() != "verify")
-        for (const auto& [q, j, key] :
-             {std::make_tuple(a, ja, "$.a"), std::make_tuple(b, jb, "$.b")})
+        for (const auto& [q, s, j, key] :
+             {std::make_tuple(a, &sa, ja, "$.a"), std::make_tuple(b, &sb, jb, "$.b")})
           if (!q)
             throw InputError(at(*j, source, key),
-                             "a quadric (\"" + op->text() + "\" needs two quadrics)", "a torus");
+                             "a quadric (\"" + op->text() + "\" needs two quadrics)",
+                             core::surface_found(*s));
       BatchQuery q;
       q.op = op->text();
       q.mode = mode;
@@ -477,7 +478,11 @@ Json process_batch_line(const std::string& line, long line_no, Mode default_mode
     }
   } catch (const InputError& e) {
     out.set("status", Json::string("error"));
-    out.set("error", input_error_json(e));
+    // Every input error of a line has a JSON path: "$", the line as a whole, when it is not in
+    // one value (a line that is not JSON; its column says where parsing stopped).
+    Location w = e.where();
+    if (w.json_path.empty()) w.json_path = "$";
+    out.set("error", input_error_json(InputError(w, e.expected(), e.found())));
   } catch (const std::exception& e) {
     return timed(internal_error_line(*out.find("id"), e.what()));
   }

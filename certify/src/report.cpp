@@ -193,7 +193,10 @@ Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
     res.set("invariants", inv);
   }
   Json roots = Json::array();
-  for (const auto& rt : f.real_roots) {
+  for (const auto& root : f.real_roots) {
+    // The root's own irreducible factor (a square-free factor of f may still split over Q): a
+    // rational root reads as a rational, a quadratic one as a + b*sqrt(d).
+    const algebra::RootFacts rt = r.mode == Mode::Float ? root : algebra::simplest_root_form(root);
     Json o = Json::object();
     o.set("multiplicity", Json::number(rt.multiplicity));
     if (r.mode != Mode::Float) {

@@ -2,6 +2,7 @@
 #include "surfcert/core/surface.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace surfcert::core {
 
@@ -54,6 +55,15 @@ std::string surface_kind(const Surface& s) {
   if (std::holds_alternative<ImplicitSurface>(s)) return "implicit";
   if (std::holds_alternative<ParametricSurface>(s)) return "parametric";
   return "quadric";
+}
+
+std::string surface_found(const Surface& s) {
+  if (const auto* f = std::get_if<ImplicitSurface>(&s))
+    return "total degree " + std::to_string(f->f.total_degree());
+  if (std::holds_alternative<Torus>(s)) return "a torus";
+  if (std::holds_alternative<CanalSurface>(s)) return "a canal surface";
+  if (std::holds_alternative<ParametricSurface>(s)) return "a parametric surface";
+  return "a quadric";
 }
 
 } // namespace surfcert::core

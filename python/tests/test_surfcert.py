@@ -10,6 +10,7 @@ import json
 import os
 import random
 import subprocess
+import sys
 import threading
 import time
 from fractions import Fraction
@@ -307,3 +308,32 @@ def test_generate_errors_are_input_errors():
         surfcert.generate(encoding="float")
     with pytest.raises(surfcert.InputError):
         surfcert.generate(family="tangency", gaps=[0])
+
+
+@pytest.mark.parametrize("kwargs,path", [
+    (dict(case="bogus"), "$.case"),
+    (dict(case="36"), "$.case"),
+    (dict(family="bogus"), "$.family"),
+    (dict(encoding="float"), "$.encoding"),
+    (dict(count=0), "$.count"),
+    (dict(family="tangency", gaps=[10, 0]), "$.gaps[1]"),
+    (dict(family="tangency", gaps=[]), "$.gaps"),
+    # 3/2 + 2^-53, the touching family's centre, is no binary64
+    (dict(family="touching", gaps=[53], encoding="double"), "$.encoding"),
+])
+def test_generate_errors_name_the_option(kwargs, path):
+    with pytest.raises(surfcert.InputError) as e:
+        surfcert.generate(**kwargs, threads=1)
+    assert e.value.json_path == path
+    assert e.value.source == "<options>"
+
+
+def test_degenerate_sweep_example_runs(tmp_path):
+    """examples/degenerate_sweep.py (docs/api.md) runs to its picture: undecided answers (float
+    mode's, without a relation) are shown as undecided, not a crash."""
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "sweep.png"
+    p = subprocess.run([sys.executable, str(ROOT / "examples" / "degenerate_sweep.py"), str(out)],
+                       capture_output=True, text=True, check=False, timeout=600)
+    assert p.returncode == 0, p.stderr[-3000:]
+    assert out.stat().st_size > 0

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 
+#include <cmath>
 #include <cstdlib>
 #include <random>
 
@@ -512,4 +513,87 @@ TEST(QuadraticNumbers, NormalizedMovesSmallPrimeSquaresOut) {
   const auto n2 = y.normalized();
   EXPECT_TRUE(n2.b.is_zero());
   EXPECT_EQ(n2.a, Rational(1) + Rational(big));
+}
+
+// simplest_root_form: a root of a square-free factor that still splits over Q is given by its
+// own irreducible factor. f = (p1 l - q1)(p2 l - q2)(l^2 + c l + e) (random, known roots): the
+// two rational roots come back as those rationals, the two others as a + b sqrt(d) with
+// (x - a)^2 = b^2 d the quadratic's own roots, inside the isolating interval;
+// (l^2 - 2)(l^2 - 3) gives four quadratic roots; an irreducible quartic is left as it is.
+TEST(Pencil, SimplestRootFormSplitsReducibleFactors) {
+  using algebra::QuadraticNumber;
+  using algebra::RootFacts;
+  auto poly = [](std::vector<long> c) { // constant first
+    std::vector<Integer> v;
+    for (long x : c)
+      v.emplace_back(x);
+    return UPolyZ::from_coeffs(v);
+  };
+  auto mul = [](const UPolyZ& a, const UPolyZ& b) {
+    UPolyZ p;
+    fmpz_poly_mul(p.raw_mut(), a.raw(), b.raw());
+    return p;
+  };
+  auto roots_of = [](const UPolyZ& f) {
+    std::vector<RootFacts> out;
+    const auto s = algebra::isolate_real_roots(f);
+    for (size_t i = 0; i + 1 < s.separators.size(); ++i) {
+      RootFacts r;
+      r.lo = s.separators[i];
+      r.hi = s.separators[i + 1];
+      r.factor = f.primitive_part();
+      out.push_back(algebra::simplest_root_form(r));
+    }
+    return out;
+  };
+  auto inside = [](const QuadraticNumber& q, const RootFacts& r) {
+    return QuadraticNumber{q.a - r.lo, q.b, q.d}.sign() > 0 &&
+           QuadraticNumber{r.hi - q.a, -q.b, q.d}.sign() > 0;
+  };
+  std::mt19937_64 rng(test_seed());
+  std::uniform_int_distribution<long> small(-9, 9), pos(1, 9);
+  for (int trial = 0; trial < 200; ++trial) {
+    const long p1 = pos(rng), q1 = small(rng), p2 = pos(rng), q2 = small(rng);
+    const long c = small(rng), e = small(rng);
+    const long disc = c * c - 4 * e;
+    const long s = static_cast<long>(std::lround(std::sqrt(static_cast<double>(disc))));
+    if (disc <= 0 || s * s == disc || Rational(q1, p1) == Rational(q2, p2)) continue;
+    const UPolyZ f = mul(mul(poly({-q1, p1}), poly({-q2, p2})), poly({e, c, 1}));
+    const std::string ctx = "f = " + f.to_string("l");
+    const auto rs = roots_of(f);
+    ASSERT_EQ(rs.size(), 4u) << ctx;
+    int rational = 0, quadratic = 0;
+    for (const RootFacts& r : rs) {
+      if (r.rational_value) {
+        ++rational;
+        EXPECT_TRUE(*r.rational_value == Rational(q1, p1) || *r.rational_value == Rational(q2, p2))
+            << ctx;
+        EXPECT_TRUE(r.lo < *r.rational_value && *r.rational_value < r.hi) << ctx;
+        EXPECT_EQ(r.factor.degree(), 1) << ctx;
+      } else {
+        ASSERT_TRUE(r.quadratic.has_value()) << ctx;
+        ++quadratic;
+        const QuadraticNumber& q = *r.quadratic;
+        EXPECT_EQ(q.a, Rational(-c, 2)) << ctx;
+        EXPECT_EQ(q.b * q.b * Rational(q.d), Rational(disc, 4)) << ctx;
+        EXPECT_TRUE(inside(q, r)) << ctx;
+      }
+    }
+    EXPECT_EQ(rational, 2) << ctx;
+    EXPECT_EQ(quadratic, 2) << ctx;
+  }
+  const auto four = roots_of(mul(poly({-2, 0, 1}), poly({-3, 0, 1})));
+  ASSERT_EQ(four.size(), 4u);
+  for (const RootFacts& r : four) {
+    ASSERT_TRUE(r.quadratic.has_value());
+    EXPECT_TRUE(r.quadratic->a.is_zero());
+    const Rational sq = r.quadratic->b * r.quadratic->b * Rational(r.quadratic->d);
+    EXPECT_TRUE(sq == Rational(2) || sq == Rational(3));
+    EXPECT_TRUE(inside(*r.quadratic, r));
+  }
+  const UPolyZ irreducible = poly({-2, 0, 0, 0, 1});
+  for (const RootFacts& r : roots_of(irreducible)) {
+    EXPECT_FALSE(r.rational_value || r.quadratic);
+    EXPECT_EQ(r.factor, irreducible);
+  }
 }

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 using surfcert::core::io::Json;
 
@@ -384,4 +385,170 @@ TEST(Cli, BoxCornersThatRoundAreNamed) {
   r = run("intersect " + pair + " --box -0.1,-2,-2,2,2,2");
   EXPECT_NE(r.err.find("--box -0.1 is used as the double -0.10000000000000001"), std::string::npos)
       << r.err;
+}
+
+// --box corners are exact numbers of the equation grammar (docs/input.md), as a surface's are:
+// 1-1/2^64 is read and rounds onto 1 (the same box as 1). A bad corner is an input error
+// located in the --box value ("--box:1:COLUMN", the offending character), never a message
+// about min < max.
+TEST(Cli, BoxCornersAreExactNumbersAndBadOnesAreLocated) {
+  const std::string pair = quote("x^2+y^2=1") + " " + quote("x^2+z^2=1");
+  for (const char* box : {"-2,-2,-2,1-1/2^64,2,2", "-2,-2,-2,(1+1/3)/2,2,2",
+                          "-2,-2,-2,1+1/2^50/2^50,2,2", "-2, -2, -2, 3/4, 2, 2"}) {
+    auto r = run("intersect " + pair + " --box " + quote(box));
+    EXPECT_TRUE(r.code == 0 || r.code == 3) << box << ": " << r.code << " " << r.err;
+  }
+  auto rounded = run("intersect --json " + pair + " --box " + quote("-2,-2,-2,1-1/2^64,2,2"));
+  auto exact = run("intersect --json " + pair + " --box -2,-2,-2,1,2,2");
+  EXPECT_EQ(rounded.code, exact.code);
+  EXPECT_EQ(rounded.out, exact.out);
+  struct Bad {
+    const char* box;
+    const char* at;
+  } bad[] = {
+      {"-2,-2,-2,1-2^-100,2,2", "--box:1:14"}, // the exponent's '-' (exponents are 0..64)
+      {"-2,-2,-2,x,2,2", "--box:1:10"},        // not a number
+      {"-2,-2,-2,,2,2", "--box:1:10"},         // empty corner
+      {"-2,-2,-2,1e400,2,2", "--box:1:10"},    // beyond the double range
+      {"-2,-2,-2,2,2,-3", "--box:1:14"},       // Z1 below Z0: located at Z1
+      {"-2,1,-2,2,1+1/2^64,2", "--box:1:11"},  // Y1 above Y0, but rounds onto it
+      {"-2,-2,-2,1,2", "--box:1:1"},           // five corners
+  };
+  for (const auto& b : bad) {
+    auto r = run("intersect " + pair + " --box " + quote(b.box));
+    EXPECT_EQ(r.code, 2) << b.box;
+    EXPECT_NE(r.err.find(std::string("error: ") + b.at + ":"), std::string::npos)
+        << b.box << " -> " << r.err;
+    EXPECT_TRUE(r.out.empty()) << b.box;
+  }
+}
+
+// classify and intersect need two quadrics: a batch line with another surface is an input
+// error at that surface's path whose "found" tells what it is, the same for both ops, and
+// different for different kinds (and degrees) of surface.
+TEST(Cli, BatchNonQuadricErrorsSayWhatWasFound) {
+  const std::vector<std::string> others = {
+      "\"x^3+y^2=1\"", "\"x^4+y^4+z^4=1\"",
+      R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})",
+      R"({"type":"capsule","from":[0,0,0],"to":[1,0,0],"radius":"1/2"})",
+      R"J({"type":"parametric","x":"2u","y":"4v","z":"-6(u^2+v^2)","w":"1+u^2+v^2"})J"};
+  std::string in;
+  for (const auto& s : others)
+    for (const char* op : {"classify", "intersect"}) {
+      in += std::string("{\"op\":\"") + op + "\",\"a\":" + s + ",\"b\":\"x^2+y^2+z^2=1\"}\n";
+      in += std::string("{\"op\":\"") + op + "\",\"a\":\"x^2+y^2+z^2=1\",\"b\":" + s + "}\n";
+    }
+  auto r = run("batch", in);
+  ASSERT_EQ(r.code, 2) << r.err;
+  std::istringstream lines(r.out);
+  std::vector<std::string> found;
+  std::string l;
+  for (int n = 0; std::getline(lines, l); ++n) {
+    Json o = surfcert::core::io::parse_json(l, "out");
+    ASSERT_EQ(o.find("status")->text(), "error") << l;
+    const Json& e = *o.find("error");
+    EXPECT_EQ(e.find("kind")->text(), "input");
+    EXPECT_EQ(e.find("json_path")->text(), n % 2 == 0 ? "$.a" : "$.b") << l;
+    EXPECT_EQ(e.find("line")->text(), std::to_string(n + 1));
+    found.push_back(e.find("found")->text());
+  }
+  ASSERT_EQ(found.size(), 4 * others.size());
+  for (size_t i = 0; i < others.size(); ++i)
+    for (size_t k = 1; k < 4; ++k)
+      EXPECT_EQ(found[4 * i + k], found[4 * i]) << others[i];
+  for (size_t i = 0; i < others.size(); ++i)
+    for (size_t j = i + 1; j < others.size(); ++j)
+      EXPECT_NE(found[4 * i], found[4 * j]) << others[i] << " / " << others[j];
+}
+
+// Every input error of a batch line has a json_path: "$" for a line that is not JSON (or not an
+// object), with its line number.
+TEST(Cli, BatchErrorsAlwaysHaveAJsonPath) {
+  auto r = run("batch", "this is not json\n[1, 2]\n{\"id\": 1, \"op\": \"classify\"\n");
+  ASSERT_EQ(r.code, 2) << r.err;
+  std::istringstream lines(r.out);
+  std::string l;
+  int n = 0;
+  for (; std::getline(lines, l); ++n) {
+    Json o = surfcert::core::io::parse_json(l, "out");
+    EXPECT_EQ(o.find("status")->text(), "error") << l;
+    const Json* path = o.find("error")->find("json_path");
+    ASSERT_NE(path, nullptr) << l;
+    EXPECT_EQ(path->text(), "$") << l;
+    EXPECT_EQ(o.find("error")->find("line")->text(), std::to_string(n + 1)) << l;
+  }
+  EXPECT_EQ(n, 3);
+}
+
+// The --case line of the usage lists every value generate accepts.
+TEST(Cli, HelpListsEveryGenerateCase) {
+  auto h = run("--help");
+  ASSERT_EQ(h.code, 0);
+  const size_t at = h.out.find("--case ");
+  ASSERT_NE(at, std::string::npos) << h.out;
+  const std::string line = h.out.substr(at, h.out.find('\n', at) - at);
+  // "[--case N|all|...|distance]": the values between "--case " and "]", split at '|'.
+  const std::string values = line.substr(7, line.find(']') - 7);
+  std::vector<std::string> listed;
+  std::istringstream vs(values);
+  for (std::string v; std::getline(vs, v, '|');)
+    listed.push_back(v);
+  for (const char* c :
+       {"N", "all", "degenerate_pencil", "coincident", "ellipsoid", "natural", "distance"}) {
+    EXPECT_NE(std::find(listed.begin(), listed.end(), c), listed.end())
+        << c << " missing from: " << line;
+    if (std::string(c) == "N") continue;
+    auto g = run(std::string("generate --count 1 --case ") + c);
+    EXPECT_TRUE(g.code == 0 || g.code == 3) << c << ": " << g.err;
+  }
+  EXPECT_EQ(listed.size(), 7u) << line;
+}
+
+// Every distance answer that is not certified says "minimizers": "undecided" (with proof
+// "unproven"), also one stopped by its budget before any route answered.
+TEST(Cli, UndecidedDistanceAnswersSayMinimizersUndecided) {
+  const std::string torus =
+      R"({"type":"torus","center":[0,0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})";
+  const std::string near =
+      R"({"type":"torus","center":["7.999999999999999999",0,0],"axis":[0,0,1],"major_radius":3,"minor_radius":1})";
+  std::string in;
+  for (const char* extra : {"", ",\"detail\":\"value\"", ",\"solid\":true"})
+    in += "{\"op\":\"distance\",\"a\":" + torus + ",\"b\":" + near + ",\"budget_ms\":1" + extra +
+          "}\n";
+  auto r = run("batch --threads 1", in);
+  ASSERT_EQ(r.code, 3) << r.err << r.out;
+  std::istringstream lines(r.out);
+  std::string l;
+  int n = 0;
+  for (; std::getline(lines, l); ++n) {
+    Json o = surfcert::core::io::parse_json(l, "out");
+    ASSERT_EQ(o.find("status")->text(), "undecided") << l;
+    const Json* res = o.find("result");
+    ASSERT_NE(res, nullptr) << l;
+    const Json* m = res->find("minimizers");
+    ASSERT_NE(m, nullptr) << l;
+    EXPECT_EQ(m->text(), "undecided") << l;
+    ASSERT_NE(res->find("minimizers_proof"), nullptr) << l;
+    EXPECT_EQ(res->find("minimizers_proof")->text(), "unproven") << l;
+  }
+  EXPECT_EQ(n, 3);
+}
+
+// Exact mode gives a root in closed form from its own irreducible factor over Q: f = (4l - 9)
+// (l - 36)(l^2 - 9l + 9) is square-free, and its roots 9/4 and 36 are rationals, 9/2 -+
+// sqrt(45)/2 quadratic numbers (docs/json-contract.md, "real_roots[].exact").
+TEST(Cli, ExactModeRootsAreInClosedForm) {
+  auto r = run("classify --json --mode exact " + quote("x^2 + y^2/4 + z^2 = 1") + " " +
+               quote("x^2 - 2x + 9y^2 + 9/4 z^2 = 8"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  Json doc = surfcert::core::io::parse_json(r.out, "stdout");
+  const auto& roots = doc.find("result")->find("real_roots")->items();
+  ASSERT_EQ(roots.size(), 4u) << r.out;
+  EXPECT_EQ(roots[1].find("exact")->text(), "9/4");
+  EXPECT_EQ(roots[3].find("exact")->text(), "36");
+  for (size_t i : {0, 2}) {
+    const std::string ex = roots[i].find("exact")->text();
+    EXPECT_NE(ex.find("sqrt("), std::string::npos) << ex;
+    EXPECT_EQ(ex.find("root of"), std::string::npos) << ex;
+  }
 }

@@ -57,7 +57,8 @@ std::string g17(double x) {
 //   the printed decimals, or the answer is not certified;
 // - an answer that is not certified states no proven count: its minimum is not proven, so
 //   neither is the number of pairs that realise it (an undecided enclosure of an infimum that
-//   may lie at infinity, a float search's single pair); the candidates are kept.
+//   may lie at infinity, a float search's single pair); the candidates are kept, and one
+//   without any count says "undecided" too.
 void finalize(DistanceResult& r, long digits) {
   if (r.status == Status::Certified && r.minimizers.is_count()) {
     const long n = r.minimizers.value();
@@ -78,6 +79,11 @@ void finalize(DistanceResult& r, long digits) {
     r.minimizers = Minimizers::undecided(r.minimizers.value());
   else if (r.status == Status::Uncertified && !r.minimizers.empty() &&
            !r.minimizers.is_undecided()) // a float route proves nothing, not even a continuum
+    r.minimizers = Minimizers::undecided(0);
+  // An answer that is not certified and says nothing of its minimizers (a budget stop before
+  // any route answered, a route that declined without a count) says "undecided" as every
+  // other one does: "minimizers" is in every answer that is not certified.
+  if ((r.status == Status::Undecided || r.status == Status::Uncertified) && r.minimizers.empty())
     r.minimizers = Minimizers::undecided(0);
 }
 

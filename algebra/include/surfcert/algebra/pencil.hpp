@@ -128,6 +128,16 @@ struct PencilFacts {
 /// Exact analysis. Precondition: a, b symmetric.
 PencilFacts analyze_pencil_exact(const core::Mat4& a, const core::Mat4& b);
 
+/// The root r in its simplest exact form, for reports: r.factor comes from the square-free
+/// decomposition of f and may still be reducible over Q (f = (4l - 9)(l - 36)(l^2 - 9l + 9)
+/// is square-free, so its simple roots 9/4 and 36 would read as roots of the quartic). When
+/// r has a factor of degree >= 2 and an isolating interval lo < hi, the factor is factored
+/// over Z (FLINT) and replaced by the irreducible factor that changes sign on (lo, hi) (the
+/// root is simple in the square-free factor, so exactly one does); rational_value is set when
+/// that factor is linear, quadratic when it is an irreducible quadratic. Otherwise r is
+/// returned unchanged. Decisions never read this: they are made on the facts as analysed.
+RootFacts simplest_root_form(RootFacts r);
+
 /// f, D2, D3, D4, E exactly from facts.a, facts.b (integer route), and the root pattern from
 /// their signs, checked against the one from the multiplicities when that is already set.
 void fill_quartic_invariants(PencilFacts& facts);

@@ -27,11 +27,13 @@
 // draws are algebra::Rng's; labelling runs in parallel but lines keep their order).
 #pragma once
 
+#include "surfcert/core/error.hpp"
 #include "surfcert/core/io/json.hpp"
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace surfcert::app {
@@ -57,7 +59,22 @@ struct GenerateRequest {
 /// "double_conic"; distance paths (op distance) "touching", "nested".
 const std::vector<std::string>& family_names();
 
-/// The lines of the request, labelled, in a fixed order. Throws core::InputError for a
+/// What generate() throws for a request it cannot meet: an InputError located on the command
+/// line (as `surfcert generate` reports it) that also names the option at fault by the JSON
+/// path it has as a field of a batch line or a Python keyword: "$.case", "$.count",
+/// "$.family", "$.gaps" or "$.gaps[i]", "$.encoding" (a case the double encoding cannot hold).
+class GenerateRefusal : public core::InputError {
+public:
+  GenerateRefusal(std::string option_path, const std::string& expected, const std::string& found)
+      : core::InputError(core::Location{"<command line>", 0, 0, ""}, expected, found),
+        option_path_(std::move(option_path)) {}
+  const std::string& option_path() const { return option_path_; }
+
+private:
+  std::string option_path_;
+};
+
+/// The lines of the request, labelled, in a fixed order. Throws GenerateRefusal for a
 /// request that cannot be met (unknown case or family, k outside 1..1000, a family point the
 /// double encoding cannot hold exactly), before anything is labelled.
 std::vector<core::io::Json> generate(const GenerateRequest& request);

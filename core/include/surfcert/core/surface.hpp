@@ -59,4 +59,9 @@ using Surface =
 /// "quadric", "torus", "canal", "implicit" or "parametric".
 std::string surface_kind(const Surface& s);
 
+/// What a surface is, as an input error's "found" says it where a quadric was needed: "total
+/// degree N" for an implicit surface (as the equation reader words a degree it refuses), "a
+/// torus", "a canal surface", "a parametric surface", "a quadric".
+std::string surface_found(const Surface& s);
+
 } // namespace surfcert::core
