@@ -1160,12 +1160,37 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
     }
   CurveResult local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1,
                                      movable(out.affine));
+  // Below the normal range: a curve (or a lone isolated point) whose size, scaled back, is
+  // under DBL_MIN has subnormal coordinates (fewer than 53 significant bits, 14 at 2^-1060) or
+  // none at all (a circle 1e-400 wide at 1e-400 from the origin came back as points [0, 0, 0]
+  // with max_residual 0, certified). No picture: undecided, as beyond the range above.
+  double big_unit = 0;
+  const double size_unit = points_size(local, true, &big_unit);
+  const double measure = std::ldexp(size_unit > 0 ? size_unit : big_unit, k);
+  const bool has_points = !local.branches.empty() || !local.isolated_points.empty();
+  if (has_points && measure < DBL_MIN) {
+    if (local.status == Status::Certified) local.status = Status::Undecided;
+    local.matches_topology = false;
+    local.branches.clear();
+    local.isolated_points.clear();
+    local.box_exits.reset();
+    local.box = opt.box;    // a box of its own would be subnormal too
+    local.max_residual = 0; // no point returned
+    local.branch_residual = 0;
+    local.topology = std::move(out.topology);
+    local.affine = std::move(out.affine);
+    local.note = "the curve, traced at unit size, lies below the double range once scaled back "
+                 "(its size under 2^-1022: its points would be subnormal or 0)";
+    return local;
+  }
   bool finite = true, subnormal = false, box_exact = true;
   auto back = [&](Point3& x) {
     for (size_t i = 0; i < 3; ++i) {
+      const double unit = x[i];
       x[i] = std::ldexp(x[i], k);
       finite = finite && std::isfinite(x[i]);
-      subnormal = subnormal || (x[i] != 0 && std::fabs(x[i]) < DBL_MIN);
+      // Rounded on the subnormal grid, or flushed to 0 (an error of at most 2^-1075 either way).
+      subnormal = subnormal || (unit != 0 && std::fabs(x[i]) < DBL_MIN);
     }
   };
   auto box_back = [&](Point3& x) {
