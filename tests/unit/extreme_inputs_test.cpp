@@ -1,0 +1,195 @@
+// Extreme inputs (an audit of magnitudes near the readers' limits): numbers up to the
+// 131072-bit coefficient limit, underflowing and overflowing literals, boxes at the double
+// range. Each answer is exact, certified or honestly undecided, never a crash, a hang past its
+// budget, an internal error or a non-finite JSON number. The CLI cases run the binary and check
+// exit codes, statuses and JSON paths (never prose).
+#include "support/distance_checks.hpp"
+
+#include "surfcert/algebra/real_roots.hpp"
+#include "surfcert/certify/qsic.hpp"
+#include "surfcert/core/io/json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace surfcert;
+using core::Integer;
+using core::io::Json;
+using surfcert::testing::q;
+
+namespace {
+
+struct Proc {
+  int code;
+  std::string out, err;
+  double seconds;
+};
+
+std::string tmp_path(const std::string& name) {
+  return (::testing::TempDir().empty() ? std::string("/tmp/") : ::testing::TempDir()) +
+         "surfcert_extreme_" + std::to_string(getpid()) + "_" + name;
+}
+
+std::string slurp(const std::string& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The binary with `args` (shell-quoted by the caller), stdin_text on its standard input, under
+// `timeout` (a hang fails the test instead of stalling the suite: exit code 124).
+Proc run(const std::string& args, const std::string& stdin_text = "", int timeout_s = 120) {
+  const std::string in = tmp_path("stdin"), out = tmp_path("stdout"), err = tmp_path("stderr");
+  std::ofstream(in) << stdin_text;
+  const std::string cmd = "timeout " + std::to_string(timeout_s) + " " +
+                          std::string(SURFCERT_BINARY) + " " + args + " <" + in + " >" + out +
+                          " 2>" + err;
+  const auto t0 = std::chrono::steady_clock::now();
+  const int st = std::system(cmd.c_str());
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Proc r{WIFEXITED(st) ? WEXITSTATUS(st) : -1, slurp(out), slurp(err), s};
+  std::remove(in.c_str());
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+std::vector<Json> lines_of(const std::string& out) {
+  std::vector<Json> v;
+  std::istringstream s(out);
+  std::string line;
+  while (std::getline(s, line))
+    if (!line.empty()) v.push_back(core::io::parse_json(line, "stdout"));
+  return v;
+}
+
+const Json& at(const Json& j, std::initializer_list<const char*> path) {
+  const Json* p = &j;
+  for (const char* k : path) {
+    p = p->find(k);
+    if (!p) throw std::runtime_error(std::string("missing field ") + k);
+  }
+  return *p;
+}
+
+// The square-free part of the pencil det(l A - B) of the spheres |x| = R and |x - (3,0,0)| = 1:
+// (l - 1)(R^2 l^2 - (R^2 - 8) l + 1), roots 1, ~1 - 10/R^2 and ~1/R^2.
+algebra::UPolyZ sphere_pencil(const Integer& r2) {
+  const algebra::UPolyZ lin = algebra::UPolyZ::from_coeffs({Integer(-1), Integer(1)});
+  const algebra::UPolyZ quad = algebra::UPolyZ::from_coeffs({Integer(1), Integer(8) - r2, r2});
+  algebra::UPolyZ p;
+  fmpz_poly_mul(p.raw_mut(), lin.raw(), quad.raw());
+  return p;
+}
+
+Integer pow10(unsigned long e) {
+  Integer r;
+  fmpz_ui_pow_ui(r.raw_mut(), 10, e);
+  return r;
+}
+
+} // namespace
+
+// F2: CGAL's Descartes isolator recursed once per halving (40,000 frames for R = 1e10000, a
+// stack overflow killing the process). Beyond kCgalMaxBits the loop isolator answers, up to the
+// reader's 131072-bit limit (R^2 = 1e39000: 129,555 bits), exactly and quickly.
+TEST(ExtremeInputs, HugeCoefficientsAreIsolatedWithoutRecursion) {
+  for (unsigned long e : {700UL, 4000UL, 16000UL, 39000UL}) {
+    const algebra::UPolyZ p = sphere_pencil(pow10(e));
+    ASSERT_GT(algebra::max_coefficient_bits(p), algebra::kCgalMaxBits) << e;
+    const auto t0 = std::chrono::steady_clock::now();
+    const algebra::RootSeparation s = algebra::isolate_real_roots(p);
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(s.num_roots(), 3u) << e;
+    EXPECT_LT(secs, 20.0) << e;
+    for (size_t i = 0; i + 1 < s.separators.size(); ++i) {
+      EXPECT_LT(s.separators[i], s.separators[i + 1]) << e;
+      EXPECT_NE(p.sign_at(s.separators[i]), p.sign_at(s.separators[i + 1])) << e;
+    }
+  }
+}
+
+TEST(ExtremeInputs, LoopIsolatorAgreesWithCgalOnSmallPolynomials) {
+  std::mt19937_64 rng(20);
+  std::uniform_int_distribution<int> coef(-40, 40), deg(1, 7);
+  for (int it = 0; it < 300; ++it) {
+    std::vector<Integer> c;
+    const int d = deg(rng);
+    for (int i = 0; i <= d; ++i)
+      c.emplace_back(coef(rng));
+    if (c.back().is_zero()) c.back() = Integer(1);
+    algebra::UPolyZ p = algebra::UPolyZ::from_coeffs(c);
+    // Square-free part (a product with a rational root or two, so that factors meet).
+    const algebra::UPolyZ extra = algebra::UPolyZ::from_coeffs({Integer(it % 5 - 2), Integer(1)});
+    fmpz_poly_mul(p.raw_mut(), p.raw(), extra.raw());
+    fmpz_poly_factor_t fac;
+    fmpz_poly_factor_init(fac);
+    fmpz_poly_factor_squarefree(fac, p.raw());
+    algebra::UPolyZ sq = algebra::UPolyZ::from_coeffs({Integer(1)});
+    for (slong i = 0; i < fac->num; ++i)
+      fmpz_poly_mul(sq.raw_mut(), sq.raw(), fac->p + i);
+    fmpz_poly_factor_clear(fac);
+    const auto a = algebra::isolate_real_roots_descartes(sq);
+    const auto b = algebra::isolate_real_roots_cgal(sq);
+    ASSERT_EQ(a.num_roots(), b.num_roots()) << sq.to_string();
+    ASSERT_EQ(static_cast<long>(a.num_roots()), algebra::count_real_roots(sq)) << sq.to_string();
+    for (size_t i = 0; i < a.separators.size(); ++i) {
+      ASSERT_NE(sq.sign_at(a.separators[i]), 0) << sq.to_string();
+      if (i > 0) {
+        ASSERT_NE(sq.sign_at(a.separators[i]), sq.sign_at(a.separators[i - 1]));
+      }
+    }
+  }
+}
+
+TEST(ExtremeInputs, HugeAndTinySpherePencilsClassifyQuickly) {
+  // 1e20000 crashed (stack overflow), 1e-20000 took more than 60 s (43.8 s in batch with a
+  // budget of 2 s).
+  for (const char* a : {"x^2+y^2+z^2=1e20000", "x^2+y^2+z^2=1e-20000"}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = certify::classify_qsic(q(a), q("(x-3)^2+y^2+z^2=1"), certify::Mode::Filtered);
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(r.status, certify::Status::Certified) << a;
+    ASSERT_NE(r.morphology, nullptr) << a;
+    EXPECT_EQ(std::string(r.morphology->id), "empty_imaginary_conics") << a;
+    EXPECT_LT(secs, 20.0) << a;
+  }
+}
+
+TEST(ExtremeInputs, BatchSurvivesHugeSpheres) {
+  // The crash killed the batch process: every later line was lost.
+  const std::string lines =
+      R"({"id":1,"op":"distance","a":"x^2+y^2+z^2=1","b":"(x-3)^2+y^2+z^2=1"})"
+      "\n"
+      R"({"id":2,"op":"classify","a":"x^2+y^2+z^2=1e20000","b":"(x-3)^2+y^2+z^2=1"})"
+      "\n"
+      R"({"id":3,"op":"distance","a":{"type":"sphere","radius":"1e10000"},"b":{"type":"sphere","center":[3,0,0],"radius":1}})"
+      "\n"
+      R"({"id":4,"op":"classify","a":"x^2+y^2+z^2=1e-20000","b":"(x-3)^2+y^2+z^2=1","budget_ms":2000})"
+      "\n"
+      R"({"id":5,"op":"distance","a":"x^2+y^2+z^2=1","b":"(x-4)^2+y^2+z^2=1"})"
+      "\n";
+  const Proc r = run("batch --threads 1", lines);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto out = lines_of(r.out);
+  ASSERT_EQ(out.size(), 5u) << r.out;
+  for (size_t i = 0; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].find("id")->text(), std::to_string(i + 1));
+    EXPECT_EQ(out[i].find("status")->text(), "certified") << i;
+  }
+  EXPECT_EQ(at(out[1], {"result", "ellipsoid_relation"}).text(), "nested");
+  EXPECT_LT(r.seconds, 60.0);
+}
