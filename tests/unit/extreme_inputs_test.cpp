@@ -193,3 +193,69 @@ TEST(ExtremeInputs, BatchSurvivesHugeSpheres) {
   EXPECT_EQ(at(out[1], {"result", "ellipsoid_relation"}).text(), "nested");
   EXPECT_LT(r.seconds, 60.0);
 }
+
+// F3b: exact strings in JSON skipped the equation reader's 131072-bit limit ("1e999999" hung a
+// distance, even with a budget): now the same input error, with its JSON path, at once.
+TEST(ExtremeInputs, JsonStringsPastTheBitLimitAreInputErrors) {
+  const std::string b = R"('{"type":"sphere","center":[3,0,0],"radius":1}')";
+  for (const auto& [a, path] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"type":"sphere","radius":"1e999999"})", "$.radius"},
+           {R"({"type":"sphere","radius":"1e99999"})", "$.radius"},
+           {R"({"type":"sphere","radius":"1/1e1"})", "$.radius"}, // not a number: as before
+           {R"({"matrix":[["1e99999",0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1]]})", "$.matrix[0][0]"},
+           {R"({"type":"sphere","radius":1,"center":[0,"-1e-50000",0]})", "$.center[1]"}}) {
+    const Proc r = run("distance '" + a + "' " + b + " --json", "", 20);
+    EXPECT_EQ(r.code, 2) << a << ": " << r.err;
+    EXPECT_NE(r.err.find("(" + path + ")"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  // In batch: an error line with its JSON path, within the budget, and the next line answered.
+  const Proc r = run("batch",
+                     R"({"id":1,"op":"distance","a":{"type":"sphere","radius":"1e999999"},)"
+                     R"("b":"(x-3)^2+y^2+z^2=1","budget_ms":2000})"
+                     "\n"
+                     R"({"id":2,"op":"distance","a":"x^2+y^2+z^2=1","b":"(x-3)^2+y^2+z^2=1"})"
+                     "\n",
+                     20);
+  const auto out = lines_of(r.out);
+  ASSERT_EQ(out.size(), 2u) << r.out;
+  EXPECT_EQ(out[0].find("status")->text(), "error");
+  EXPECT_EQ(at(out[0], {"error", "kind"}).text(), "input");
+  EXPECT_EQ(at(out[0], {"error", "json_path"}).text(), "$.a.radius");
+  EXPECT_EQ(out[1].find("status")->text(), "certified");
+  // Within the limit: read exactly (1e39000 is 129,555 bits).
+  const Proc ok =
+      run(R"(distance '{"type":"sphere","radius":"1e39000"}' )" + b + " --json", "", 60);
+  EXPECT_EQ(ok.code, 0) << ok.err;
+}
+
+// F6: a nonzero number literal that underflows (1e-400, 2e-324) was read as 0 (a radius then
+// "expected a positive length, found 0"; a centre silently moved) while 1e400 was refused: now
+// refused the same way, at its location. Subnormal doubles and zeros written with an exponent
+// are doubles.
+TEST(ExtremeInputs, UnderflowingLiteralsAreRefusedLikeOverflowingOnes) {
+  const std::string b = R"('{"type":"sphere","center":[3,0,0],"radius":1}')";
+  for (const auto& [a, path] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"type":"sphere","radius":1e-400})", "$.radius"},
+           {R"({"type":"sphere","radius":2e-324})", "$.radius"},
+           {R"({"type":"sphere","radius":1,"center":[1e-400,0,0]})", "$.center[0]"},
+           {R"({"type":"sphere","radius":1,"center":[0,-1e400,0]})", "$.center[1]"},
+           {R"({"matrix":[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,-1e-999]]})", "$.matrix[3][3]"}}) {
+    const Proc r = run("distance '" + a + "' " + b + " --json", "", 20);
+    EXPECT_EQ(r.code, 2) << a << ": " << r.err;
+    EXPECT_NE(r.err.find("(" + path + ")"), std::string::npos) << r.err;
+  }
+  for (const std::string a : {R"({"type":"sphere","radius":5e-324})",
+                              R"({"type":"sphere","radius":1,"center":[0.0e-400,0,0]})",
+                              R"({"type":"sphere","radius":"1e-400"})"}) {
+    const Proc r = run("distance '" + a + "' " + b + " --json", "", 20);
+    EXPECT_EQ(r.code, 0) << a << ": " << r.err;
+  }
+  // The batch's fast reader agrees (its underflows go to the exact reader).
+  const Proc r = run("batch", R"({"id":1,"op":"classify","a":{"type":"sphere","radius":1,)"
+                              R"("center":[1e-400,0,0]},"b":"x^2+y^2+z^2=4"})"
+                              "\n");
+  const auto out = lines_of(r.out);
+  ASSERT_EQ(out.size(), 1u) << r.out;
+  EXPECT_EQ(at(out[0], {"error", "json_path"}).text(), "$.a.center[0]");
+}
