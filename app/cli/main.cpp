@@ -224,6 +224,18 @@ int cmd_classify(const std::vector<std::string>& eq, const Opts& o) {
 }
 
 // --tol: a number (read exactly, e.g. 1/1000 or 2e-4) from 1e-12 to 1; 0 when it is none.
+// CLI::Range lets NaN through (both its comparisons are false): "--budget-ms nan" ran as no
+// budget. Checked before the range.
+CLI::Validator not_nan() {
+  return CLI::Validator(
+      [](std::string& v) {
+        return std::isnan(std::strtod(v.c_str(), nullptr))
+                   ? "expected a number, found \"" + v + "\""
+                   : std::string();
+      },
+      "", "NOT_NAN");
+}
+
 double tol_value(const std::string& v) {
   auto t = core::Rational::from_string(v);
   double d = t ? t->to_double_approx() : 0;
@@ -735,6 +747,7 @@ int main(int argc, char** argv) {
       ->add_option("--budget-ms", o.budget_ms,
                    "default time budget per line in ms (a line's \"budget_ms\" overrides; past "
                    "it the line answers undecided, reason \"budget\"); 0 = none")
+      ->check(not_nan())
       ->check(CLI::Range(0.0, 1e9));
   add_detail(batch, o, {"value", "topology", "certificate", "full"},
              "default detail of the lines (a line's \"detail\" overrides): classify and "
@@ -753,12 +766,14 @@ int main(int argc, char** argv) {
       ->add_option("--retry-undecided", o.retry_undecided,
                    "--mpi: run the lines undecided by their budget again, after the others, "
                    "with this budget in ms")
+      ->check(not_nan())
       ->check(CLI::Range(1.0, 1e9))
       ->type_name("MS");
   batch
       ->add_option("--rank-timeout", o.rank_timeout,
                    "--mpi under mpirun --enable-recovery: a rank silent this long (heartbeats) "
                    "is dead and its lines go to the others")
+      ->check(not_nan())
       ->check(CLI::Range(0.5, 1e6))
       ->each([&o](const std::string&) { o.rank_timeout_set = true; })
       ->type_name("S");

@@ -259,3 +259,33 @@ TEST(ExtremeInputs, UnderflowingLiteralsAreRefusedLikeOverflowingOnes) {
   ASSERT_EQ(out.size(), 1u) << r.out;
   EXPECT_EQ(at(out[0], {"error", "json_path"}).text(), "$.a.center[0]");
 }
+
+TEST(ExtremeInputs, NanBudgetIsRefused) {
+  const Proc r = run("batch --budget-ms nan", "");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(run("batch --budget-ms 100", "").code, 0);
+}
+
+// F6: the distance to a quadric with no real point was "undecided: no critical point found";
+// now undecided with the machine-readable reason, proven exactly.
+TEST(ExtremeInputs, DistanceToAQuadricWithNoRealPointSaysSo) {
+  for (const char* a : {"x^2+y^2+z^2=-1", "x^2+y^2=-1", "-x^2-2y^2-(z-1)^2=3"}) {
+    for (bool swap : {false, true}) {
+      const std::string s = std::string("'") + a + "'", t = "'(x-3)^2+y^2+z^2=1'";
+      const Proc r = run("distance " + (swap ? t + " " + s : s + " " + t) + " --json", "", 20);
+      EXPECT_EQ(r.code, 3) << a;
+      const Json j = core::io::parse_json(r.out, "stdout");
+      EXPECT_EQ(j.find("status")->text(), "undecided") << a;
+      ASSERT_NE(j.find("reason"), nullptr) << r.out;
+      EXPECT_EQ(j.find("reason")->text(), "no_real_point") << a;
+    }
+  }
+  // A real quadric (a cone's apex alone, a line) is not said empty.
+  for (const char* a : {"x^2+y^2+z^2=0", "x^2+y^2=0"}) {
+    const Proc r = run(std::string("distance '") + a + "' '(x-3)^2+y^2+z^2=1' --json", "", 20);
+    const Json j = core::io::parse_json(r.out, "stdout");
+    const Json* reason = j.find("reason");
+    EXPECT_TRUE(reason == nullptr || reason->text() != "no_real_point") << a;
+  }
+}

@@ -146,10 +146,10 @@ void append_distance_envelope(std::string& out, const DistanceResult& r, long di
   out += '{';
   key("status");
   str(to_string(r.status));
-  if (r.budget_exhausted) {
+  if (r.budget_exhausted || r.no_real_point) {
     out += ',';
     key("reason");
-    str("budget");
+    str(r.budget_exhausted ? "budget" : "no_real_point");
   }
   if (!r.note.empty()) {
     out += ',';
