@@ -290,49 +290,56 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   if (!json) report_readings(readings, nullptr);
   const certify::Detail detail = json ? detail_arg(o.detail) : certify::Detail::Full;
   trace::CurveResult c = trace::intersect_curve(a, b, mode, opt, detail);
+  // Everything formed before anything is written: an exception on the way (an internal
+  // error) leaves no file behind and nothing half-printed. No non-finite coordinate is drawn.
   std::vector<trace::Point3> special;
   for (const auto& p : c.topology.special_points)
-    if (!p.at_infinity) special.push_back(p.approx);
+    if (!p.at_infinity && std::isfinite(p.approx[0]) && std::isfinite(p.approx[1]) &&
+        std::isfinite(p.approx[2]))
+      special.push_back(p.approx);
+  std::string export_text, svg_text;
   if (!export_path.empty())
-    write_atomically(export_path, ends_with(export_path, ".obj")
-                                      ? trace::to_obj(c.branches, c.isolated_points)
-                                      : trace::to_ply(c.branches, c.isolated_points));
+    export_text = ends_with(export_path, ".obj") ? trace::to_obj(c.branches, c.isolated_points)
+                                                 : trace::to_ply(c.branches, c.isolated_points);
   if (!svg_path.empty()) {
     trace::Picture pic;
     pic.branches = c.branches;
     pic.special_points = special;
     pic.caption = trace::curve_caption(c);
     pic.box = c.box;
-    write_atomically(svg_path, trace::to_svg(a, b, pic));
+    svg_text = trace::to_svg(a, b, pic);
   }
+  std::ostringstream os;
   if (json) {
     core::io::Json env = trace::curve_envelope_json(c, a, b, detail);
     report_readings(readings, &env);
-    std::cout << core::io::dump(env, 2) << "\n";
+    os << core::io::dump(env, 2) << "\n";
   } else {
-    std::cout << certify::qsic_result_text(c.topology, a, b);
-    std::cout << "curve: " << certify::to_string(c.status) << ", " << c.branches.size()
-              << " branch(es):";
+    os << certify::qsic_result_text(c.topology, a, b);
+    os << "curve: " << certify::to_string(c.status) << ", " << c.branches.size() << " branch(es):";
     for (const auto& br : c.branches)
-      std::cout << " " << br.kind << "(" << br.points.size() << " points)";
-    std::cout << ", " << c.isolated_points.size() << " isolated point(s), max residual "
-              << c.max_residual << "\n";
+      os << " " << br.kind << "(" << br.points.size() << " points)";
+    os << ", " << c.isolated_points.size() << " isolated point(s), max residual " << c.max_residual
+       << "\n";
     const auto& af = c.affine;
     if (af.computed) {
       auto n = [](const std::optional<int>& v) { return v ? std::to_string(*v) : "undecided"; };
-      std::cout << "affine (" << (af.certified() ? "certified" : "undecided")
-                << "): " << n(af.loops) << " loop(s), " << n(af.unbounded_branches)
-                << " unbounded branch(es), " << n(af.isolated_points) << " isolated point(s), "
-                << n(af.lines) << " line(s), " << n(af.conics) << " conic(s), "
-                << af.points_at_infinity.size() << " point(s) at infinity, "
-                << af.at_infinity_only.size() << " component(s) at infinity only\n";
+      os << "affine (" << (af.certified() ? "certified" : "undecided") << "): " << n(af.loops)
+         << " loop(s), " << n(af.unbounded_branches) << " unbounded branch(es), "
+         << n(af.isolated_points) << " isolated point(s), " << n(af.lines) << " line(s), "
+         << n(af.conics) << " conic(s), " << af.points_at_infinity.size()
+         << " point(s) at infinity, " << af.at_infinity_only.size()
+         << " component(s) at infinity only\n";
     }
     if (c.box)
-      std::cout << "box" << (c.box_automatic ? " (automatic)" : "") << ": [" << c.box->min[0]
-                << ", " << c.box->max[0] << "] x [" << c.box->min[1] << ", " << c.box->max[1]
-                << "] x [" << c.box->min[2] << ", " << c.box->max[2] << "]\n";
-    if (!c.note.empty()) std::cout << "note: " << c.note << "\n";
+      os << "box" << (c.box_automatic ? " (automatic)" : "") << ": [" << c.box->min[0] << ", "
+         << c.box->max[0] << "] x [" << c.box->min[1] << ", " << c.box->max[1] << "] x ["
+         << c.box->min[2] << ", " << c.box->max[2] << "]\n";
+    if (!c.note.empty()) os << "note: " << c.note << "\n";
   }
+  if (!export_path.empty()) write_atomically(export_path, export_text);
+  if (!svg_path.empty()) write_atomically(svg_path, svg_text);
+  std::cout << os.str();
   return c.status == certify::Status::Undecided ? 3 : 0;
 }
 

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <fstream>
 #include <random>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -288,4 +289,70 @@ TEST(ExtremeInputs, DistanceToAQuadricWithNoRealPointSaysSo) {
     const Json* reason = j.find("reason");
     EXPECT_TRUE(reason == nullptr || reason->text() != "no_real_point") << a;
   }
+}
+
+namespace {
+
+// A printed non-finite double ("inf", "-nan", ...) as a word of its own (not "infinite").
+bool has_non_finite_token(const std::string& s) {
+  static const std::regex word("(^|[^A-Za-z])-?(inf|nan|INF|NAN)([^A-Za-z]|$)");
+  return std::regex_search(s, word);
+}
+
+} // namespace
+
+// F3d: a given box from -1e308 to 1e308 (its diagonal past the doubles) hung the tracer, deaf to
+// a batch budget; now undecided at once, its picture finite.
+TEST(ExtremeInputs, BoxWithDiagonalBeyondTheDoublesIsUndecidedAtOnce) {
+  const std::string svg = tmp_path("box.svg");
+  const Proc r = run("intersect 'x^2-y^2=1' 'x^2+z^2=4' --box "
+                     "-1e308,-1e308,-1e308,1e308,1e308,1e308 --json --svg " +
+                         svg,
+                     "", 60);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_LT(r.seconds, 30.0);
+  const Json j = core::io::parse_json(r.out, "stdout");
+  EXPECT_EQ(j.find("status")->text(), "undecided");
+  const std::string pic = slurp(svg);
+  EXPECT_FALSE(pic.empty());
+  EXPECT_FALSE(has_non_finite_token(pic));
+  std::remove(svg.c_str());
+  const Proc bt = run("batch",
+                      R"({"id":1,"op":"intersect","a":"x^2-y^2=1","b":"x^2+z^2=4",)"
+                      R"("box":{"min":[-1.7e308,-1.7e308,-1.7e308],)"
+                      R"("max":[1.7e308,1.7e308,1.7e308]},"budget_ms":2000})"
+                      "\n",
+                      60);
+  const auto out = lines_of(bt.out);
+  ASSERT_EQ(out.size(), 1u) << bt.out;
+  EXPECT_EQ(out[0].find("status")->text(), "undecided");
+  EXPECT_LT(bt.seconds, 30.0);
+}
+
+// F4 and F5: internal errors (exit 1) on valid input whose numbers leave the doubles: a
+// non-finite double met exact arithmetic, or a box [-inf, inf] reached a JSON number; with
+// --export and --svg the files were written anyway (the SVG with inf coordinates).
+TEST(ExtremeInputs, BeyondTheDoublesAnswersWithFiniteNumbers) {
+  const std::vector<std::string> cmds = {
+      R"(distance '{"type":"ellipsoid","radii":[1.7e308,1.7e308,1.7e308]}' )"
+      R"('{"type":"ellipsoid","center":[1.7e308,0,0],"radii":[1.7e308,1.7e308,1.7e308]}' --json)",
+      R"(distance '{"matrix":[[1.7e308,0,0,0],[0,1.7e308,0,0],[0,0,-1.7e308,0],[0,0,0,0]]}' )"
+      R"('x^2+y^2=1' --json)",
+      "intersect 'x^2+y^2=1e700' 'x^2+z^2=1e700' --json",
+      "intersect 'x^2+y^2-z^2=0' 'x=1e320' --json",
+      "intersect 'x^2+y^2+z^2=1e700' '(x-2e350)^2+y^2+z^2=1e700' --json"};
+  for (const std::string& c : cmds) {
+    const Proc r = run(c, "", 60);
+    EXPECT_TRUE(r.code == 0 || r.code == 3) << c << ": " << r.code << " " << r.err;
+    const Json j = core::io::parse_json(r.out, "stdout"); // throws on a non-finite number
+    EXPECT_NE(j.find("status"), nullptr) << c;
+  }
+  const std::string obj = tmp_path("c.obj"), svg = tmp_path("c.svg");
+  const Proc r = run(
+      "intersect 'x^2+y^2=1e700' 'x^2+z^2=1e700' --json --export " + obj + " --svg " + svg, "", 60);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_FALSE(has_non_finite_token(slurp(obj)));
+  EXPECT_FALSE(has_non_finite_token(slurp(svg)));
+  std::remove(obj.c_str());
+  std::remove(svg.c_str());
 }

@@ -1220,6 +1220,9 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
     local.matches_topology = false;
     local.branches.clear();
     local.box_exits.reset();
+    local.box = opt.box; // the given box (finite), or none
+    local.isolated_points.clear();
+    local.max_residual = 0; // no point returned
     local.note = "the curve or its box, traced at unit size, lies beyond the double range once "
                  "scaled back";
     return local;
@@ -1248,6 +1251,21 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
 
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         QsicResult topology, const TraceOptions& opt) {
+  if (opt.box && !std::isfinite(opt.box->diagonal())) {
+    // A given box whose diagonal is beyond the doubles (corners at +-1e308): the tracer's
+    // scene size, steps and floors are relative to it, and a walk's step became NaN and never
+    // ended (a hang, deaf to a batch budget). Nothing traced.
+    CurveResult out;
+    out.tolerance = opt.tolerance;
+    out.topology = std::move(topology);
+    if (out.topology.morphology) certify::complete_special_points(out.topology, a, b);
+    out.affine = certify::affine_topology(out.topology, a, b);
+    out.status = out.topology.status == Status::Certified ? Status::Undecided : out.topology.status;
+    out.box = opt.box;
+    out.note = "the box's diagonal is beyond the double range: nothing traced (a box up to about "
+               "1e308 across is traced)";
+    return out;
+  }
   CurveResult out = trace_curve_at(a, b, std::move(topology), opt, 0);
   check_picture(out);
   // Doubles beyond the range (a unit pair's hyperbolas followed out to a given box 1e300 wide,
@@ -1258,6 +1276,20 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
       finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
   for (const auto& p : out.isolated_points)
     finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  auto finite3 = [](const Point3& p) {
+    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  };
+  // A box (or a crossing) beyond the double range (a curve 1e350 wide, a plane x = 1e320: the
+  // automatic box came out [-inf, inf], an internal error in the JSON): no box at all.
+  bool box_finite = !out.box || (finite3(out.box->min) && finite3(out.box->max));
+  if (out.box_exits)
+    for (const auto& c : out.box_exits->points)
+      box_finite = box_finite && finite3(c.approx) && std::isfinite(c.radius);
+  if (!box_finite) {
+    out.box.reset();
+    out.box_exits.reset();
+    finite = false;
+  }
   if (!finite) {
     out.branches.clear();
     out.isolated_points.clear();
