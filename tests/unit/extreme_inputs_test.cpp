@@ -370,3 +370,30 @@ TEST(ExtremeInputs, BeyondTheDoublesAnswersWithFiniteNumbers) {
   std::remove(obj.c_str());
   std::remove(svg.c_str());
 }
+
+// F7: "approx" went through a double: "inf" for a certified distance of ~1e400, "0" for one of
+// 1e-1001. Now the midpoint's %.17g text at any exponent, inside [lower, upper].
+TEST(ExtremeInputs, ApproxBeyondTheDoublesIsTheMidpoint) {
+  const std::string tiny_centre = "2." + std::string(1000, '0') + "1"; // 2 + 1e-1001
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"type":"sphere","radius":"1e400"})",
+            R"({"type":"sphere","center":[3,0,0],"radius":1})"},
+           {R"({"type":"sphere","radius":1})",
+            R"({"type":"sphere","center":[")" + tiny_centre + R"(",0,0],"radius":1})"}}) {
+    const Proc r = run("distance '" + a + "' '" + b + "' --json", "", 60);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Json j = core::io::parse_json(r.out, "stdout");
+    const Json& d = at(j, {"result", "distance"});
+    const std::string lo = d.find("lower")->text(), hi = d.find("upper")->text(),
+                      ap = d.find("approx")->text();
+    mpfr_t l, h, m;
+    mpfr_inits2(256, l, h, m, static_cast<mpfr_ptr>(nullptr));
+    ASSERT_EQ(mpfr_set_str(l, lo.c_str(), 10, MPFR_RNDN), 0) << lo;
+    ASSERT_EQ(mpfr_set_str(h, hi.c_str(), 10, MPFR_RNDN), 0) << hi;
+    ASSERT_EQ(mpfr_set_str(m, ap.c_str(), 10, MPFR_RNDN), 0) << ap;
+    EXPECT_TRUE(mpfr_number_p(m) && mpfr_sgn(m) > 0) << ap;
+    EXPECT_LE(mpfr_cmp(l, m), 0) << lo << " " << ap;
+    EXPECT_LE(mpfr_cmp(m, h), 0) << ap << " " << hi;
+    mpfr_clears(l, h, m, static_cast<mpfr_ptr>(nullptr));
+  }
+}

@@ -176,7 +176,7 @@ void append_distance_envelope(std::string& out, const DistanceResult& r, long di
     str(r.distance->upper());
     out += ',';
     key("approx");
-    str(g17(r.distance->approx()));
+    str(r.distance->approx_text());
     out += "},";
   }
   if (r.estimate) { // a float answer: never in "distance"
