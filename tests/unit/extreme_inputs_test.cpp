@@ -21,6 +21,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace surfcert;
@@ -395,5 +396,26 @@ TEST(ExtremeInputs, ApproxBeyondTheDoublesIsTheMidpoint) {
     EXPECT_LE(mpfr_cmp(l, m), 0) << lo << " " << ap;
     EXPECT_LE(mpfr_cmp(m, h), 0) << ap << " " << hi;
     mpfr_clears(l, h, m, static_cast<mpfr_ptr>(nullptr));
+  }
+}
+
+// With F1: two spheres touching at (1e-350, 0, 0) are certified by classify (rightly); the
+// special point's approx read "0" (a double underflowing), now the rational's decimal.
+TEST(ExtremeInputs, SpecialPointApproxBeyondTheDoubles) {
+  for (const auto& [a, b, sign] : std::vector<std::tuple<std::string, std::string, int>>{
+           {"x^2+y^2+z^2=1e-700", "(x-2e-350)^2+y^2+z^2=1e-700", 1},
+           {"x^2+y^2+z^2=1e700", "(x+2e350)^2+y^2+z^2=1e700", -1}}) {
+    const Proc r = run("classify '" + a + "' '" + b + "' --json", "", 60);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Json j = core::io::parse_json(r.out, "stdout");
+    const Json& sp = at(j, {"result", "special_points"});
+    ASSERT_EQ(sp.size(), 1u);
+    const std::string x = sp.items()[0].find("approx")->items()[0].text();
+    mpfr_t m;
+    mpfr_init2(m, 64);
+    ASSERT_EQ(mpfr_set_str(m, x.c_str(), 10, MPFR_RNDN), 0) << x;
+    EXPECT_TRUE(mpfr_number_p(m) && mpfr_sgn(m) == sign) << x;
+    EXPECT_EQ(mpfr_get_exp(m), sign > 0 ? -1162 : 1163) << x; // 1e+-350 ~ 2^+-1162.7
+    mpfr_clear(m);
   }
 }

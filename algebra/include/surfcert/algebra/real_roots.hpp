@@ -9,7 +9,9 @@
 // How: a float guess first (Aberth iteration on the complex roots, separators at midpoints of
 // the k real-most guesses, converted exactly to dyadic rationals), checked with exact signs;
 // if the check fails (clustered roots, a separator landing on a root), CGAL's Descartes
-// isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead.
+// isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead, or,
+// for coefficients beyond kCgalMaxBits bits, isolate_real_roots_descartes (a loop: CGAL's
+// recursion overflowed the stack there).
 #pragma once
 
 #include "surfcert/algebra/upoly.hpp"
