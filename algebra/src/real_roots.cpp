@@ -1,6 +1,7 @@
 #include "surfcert/algebra/real_roots.hpp"
 
 #include "surfcert/algebra/arb.hpp"
+#include "surfcert/core/budget.hpp"
 
 #include <flint/fmpz_poly_factor.h>
 
@@ -306,6 +307,287 @@ std::optional<std::vector<Rational>> rational_root_separators(const UPolyZ& p, l
 
 } // namespace
 
+namespace {
+
+// Sign variations of the coefficients of (1 + x)^n p((lo + hi x) / (1 + x)) (zeros skipped): by
+// Descartes' rule an upper bound on the roots of p in (lo, hi) of the same parity; 0 and 1 are
+// exact counts.
+long descartes_variations(const UPolyZ& p, const Rational& lo, const Rational& hi) {
+  const slong n = p.degree();
+  fmpz_t an, ad, bn, bd;
+  fmpz_init_set(an, fmpq_numref(lo.raw()));
+  fmpz_init_set(ad, fmpq_denref(lo.raw()));
+  fmpz_init_set(bn, fmpq_numref(hi.raw()));
+  fmpz_init_set(bd, fmpq_denref(hi.raw()));
+  // (lo + hi x) / (1 + x) = (an bd + bn ad x) / (ad bd (1 + x)): q = sum c_i A^i D^(n-i).
+  fmpz_poly_t A, D, Ap, t, q;
+  fmpz_poly_init(A);
+  fmpz_poly_init(D);
+  fmpz_poly_init(Ap);
+  fmpz_poly_init(t);
+  fmpz_poly_init(q);
+  fmpz_t c;
+  fmpz_init(c);
+  fmpz_mul(c, an, bd);
+  fmpz_poly_set_coeff_fmpz(A, 0, c);
+  fmpz_mul(c, bn, ad);
+  fmpz_poly_set_coeff_fmpz(A, 1, c);
+  fmpz_mul(c, ad, bd);
+  fmpz_poly_set_coeff_fmpz(D, 0, c);
+  fmpz_poly_set_coeff_fmpz(D, 1, c);
+  std::vector<UPolyZ> dpow(static_cast<size_t>(n + 1)); // D^j
+  fmpz_poly_one(dpow[0].raw_mut());
+  for (slong j = 1; j <= n; ++j)
+    fmpz_poly_mul(dpow[static_cast<size_t>(j)].raw_mut(), dpow[static_cast<size_t>(j - 1)].raw(),
+                  D);
+  fmpz_poly_one(Ap); // A^i
+  for (slong i = 0; i <= n; ++i) {
+    const fmpz* ci = p.raw()->coeffs + i;
+    if (!fmpz_is_zero(ci)) {
+      fmpz_poly_mul(t, Ap, dpow[static_cast<size_t>(n - i)].raw());
+      fmpz_poly_scalar_addmul_fmpz(q, t, ci);
+    }
+    if (i < n) fmpz_poly_mul(Ap, Ap, A);
+  }
+  long v = 0;
+  int prev = 0;
+  for (slong i = 0; i < fmpz_poly_length(q); ++i) {
+    const int sg = fmpz_sgn(q->coeffs + i);
+    if (sg == 0) continue;
+    if (prev != 0 && sg != prev) ++v;
+    prev = sg;
+  }
+  fmpz_clear(c);
+  fmpz_poly_clear(A);
+  fmpz_poly_clear(D);
+  fmpz_poly_clear(Ap);
+  fmpz_poly_clear(t);
+  fmpz_poly_clear(q);
+  fmpz_clear(an);
+  fmpz_clear(ad);
+  fmpz_clear(bn);
+  fmpz_clear(bd);
+  return v;
+}
+
+// u with every root of p (c_n != 0) of modulus < 2^u (Cauchy: 1 + max |c_i / c_n|), u >= 1.
+slong cauchy_exponent(const fmpz_poly_struct* p) {
+  const slong n = fmpz_poly_degree(p);
+  const slong lead = static_cast<slong>(fmpz_bits(p->coeffs + n));
+  slong t = 0;
+  for (slong i = 0; i < n; ++i)
+    if (!fmpz_is_zero(p->coeffs + i))
+      t = std::max(t, static_cast<slong>(fmpz_bits(p->coeffs + i)) - lead + 1);
+  return t + 1;
+}
+
+// Isolating intervals (lo, hi), 0 < lo, of the positive roots of q (square-free, q(0) != 0):
+// Descartes' rule on intervals split at the geometric mean of their ends while they span more
+// than a factor 4 (a pencil of a sphere of radius 1e20000 and a unit one has roots some 130000
+// binary orders apart: found in ~17 splits of the exponent), then halved. A loop over a work
+// list, not a recursion (CGAL's Descartes recursed once per halving: 40,000 frames deep on that
+// pencil, a stack overflow), with a budget check per interval.
+void positive_root_intervals(const UPolyZ& q, std::vector<std::pair<Rational, Rational>>& out) {
+  const slong up = cauchy_exponent(q.raw());
+  UPolyZ rev;
+  fmpz_poly_reverse(rev.raw_mut(), q.raw(), q.degree() + 1);
+  const slong down = cauchy_exponent(rev.raw());
+  std::vector<std::pair<Rational, Rational>> work{{core::pow2(-down), core::pow2(up)}};
+  while (!work.empty()) {
+    core::check_budget();
+    auto [lo, hi] = std::move(work.back());
+    work.pop_back();
+    const long v = descartes_variations(q, lo, hi);
+    if (v == 0) continue;
+    if (v == 1) {
+      out.emplace_back(std::move(lo), std::move(hi));
+      continue;
+    }
+    Rational mid;
+    if (hi > Rational(4) * lo) {
+      // 2^e with e halfway between the ends' binary orders, strictly inside (lo, hi).
+      const auto order = [](const Rational& x) {
+        return static_cast<slong>(fmpz_bits(fmpq_numref(x.raw()))) -
+               static_cast<slong>(fmpz_bits(fmpq_denref(x.raw())));
+      };
+      mid = core::pow2((order(lo) + order(hi)) / 2);
+      if (!(lo < mid && mid < hi)) mid = (lo + hi) * Rational(1, 2);
+    } else {
+      mid = (lo + hi) * Rational(1, 2);
+    }
+    // Never split at a root (at most n moves).
+    while (q.sign_at(mid) == 0)
+      mid = (lo + mid) * Rational(1, 2);
+    work.emplace_back(mid, std::move(hi));
+    work.emplace_back(std::move(lo), std::move(mid));
+  }
+}
+
+// One root of an irreducible factor f: the point lo == hi (a rational root), or inside the
+// open interval (lo, hi), f(lo) f(hi) < 0, holding no other root of f.
+struct FactorRoot {
+  size_t factor;
+  Rational lo, hi;
+};
+
+// Quadratic interval refinement (Abbott's QIR, exact signs only): (lo, hi) narrowed to width at
+// most `width` around the one root of f it holds (f(lo) f(hi) < 0). Each round proposes a
+// bracket of 1/n of the interval around the secant point; a hit squares n (quadratic
+// convergence: a root 10^-16000 from another is reached in ~20 rounds, where halving took
+// 53,000), a miss halves it (n = 2 is a bisection). Budget checked per round.
+void qir_refine(const UPolyZ& f, Rational& lo, Rational& hi, const Rational& width) {
+  const int slo = f.sign_at(lo);
+  if (slo == 0 || lo == hi) return;
+  core::Integer n(4);
+  std::vector<Rational> coeffs;
+  for (long i = 0; i <= f.degree(); ++i)
+    coeffs.emplace_back(f.coeff(i));
+  const UPolyQ fq = UPolyQ::from_coeffs(coeffs);
+  while (hi - lo > width) {
+    core::check_budget();
+    const Rational w = hi - lo;
+    // The secant point (regula falsi) from exact values at the ends, rounded to the grid w / n.
+    const Rational vlo = fq.evaluate(lo), vhi = fq.evaluate(hi);
+    const Rational step = w / Rational(n);
+    Rational guess = lo + w * (vlo / (vlo - vhi));
+    Rational k = (guess - lo) / step;
+    core::Integer kk;
+    fmpz_fdiv_q(kk.raw_mut(), fmpq_numref(k.raw()), fmpq_denref(k.raw()));
+    Rational a = lo + step * Rational(kk), b = a + step;
+    bool hit = false;
+    if (lo < a || b < hi) {
+      const int sa = lo < a ? f.sign_at(a) : slo, sb = b < hi ? f.sign_at(b) : -slo;
+      if (sa == 0) {
+        lo = hi = a;
+        return;
+      }
+      if (sb == 0) {
+        lo = hi = b;
+        return;
+      }
+      if (sa == slo && sb != slo) {
+        lo = a, hi = b, hit = true;
+      } else if (sa != slo) {
+        hi = a;
+      } else {
+        lo = b;
+      }
+    }
+    if (hit) {
+      n = n * n;
+    } else {
+      // A miss: one exact halving besides, and a coarser grid next time.
+      const Rational mid = (lo + hi) * Rational(1, 2);
+      const int sm = f.sign_at(mid);
+      if (sm == 0) {
+        lo = hi = mid;
+        return;
+      }
+      (sm == slo ? lo : hi) = mid;
+      if (fmpz_cmp_ui(n.raw(), 4) > 0) fmpz_sqrt(n.raw_mut(), n.raw());
+    }
+  }
+}
+
+// The roots of the irreducible factor f (index i), each alone in its interval.
+void factor_roots(const UPolyZ& f, size_t i, std::vector<FactorRoot>& out) {
+  const long d = f.degree();
+  if (d == 1) { // -c0 / c1
+    Rational r(-f.coeff(0), f.coeff(1));
+    out.push_back({i, r, r});
+    return;
+  }
+  if (d == 2) {
+    // (-b +- sqrt(D)) / 2a, D = b^2 - 4ac not a square (f irreducible): with s = floor(sqrt D),
+    // each root alone in the image of (s, s + 1) (width 1 / 2|a| < sqrt(D) / |a|, the gap).
+    const core::Integer a = f.coeff(2), b = f.coeff(1), c = f.coeff(0);
+    core::Integer disc = b * b - core::Integer(4) * a * c;
+    if (fmpz_sgn(disc.raw()) <= 0) return;
+    core::Integer sq;
+    fmpz_sqrt(sq.raw_mut(), disc.raw());
+    const Rational two_a(core::Integer(2) * a);
+    for (int sg : {-1, 1}) {
+      Rational e1 = (Rational(-b) + Rational(sg) * Rational(sq)) / two_a;
+      Rational e2 = (Rational(-b) + Rational(sg) * Rational(sq + core::Integer(1))) / two_a;
+      if (e2 < e1) std::swap(e1, e2);
+      out.push_back({i, e1, e2});
+    }
+    return;
+  }
+  std::vector<std::pair<Rational, Rational>> pos, neg;
+  positive_root_intervals(f, pos);
+  UPolyZ minus = f; // f(-x)
+  for (slong j = 1; j <= minus.degree(); j += 2)
+    fmpz_neg(minus.raw_mut()->coeffs + j, minus.raw()->coeffs + j);
+  positive_root_intervals(minus, neg);
+  for (auto& [lo, hi] : neg)
+    out.push_back({i, -hi, -lo});
+  for (auto& [lo, hi] : pos)
+    out.push_back({i, lo, hi});
+}
+
+} // namespace
+
+long max_coefficient_bits(const UPolyZ& p) {
+  return static_cast<long>(std::labs(fmpz_poly_max_bits(p.raw())));
+}
+
+RootSeparation isolate_real_roots_descartes(const UPolyZ& p) {
+  RootSeparation out;
+  if (p.degree() < 1) {
+    out.separators = {Rational(0)};
+    return out;
+  }
+  // Irreducible factors apart: roots of different factors may be 10^-16000 apart (the pencil
+  // of spheres of radii 1e8000 and 1: the root 1 and a root of a quadratic factor), which
+  // Descartes' halvings separate only after 53,000 of them; QIR below does it in ~20 rounds.
+  std::vector<UPolyZ> factors;
+  {
+    fmpz_poly_factor_t fac;
+    fmpz_poly_factor_init(fac);
+    fmpz_poly_factor(fac, p.raw());
+    for (slong i = 0; i < fac->num; ++i) {
+      factors.emplace_back();
+      fmpz_poly_set(factors.back().raw_mut(), fac->p + i);
+    }
+    fmpz_poly_factor_clear(fac);
+  }
+  std::vector<FactorRoot> roots;
+  for (size_t i = 0; i < factors.size(); ++i)
+    factor_roots(factors[i], i, roots);
+  if (roots.empty()) {
+    out.separators = {Rational(0)};
+    return out;
+  }
+  // Until no two intervals meet: each round narrows the two that do to 2^-(64 * 2^round) of
+  // their width (a point interval, a rational root, stays).
+  const auto by_lo = [](const FactorRoot& x, const FactorRoot& y) { return x.lo < y.lo; };
+  for (long bits = 64;; bits = std::min<long>(2 * bits, 1L << 20)) {
+    core::check_budget();
+    std::sort(roots.begin(), roots.end(), by_lo);
+    std::vector<char> narrow(roots.size(), 0);
+    bool met = false;
+    for (size_t i = 0; i + 1 < roots.size(); ++i)
+      if (!(roots[i].hi < roots[i + 1].lo)) {
+        met = true;
+        narrow[i] = narrow[i + 1] = 1;
+      }
+    if (!met) break;
+    for (size_t i = 0; i < roots.size(); ++i)
+      if (narrow[i] && roots[i].lo != roots[i].hi) {
+        Rational w = roots[i].hi - roots[i].lo;
+        fmpq_div_2exp(w.raw_mut(), w.raw(), static_cast<ulong>(bits));
+        qir_refine(factors[roots[i].factor], roots[i].lo, roots[i].hi, w);
+      }
+  }
+  // Apart now, each interval holds exactly one root of p: separators between them.
+  out.separators.push_back(roots.front().lo - Rational(1));
+  for (size_t i = 0; i + 1 < roots.size(); ++i)
+    out.separators.push_back((roots[i].hi + roots[i + 1].lo) * Rational(1, 2));
+  out.separators.push_back(roots.back().hi + Rational(1));
+  return out;
+}
+
 RootSeparation isolate_real_roots(const UPolyZ& p) {
   if (p.degree() >= 12)
     if (auto s = isolate_with_arb(p)) return *s;
@@ -370,10 +652,14 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
       out.separators = std::move(*s); // exact roots: CGAL not needed
       return out;
     }
-  out = isolate_real_roots_cgal(p);
+  // CGAL's Descartes recurses once per halving of its interval: coefficients of 66,000 bits
+  // (a sphere of radius 1e20000 against a unit one) took it 40,000 frames deep, a stack
+  // overflow. Beyond kCgalMaxBits the loop above (a work list, exponent splits first) instead.
+  out = max_coefficient_bits(p) > kCgalMaxBits ? isolate_real_roots_descartes(p)
+                                               : isolate_real_roots_cgal(p);
   out.used_fallback = true;
   if (!separators_certify(p, out.separators, k))
-    throw std::logic_error("isolate_real_roots: CGAL separators failed the exact check");
+    throw std::logic_error("isolate_real_roots: fallback separators failed the exact check");
   return out;
 }
 

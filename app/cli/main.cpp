@@ -229,6 +229,18 @@ int cmd_classify(const std::vector<std::string>& eq, const Opts& o) {
 }
 
 // --tol: a number (read exactly, e.g. 1/1000 or 2e-4) from 1e-12 to 1; 0 when it is none.
+// CLI::Range lets NaN through (both its comparisons are false): "--budget-ms nan" ran as no
+// budget. Checked before the range.
+CLI::Validator not_nan() {
+  return CLI::Validator(
+      [](std::string& v) {
+        return std::isnan(std::strtod(v.c_str(), nullptr))
+                   ? "expected a number, found \"" + v + "\""
+                   : std::string();
+      },
+      "", "NOT_NAN");
+}
+
 double tol_value(const std::string& v) {
   auto t = core::Rational::from_string(v);
   double d = t ? t->to_double_approx() : 0;
@@ -316,49 +328,56 @@ int cmd_intersect(const std::vector<std::string>& eq, const Opts& o) {
   if (!json) report_readings(readings, nullptr);
   const certify::Detail detail = json ? detail_arg(o.detail) : certify::Detail::Full;
   trace::CurveResult c = trace::intersect_curve(a, b, mode, opt, detail);
+  // Everything formed before anything is written: an exception on the way (an internal
+  // error) leaves no file behind and nothing half-printed. No non-finite coordinate is drawn.
   std::vector<trace::Point3> special;
   for (const auto& p : c.topology.special_points)
-    if (!p.at_infinity) special.push_back(p.approx);
+    if (!p.at_infinity && std::isfinite(p.approx[0]) && std::isfinite(p.approx[1]) &&
+        std::isfinite(p.approx[2]))
+      special.push_back(p.approx);
+  std::string export_text, svg_text;
   if (!export_path.empty())
-    write_atomically(export_path, ends_with(export_path, ".obj")
-                                      ? trace::to_obj(c.branches, c.isolated_points)
-                                      : trace::to_ply(c.branches, c.isolated_points));
+    export_text = ends_with(export_path, ".obj") ? trace::to_obj(c.branches, c.isolated_points)
+                                                 : trace::to_ply(c.branches, c.isolated_points);
   if (!svg_path.empty()) {
     trace::Picture pic;
     pic.branches = c.branches;
     pic.special_points = special;
     pic.caption = trace::curve_caption(c);
     pic.box = c.box;
-    write_atomically(svg_path, trace::to_svg(a, b, pic));
+    svg_text = trace::to_svg(a, b, pic);
   }
+  std::ostringstream os;
   if (json) {
     core::io::Json env = trace::curve_envelope_json(c, a, b, detail);
     report_readings(readings, &env);
-    std::cout << core::io::dump(env, 2) << "\n";
+    os << core::io::dump(env, 2) << "\n";
   } else {
-    std::cout << certify::qsic_result_text(c.topology, a, b);
-    std::cout << "curve: " << certify::to_string(c.status) << ", " << c.branches.size()
-              << " branch(es):";
+    os << certify::qsic_result_text(c.topology, a, b);
+    os << "curve: " << certify::to_string(c.status) << ", " << c.branches.size() << " branch(es):";
     for (const auto& br : c.branches)
-      std::cout << " " << br.kind << "(" << br.points.size() << " points)";
-    std::cout << ", " << c.isolated_points.size() << " isolated point(s), max residual "
-              << c.max_residual << "\n";
+      os << " " << br.kind << "(" << br.points.size() << " points)";
+    os << ", " << c.isolated_points.size() << " isolated point(s), max residual " << c.max_residual
+       << "\n";
     const auto& af = c.affine;
     if (af.computed) {
       auto n = [](const std::optional<int>& v) { return v ? std::to_string(*v) : "undecided"; };
-      std::cout << "affine (" << (af.certified() ? "certified" : "undecided")
-                << "): " << n(af.loops) << " loop(s), " << n(af.unbounded_branches)
-                << " unbounded branch(es), " << n(af.isolated_points) << " isolated point(s), "
-                << n(af.lines) << " line(s), " << n(af.conics) << " conic(s), "
-                << af.points_at_infinity.size() << " point(s) at infinity, "
-                << af.at_infinity_only.size() << " component(s) at infinity only\n";
+      os << "affine (" << (af.certified() ? "certified" : "undecided") << "): " << n(af.loops)
+         << " loop(s), " << n(af.unbounded_branches) << " unbounded branch(es), "
+         << n(af.isolated_points) << " isolated point(s), " << n(af.lines) << " line(s), "
+         << n(af.conics) << " conic(s), " << af.points_at_infinity.size()
+         << " point(s) at infinity, " << af.at_infinity_only.size()
+         << " component(s) at infinity only\n";
     }
     if (c.box)
-      std::cout << "box" << (c.box_automatic ? " (automatic)" : "") << ": [" << c.box->min[0]
-                << ", " << c.box->max[0] << "] x [" << c.box->min[1] << ", " << c.box->max[1]
-                << "] x [" << c.box->min[2] << ", " << c.box->max[2] << "]\n";
-    if (!c.note.empty()) std::cout << "note: " << c.note << "\n";
+      os << "box" << (c.box_automatic ? " (automatic)" : "") << ": [" << c.box->min[0] << ", "
+         << c.box->max[0] << "] x [" << c.box->min[1] << ", " << c.box->max[1] << "] x ["
+         << c.box->min[2] << ", " << c.box->max[2] << "]\n";
+    if (!c.note.empty()) os << "note: " << c.note << "\n";
   }
+  if (!export_path.empty()) write_atomically(export_path, export_text);
+  if (!svg_path.empty()) write_atomically(svg_path, svg_text);
+  std::cout << os.str();
   return c.status == certify::Status::Undecided ? 3 : 0;
 }
 
@@ -774,6 +793,7 @@ int main(int argc, char** argv) {
       ->add_option("--budget-ms", o.budget_ms,
                    "default time budget per line in ms (a line's \"budget_ms\" overrides; past "
                    "it the line answers undecided, reason \"budget\"); 0 = none")
+      ->check(not_nan())
       ->check(CLI::Range(0.0, 1e9));
   add_detail(batch, o, {"value", "topology", "certificate", "full"},
              "default detail of the lines (a line's \"detail\" overrides): classify and "
@@ -792,12 +812,14 @@ int main(int argc, char** argv) {
       ->add_option("--retry-undecided", o.retry_undecided,
                    "--mpi: run the lines undecided by their budget again, after the others, "
                    "with this budget in ms")
+      ->check(not_nan())
       ->check(CLI::Range(1.0, 1e9))
       ->type_name("MS");
   batch
       ->add_option("--rank-timeout", o.rank_timeout,
                    "--mpi under mpirun --enable-recovery: a rank silent this long (heartbeats) "
                    "is dead and its lines go to the others")
+      ->check(not_nan())
       ->check(CLI::Range(0.5, 1e6))
       ->each([&o](const std::string&) { o.rank_timeout_set = true; })
       ->type_name("S");

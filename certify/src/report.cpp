@@ -3,7 +3,9 @@
 #include "surfcert/algebra/real_roots.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -235,7 +237,12 @@ Json qsic_result_json(const QsicResult& r, const core::QuadricMatrix& a,
       Json ex = Json::array(), ap = Json::array();
       for (size_t i = 0; i < 3; ++i) {
         ex.push_back(str(p.coords[i]));
-        ap.push_back(str(dbl(p.approx[i])));
+        // Past the doubles (a point at 1e-350 read "0", one at 1e400 "inf"): a rational
+        // coordinate's decimal at any exponent.
+        const double d = p.approx[i];
+        const bool lost = !std::isfinite(d) || (d == 0 && p.coords[i] != "0");
+        const auto exact = lost ? Rational::from_string(p.coords[i]) : std::nullopt;
+        ap.push_back(str(exact ? exact->to_decimal_approx(17) : dbl(d)));
       }
       o.set("exact", ex);
       o.set("approx", ap);

@@ -354,33 +354,35 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
       grow(k, pic.box->min[k]);
       grow(k, pic.box->max[k]);
     }
-  double range = 0;
+  // Halves throughout: a box from -1e308 to 1e308 is 2e308 wide, past the doubles (its
+  // rectangle was drawn at x="-inf" with width="inf").
+  double half = 0;
   for (size_t k = 0; k < 3; ++k) {
     if (!(lo[k] <= hi[k])) {
       lo[k] = -1;
       hi[k] = 1;
     }
-    range = std::max(range, hi[k] - lo[k]);
+    half = std::max(half, 0.5 * hi[k] - 0.5 * lo[k]);
   }
-  if (!(range > 0)) range = 2;
-  for (size_t k = 0; k < 3; ++k) { // at least `range` wide, centred on the data
-    double mid = 0.5 * (lo[k] + hi[k]);
-    lo[k] = mid - 0.5 * range;
-    hi[k] = mid + 0.5 * range;
+  if (!(half > 0)) half = 1;
+  for (size_t k = 0; k < 3; ++k) { // at least 2 half wide, centred on the data
+    double mid = 0.5 * lo[k] + 0.5 * hi[k];
+    lo[k] = mid - half;
+    hi[k] = mid + half;
   }
-  const double scale = (panel - 2 * inner_margin) / range;
+  const double scale = 0.5 * (panel - 2 * inner_margin) / half; // pixels per unit
 
   auto px = [&](size_t v, double u) {
     size_t k = view_axes[v][0];
-    return gap + v * (panel + gap) + inner_margin + (u - lo[k]) * scale;
+    return gap + v * (panel + gap) + inner_margin + (0.5 * u - 0.5 * lo[k]) * (2 * scale);
   };
   auto py = [&](size_t v, double w) {
     size_t k = view_axes[v][1];
-    return top + panel - inner_margin - (w - lo[k]) * scale;
+    return top + panel - inner_margin - (0.5 * w - 0.5 * lo[k]) * (2 * scale);
   };
 
   // "Nice" grid step: 1, 2 or 5 times a power of ten, about 5 cells per panel.
-  double raw = range / 5, p10 = std::pow(10.0, std::floor(std::log10(raw)));
+  double raw = 0.4 * half, p10 = std::pow(10.0, std::floor(std::log10(raw)));
   double step = raw / p10 < 1.5   ? p10
                 : raw / p10 < 3.5 ? 2 * p10
                 : raw / p10 < 7.5 ? 5 * p10
@@ -483,8 +485,8 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
     if (pic.box)
       o << "<rect class=\"box\" x=\"" << num2(px(v, pic.box->min[ku])) << "\" y=\""
         << num2(py(v, pic.box->max[kv])) << "\" width=\""
-        << num2((pic.box->max[ku] - pic.box->min[ku]) * scale) << "\" height=\""
-        << num2((pic.box->max[kv] - pic.box->min[kv]) * scale) << "\"/>\n";
+        << num2((0.5 * pic.box->max[ku] - 0.5 * pic.box->min[ku]) * (2 * scale)) << "\" height=\""
+        << num2((0.5 * pic.box->max[kv] - 0.5 * pic.box->min[kv]) * (2 * scale)) << "\"/>\n";
     o << "</g>\n</g>\n";
   }
 

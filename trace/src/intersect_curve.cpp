@@ -1168,12 +1168,37 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
     }
   CurveResult local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1,
                                      movable(out.affine));
+  // Below the normal range: a curve (or a lone isolated point) whose size, scaled back, is
+  // under DBL_MIN has subnormal coordinates (fewer than 53 significant bits, 14 at 2^-1060) or
+  // none at all (a circle 1e-400 wide at 1e-400 from the origin came back as points [0, 0, 0]
+  // with max_residual 0, certified). No picture: undecided, as beyond the range above.
+  double big_unit = 0;
+  const double size_unit = points_size(local, true, &big_unit);
+  const double measure = std::ldexp(size_unit > 0 ? size_unit : big_unit, k);
+  const bool has_points = !local.branches.empty() || !local.isolated_points.empty();
+  if (has_points && measure < DBL_MIN) {
+    if (local.status == Status::Certified) local.status = Status::Undecided;
+    local.matches_topology = false;
+    local.branches.clear();
+    local.isolated_points.clear();
+    local.box_exits.reset();
+    local.box = opt.box;    // a box of its own would be subnormal too
+    local.max_residual = 0; // no point returned
+    local.branch_residual = 0;
+    local.topology = std::move(out.topology);
+    local.affine = std::move(out.affine);
+    local.note = "the curve, traced at unit size, lies below the double range once scaled back "
+                 "(its size under 2^-1022: its points would be subnormal or 0)";
+    return local;
+  }
   bool finite = true, subnormal = false, box_exact = true;
   auto back = [&](Point3& x) {
     for (size_t i = 0; i < 3; ++i) {
+      const double unit = x[i];
       x[i] = std::ldexp(x[i], k);
       finite = finite && std::isfinite(x[i]);
-      subnormal = subnormal || (x[i] != 0 && std::fabs(x[i]) < DBL_MIN);
+      // Rounded on the subnormal grid, or flushed to 0 (an error of at most 2^-1075 either way).
+      subnormal = subnormal || (unit != 0 && std::fabs(x[i]) < DBL_MIN);
     }
   };
   auto box_back = [&](Point3& x) {
@@ -1203,6 +1228,9 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
     local.matches_topology = false;
     local.branches.clear();
     local.box_exits.reset();
+    local.box = opt.box; // the given box (finite), or none
+    local.isolated_points.clear();
+    local.max_residual = 0; // no point returned
     local.note = "the curve or its box, traced at unit size, lies beyond the double range once "
                  "scaled back";
     return local;
@@ -1231,6 +1259,21 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
 
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         QsicResult topology, const TraceOptions& opt) {
+  if (opt.box && !std::isfinite(opt.box->diagonal())) {
+    // A given box whose diagonal is beyond the doubles (corners at +-1e308): the tracer's
+    // scene size, steps and floors are relative to it, and a walk's step became NaN and never
+    // ended (a hang, deaf to a batch budget). Nothing traced.
+    CurveResult out;
+    out.tolerance = opt.tolerance;
+    out.topology = std::move(topology);
+    if (out.topology.morphology) certify::complete_special_points(out.topology, a, b);
+    out.affine = certify::affine_topology(out.topology, a, b);
+    out.status = out.topology.status == Status::Certified ? Status::Undecided : out.topology.status;
+    out.box = opt.box;
+    out.note = "the box's diagonal is beyond the double range: nothing traced (a box up to about "
+               "1e308 across is traced)";
+    return out;
+  }
   CurveResult out = trace_curve_at(a, b, std::move(topology), opt, 0);
   check_picture(out);
   // Doubles beyond the range (a unit pair's hyperbolas followed out to a given box 1e300 wide,
@@ -1241,6 +1284,20 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
       finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
   for (const auto& p : out.isolated_points)
     finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  auto finite3 = [](const Point3& p) {
+    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  };
+  // A box (or a crossing) beyond the double range (a curve 1e350 wide, a plane x = 1e320: the
+  // automatic box came out [-inf, inf], an internal error in the JSON): no box at all.
+  bool box_finite = !out.box || (finite3(out.box->min) && finite3(out.box->max));
+  if (out.box_exits)
+    for (const auto& c : out.box_exits->points)
+      box_finite = box_finite && finite3(c.approx) && std::isfinite(c.radius);
+  if (!box_finite) {
+    out.box.reset();
+    out.box_exits.reset();
+    finite = false;
+  }
   if (!finite) {
     out.branches.clear();
     out.isolated_points.clear();

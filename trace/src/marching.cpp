@@ -42,6 +42,8 @@
 // and stops.
 #include "surfcert/trace/curve.hpp"
 
+#include "surfcert/core/budget.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -482,10 +484,12 @@ public:
         break;
       }
       if (passed) continue;
+      // A long walk answers to the query's time budget (core/budget.hpp), every 64 points.
+      if ((w.pts.size() & 63) == 0) core::check_budget();
       // Predictor-corrector step.
       bool ok = false;
       while (!ok) {
-        if (h < hmin(p)) {
+        if (!(h >= hmin(p))) { // NaN too (a scene beyond the doubles): never a step
           w.dead = true;
           return w;
         }

@@ -152,10 +152,10 @@ void append_distance_envelope(std::string& out, const DistanceResult& r, long di
   out += '{';
   key("status");
   str(to_string(r.status));
-  if (r.budget_exhausted) {
+  if (r.budget_exhausted || r.no_real_point) {
     out += ',';
     key("reason");
-    str("budget");
+    str(r.budget_exhausted ? "budget" : "no_real_point");
   }
   if (!r.note.empty()) {
     out += ',';
@@ -182,7 +182,7 @@ void append_distance_envelope(std::string& out, const DistanceResult& r, long di
     str(r.distance->upper());
     out += ',';
     key("approx");
-    str(g17(r.distance->approx()));
+    str(r.distance->approx_text());
     out += "},";
   }
   if (r.estimate) { // a float answer: never in "distance"

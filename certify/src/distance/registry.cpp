@@ -1,6 +1,7 @@
 #include "surfcert/certify/distance/route.hpp"
 #include "surfcert/certify/distance/route_tables.hpp"
 
+#include "surfcert/algebra/inertia.hpp"
 #include "surfcert/certify/distance/solid_relation.hpp"
 #include "surfcert/certify/distance/symmetry.hpp"
 #include "surfcert/core/budget.hpp"
@@ -81,6 +82,21 @@ unsigned mode_bit(Mode m) {
   }
 }
 
+// Whether the quadric p^T M p = 0 has no real affine point, exactly: M semidefinite (else it
+// takes both signs) and its kernel, where the points of a semidefinite form lie, inside the
+// plane at infinity w = 0 (rank M = rank of M's first three columns + 1): x^2+y^2+z^2 = -1,
+// x^2 + y^2 = -1.
+bool no_real_point(const core::QuadricMatrix& q) {
+  if (q.kind() == core::QuadricKind::ImaginaryEllipsoid) return true;
+  const core::Mat4& m = q.matrix();
+  const algebra::Inertia in = algebra::inertia_ldlt(m);
+  if (!in.semidefinite() || in.rank() == 0) return false;
+  core::Mat4 cols = m;
+  for (auto& row : cols)
+    row[3] = core::Rational(0);
+  return algebra::rank_exact(m) == algebra::rank_exact(cols) + 1;
+}
+
 } // namespace
 
 DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface& b0, long digits,
@@ -91,6 +107,20 @@ DistanceResult run_distance_routes(const core::Surface& a0, const core::Surface&
   const core::Surface& b = swapped ? a0 : b0;
   Query q{a, b, digits, solid, mode};
   const PairKind kind = pair_kind(a, b);
+  // A quadric with no real point has no distance to anything: said, not searched for (the
+  // routes answered "no critical point found").
+  for (const core::Surface* s : {&a0, &b0})
+    if (const auto* m = std::get_if<core::QuadricMatrix>(s); m && no_real_point(*m)) {
+      DistanceResult e;
+      e.status = Status::Undecided;
+      e.no_real_point = true;
+      e.note = std::string("surface ") + (s == &a0 ? "a" : "b") +
+               " has no real point (proven exactly: its matrix is semidefinite with its kernel "
+               "at infinity): there is no distance";
+      e.solid = solid;
+      e.mode = mode;
+      return e;
+    }
 
   DistanceResult r;
   bool answered = false;

@@ -141,6 +141,15 @@ Mat3 read_rotation(const Json& v, const std::string& source, const std::string& 
   throw InputError(at(v, source, path), "a field \"quaternion\" or \"matrix\"", "neither");
 }
 
+// Whether a JSON number literal has a nonzero digit in its mantissa (before any exponent).
+bool literal_is_nonzero(const std::string& s) {
+  for (char c : s) {
+    if (c == 'e' || c == 'E') break;
+    if (c >= '1' && c <= '9') return true;
+  }
+  return false;
+}
+
 // The double value of a JSON number literal when it is exactly a binary64 (a non-integer
 // literal is one by definition; an integer literal when it has at most 15 digits).
 bool literal_double(const Json& v, double& out) {
@@ -148,7 +157,8 @@ bool literal_double(const Json& v, double& out) {
   const std::string& s = v.text();
   if (s.find_first_of(".eE") == std::string::npos && s.size() > 15 + (s[0] == '-')) return false;
   out = std::strtod(s.c_str(), nullptr);
-  return std::isfinite(out);
+  // An underflow to 0 is not the literal's double: the exact reader refuses it.
+  return std::isfinite(out) && (out != 0 || !literal_is_nonzero(s));
 }
 
 bool literal_doubles(const Json* v, size_t n, double* out) {
@@ -372,24 +382,65 @@ void check_fields(const Json& v, const std::set<std::string>& allowed, const std
     }
 }
 
+namespace {
+
+std::string number_bits_expected() {
+  return "a number of at most " + std::to_string(kMaxExpressionCoefficientBits) +
+         " bits (numerator and denominator), as coefficients of equations are";
+}
+
+// A decimal exponent of more than five digits (leading zeros aside): 10^100000 alone is past
+// the limit (as in the equation reader).
+bool decimal_exponent_too_large(const std::string& t) {
+  if (t.find('/') != std::string::npos) return false;
+  const std::size_t e = t.find_first_of("eE");
+  if (e == std::string::npos) return false;
+  const std::size_t d = t.find_first_not_of("+-0", e + 1);
+  return d != std::string::npos && t.size() - d > 5;
+}
+
+Rational within_bits(Rational r, const Json& v, const std::string& source, const std::string& path,
+                     const std::string& found) {
+  const long bits = std::max(static_cast<long>(fmpz_bits(fmpq_numref(r.raw()))),
+                             static_cast<long>(fmpz_bits(fmpq_denref(r.raw()))));
+  if (bits > kMaxExpressionCoefficientBits)
+    throw InputError(at(v, source, path), number_bits_expected(),
+                     (found.size() > 80 ? found.substr(0, 77) + "..." : found) + " (" +
+                         std::to_string(bits) + " bits)");
+  return r;
+}
+
+} // namespace
+
 Rational read_number(const Json& v, const std::string& source, const std::string& path) {
   if (v.is_number()) {
     const std::string& s = v.text();
     if (s.find_first_of(".eE") == std::string::npos) {
       auto r = Rational::from_string(s);
-      if (r) return *r;
+      if (r) return within_bits(*r, v, source, path, s);
     }
     // A JSON non-integer literal stands for a binary double: read it as that double, exactly.
     double d = std::strtod(s.c_str(), nullptr);
     if (!std::isfinite(d)) throw InputError(at(v, source, path), "a finite number", s);
+    // Nor is a nonzero literal that underflows to 0 (1e-400, 2e-324) read as 0: refused as its
+    // overflowing mirror is (a string holds its exact value). Subnormal doubles are doubles.
+    if (d == 0 && literal_is_nonzero(s))
+      throw InputError(at(v, source, path),
+                       "a number literal within the double range (nonzero literals below "
+                       "4.9e-324 round to 0; a string such as \"1e-400\" is read exactly)",
+                       s);
     return Rational::exact_from_double(d);
   }
   if (v.is_string()) {
+    // The equation reader's limit on coefficients (expression.hpp), checked before the power
+    // of ten is formed: "1e999999" hung a distance query, while x^2 = 1e999999 was refused.
+    if (decimal_exponent_too_large(v.text()))
+      throw InputError(at(v, source, path), number_bits_expected(), "\"" + v.text() + "\"");
     auto r = Rational::from_string(v.text());
     if (!r)
       throw InputError(at(v, source, path), "an exact number such as \"3\", \"-7/4\" or \"0.125\"",
                        "\"" + v.text() + "\"");
-    return *r;
+    return within_bits(*r, v, source, path, "\"" + v.text() + "\"");
   }
   throw InputError(at(v, source, path), "a number or a numeric string", describe(v));
 }

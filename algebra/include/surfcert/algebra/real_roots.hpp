@@ -9,7 +9,9 @@
 // How: a float guess first (Aberth iteration on the complex roots, separators at midpoints of
 // the k real-most guesses, converted exactly to dyadic rationals), checked with exact signs;
 // if the check fails (clustered roots, a separator landing on a root), CGAL's Descartes
-// isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead.
+// isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead, or,
+// for coefficients beyond kCgalMaxBits bits, isolate_real_roots_descartes (a loop: CGAL's
+// recursion overflowed the stack there).
 #pragma once
 
 #include "surfcert/algebra/upoly.hpp"
@@ -37,6 +39,19 @@ RootSeparation isolate_real_roots(const UPolyZ& squarefree);
 
 /// The same from CGAL only (the fallback, and a second isolator for tests). Exact.
 RootSeparation isolate_real_roots_cgal(const UPolyZ& squarefree);
+
+/// The same from Descartes' rule of signs in a loop (no recursion: any coefficient size), the
+/// intervals split at the geometric mean of their ends while they span more than a factor 4.
+/// The fallback in place of CGAL for coefficients beyond kCgalMaxBits, whose Descartes
+/// recursion (one frame per halving) overflowed the stack near 66,000 bits. Checks the
+/// thread's time budget (core/budget.hpp) once per interval. Exact.
+RootSeparation isolate_real_roots_descartes(const UPolyZ& squarefree);
+
+/// Bits of the largest coefficient of p (absolute value).
+long max_coefficient_bits(const UPolyZ& p);
+
+/// Coefficient size beyond which isolate_real_roots does not call CGAL (see above).
+constexpr long kCgalMaxBits = 2048;
 
 /// Float guesses of all complex roots (Aberth iteration; no guarantee). coeffs: constant first,
 /// leading coefficient nonzero.

@@ -4,6 +4,9 @@
 #include <CGAL/Interval_nt.h>
 #include <mpfr.h>
 
+#include <cmath>
+#include <cstdio>
+
 namespace surfcert::certify {
 
 Enclosure Enclosure::from_ball(const arb_t d, long digits) {
@@ -74,6 +77,31 @@ double Enclosure::approx() const {
   arf_add(m.v, lo_.v, hi_.v, ARF_PREC_EXACT, ARF_RND_NEAR);
   arf_mul_2exp_si(m.v, m.v, -1);
   return arf_get_d(m.v, ARF_RND_NEAR);
+}
+
+std::string Enclosure::approx_text() const {
+  const double d = approx();
+  char buf[64];
+  const bool tiny = d == 0 && !arf_is_zero(arf_is_finite(hi_.v) ? hi_.v : lo_.v);
+  if (!tiny && (std::isfinite(d) || !arf_is_finite(hi_.v))) {
+    // As printf's "%.17g" writes the double (the text every answer had).
+    std::snprintf(buf, sizeof buf, "%.17g", d);
+    return buf;
+  }
+  // The midpoint beyond the doubles (a sphere of radius 1e400: "inf"; a lower bound 1e-1001:
+  // "0"): the same format from MPFR, whose exponent has no such limit.
+  Arf m;
+  arf_add(m.v, lo_.v, hi_.v, ARF_PREC_EXACT, ARF_RND_NEAR);
+  arf_mul_2exp_si(m.v, m.v, -1);
+  mpfr_t x;
+  mpfr_init2(x, 64);
+  arf_get_mpfr(x, m.v, MPFR_RNDN);
+  char* text = nullptr;
+  mpfr_asprintf(&text, "%.17Rg", x);
+  std::string out = text ? text : "0";
+  mpfr_free_str(text);
+  mpfr_clear(x);
+  return out;
 }
 
 void Enclosure::to_ball(arb_t out, long prec) const {

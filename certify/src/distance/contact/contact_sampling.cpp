@@ -446,7 +446,9 @@ double level(const core::Surface& s, const std::array<double, 3>& x) {
 std::optional<double> exact_level(const core::Surface& s, const std::array<double, 3>& x,
                                   std::array<double, 3>& unit_normal) {
   const auto* q = std::get_if<core::QuadricMatrix>(&s);
-  if (!q) return std::nullopt;
+  // A step past the double range (surfaces 1.7e308 wide) has no exact value: no level.
+  if (!q || !std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    return std::nullopt;
   const Rational X[4] = {Rational::exact_from_double(x[0]), Rational::exact_from_double(x[1]),
                          Rational::exact_from_double(x[2]), Rational(1)};
   Rational f;

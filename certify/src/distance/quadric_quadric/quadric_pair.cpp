@@ -579,8 +579,42 @@ DistanceResult scaled_back(DistanceResult r, long k) {
 
 } // namespace
 
+namespace {
+
+// log2 of the largest over the smallest nonzero |entry| of a quadric's quadratic part (how far
+// apart its semi-axes are: radii 1e-40 and 1e40 give 2^531; unchanged by scaling x or the
+// equation, and by moving the quadric), to a few bits.
+long entry_spread_bits(const core::QuadricMatrix& q) {
+  long lo = LONG_MAX, hi = LONG_MIN;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      const Rational& v = q(i, j);
+      if (v.is_zero()) continue;
+      const long e = static_cast<long>(fmpz_bits(fmpq_numref(v.raw()))) -
+                     static_cast<long>(fmpz_bits(fmpq_denref(v.raw())));
+      lo = std::min(lo, e), hi = std::max(hi, e);
+    }
+  return hi >= lo ? hi - lo : 0;
+}
+
+} // namespace
+
 DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                      long digits) {
+  // Semi-axes spanning more than 2^(kOffsetMaxSpreadBits / 2) in one quadric (an ellipsoid
+  // with radii 1e-40, 1e40 and 1: entries 2^-266 ... 2^266): its offset system's eliminants
+  // carry that spread to powers, and their isolation ran on (radii 1e-100 and 1e100 against
+  // a rotated copy: never seen to end, in every mode; 1e-20: 2.4 s, 1e-40: more than 90 s).
+  // Not attempted: undecided, at once.
+  const long spread = std::max(entry_spread_bits(a), entry_spread_bits(b));
+  if (spread > kOffsetMaxSpreadBits) {
+    DistanceResult out;
+    out.status = Status::Undecided;
+    out.note = "the sizes within a quadric span 2^" + std::to_string(spread) + " (more than 2^" +
+               std::to_string(kOffsetMaxSpreadBits) +
+               "): the offset system is beyond the elimination's reach, not attempted";
+    return out;
+  }
   // Solved at unit size: the cover of the offset system's real solutions starts from boxes of
   // a fixed width (1/16) and its isolation is tuned for unit-size data, so the same nested
   // pair 1e-8 across needed ~15,000 candidate boxes (29 s) where at unit size it needs 10. A

@@ -76,6 +76,9 @@ struct DistanceResult {
   /// Undecided because the query's time budget ran out (core/budget.hpp): what earlier
   /// routes established is kept (JSON "reason": "budget").
   bool budget_exhausted = false;
+  /// Undecided because a surface has no real point, proven exactly (a quadric such as
+  /// x^2 + y^2 + z^2 = -1): there is no distance (JSON "reason": "no_real_point").
+  bool no_real_point = false;
   std::vector<std::array<std::array<double, 3>, 2>> pairs; ///< (point on a, point on b), approx
   int critical_candidates = 0;
   int eliminated_degree = 0; ///< degree of the eliminated univariate polynomial

@@ -50,6 +50,9 @@ public:
   const std::string upper() const;
   /// The midpoint as a double (an approximation, for display).
   double approx() const;
+  /// The midpoint as "%.17g" text (the JSON "approx"), also beyond the double range, where
+  /// approx() is inf or 0: then from MPFR ("1e+400", "1.0000000000000001e-1001").
+  std::string approx_text() const;
   bool is_zero() const { return arf_is_zero(lo_.v) && arf_is_zero(hi_.v); }
   bool upper_finite() const { return arf_is_finite(hi_.v) != 0; }
   const arf_struct* lower_arf() const { return lo_.v; }

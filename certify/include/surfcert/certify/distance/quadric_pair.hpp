@@ -27,6 +27,11 @@
 
 namespace surfcert::certify {
 
+/// The offset system is not attempted (undecided, at once) for a quadric whose quadratic part's
+/// nonzero entries span more than 2^kOffsetMaxSpreadBits (semi-axes 2^200 apart): its
+/// eliminants' isolation ran without end.
+constexpr long kOffsetMaxSpreadBits = 400;
+
 DistanceResult quadric_pair_distance(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                      long digits);
 
