@@ -42,26 +42,23 @@ TEST(DoubleConicBox, TangentAlongAHyperbolaOrAParabola) {
        [](const std::array<double, 3>& p) { return std::fabs(p[0] - 1); }}};
   int certified = 0, tried = 0;
   for (const auto& cs : cases)
-    for (const auto& ps : surfcert::testing::five_poses())
-      for (bool swapped : {false, true}) {
-        const std::string ctx = cs.a + " | " + cs.b + ", " + ps.name("-", swapped);
-        const auto [a, b] = surfcert::testing::posed_pair(cs.a, cs.b, ps, swapped);
-        const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
-        ++tried;
-        ASSERT_TRUE(r.affine.certified()) << ctx;
-        EXPECT_EQ(*r.affine.loops, 0) << ctx;
-        EXPECT_EQ(*r.affine.unbounded_branches, cs.unbounded) << ctx;
-        if (!certified_or_undecided(r, true, ctx)) continue;
-        ++certified;
-        ASSERT_TRUE(r.box) << ctx;
-        surfcert::testing::expect_open_pieces(
-            r, a, b, cs.unbounded, "double_conic", ctx,
-            [&](const trace::Point3& p) {
-              const double ulps = 0x1p-46 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2]));
-              return cs.off_plane(ps.local(p)) - ulps;
-            },
-            1e-12 * r.box->diagonal());
-      }
+    tried += surfcert::testing::each_posed_curve(
+        cs.a, cs.b,
+        [&](const auto& ps, const std::string& ctx, const auto& a, const auto& b, const auto& r) {
+          ASSERT_TRUE(r.affine.certified()) << ctx;
+          EXPECT_EQ(*r.affine.loops, 0) << ctx;
+          EXPECT_EQ(*r.affine.unbounded_branches, cs.unbounded) << ctx;
+          if (!certified_or_undecided(r, true, ctx)) return;
+          ++certified;
+          ASSERT_TRUE(r.box) << ctx;
+          surfcert::testing::expect_open_pieces(
+              r, a, b, cs.unbounded, "double_conic", ctx,
+              [&](const trace::Point3& p) {
+                const double ulps = 0x1p-46 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2]));
+                return cs.off_plane(ps.local(p)) - ulps;
+              },
+              1e-12 * r.box->diagonal());
+        });
   EXPECT_EQ(tried, 30);
   EXPECT_EQ(certified, 30);
 }

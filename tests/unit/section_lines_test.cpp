@@ -63,27 +63,23 @@ const std::vector<Case>& cases() {
 } // namespace
 
 TEST(SectionLines, DrawnOnceEachInClosedForm) {
-  const std::vector<Pose>& poses = surfcert::testing::five_poses();
   int certified = 0, tried = 0;
   for (const auto& cs : cases())
-    for (const auto& ps : poses)
-      for (bool swapped : {false, true}) {
-        const std::string ctx = cs.a + " | " + cs.b + ", " + ps.name("-", swapped);
-        const auto [a, b] = surfcert::testing::posed_pair(cs.a, cs.b, ps, swapped);
-        const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
-        ++tried;
-        ASSERT_TRUE(r.affine.certified()) << ctx;
-        EXPECT_EQ(*r.affine.loops, 0) << ctx;
-        EXPECT_EQ(*r.affine.lines, cs.lines) << ctx;
-        EXPECT_EQ(*r.affine.unbounded_branches, cs.lines) << ctx;
-        if (!certified_or_undecided(r, true, ctx)) continue;
-        ++certified;
-        ASSERT_TRUE(r.box) << ctx;
-        std::function<double(const trace::Point3&)> off;
-        if (cs.off_lines) off = [&](const trace::Point3& p) { return cs.off_lines(ps.local(p)); };
-        surfcert::testing::expect_open_pieces(r, a, b, cs.lines, "line", ctx, off,
-                                              1e-9 * r.box->diagonal());
-      }
+    tried += surfcert::testing::each_posed_curve(
+        cs.a, cs.b,
+        [&](const auto& ps, const std::string& ctx, const auto& a, const auto& b, const auto& r) {
+          ASSERT_TRUE(r.affine.certified()) << ctx;
+          EXPECT_EQ(*r.affine.loops, 0) << ctx;
+          EXPECT_EQ(*r.affine.lines, cs.lines) << ctx;
+          EXPECT_EQ(*r.affine.unbounded_branches, cs.lines) << ctx;
+          if (!certified_or_undecided(r, true, ctx)) return;
+          ++certified;
+          ASSERT_TRUE(r.box) << ctx;
+          std::function<double(const trace::Point3&)> off;
+          if (cs.off_lines) off = [&](const trace::Point3& p) { return cs.off_lines(ps.local(p)); };
+          surfcert::testing::expect_open_pieces(r, a, b, cs.lines, "line", ctx, off,
+                                                1e-9 * r.box->diagonal());
+        });
   EXPECT_EQ(tried, 40);
   EXPECT_EQ(certified, 40);
 }
