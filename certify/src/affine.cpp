@@ -6,8 +6,10 @@
 
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/pencil.hpp"
 #include "surfcert/algebra/plane_chart.hpp"
 #include "surfcert/algebra/real_roots.hpp"
+#include "surfcert/algebra/upoly.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -1526,14 +1528,30 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   }
   if (res.size() > 1 && m.loops > 0 && m.conics == 0 && m.lines == 0 && m.cubics == 0 &&
       t.special_points.empty()) {
-    // Smooth ovals: when one quadric is a cone with an affine apex, its generators tell which
-    // oval each point at infinity lies on (certify/cone_ovals.hpp). Two cones: both readings
-    // must agree.
+    // Smooth ovals: when a member of the pencil is a real cone or cylinder (A, B, or the
+    // member at a rational root of det(l A - B)), its generators tell which oval each point at
+    // infinity lies on (certify/cone_ovals.hpp). Every reading found must agree.
     const int n = static_cast<int>(roots.size());
-    const auto la = cone_oval_counts(a.matrix(), b.matrix(), m.loops, n);
-    const auto lb = cone_oval_counts(b.matrix(), a.matrix(), m.loops, n);
-    const auto lu = la ? la : lb;
-    if (lu && (!la || !lb || *la == *lb) && res.count(*lu)) res = {*lu};
+    std::vector<core::Mat4> members{a.matrix(), b.matrix()};
+    for (const Rational& l :
+         algebra::rational_roots(algebra::pencil_char_poly(a.matrix(), b.matrix()))) {
+      core::Mat4 k;
+      for (size_t i = 0; i < 4; ++i)
+        for (size_t j = 0; j < 4; ++j)
+          k[i][j] = l * a.matrix()[i][j] - b.matrix()[i][j];
+      if (!l.is_zero()) members.push_back(k);
+    }
+    std::optional<std::pair<int, int>> lu;
+    bool agree = true;
+    for (const auto& k : members) {
+      // The curve is K ∩ A for every member K but A itself, whose partner is B.
+      const core::Mat4& q = &k == &members[0] ? b.matrix() : a.matrix();
+      const auto r = cone_oval_counts(k, q, m.loops, n);
+      if (!r) continue;
+      if (lu && *lu != *r) agree = false;
+      lu = r;
+    }
+    if (lu && agree && res.count(*lu)) res = {*lu};
   }
   std::set<int> lv, uv;
   for (const auto& [l, u] : res) {

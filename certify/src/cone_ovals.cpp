@@ -2,6 +2,7 @@
 #include "surfcert/certify/cone_ovals.hpp"
 
 #include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/algebra/kernel.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"
 
@@ -157,49 +158,54 @@ int sign_at(const UPolyQ& p, const Rational& x) {
 
 std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q, int ovals,
                                                     int points_at_infinity) {
-  // Apex: top-left block invertible and (v, 1) in the kernel of k.
-  Mat4 top = k;
-  for (size_t i = 0; i < 4; ++i)
-    top[i][3] = top[3][i] = Rational(i == 3 ? 1 : 0);
-  if (core::det(top).is_zero()) return std::nullopt;
-  // Solve top v = -(k03, k13, k23) by Cramer's rule on the 3x3 block (det(top) = det3).
-  const Rational d3 = core::det(top);
-  V4 v;
-  for (size_t c = 0; c < 3; ++c) {
-    Mat4 m = top;
-    for (size_t r = 0; r < 3; ++r)
-      m[r][c] = -k[r][3];
-    v[c] = core::det(m) / d3;
-  }
-  v[3] = Rational(1);
-  for (size_t i = 0; i < 4; ++i) {
-    Rational s;
-    for (size_t j = 0; j < 4; ++j)
-      s += k[i][j] * v[j];
-    if (!s.is_zero()) return std::nullopt; // not a cone with this apex
-  }
+  // Apex: the kernel of k, one rational point (k of rank 3).
+  const auto ker = algebra::kernel_basis(k);
+  if (ker.size() != 1) return std::nullopt;
+  const V4 v = ker[0];
   const Rational a = algebra::bilinear(q, v, v);
   if (a.is_zero()) return std::nullopt; // the apex lies on the curve
-  const auto p0 = conic_point(k);
+  // The base plane Pi = {x_j = 0}, not through the apex: the plane at infinity for an affine
+  // apex (then a point at infinity of the curve is a point of Pi: a root of c below); for an
+  // apex at infinity (a cylinder) a coordinate plane x_j = 0 with v_j != 0 (then the
+  // generators at infinity are those through a point of Pi at infinity: a root of P_w below).
+  const bool affine_apex = !v[3].is_zero();
+  size_t j = 3;
+  if (!affine_apex) {
+    j = 0;
+    while (v[j].is_zero())
+      ++j;
+  }
+  std::array<size_t, 3> idx{};
+  for (size_t i = 0, n = 0; i < 4; ++i)
+    if (i != j) idx[n++] = i;
+  // k restricted to Pi (a regular conic: v is not in Pi), as the top-left block of a Mat4.
+  Mat4 kp{};
+  for (size_t r = 0; r < 3; ++r)
+    for (size_t c = 0; c < 3; ++c)
+      kp[r][c] = k[idx[r]][idx[c]];
+  const auto p0 = conic_point(kp);
   if (!p0) return std::nullopt;
-  const V4 d0{(*p0)[0], (*p0)[1], (*p0)[2], Rational(0)};
-  // A complement e1, e2 of d0 in the plane at infinity (unit vectors), sheared until no form
-  // has a root at t = infinity.
+  V4 d0{};
+  for (size_t i = 0; i < 3; ++i)
+    d0[idx[i]] = (*p0)[i];
+  // A complement e1, e2 of d0 in Pi (unit vectors), sheared until no form has a root at
+  // t = infinity.
   size_t big = 0;
-  while (d0[big].is_zero())
+  while (d0[idx[big]].is_zero())
     ++big;
   std::vector<V4> units;
   for (size_t i = 0; i < 3; ++i)
     if (i != big) {
       V4 e{};
-      e[i] = Rational(1);
+      e[idx[i]] = Rational(1);
       units.push_back(e);
     }
   for (long shear = 0; shear <= 6; ++shear) {
     V4 e1 = units[0], e2 = units[1];
     for (size_t i = 0; i < 4; ++i)
       e2[i] += Rational(shear) * e1[i];
-    // e(t) = e1 + t e2; d(t) = -(e.K.e) d0 + 2 (d0.K.e) e: a point of K's conic, quadratic in t.
+    // e(t) = e1 + t e2; d(t) = -(e.K.e) d0 + 2 (d0.K.e) e: a point of K's conic in Pi,
+    // quadratic in t; the generators are the lines (s2 v + s1 d(t)).
     std::array<UPolyQ, 4> dt;
     const Rational k11 = algebra::bilinear(k, e1, e1), k12 = algebra::bilinear(k, e1, e2),
                    k22 = algebra::bilinear(k, e2, e2);
@@ -213,22 +219,30 @@ std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q
     UPolyQ b, c;
     for (size_t i = 0; i < 4; ++i) {
       Rational vq;
-      for (size_t j = 0; j < 4; ++j)
-        vq += v[j] * q[j][i];
+      for (size_t jj = 0; jj < 4; ++jj)
+        vq += v[jj] * q[jj][i];
       b = b + UPolyQ(vq) * dt[i];
-      for (size_t j = 0; j < 4; ++j)
-        if (!q[i][j].is_zero()) c = c + UPolyQ(q[i][j]) * dt[i] * dt[j];
+      for (size_t jj = 0; jj < 4; ++jj)
+        if (!q[i][jj].is_zero()) c = c + UPolyQ(q[i][jj]) * dt[i] * dt[jj];
     }
+    // On the generator t the curve is a s2^2 + 2 b(t) s1 s2 + c(t) s1^2 = 0.
     const UPolyQ disc = b * b - UPolyQ(a) * c;
-    if (b.degree() != 2 || c.degree() != 4 || disc.degree() != 4) continue;
-    const UPolyZ sb = squarefree(b), sc = squarefree(c), sd = squarefree(disc);
+    if (disc.degree() != 4) continue;
+    // The marker of the points at infinity: c (affine apex: the curve's point s2 = 0 lies in
+    // Pi, at infinity) or P_w = dt[3] (apex at infinity: the generator lies at infinity, and
+    // both its curve points with it; disc > 0 there for two distinct real ones).
+    const UPolyQ& mark = affine_apex ? c : dt[3];
+    if (affine_apex ? (b.degree() != 2 || c.degree() != 4) : mark.degree() != 2) continue;
+    const UPolyZ sd = squarefree(disc), sc = squarefree(mark);
     auto coprime = [](const UPolyZ& x, const UPolyZ& y) {
       UPolyZ g;
       fmpz_poly_gcd(g.raw_mut(), x.raw(), y.raw());
       return g.degree() == 0;
     };
+    UPolyZ sb = UPolyZ::from_coeffs({Integer(1)});
+    if (affine_apex) sb = squarefree(b);
     if (!coprime(sb, sc) || !coprime(sb, sd) || !coprime(sc, sd))
-      return std::nullopt; // a common root of b, c, disc: a singular point
+      return std::nullopt; // a common root of b, c, disc: a singular point (or a tangency)
     UPolyZ prod, tmp;
     fmpz_poly_mul(tmp.raw_mut(), sb.raw(), sc.raw());
     fmpz_poly_mul(prod.raw_mut(), tmp.raw(), sd.raw());
@@ -245,9 +259,19 @@ std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q
       if (in_d + in_c + in_b != 1) return std::nullopt;
       kind[i] = in_d ? D : in_c ? C : B;
     }
+    // Distinct real points at infinity: one per root of c (affine apex); two per root of P_w
+    // where disc > 0, none where disc < 0 (apex at infinity).
     int croots = 0;
-    for (Kind x : kind)
-      croots += x == C ? 1 : 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (kind[i] != C) continue;
+      if (affine_apex) {
+        ++croots;
+        continue;
+      }
+      const int sg = sign_at(disc, s[i]); // disc has no root in [s_i, root]
+      if (sg == 0) return std::nullopt;
+      croots += sg > 0 ? 2 : 0;
+    }
     if (croots != points_at_infinity) return std::nullopt;
     std::vector<size_t> droots;
     for (size_t i = 0; i < n; ++i)
@@ -256,20 +280,26 @@ std::optional<std::pair<int, int>> cone_oval_counts(const Mat4& k, const Mat4& q
     if (droots.empty()) {
       if (sign_at(disc, s[0]) <= 0) return std::nullopt; // no real curve
       found_ovals = 2;
-      bool plus = false, minus = false;
-      for (size_t i = 0; i < n; ++i)
-        if (kind[i] == C) (sign_at(b, s[i]) < 0 ? plus : minus) = true;
-      through_infinity = (plus ? 1 : 0) + (minus ? 1 : 0);
+      if (affine_apex) {
+        bool plus = false, minus = false;
+        for (size_t i = 0; i < n; ++i)
+          if (kind[i] == C) (sign_at(b, s[i]) < 0 ? plus : minus) = true;
+        through_infinity = (plus ? 1 : 0) + (minus ? 1 : 0);
+      } else {
+        // A generator at infinity carries one point of each sheet.
+        through_infinity = croots > 0 ? 2 : 0;
+      }
     } else {
       // Arcs of P^1 between consecutive roots of disc (cyclically, through infinity).
       const size_t m = droots.size();
-      for (size_t j = 0; j < m; ++j) {
-        const size_t from = droots[j], to = droots[(j + 1) % m];
+      for (size_t jj = 0; jj < m; ++jj) {
+        const size_t from = droots[jj], to = droots[(jj + 1) % m];
         if (sign_at(disc, s[from + 1]) <= 0) continue; // disc < 0 just after this root
         ++found_ovals;
-        // Through infinity iff a root of c lies on the arc. (A root of b alone cannot: where
-        // b = 0 on the arc, disc = -a c > 0, while b^2 = a c > 0 at the arc's ends, so c
-        // changes sign in between; testing for any root at all would answer the same.)
+        // Through infinity iff a root of the marker lies on the arc. (Affine apex: a root of
+        // b alone cannot: where b = 0 on the arc, disc = -a c > 0, while b^2 = a c > 0 at the
+        // arc's ends, so c changes sign in between; testing for any root at all would answer
+        // the same.)
         bool any = false;
         for (size_t i = (from + 1) % n; i != to; i = (i + 1) % n)
           any = any || kind[i] == C;

@@ -75,9 +75,11 @@ const Want kTable[] = {
     // running to (0:1:0) at both ends (a crunode at infinity).
     {"x*y = 1", "x^2 + z^2 = 4", 0, 2, 0, 0, 0, 1},
     // x^2 = 1 + 2y^2, z^2 = 3 + y^2: four arcs, each from y = -inf to +inf; directions
-    // (+-sqrt 2 : 1 : +-1) are algebraic. Two projective ovals: whether one oval holds all four
-    // points (a loop) is not decided by the facts used: loops undecided.
-    {"x^2 - 2y^2 = 1", "x^2 + z^2 - 3y^2 = 4", -1, 4, 0, 0, 0, 4},
+    // (+-sqrt 2 : 1 : +-1) are algebraic. Two projective ovals, z = +sqrt(3 + y^2) and
+    // z = -sqrt(3 + y^2) over the whole hyperbola, each through both of its points at infinity:
+    // no loop (the points at infinity alone allow one; the cylinder's rulings decide,
+    // certify/cone_ovals.hpp).
+    {"x^2 - 2y^2 = 1", "x^2 + z^2 - 3y^2 = 4", 0, 4, 0, 0, 0, 4},
     // Equal paraboloids with parallel axes: B - A = 2 - 2x, the plane x = 1 cuts the parabola
     // z = 1 + y^2 (one unbounded branch, (0:0:1) with multiplicity 2).
     {"z = x^2 + y^2", "z - 1 = (x - 1)^2 + y^2", 0, 1, 0, 0, 1, 1},

@@ -159,3 +159,78 @@ TEST(ConeOvals, OvalsOnArcsAreLoopsWithoutPointsAtInfinity) {
       EXPECT_EQ(*r.affine.unbounded_branches, 0) << ctx;
     }
 }
+
+// Cylinders (apex at infinity) and pencil members. Two ovals on a cylinder K over a conic,
+// with the other quadric Q = z^2 + c(x, y): on the ruling over the conic's point (x, y),
+// z^2 = -c(x, y), so disc = -c restricted to the conic decides (closed forms, by hand):
+//  - K: x^2 - y^2 = 1 (x = +-cosh u, y = sinh u), Q: z^2 - x^2 + 9x + 2y - 9 = 0: disc =
+//    cosh^2 u -+ 9 cosh u - 2 sinh u + 9, on the right branch > 0 for u in (-0.96, 0.32) (a
+//    loop: x in [1, 1.5]) and beyond u = -2.36 and 3.00, on the left branch > 0 everywhere
+//    (> 9): the other oval runs through both points at infinity of the hyperbola, where the
+//    ruling at infinity meets Q at two points each (z^2 = x^2 there): 1 loop, 4 unbounded.
+//  - the same K against z^2 - x^2 - y + 9 = 0: disc = cosh^2 u + sinh u - 9 on both branches,
+//    > 0 only on each branch's two tails: two ovals, each through one point at infinity of
+//    the hyperbola (two points of Q each): 0 loops, 4 unbounded.
+//  - K: y = x^2 (a parabolic cylinder; its ruling at infinity is tangent to the plane at
+//    infinity), Q: z^2 - y^2 + 5y - 4 = 0: disc = (x^2 - 1)(x^2 - 4) > 0 for |x| < 1 (a loop)
+//    and |x| > 2 (one oval through the point at infinity of the parabola, where the curve
+//    touches the plane at infinity at (0 : 1 : +-1 : 0)): 1 loop, 2 unbounded.
+// The points at infinity alone allow both 0 and 1 loop in each (undecided before). The same
+// curves again as A = Q, B = Q + K (or Q + 2K): neither is a cone or a cylinder, the member
+// at the rational root of det(l A - B) is, and reads the same. Posed by a rational rigid motion
+// and swapped; the traced picture must agree.
+TEST(ConeOvals, CylindersAndPencilMembers) {
+  struct Case {
+    const char *k, *q;
+    int k_multiple; // B = Q + k_multiple K (0: the pair is K, Q itself)
+    int loops, unbounded, points;
+  };
+  const Case cases[] = {
+      {"x^2 - y^2 = 1", "z^2 - x^2 + 9*x + 2*y - 9 = 0", 0, 1, 4, 4},
+      {"x^2 - y^2 = 1", "z^2 - x^2 - y + 9 = 0", 0, 0, 4, 4},
+      {"y = x^2", "z^2 - y^2 + 5*y - 4 = 0", 0, 1, 2, 2},
+      {"x^2 - y^2 = 1", "z^2 - x^2 + 9*x + 2*y - 9 = 0", 1, 1, 4, 4},
+      {"x^2 - y^2 = 1", "z^2 - x^2 - y + 9 = 0", 2, 0, 4, 4},
+  };
+  const Mat4 m = motion(2, 1, -1, 3, {Rational(-3, 4), Rational(1, 2), Rational(2)});
+  for (const Case& c : cases)
+    for (bool moved : {false, true})
+      for (bool swapped : {false, true}) {
+        const std::string ctx = std::string(c.k) + " / " + c.q + " x" +
+                                std::to_string(c.k_multiple) + (moved ? " moved" : "") +
+                                (swapped ? " swapped" : "");
+        core::QuadricMatrix k = surfcert::testing::q(c.k), o = surfcert::testing::q(c.q);
+        if (moved) k = k.congruent(m), o = o.congruent(m);
+        if (c.k_multiple == 0) {
+          const auto lu = certify::cone_oval_counts(k.matrix(), o.matrix(), 2, c.points);
+          ASSERT_TRUE(lu.has_value()) << ctx;
+          EXPECT_EQ(*lu, (std::pair<int, int>{c.loops, c.unbounded})) << ctx;
+          // Q read as the cone (a cylinder in the third case): the same answer, or none.
+          if (const auto lq = certify::cone_oval_counts(o.matrix(), k.matrix(), 2, c.points)) {
+            EXPECT_EQ(*lq, (std::pair<int, int>{c.loops, c.unbounded})) << ctx;
+          }
+        }
+        core::QuadricMatrix a = o, b = k;
+        if (c.k_multiple > 0) {
+          Mat4 s = o.matrix();
+          for (size_t i = 0; i < 4; ++i)
+            for (size_t j = 0; j < 4; ++j)
+              s[i][j] += Rational(c.k_multiple) * k.matrix()[i][j];
+          b = core::QuadricMatrix(s);
+          ASSERT_FALSE(certify::cone_oval_counts(a.matrix(), b.matrix(), 2, c.points)) << ctx;
+          ASSERT_FALSE(certify::cone_oval_counts(b.matrix(), a.matrix(), 2, c.points)) << ctx;
+        }
+        if (swapped) std::swap(a, b);
+        const auto r = trace::intersect_curve(a, b, Mode::Exact, {});
+        ASSERT_EQ(r.topology.morphology->id, std::string("two_ovals")) << ctx;
+        ASSERT_TRUE(r.affine.certified()) << ctx;
+        EXPECT_EQ(*r.affine.loops, c.loops) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, c.unbounded) << ctx;
+        EXPECT_EQ(r.affine.points_at_infinity.size(), static_cast<size_t>(c.points)) << ctx;
+        ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+        int closed = 0;
+        for (const auto& br : r.branches)
+          closed += br.closed ? 1 : 0;
+        EXPECT_EQ(closed, c.loops) << ctx;
+      }
+}
