@@ -124,6 +124,23 @@ int rank_exact(const Mat4& m) {
   return r;
 }
 
+QuadraticNumber quadratic_add(const QuadraticNumber& x, const QuadraticNumber& y, int s) {
+  return {x.a + Rational(s) * y.a, x.b + Rational(s) * y.b, x.d};
+}
+
+QuadraticNumber quadratic_mul(const QuadraticNumber& x, const QuadraticNumber& y) {
+  const Rational dd(x.d);
+  return {x.a * y.a + x.b * y.b * dd, x.a * y.b + x.b * y.a, x.d};
+}
+
+QuadraticNumber quadratic_div(const QuadraticNumber& x, const QuadraticNumber& y) {
+  const Rational dd(x.d);
+  // y.a^2 - y.b^2 d != 0: y != 0 and d is not a square (or y.b = 0).
+  const Rational n = y.a * y.a - y.b * y.b * dd;
+  const QuadraticNumber p = quadratic_mul(x, {y.a, -y.b, x.d});
+  return {p.a / n, p.b / n, x.d};
+}
+
 int QuadraticNumber::sign() const {
   int sa = a.sign(), sb = b.sign();
   if (sb == 0 || d.is_zero()) return sa;

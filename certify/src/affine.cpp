@@ -282,6 +282,54 @@ std::optional<size_t> match_root(const Chart& ch, const std::vector<Root>& roots
   return std::nullopt;
 }
 
+// The same for a special point whose direction d has coordinates in Q(sqrt d) (a crossing
+// at conjugate points at infinity): u0 = w0 / w2, v0 = w1 / w2 over Q(sqrt d), a root of the
+// factor exactly, placed in its isolating interval by exact signs, and on the chart's point
+// of that vertical line (v = -s10(u0) / s11(u0)).
+std::optional<size_t> match_root(const Chart& ch, const std::vector<Root>& roots,
+                                 const std::array<QuadraticNumber, 3>& d) {
+  using algebra::quadratic_add;
+  using algebra::quadratic_div;
+  using algebra::quadratic_mul;
+  const Integer& f = d[0].d;
+  auto num = [&f](const Rational& r) { return QuadraticNumber{r, Rational(0), f}; };
+  auto is_zero = [](const QuadraticNumber& x) { return x.a.is_zero() && x.b.is_zero(); };
+  for (const auto& c : d)
+    if (c.d != f && !c.b.is_zero()) return std::nullopt; // not one field
+  const M3 ti = inverse(ch.t);
+  std::array<QuadraticNumber, 3> w{num(Rational(0)), num(Rational(0)), num(Rational(0))};
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t l = 0; l < 3; ++l)
+      w[k] = quadratic_add(w[k], quadratic_mul(num(ti[k][l]), {d[l].a, d[l].b, f}));
+  if (is_zero(w[2])) return std::nullopt;
+  const QuadraticNumber u0 = quadratic_div(w[0], w[2]), v0 = quadratic_div(w[1], w[2]);
+  auto at = [&](const auto& p) { // Horner over Q(sqrt d)
+    QuadraticNumber s = num(Rational(0));
+    for (long i = p.degree(); i >= 0; --i)
+      s = quadratic_add(quadratic_mul(s, u0), num(Rational(p.coeff(i))));
+    return s;
+  };
+  for (size_t i = 0; i < roots.size(); ++i) {
+    const Root& r = roots[i];
+    if (r.lo == r.hi) {
+      if (!u0.b.is_zero() || u0.a != r.lo) continue;
+    } else {
+      if (!is_zero(at(r.factor))) continue;
+      if (quadratic_add(u0, num(r.lo), -1).sign() <= 0) continue;
+      if (quadratic_add(num(r.hi), u0, -1).sign() <= 0) continue;
+    }
+    if (ch.double_point && u0.b.is_zero() && ch.double_point->first == u0.a)
+      return ch.double_point->second == v0.a && v0.b.is_zero() ? std::optional<size_t>(i)
+                                                               : std::nullopt;
+    const QuadraticNumber s11 = at(ch.s11);
+    if (is_zero(s11)) return std::nullopt;
+    const QuadraticNumber v = quadratic_div(at(ch.s10), s11);
+    if (!is_zero(quadratic_add(v, v0))) return std::nullopt; // v0 must be -s10 / s11
+    return i;
+  }
+  return std::nullopt;
+}
+
 // ---------------------------------------------------------------------------------------
 // The components of each morphology, for the enumeration of assignments.
 
@@ -1435,6 +1483,7 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
         ok = false;
     }
     std::optional<size_t> idx = ok ? match_root(ch, roots, d) : std::nullopt;
+    if (!ok && sp.exact && sp.numbers) idx = match_root(ch, roots, *sp.numbers);
     if (!idx) {
       undecide_all("a special point at infinity with irrational coordinates or unmatched");
       return out;

@@ -20,23 +20,6 @@ namespace {
 using Vec4 = std::array<Rational, 4>;
 using QVec4 = std::array<QuadraticNumber, 4>;
 
-QuadraticNumber qmul(const QuadraticNumber& x, const QuadraticNumber& y, const Integer& d) {
-  Rational dd(d);
-  return {x.a * y.a + x.b * y.b * dd, x.a * y.b + x.b * y.a, d};
-}
-
-QuadraticNumber qdiv(const QuadraticNumber& x, const QuadraticNumber& y, const Integer& d) {
-  Rational dd(d);
-  QuadraticNumber conj{y.a, -y.b, d};
-  Rational n = y.a * y.a - y.b * y.b * dd; // nonzero: y != 0 and d is not a square (or b = 0)
-  QuadraticNumber p = qmul(x, conj, d);
-  return {p.a / n, p.b / n, d};
-}
-
-QuadraticNumber qadd(const QuadraticNumber& x, const QuadraticNumber& y, int sign = 1) {
-  return {x.a + Rational(sign) * y.a, x.b + Rational(sign) * y.b, x.d};
-}
-
 // The kernel point of theta A - B (rank 3, theta = a + b sqrt d) when it lies on Q_A: the
 // first nonzero row of the adjugate (its rows span the kernel of a rank-3 symmetric matrix).
 std::optional<QVec4> quadratic_vertex(const algebra::PencilFacts& f, const QuadraticNumber& th) {
@@ -53,11 +36,12 @@ std::optional<QVec4> quadratic_vertex(const algebra::PencilFacts& f, const Quadr
       if (j != c) cs[k++] = j;
     auto e = [&](size_t i, size_t j) { return m[rs[i]][cs[j]]; };
     auto m2 = [&](size_t i1, size_t j1, size_t i2, size_t j2) {
-      return qadd(qmul(e(i1, j1), e(i2, j2), d), qmul(e(i1, j2), e(i2, j1), d), -1);
+      return algebra::quadratic_add(algebra::quadratic_mul(e(i1, j1), e(i2, j2)),
+                                    algebra::quadratic_mul(e(i1, j2), e(i2, j1)), -1);
     };
-    QuadraticNumber t = qmul(e(0, 0), m2(1, 1, 2, 2), d);
-    t = qadd(t, qmul(e(0, 1), m2(1, 0, 2, 2), d), -1);
-    return qadd(t, qmul(e(0, 2), m2(1, 0, 2, 1), d));
+    QuadraticNumber t = algebra::quadratic_mul(e(0, 0), m2(1, 1, 2, 2));
+    t = algebra::quadratic_add(t, algebra::quadratic_mul(e(0, 1), m2(1, 0, 2, 2)), -1);
+    return algebra::quadratic_add(t, algebra::quadratic_mul(e(0, 2), m2(1, 0, 2, 1)));
   };
   for (size_t r = 0; r < 4; ++r) {
     QVec4 x;
@@ -71,7 +55,8 @@ std::optional<QVec4> quadratic_vertex(const algebra::PencilFacts& f, const Quadr
     QuadraticNumber q{Rational(0), Rational(0), d}; // x^T A x
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j)
-        q = qadd(q, qmul(qmul(x[i], x[j], d), {f.a[i][j], Rational(0), d}, d));
+        q = algebra::quadratic_add(q, algebra::quadratic_mul(algebra::quadratic_mul(x[i], x[j]),
+                                                             {f.a[i][j], Rational(0), d}));
     if (!(q.a.is_zero() && q.b.is_zero())) return std::nullopt;
     return x;
   }
@@ -84,9 +69,11 @@ SpecialPoint make_point(const std::string& kind, const QVec4& x, const Integer& 
   p.exact = true;
   bool w_zero = x[3].a.is_zero() && x[3].b.is_zero();
   p.at_infinity = w_zero;
+  p.numbers.emplace();
   for (size_t i = 0; i < 3; ++i) {
-    QuadraticNumber c = w_zero ? x[i] : qdiv(x[i], x[3], d);
+    QuadraticNumber c = w_zero ? x[i] : algebra::quadratic_div(x[i], x[3]);
     c.d = d;
+    (*p.numbers)[i] = c;
     c = c.normalized();
     p.coords[i] = c.to_string();
     p.approx[i] = c.to_double_approx();

@@ -101,6 +101,13 @@ const Want kTable[] = {
     {"(x - 2)*(y - 2) = 0", "x^2 + y^2 = 1", 0, 0, 0, 0, 0, 1},
     {"x^2 = 1/4", "x^2 - y^2 = 1", 0, 0, 0, 0, 0, 1},
     {"x*y = 0", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
+    // Parallel planes z = 2x + c across a hyperboloid: each section a hyperbola (two sheets:
+    // y^2 - 3(x + 2c/3)^2 = -(1 + c^2/3); one sheet: 2y^2 - 3(x + 2c/3)^2 = 1 - c^2/3, c^2 != 3),
+    // the two crossing at the conjugate points at infinity (1 : +-sqrt 3 : 2), resp.
+    // (1 : +-sqrt(3/2) : 2). Undecided while such crossings were matched to the points at
+    // infinity only when rational.
+    {"x^2 + y^2 - z^2 = -1", "(z - 2x)*(z - 2x - 1) = 0", 0, 4, 0, 0, 2, 2},
+    {"x^2 + 2y^2 - z^2 = 1", "(z - 2x - 1)*(z - 2x + 2) = 0", 0, 4, 0, 0, 2, 2},
     // Non-parallel planes x = 1/2 and y = -1/3 (not through the axis): four lines.
     {"(x - 1/2)*(y + 1/3) = 0", "x^2 + y^2 = 1", 0, 4, 0, 4, 0, 1},
 };

@@ -56,4 +56,10 @@ struct QuadraticNumber {
   std::string to_string() const;
 };
 
+/// Field operations in Q(sqrt d), exact, on numbers written over the same d (the result
+/// carries d): x + s y (s = +-1), x y, x / y (y != 0).
+QuadraticNumber quadratic_add(const QuadraticNumber& x, const QuadraticNumber& y, int s = 1);
+QuadraticNumber quadratic_mul(const QuadraticNumber& x, const QuadraticNumber& y);
+QuadraticNumber quadratic_div(const QuadraticNumber& x, const QuadraticNumber& y);
+
 } // namespace surfcert::algebra

@@ -36,6 +36,9 @@ struct SpecialPoint {
   bool at_infinity = false;          ///< projective point with w = 0 (direction given)
   std::array<std::string, 3> coords; ///< exact text (rational or a + b*sqrt(d))
   std::array<double, 3> approx{};    ///< decimal approximations
+  /// The exact coordinates as numbers of one field Q(sqrt d) (before normalisation), where
+  /// they were computed so (points at conjugate roots); unset otherwise: read `coords`.
+  std::optional<std::array<algebra::QuadraticNumber, 3>> numbers;
 };
 
 struct QsicResult {
