@@ -129,7 +129,7 @@ TEST(Registry, FloatModeIsAnEstimate) {
 // spelling, no two share one, and the envelope carries the count with how it was proven.
 TEST(Registry, MethodSpellingsRoundTrip) {
   std::set<std::string> seen;
-  for (int i = 0; i <= static_cast<int>(certify::Method::PlanePairMin); ++i) {
+  for (int i = 0; i <= static_cast<int>(certify::Method::LineLocus); ++i) {
     const auto m = static_cast<certify::Method>(i);
     const std::string text = certify::to_string(m);
     EXPECT_TRUE(seen.insert(text).second) << text;

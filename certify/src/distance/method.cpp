@@ -32,6 +32,8 @@ constexpr std::pair<Method, const char*> kSpellings[] = {
     {Method::SignChangeContact, "sign_change_contact"},
     {Method::ParametricReduction, "parametric_reduction"},
     {Method::PlanePairMin, "plane_pair_min"},
+    {Method::DoublePlaneReduction, "double_plane_reduction"},
+    {Method::LineLocus, "line_locus"},
 };
 
 constexpr bool in_enum_order() {
@@ -40,7 +42,7 @@ constexpr bool in_enum_order() {
   return true;
 }
 static_assert(in_enum_order(), "kSpellings must list every Method in enum order");
-static_assert(std::size(kSpellings) == static_cast<size_t>(Method::PlanePairMin) + 1,
+static_assert(std::size(kSpellings) == static_cast<size_t>(Method::LineLocus) + 1,
               "a Method without a JSON spelling");
 
 } // namespace

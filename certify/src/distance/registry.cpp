@@ -62,6 +62,7 @@ PairKind pair_kind(const core::Surface& a, const core::Surface& b) {
 const std::vector<Route>& distance_routes() {
   static const std::vector<Route> table = [] {
     std::vector<Route> t;
+    add_degenerate_quadric_routes(t);
     add_quadric_pair_routes(t);
     add_surface_pair_routes(t);
     return t;

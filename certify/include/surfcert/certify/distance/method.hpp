@@ -40,6 +40,8 @@ enum class Method {
   ParametricReduction,
   // quadric pairs (added later; spellings keep enum order)
   PlanePairMin,
+  DoublePlaneReduction, ///< a double plane (v . X)^2 = 0 answered as its plane (reduced_by)
+  LineLocus,            ///< a quadric whose real points form a line, as that line
 };
 
 /// The JSON spelling ("offset_system", ...; "" for None).

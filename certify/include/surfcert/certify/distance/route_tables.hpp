@@ -8,7 +8,8 @@
 
 namespace surfcert::certify {
 
-void add_quadric_pair_routes(std::vector<Route>& table); ///< quadric_routes.cpp
-void add_surface_pair_routes(std::vector<Route>& table); ///< surface_routes.cpp
+void add_degenerate_quadric_routes(std::vector<Route>& table); ///< degenerate_routes.cpp (first)
+void add_quadric_pair_routes(std::vector<Route>& table);       ///< quadric_routes.cpp
+void add_surface_pair_routes(std::vector<Route>& table);       ///< surface_routes.cpp
 
 } // namespace surfcert::certify
