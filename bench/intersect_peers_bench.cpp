@@ -371,7 +371,7 @@ int main(int argc, char** argv) {
     const auto cases = named_cases();
     run_pair(warm, cases[0].s1, cases[0].s2, Pose{}, 3, tol, occt_tol, r);
   }
-  const std::string only = argc > 6 ? argv[6] : ""; // run only the named cases containing this
+  const std::string only = argc > 6 ? argv[6] : ""; // run only the cases (named or random kinds) containing this
   for (const Case& c : named_cases()) {
     if (!only.empty() && c.name.find(only) == std::string::npos) continue;
     Row row;
@@ -392,6 +392,8 @@ int main(int argc, char** argv) {
                                   "ellipsoid", "paraboloid", "hyperboloid"};
     std::string n1 = names[static_cast<int>(s1.kind)], n2 = names[static_cast<int>(s2.kind)];
     if (n2 < n1) std::swap(n1, n2);
+    // The filter applies to the random kinds too (the same pairs are drawn either way).
+    if (!only.empty() && (n1 + "-" + n2).find(only) == std::string::npos) continue;
     Row& row = random_rows[n1 + "-" + n2];
     row.group = "random natural", row.name = n1 + "-" + n2;
     run_pair(row, s1, s2, Pose{}, 3, tol, occt_tol, ratios);
