@@ -6,7 +6,9 @@
 //   route that answered it in "reduced_by";
 // - line_locus: a quadric whose real points form a line (x^2 + y^2 = 0) against a quadric:
 //   the line's distance, exactly (line_quadric_distance). A plane partner is left to the plane
-//   routes (exact for any quadric).
+//   routes (exact for any quadric). Against a ring torus: the line's distance through the core
+//   circle (line_torus_distance: contact decided exactly, the minimum over exact critical
+//   points).
 // Neither models a solid: a solid query falls through to the other routes.
 #include "surfcert/certify/distance/route.hpp"
 #include "surfcert/certify/distance/route_tables.hpp"
@@ -65,6 +67,21 @@ Outcome line_run(Query& q) {
   return Outcome::answer(std::move(*r));
 }
 
+// Quadric-torus pairs come in canonical order: the quadric first.
+bool line_torus_apply(const Query& q) {
+  return !q.solid && std::holds_alternative<core::Torus>(q.b) && line(q.a);
+}
+Outcome line_torus_run(Query& q) {
+  auto r =
+      line_torus_distance(real_locus(*quadric(q.a)), std::get<core::Torus>(q.b), true, q.digits);
+  if (!r) return Outcome::not_applicable();
+  r->method = Method::LineLocus;
+  r->note = "a quadric whose real points form a line (rank 2, semidefinite: exact), answered "
+            "as that line" +
+            std::string(r->note.empty() ? "" : "; " + r->note);
+  return Outcome::answer(std::move(*r));
+}
+
 } // namespace
 
 void add_degenerate_quadric_routes(std::vector<Route>& t) {
@@ -79,6 +96,11 @@ void add_degenerate_quadric_routes(std::vector<Route>& t) {
                "the line's distance through the exact shadow of the quadric along it (closed "
                "forms against a line, a point or a half-plane shadow)",
                line_apply, line_run});
+  t.push_back({Method::LineLocus, PairKind::QuadricTorus, kAllModes,
+               "a quadric whose real points form a line (rank-2 semidefinite) and a torus: the "
+               "torus quartic along the line decides contact exactly, else the least distance "
+               "to the core circle over the exact critical points, minus r",
+               line_torus_apply, line_torus_run});
 }
 
 } // namespace surfcert::certify

@@ -34,10 +34,23 @@
 // Against another line (closed form: skew, crossing, parallel or equal) and a point (the
 // exact squared distance). nullopt when `other` is a plane or a double plane (the plane routes
 // answer those) or has no real point.
+//
+// line_torus_distance(line, T): d(L, T) = max(0, d(L, K) - r), K the core circle (centre c,
+// axis a, radius R). Whether L meets T is decided exactly: the torus quartic along the line
+// (degree 4 over Q) has a real root (distance 0; its distinct real roots, counted exactly, are
+// the meeting points: a tangency is a double root). Otherwise the squared distance from
+// x(t) to K, F = |x - c|^2 + R^2 - 2 R rho(t) (rho the distance from the axis), is least at a
+// root of the degree <= 4 polynomial Q'^2 P - R^2 P'^2 (P = rho^2, Q = |x - c|^2; a point where
+// the line crosses the axis is never a minimum), isolated exactly and enclosed in Arb balls
+// refined until the width meets `digits`; the axis itself is a closed form (a circle of
+// nearest points). Several candidates left within the enclosures are reported as ties (with
+// tie regions for the symmetry proof). Certified always, except when the precision cap
+// (2^16 bits) leaves the enclosure wider than asked (the width contract then says so).
 #pragma once
 
 #include "surfcert/certify/distance/distance.hpp"
 #include "surfcert/core/quadric.hpp"
+#include "surfcert/core/torus.hpp"
 
 #include <array>
 #include <optional>
@@ -60,5 +73,10 @@ RealLocus real_locus(const core::QuadricMatrix& q);
 std::optional<DistanceResult> line_quadric_distance(const RealLocus& line,
                                                     const core::QuadricMatrix& other,
                                                     bool line_first, long digits);
+
+/// The distance from the line `line` (kind Line) to the ring torus `torus` (see above);
+/// nullopt when `line` is not a line.
+std::optional<DistanceResult> line_torus_distance(const RealLocus& line, const core::Torus& torus,
+                                                  bool line_first, long digits);
 
 } // namespace surfcert::certify
