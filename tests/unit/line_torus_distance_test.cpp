@@ -257,3 +257,83 @@ TEST(LineTorus, ExactModeAndJson) {
   check(r, d, "1", 15, "json torus");
   mpfr_clear(d);
 }
+
+// Lines in general pose (two random integer planes) against random tori (rational radii, integer
+// centre and axis): the certified answer against an independent float minimisation of
+// dist(x(t), K) - r over t (a fine grid, then golden-section search), within 1e-6, and a
+// meeting (distance 0) exactly when the float minimum is <= 0 up to that tolerance.
+TEST(LineTorus, AgainstFloatMinimisation) {
+  unsigned long state = 12345;
+  auto next = [&](long lo, long hi) {
+    state = state * 6364136223846793005UL + 1442695040888963407UL;
+    return lo + static_cast<long>((state >> 33) % static_cast<unsigned long>(hi - lo + 1));
+  };
+  int answered = 0;
+  for (int k = 0; k < 30; ++k) {
+    long n1[3], n2[3], c[3], a[3];
+    for (int i = 0; i < 3; ++i) {
+      n1[i] = next(-3, 3);
+      n2[i] = next(-3, 3);
+      c[i] = next(-2, 2);
+      a[i] = next(-2, 2);
+    }
+    const long b1 = next(-4, 4), b2 = next(-4, 4);
+    const long d[3] = {n1[1] * n2[2] - n1[2] * n2[1], n1[2] * n2[0] - n1[0] * n2[2],
+                       n1[0] * n2[1] - n1[1] * n2[0]};
+    if ((d[0] == 0 && d[1] == 0 && d[2] == 0) || (a[0] == 0 && a[1] == 0 && a[2] == 0)) continue;
+    const Rational R = Rational(next(4, 6), 2), r = Rational(next(1, 3), 2);
+    auto plane = [](const long* n, long b) {
+      return "(" + std::to_string(n[0]) + "*x+" + std::to_string(n[1]) + "*y+" +
+             std::to_string(n[2]) + "*z-(" + std::to_string(b) + "))^2";
+    };
+    const auto line = q(plane(n1, b1) + "+" + plane(n2, b2) + "=0");
+    const core::Torus t = core::make_torus({Rational(c[0]), Rational(c[1]), Rational(c[2])},
+                                           {Rational(a[0]), Rational(a[1]), Rational(a[2])}, R, r);
+    const auto res = run(line, t, k % 2 == 1, 15);
+    const std::string tag = "case " + std::to_string(k);
+    ASSERT_EQ(res.status, Status::Certified) << tag << ": " << res.note;
+    EXPECT_EQ(res.method, Method::LineLocus) << tag;
+    ++answered;
+    // The float reference: a point of the line (Cramer on n1, n2, d), then min over t.
+    auto det = [](const double m[3][3]) {
+      return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+             m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+             m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    };
+    const double M[3][3] = {{double(n1[0]), double(n1[1]), double(n1[2])},
+                            {double(n2[0]), double(n2[1]), double(n2[2])},
+                            {double(d[0]), double(d[1]), double(d[2])}};
+    const double rhs[3] = {double(b1), double(b2), 0};
+    double p[3];
+    for (int j = 0; j < 3; ++j) {
+      double B[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int l = 0; l < 3; ++l)
+          B[i][l] = l == j ? rhs[i] : M[i][l];
+      p[j] = det(B) / det(M);
+    }
+    const double an = std::sqrt(double(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
+    const double Rd = R.to_double_approx(), rd = r.to_double_approx();
+    auto F = [&](double s) {
+      double x[3], h = 0, xx = 0;
+      for (int i = 0; i < 3; ++i) {
+        x[i] = p[i] + s * d[i] - c[i];
+        h += x[i] * a[i] / an;
+        xx += x[i] * x[i];
+      }
+      const double rho = std::sqrt(std::max(0.0, xx - h * h));
+      return std::sqrt((rho - Rd) * (rho - Rd) + h * h);
+    };
+    double best = 0;
+    for (int i = -40000; i <= 40000; ++i)
+      if (F(i / 2000.0) < F(best)) best = i / 2000.0;
+    double lo = best - 1e-3, hi = best + 1e-3;
+    for (int it = 0; it < 200; ++it) {
+      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      (F(m1) < F(m2) ? hi : lo) = F(m1) < F(m2) ? m2 : m1;
+    }
+    const double ref = std::max(0.0, F(lo) - rd);
+    EXPECT_NEAR(res.approx(), ref, 1e-6) << tag << ": " << res.note;
+  }
+  EXPECT_GE(answered, 20);
+}
