@@ -307,103 +307,240 @@ std::optional<std::vector<Rational>> rational_root_separators(const UPolyZ& p, l
 
 } // namespace
 
-long max_coefficient_bits(const UPolyZ& p) {
-  return static_cast<long>(std::labs(fmpz_poly_max_bits(p.raw())));
-}
-
 namespace {
 
-// One real root of an irreducible factor: the exact root of a linear factor (lo == hi), or
-// a real ball from Arb's isolation (`iso`: it holds this root and no other root of the factor)
-// and the current enclosure `ball` inside it; [lo, hi] = the ball's ends, exactly.
-struct ArbRoot {
+// Sign variations of the coefficients of (1 + x)^n p((lo + hi x) / (1 + x)) (zeros skipped): by
+// Descartes' rule an upper bound on the roots of p in (lo, hi) of the same parity; 0 and 1 are
+// exact counts.
+long descartes_variations(const UPolyZ& p, const Rational& lo, const Rational& hi) {
+  const slong n = p.degree();
+  fmpz_t an, ad, bn, bd;
+  fmpz_init_set(an, fmpq_numref(lo.raw()));
+  fmpz_init_set(ad, fmpq_denref(lo.raw()));
+  fmpz_init_set(bn, fmpq_numref(hi.raw()));
+  fmpz_init_set(bd, fmpq_denref(hi.raw()));
+  // (lo + hi x) / (1 + x) = (an bd + bn ad x) / (ad bd (1 + x)): q = sum c_i A^i D^(n-i).
+  fmpz_poly_t A, D, Ap, t, q;
+  fmpz_poly_init(A);
+  fmpz_poly_init(D);
+  fmpz_poly_init(Ap);
+  fmpz_poly_init(t);
+  fmpz_poly_init(q);
+  fmpz_t c;
+  fmpz_init(c);
+  fmpz_mul(c, an, bd);
+  fmpz_poly_set_coeff_fmpz(A, 0, c);
+  fmpz_mul(c, bn, ad);
+  fmpz_poly_set_coeff_fmpz(A, 1, c);
+  fmpz_mul(c, ad, bd);
+  fmpz_poly_set_coeff_fmpz(D, 0, c);
+  fmpz_poly_set_coeff_fmpz(D, 1, c);
+  std::vector<UPolyZ> dpow(static_cast<size_t>(n + 1)); // D^j
+  fmpz_poly_one(dpow[0].raw_mut());
+  for (slong j = 1; j <= n; ++j)
+    fmpz_poly_mul(dpow[static_cast<size_t>(j)].raw_mut(), dpow[static_cast<size_t>(j - 1)].raw(),
+                  D);
+  fmpz_poly_one(Ap); // A^i
+  for (slong i = 0; i <= n; ++i) {
+    const fmpz* ci = p.raw()->coeffs + i;
+    if (!fmpz_is_zero(ci)) {
+      fmpz_poly_mul(t, Ap, dpow[static_cast<size_t>(n - i)].raw());
+      fmpz_poly_scalar_addmul_fmpz(q, t, ci);
+    }
+    if (i < n) fmpz_poly_mul(Ap, Ap, A);
+  }
+  long v = 0;
+  int prev = 0;
+  for (slong i = 0; i < fmpz_poly_length(q); ++i) {
+    const int sg = fmpz_sgn(q->coeffs + i);
+    if (sg == 0) continue;
+    if (prev != 0 && sg != prev) ++v;
+    prev = sg;
+  }
+  fmpz_clear(c);
+  fmpz_poly_clear(A);
+  fmpz_poly_clear(D);
+  fmpz_poly_clear(Ap);
+  fmpz_poly_clear(t);
+  fmpz_poly_clear(q);
+  fmpz_clear(an);
+  fmpz_clear(ad);
+  fmpz_clear(bn);
+  fmpz_clear(bd);
+  return v;
+}
+
+// u with every root of p (c_n != 0) of modulus < 2^u (Cauchy: 1 + max |c_i / c_n|), u >= 1.
+slong cauchy_exponent(const fmpz_poly_struct* p) {
+  const slong n = fmpz_poly_degree(p);
+  const slong lead = static_cast<slong>(fmpz_bits(p->coeffs + n));
+  slong t = 0;
+  for (slong i = 0; i < n; ++i)
+    if (!fmpz_is_zero(p->coeffs + i))
+      t = std::max(t, static_cast<slong>(fmpz_bits(p->coeffs + i)) - lead + 1);
+  return t + 1;
+}
+
+// Isolating intervals (lo, hi), 0 < lo, of the positive roots of q (square-free, q(0) != 0):
+// Descartes' rule on intervals split at the geometric mean of their ends while they span more
+// than a factor 4 (a pencil of a sphere of radius 1e20000 and a unit one has roots some 130000
+// binary orders apart: found in ~17 splits of the exponent), then halved. A loop over a work
+// list, not a recursion (CGAL's Descartes recursed once per halving: 40,000 frames deep on that
+// pencil, a stack overflow), with a budget check per interval.
+void positive_root_intervals(const UPolyZ& q, std::vector<std::pair<Rational, Rational>>& out) {
+  const slong up = cauchy_exponent(q.raw());
+  UPolyZ rev;
+  fmpz_poly_reverse(rev.raw_mut(), q.raw(), q.degree() + 1);
+  const slong down = cauchy_exponent(rev.raw());
+  std::vector<std::pair<Rational, Rational>> work{{core::pow2(-down), core::pow2(up)}};
+  while (!work.empty()) {
+    core::check_budget();
+    auto [lo, hi] = std::move(work.back());
+    work.pop_back();
+    const long v = descartes_variations(q, lo, hi);
+    if (v == 0) continue;
+    if (v == 1) {
+      out.emplace_back(std::move(lo), std::move(hi));
+      continue;
+    }
+    Rational mid;
+    if (hi > Rational(4) * lo) {
+      // 2^e with e halfway between the ends' binary orders, strictly inside (lo, hi).
+      const auto order = [](const Rational& x) {
+        return static_cast<slong>(fmpz_bits(fmpq_numref(x.raw()))) -
+               static_cast<slong>(fmpz_bits(fmpq_denref(x.raw())));
+      };
+      mid = core::pow2((order(lo) + order(hi)) / 2);
+      if (!(lo < mid && mid < hi)) mid = (lo + hi) * Rational(1, 2);
+    } else {
+      mid = (lo + hi) * Rational(1, 2);
+    }
+    // Never split at a root (at most n moves).
+    while (q.sign_at(mid) == 0)
+      mid = (lo + mid) * Rational(1, 2);
+    work.emplace_back(mid, std::move(hi));
+    work.emplace_back(std::move(lo), std::move(mid));
+  }
+}
+
+// One root of an irreducible factor f: the point lo == hi (a rational root), or inside the
+// open interval (lo, hi), f(lo) f(hi) < 0, holding no other root of f.
+struct FactorRoot {
   size_t factor;
-  Ball iso, ball;
   Rational lo, hi;
 };
 
-// [lo, hi] from the ball's ends, exactly: mid -/+ rad without rounding (a rounded end would
-// widen the interval by a relative 2^-prec and keep two roots 10^-39000 apart from ever
-// separating).
-void set_ends(ArbRoot& r) {
-  Arf a, b;
-  arb_get_lbound_arf(a.v, r.ball.v, ARF_PREC_EXACT);
-  arb_get_ubound_arf(b.v, r.ball.v, ARF_PREC_EXACT);
-  arf_get_fmpq(r.lo.raw_mut(), a.v);
-  arf_get_fmpq(r.hi.raw_mut(), b.v);
+// Quadratic interval refinement (Abbott's QIR, exact signs only): (lo, hi) narrowed to width at
+// most `width` around the one root of f it holds (f(lo) f(hi) < 0). Each round proposes a
+// bracket of 1/n of the interval around the secant point; a hit squares n (quadratic
+// convergence: a root 10^-16000 from another is reached in ~20 rounds, where halving took
+// 53,000), a miss halves it (n = 2 is a bisection). Budget checked per round.
+void qir_refine(const UPolyZ& f, Rational& lo, Rational& hi, const Rational& width) {
+  const int slo = f.sign_at(lo);
+  if (slo == 0 || lo == hi) return;
+  core::Integer n(4);
+  std::vector<Rational> coeffs;
+  for (long i = 0; i <= f.degree(); ++i)
+    coeffs.emplace_back(f.coeff(i));
+  const UPolyQ fq = UPolyQ::from_coeffs(coeffs);
+  while (hi - lo > width) {
+    core::check_budget();
+    const Rational w = hi - lo;
+    // The secant point (regula falsi) from exact values at the ends, rounded to the grid w / n.
+    const Rational vlo = fq.evaluate(lo), vhi = fq.evaluate(hi);
+    const Rational step = w / Rational(n);
+    Rational guess = lo + w * (vlo / (vlo - vhi));
+    Rational k = (guess - lo) / step;
+    core::Integer kk;
+    fmpz_fdiv_q(kk.raw_mut(), fmpq_numref(k.raw()), fmpq_denref(k.raw()));
+    Rational a = lo + step * Rational(kk), b = a + step;
+    bool hit = false;
+    if (lo < a || b < hi) {
+      const int sa = lo < a ? f.sign_at(a) : slo, sb = b < hi ? f.sign_at(b) : -slo;
+      if (sa == 0) {
+        lo = hi = a;
+        return;
+      }
+      if (sb == 0) {
+        lo = hi = b;
+        return;
+      }
+      if (sa == slo && sb != slo) {
+        lo = a, hi = b, hit = true;
+      } else if (sa != slo) {
+        hi = a;
+      } else {
+        lo = b;
+      }
+    }
+    if (hit) {
+      n = n * n;
+    } else {
+      // A miss: one exact halving besides, and a coarser grid next time.
+      const Rational mid = (lo + hi) * Rational(1, 2);
+      const int sm = f.sign_at(mid);
+      if (sm == 0) {
+        lo = hi = mid;
+        return;
+      }
+      (sm == slo ? lo : hi) = mid;
+      if (fmpz_cmp_ui(n.raw(), 4) > 0) fmpz_sqrt(n.raw_mut(), n.raw());
+    }
+  }
 }
 
-// The real roots of the irreducible factor f (index i). A linear f: its exact root. Otherwise
-// Arb's certified complex root isolation (arb_fmpz_poly_complex_roots, for a square-free
-// input: disjoint balls, each proven to hold one root, to `prec` relative bits; the real
-// roots' balls exactly real): its exactly real balls. An end of one is never a root (f has no
-// rational root).
-void arb_factor_roots(const UPolyZ& f, size_t i, slong prec, std::vector<ArbRoot>& out) {
-  const slong d = f.degree();
-  if (d == 1) {
+// The roots of the irreducible factor f (index i), each alone in its interval.
+void factor_roots(const UPolyZ& f, size_t i, std::vector<FactorRoot>& out) {
+  const long d = f.degree();
+  if (d == 1) { // -c0 / c1
     Rational r(-f.coeff(0), f.coeff(1));
-    out.push_back({i, Ball(), Ball(), r, r});
+    out.push_back({i, r, r});
     return;
   }
-  std::vector<Ball> real;
-  {
-    acb_ptr r = _acb_vec_init(d);
-    arb_fmpz_poly_complex_roots(r, f.raw(), 0, prec);
-    for (slong j = 0; j < d; ++j)
-      if (arb_is_zero(acb_imagref(r + j))) {
-        real.emplace_back();
-        arb_set(real.back().v, acb_realref(r + j));
-      }
-    _acb_vec_clear(r, d);
+  if (d == 2) {
+    // (-b +- sqrt(D)) / 2a, D = b^2 - 4ac not a square (f irreducible): with s = floor(sqrt D),
+    // each root alone in the image of (s, s + 1) (width 1 / 2|a| < sqrt(D) / |a|, the gap).
+    const core::Integer a = f.coeff(2), b = f.coeff(1), c = f.coeff(0);
+    core::Integer disc = b * b - core::Integer(4) * a * c;
+    if (fmpz_sgn(disc.raw()) <= 0) return;
+    core::Integer sq;
+    fmpz_sqrt(sq.raw_mut(), disc.raw());
+    const Rational two_a(core::Integer(2) * a);
+    for (int sg : {-1, 1}) {
+      Rational e1 = (Rational(-b) + Rational(sg) * Rational(sq)) / two_a;
+      Rational e2 = (Rational(-b) + Rational(sg) * Rational(sq + core::Integer(1))) / two_a;
+      if (e2 < e1) std::swap(e1, e2);
+      out.push_back({i, e1, e2});
+    }
+    return;
   }
-  for (Ball& b : real) {
-    ArbRoot root{i, b, std::move(b), Rational(), Rational()};
-    set_ends(root);
-    out.push_back(std::move(root));
-  }
-}
-
-// Narrows r.ball to about twice its relative accuracy by Arb's certified Newton steps
-// (_arb_poly_newton_step: the ball m - f(m) / f'(m) widened by C rad^2, C >= max |f''| / 2
-// min |f'| over r.iso from _arb_poly_newton_convergence_factor; a step is kept only when it
-// lies in r.iso and is narrower). false when no step makes progress (C infinite: r.iso holds
-// a critical point of f, or too wide for the bound): the caller isolates f again, finer.
-bool newton_refine(const UPolyZ& f, ArbRoot& r) {
-  const slong len = f.degree() + 1;
-  BallVec c(len);
-  for (slong j = 0; j < len; ++j)
-    arb_set_fmpz(c.v + j, f.raw()->coeffs + j); // exact
-  const slong acc = std::max<slong>(arb_rel_accuracy_bits(r.ball.v), 16);
-  Arf conv;
-  _arb_poly_newton_convergence_factor(conv.v, c.v, len, r.iso.v, 2 * acc + 64);
-  if (!arf_is_finite(conv.v)) return false;
-  bool moved = false;
-  // Each successful step about doubles the accuracy; a few steps reach twice `acc`.
-  for (int step = 0; step < 4 && arb_rel_accuracy_bits(r.ball.v) < 2 * acc; ++step) {
-    Ball next;
-    if (!_arb_poly_newton_step(next.v, c.v, len, r.ball.v, r.iso.v, conv.v,
-                               2 * arb_rel_accuracy_bits(r.ball.v) + 64))
-      break;
-    r.ball = std::move(next);
-    moved = true;
-  }
-  if (moved) set_ends(r);
-  return moved;
+  std::vector<std::pair<Rational, Rational>> pos, neg;
+  positive_root_intervals(f, pos);
+  UPolyZ minus = f; // f(-x)
+  for (slong j = 1; j <= minus.degree(); j += 2)
+    fmpz_neg(minus.raw_mut()->coeffs + j, minus.raw()->coeffs + j);
+  positive_root_intervals(minus, neg);
+  for (auto& [lo, hi] : neg)
+    out.push_back({i, -hi, -lo});
+  for (auto& [lo, hi] : pos)
+    out.push_back({i, lo, hi});
 }
 
 } // namespace
 
-RootSeparation isolate_real_roots_arb(const UPolyZ& p) {
+long max_coefficient_bits(const UPolyZ& p) {
+  return static_cast<long>(std::labs(fmpz_poly_max_bits(p.raw())));
+}
+
+RootSeparation isolate_real_roots_descartes(const UPolyZ& p) {
   RootSeparation out;
   if (p.degree() < 1) {
     out.separators = {Rational(0)};
     return out;
   }
-  // Irreducible factors apart (FLINT): Arb's isolation wants a square-free input, and roots of
-  // different factors may be 10^-39000 apart (the pencil of spheres of radii 1e19500 and 1:
-  // the root 1 and a root of the quadratic factor). Each round narrows the roots whose
-  // intervals meet another's: Newton (twice the accuracy), or, when Newton cannot start, the
-  // factor isolated again at twice the precision.
+  // Irreducible factors apart: roots of different factors may be 10^-16000 apart (the pencil
+  // of spheres of radii 1e8000 and 1: the root 1 and a root of a quadratic factor), which
+  // Descartes' halvings separate only after 53,000 of them; QIR below does it in ~20 rounds.
   std::vector<UPolyZ> factors;
   {
     fmpz_poly_factor_t fac;
@@ -415,39 +552,32 @@ RootSeparation isolate_real_roots_arb(const UPolyZ& p) {
     }
     fmpz_poly_factor_clear(fac);
   }
-  std::vector<slong> prec(factors.size(), 64);
-  std::vector<ArbRoot> roots;
+  std::vector<FactorRoot> roots;
   for (size_t i = 0; i < factors.size(); ++i)
-    arb_factor_roots(factors[i], i, prec[i], roots);
+    factor_roots(factors[i], i, roots);
   if (roots.empty()) {
     out.separators = {Rational(0)};
     return out;
   }
-  const auto by_lo = [](const ArbRoot& x, const ArbRoot& y) { return x.lo < y.lo; };
-  for (;;) {
+  // Until no two intervals meet: each round narrows the two that do to 2^-(64 * 2^round) of
+  // their width (a point interval, a rational root, stays).
+  const auto by_lo = [](const FactorRoot& x, const FactorRoot& y) { return x.lo < y.lo; };
+  for (long bits = 64;; bits = std::min<long>(2 * bits, 1L << 20)) {
     core::check_budget();
     std::sort(roots.begin(), roots.end(), by_lo);
-    std::vector<char> meets(roots.size(), 0);
+    std::vector<char> narrow(roots.size(), 0);
     bool met = false;
     for (size_t i = 0; i + 1 < roots.size(); ++i)
       if (!(roots[i].hi < roots[i + 1].lo)) {
         met = true;
-        meets[i] = meets[i + 1] = 1;
+        narrow[i] = narrow[i + 1] = 1;
       }
     if (!met) break;
-    std::vector<char> again(factors.size(), 0); // isolated again, finer
     for (size_t i = 0; i < roots.size(); ++i)
-      if (meets[i] && factors[roots[i].factor].degree() > 1 &&
-          !newton_refine(factors[roots[i].factor], roots[i]))
-        again[roots[i].factor] = 1;
-    std::vector<ArbRoot> kept;
-    for (auto& r : roots)
-      if (!again[r.factor]) kept.push_back(std::move(r));
-    roots = std::move(kept);
-    for (size_t f = 0; f < factors.size(); ++f)
-      if (again[f]) {
-        prec[f] *= 2;
-        arb_factor_roots(factors[f], f, prec[f], roots);
+      if (narrow[i] && roots[i].lo != roots[i].hi) {
+        Rational w = roots[i].hi - roots[i].lo;
+        fmpq_div_2exp(w.raw_mut(), w.raw(), static_cast<ulong>(bits));
+        qir_refine(factors[roots[i].factor], roots[i].lo, roots[i].hi, w);
       }
   }
   // Apart now, each interval holds exactly one root of p: separators between them.
@@ -524,8 +654,8 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     }
   // CGAL's Descartes recurses once per halving of its interval: coefficients of 66,000 bits
   // (a sphere of radius 1e20000 against a unit one) took it 40,000 frames deep, a stack
-  // overflow. Beyond kCgalMaxBits Arb's isolation of the irreducible factors instead.
-  out = max_coefficient_bits(p) > kCgalMaxBits ? isolate_real_roots_arb(p)
+  // overflow. Beyond kCgalMaxBits the loop above (a work list, exponent splits first) instead.
+  out = max_coefficient_bits(p) > kCgalMaxBits ? isolate_real_roots_descartes(p)
                                                : isolate_real_roots_cgal(p);
   out.used_fallback = true;
   if (!separators_certify(p, out.separators, k))

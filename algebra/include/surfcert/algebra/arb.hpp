@@ -27,7 +27,6 @@
 #include <flint/arb.h>
 #include <flint/arb_fmpz_poly.h>
 #include <flint/arb_mat.h>
-#include <flint/arb_poly.h>
 #include <flint/arf.h>
 #include <flint/mag.h>
 #else
@@ -36,7 +35,6 @@
 #include <arb.h>
 #include <arb_fmpz_poly.h>
 #include <arb_mat.h>
-#include <arb_poly.h>
 #include <arf.h>
 #include <mag.h>
 #endif

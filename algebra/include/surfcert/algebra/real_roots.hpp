@@ -10,9 +10,8 @@
 // the k real-most guesses, converted exactly to dyadic rationals), checked with exact signs;
 // if the check fails (clustered roots, a separator landing on a root), CGAL's Descartes
 // isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead, or,
-// for coefficients beyond kCgalMaxBits bits, isolate_real_roots_arb (Arb's certified complex
-// root isolation of each irreducible factor: CGAL's recursion overflowed the stack there).
-// Either fallback's separators are then checked with exact signs like the guess.
+// for coefficients beyond kCgalMaxBits bits, isolate_real_roots_descartes (a loop: CGAL's
+// recursion overflowed the stack there).
 #pragma once
 
 #include "surfcert/algebra/upoly.hpp"
@@ -24,7 +23,7 @@ namespace surfcert::algebra {
 
 struct RootSeparation {
   std::vector<Rational> separators;
-  bool used_fallback = false; ///< true when the float guess failed and CGAL (or Arb) was used
+  bool used_fallback = false; ///< true when the float guess failed and CGAL was used
   size_t num_roots() const { return separators.size() - 1; }
 };
 
@@ -41,17 +40,12 @@ RootSeparation isolate_real_roots(const UPolyZ& squarefree);
 /// The same from CGAL only (the fallback, and a second isolator for tests). Exact.
 RootSeparation isolate_real_roots_cgal(const UPolyZ& squarefree);
 
-/// The same from Arb, for any coefficient size (the fallback in place of CGAL beyond
-/// kCgalMaxBits, whose Descartes recursion, one frame per halving, overflowed the stack near
-/// 66,000 bits). The irreducible factors apart (FLINT); a linear one gives its exact root,
-/// the others Arb's certified isolation (arb_fmpz_poly_complex_roots: disjoint balls, one
-/// root each, a real root's ball exactly real) and the real balls' ends exactly as rationals.
-/// Intervals of different factors that meet are narrowed, a round at a time, by Arb's
-/// certified Newton steps (_arb_poly_newton_step) or, when Newton cannot start, the factor
-/// isolated again at twice the precision, until all are disjoint: roots 10^-39000 apart in
-/// ~12 rounds. Checks the thread's time budget (core/budget.hpp) once per round; one Arb call
-/// is not interrupted. Exact (no float decides anything).
-RootSeparation isolate_real_roots_arb(const UPolyZ& squarefree);
+/// The same from Descartes' rule of signs in a loop (no recursion: any coefficient size), the
+/// intervals split at the geometric mean of their ends while they span more than a factor 4.
+/// The fallback in place of CGAL for coefficients beyond kCgalMaxBits, whose Descartes
+/// recursion (one frame per halving) overflowed the stack near 66,000 bits. Checks the
+/// thread's time budget (core/budget.hpp) once per interval. Exact.
+RootSeparation isolate_real_roots_descartes(const UPolyZ& squarefree);
 
 /// Bits of the largest coefficient of p (absolute value).
 long max_coefficient_bits(const UPolyZ& p);
