@@ -7,6 +7,7 @@
 
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/certify/qsic.hpp"
+#include "surfcert/core/budget.hpp"
 #include "surfcert/core/io/json.hpp"
 
 #include <gtest/gtest.h>
@@ -21,11 +22,13 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
 using namespace surfcert;
 using core::Integer;
+using core::Rational;
 using core::io::Json;
 using surfcert::testing::q;
 
@@ -123,6 +126,59 @@ TEST(ExtremeInputs, HugeCoefficientsAreIsolatedWithoutRecursion) {
   }
 }
 
+namespace {
+
+algebra::UPolyZ mul(const algebra::UPolyZ& a, const algebra::UPolyZ& b) {
+  algebra::UPolyZ p;
+  fmpz_poly_mul(p.raw_mut(), a.raw(), b.raw());
+  return p;
+}
+
+Integer pow2(unsigned long e) {
+  Integer r(1);
+  fmpz_mul_2exp(r.raw_mut(), r.raw(), e);
+  return r;
+}
+
+// p(x / s) * s^deg p for the integer s > 0: the roots times s.
+algebra::UPolyZ scale_roots(const algebra::UPolyZ& p, const Integer& s) {
+  algebra::UPolyZ q = p;
+  Integer f(1);
+  for (long i = p.degree(); i >= 0; --i) {
+    fmpz_mul(q.raw_mut()->coeffs + i, p.raw()->coeffs + i, f.raw());
+    fmpz_mul(f.raw_mut(), f.raw(), s.raw());
+  }
+  return q;
+}
+
+// The square-free part of p (the product of its square-free factors).
+algebra::UPolyZ squarefree_part(const algebra::UPolyZ& p) {
+  fmpz_poly_factor_t fac;
+  fmpz_poly_factor_init(fac);
+  fmpz_poly_factor_squarefree(fac, p.raw());
+  algebra::UPolyZ sq = algebra::UPolyZ::from_coeffs({Integer(1)});
+  for (slong i = 0; i < fac->num; ++i)
+    fmpz_poly_mul(sq.raw_mut(), sq.raw(), fac->p + i);
+  fmpz_poly_factor_clear(fac);
+  return sq;
+}
+
+// The separators checked by an independent route: as many gaps as FLINT's Sturm count,
+// increasing separators, exact nonzero signs of p at them (FLINT fmpq), alternating.
+void expect_certified(const algebra::UPolyZ& p, const algebra::RootSeparation& s,
+                      const std::string& what) {
+  EXPECT_EQ(static_cast<long>(s.num_roots()), fmpz_poly_num_real_roots_sturm(p.raw())) << what;
+  for (size_t i = 0; i < s.separators.size(); ++i) {
+    EXPECT_NE(p.sign_at(s.separators[i]), 0) << what << " separator " << i;
+    if (i == 0) continue;
+    EXPECT_LT(s.separators[i - 1], s.separators[i]) << what << " separator " << i;
+    EXPECT_EQ(p.sign_at(s.separators[i]), -p.sign_at(s.separators[i - 1]))
+        << what << " separator " << i;
+  }
+}
+
+} // namespace
+
 TEST(ExtremeInputs, LoopIsolatorAgreesWithCgalOnSmallPolynomials) {
   std::mt19937_64 rng(20);
   std::uniform_int_distribution<int> coef(-40, 40), deg(1, 7);
@@ -132,28 +188,148 @@ TEST(ExtremeInputs, LoopIsolatorAgreesWithCgalOnSmallPolynomials) {
     for (int i = 0; i <= d; ++i)
       c.emplace_back(coef(rng));
     if (c.back().is_zero()) c.back() = Integer(1);
-    algebra::UPolyZ p = algebra::UPolyZ::from_coeffs(c);
-    // Square-free part (a product with a rational root or two, so that factors meet).
-    const algebra::UPolyZ extra = algebra::UPolyZ::from_coeffs({Integer(it % 5 - 2), Integer(1)});
-    fmpz_poly_mul(p.raw_mut(), p.raw(), extra.raw());
-    fmpz_poly_factor_t fac;
-    fmpz_poly_factor_init(fac);
-    fmpz_poly_factor_squarefree(fac, p.raw());
-    algebra::UPolyZ sq = algebra::UPolyZ::from_coeffs({Integer(1)});
-    for (slong i = 0; i < fac->num; ++i)
-      fmpz_poly_mul(sq.raw_mut(), sq.raw(), fac->p + i);
-    fmpz_poly_factor_clear(fac);
+    // Square-free part of a product with a rational root or two, so that factors meet.
+    const algebra::UPolyZ sq =
+        squarefree_part(mul(algebra::UPolyZ::from_coeffs(c),
+                            algebra::UPolyZ::from_coeffs({Integer(it % 5 - 2), Integer(1)})));
     const auto a = algebra::isolate_real_roots_descartes(sq);
     const auto b = algebra::isolate_real_roots_cgal(sq);
     ASSERT_EQ(a.num_roots(), b.num_roots()) << sq.to_string();
-    ASSERT_EQ(static_cast<long>(a.num_roots()), algebra::count_real_roots(sq)) << sq.to_string();
-    for (size_t i = 0; i < a.separators.size(); ++i) {
-      ASSERT_NE(sq.sign_at(a.separators[i]), 0) << sq.to_string();
-      if (i > 0) {
-        ASSERT_NE(sq.sign_at(a.separators[i]), sq.sign_at(a.separators[i - 1]));
-      }
+    expect_certified(sq, a, sq.to_string());
+  }
+}
+
+// Small polynomials scaled up: the roots times 2^3000 or 10^1000 (coefficients of thousands
+// of bits). The count must be CGAL's on the small polynomial, and the separators scaled back
+// must separate the small polynomial's roots (exact signs: p(s / t) has the sign of the scaled
+// polynomial at s).
+TEST(ExtremeInputs, LoopIsolatorOnScaledSmallPolynomials) {
+  std::mt19937_64 rng(24);
+  std::uniform_int_distribution<int> coef(-20, 20), deg(1, 6);
+  for (int it = 0; it < 60; ++it) {
+    std::vector<Integer> c;
+    const int d = deg(rng);
+    for (int i = 0; i <= d; ++i)
+      c.emplace_back(coef(rng));
+    if (c.back().is_zero()) c.back() = Integer(1);
+    const algebra::UPolyZ p = squarefree_part(algebra::UPolyZ::from_coeffs(c));
+    if (p.degree() < 1) continue;
+    const size_t k = algebra::isolate_real_roots_cgal(p).num_roots();
+    const Integer t = it % 2 ? pow2(3000) : pow10(1000);
+    const algebra::UPolyZ big = scale_roots(p, t);
+    const auto s = algebra::isolate_real_roots_descartes(big);
+    ASSERT_EQ(s.num_roots(), k) << p.to_string();
+    expect_certified(big, s, p.to_string());
+    algebra::RootSeparation back;
+    for (const Rational& x : s.separators)
+      back.separators.push_back(x / Rational(t));
+    expect_certified(p, back, "scaled back: " + p.to_string());
+  }
+}
+
+// Known roots built exactly, 10^10000 orders apart, and near-coincident roots with 10,000-bit
+// coefficients: every known rational root strictly inside its own gap, the count FLINT's, and
+// the dispatcher (isolate_real_roots) certifying the same.
+TEST(ExtremeInputs, LoopIsolatorSeparatesKnownAndNearCoincidentRoots) {
+  using algebra::UPolyZ;
+  const UPolyZ x2m2 = UPolyZ::from_coeffs({Integer(-2), Integer(0), Integer(1)}); // +-sqrt 2
+  // (x - 10^5000)(10^5000 x - 1)(x - 3)(2x + 7)(x^2 - 2): roots -7/2, -sqrt 2, 10^-5000,
+  // sqrt 2, 3, 10^5000.
+  {
+    const UPolyZ p = mul(mul(mul(UPolyZ::from_coeffs({-pow10(5000), Integer(1)}),
+                                 UPolyZ::from_coeffs({Integer(-1), pow10(5000)})),
+                             mul(UPolyZ::from_coeffs({Integer(-3), Integer(1)}),
+                                 UPolyZ::from_coeffs({Integer(7), Integer(2)}))),
+                         x2m2);
+    const auto s = algebra::isolate_real_roots_descartes(p);
+    ASSERT_EQ(s.num_roots(), 6u);
+    expect_certified(p, s, "known roots");
+    const std::vector<std::pair<size_t, Rational>> known = {{0, Rational(-7, 2)},
+                                                            {2, Rational(Integer(1), pow10(5000))},
+                                                            {4, Rational(3)},
+                                                            {5, Rational(pow10(5000))}};
+    for (const auto& [gap, r] : known) {
+      EXPECT_LT(s.separators[gap], r) << gap;
+      EXPECT_LT(r, s.separators[gap + 1]) << gap;
     }
   }
+  // Roots 2^-100 (relative) apart with 10,000-bit coefficients, times 2^5000:
+  // (a) sqrt 2 and sqrt 2 + 2^-100 (two irreducible quadratics);
+  // (b) 1 and 1 +- sqrt 2 * 2^-100 (a linear factor between the roots of a quadratic);
+  // (c) the pair 3 +- sqrt 2 * 2^-100 of one irreducible quadratic, and the cubic x^3 - 3x + 1
+  //     against (x - 2^-100)^3 - 3(x - 2^-100) + 1 (three pairs of roots 2^-100 apart).
+  const UPolyZ shifted = UPolyZ::from_coeffs({Integer(1) - pow2(201), -pow2(101), pow2(200)});
+  const UPolyZ around1 = UPolyZ::from_coeffs({pow2(200) - Integer(2), -pow2(201), pow2(200)});
+  const UPolyZ around3 = UPolyZ::from_coeffs(
+      {Integer(9) * pow2(200) - Integer(2), -Integer(6) * pow2(200), pow2(200)});
+  const UPolyZ cubic = UPolyZ::from_coeffs({Integer(1), Integer(-3), Integer(0), Integer(1)});
+  // 2^300 (x - 2^-100)^3 - 3 * 2^300 (x - 2^-100) + 2^300, expanded exactly.
+  const UPolyZ cubic_shifted = UPolyZ::from_coeffs({pow2(300) + Integer(3) * pow2(200) - Integer(1),
+                                                    Integer(3) * pow2(100) - Integer(3) * pow2(300),
+                                                    -Integer(3) * pow2(200), pow2(300)});
+  const std::vector<std::tuple<const char*, UPolyZ, size_t>> cases = {
+      {"sqrt2 vs sqrt2 + 2^-100", mul(x2m2, shifted), 4},
+      {"1 between 1 +- sqrt2 2^-100", mul(UPolyZ::from_coeffs({Integer(-1), Integer(1)}), around1),
+       3},
+      {"3 +- sqrt2 2^-100", around3, 2},
+      {"cubic vs cubic + 2^-100", mul(cubic, cubic_shifted), 6}};
+  for (const auto& [what, small, k] : cases) {
+    const UPolyZ p = scale_roots(small, pow2(5000));
+    ASSERT_GE(algebra::max_coefficient_bits(p), 10000) << what;
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto s = algebra::isolate_real_roots_descartes(p);
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(s.num_roots(), k) << what;
+    expect_certified(p, s, what);
+    EXPECT_LT(secs, 5.0) << what;
+    const auto d = algebra::isolate_real_roots(p);
+    EXPECT_EQ(d.num_roots(), k) << what;
+    expect_certified(p, d, std::string("dispatcher: ") + what);
+  }
+}
+
+// Inputs on which Arb's arb_fmpz_poly_complex_roots (tried in place of the loop in session 24)
+// ran for seconds to minutes, uninterruptibly: two roots of one irreducible factor 10^-1000 or
+// 10^-300 apart (real or complex), and well separated roots all near 10^1000. The loop: well
+// under a second each.
+TEST(ExtremeInputs, LoopIsolatorOnClustersAndHugeRootsOfOneFactor) {
+  using algebra::UPolyZ;
+  const UPolyZ square = UPolyZ::from_coeffs({Integer(1), Integer(-2), Integer(1)}); // (x-1)^2
+  const UPolyZ far = UPolyZ::from_coeffs({-pow10(1000), Integer(1)});               // x - 10^1000
+  // 10^(2e) (x - 1)^2 - 2 (real roots 1 +- sqrt2 10^-e), times (x - 3) and - 2 (a complex pair
+  // 10^-e from 1), each times x - 10^1000.
+  auto cluster = [&](unsigned long e, bool cubic) {
+    UPolyZ q = cubic ? mul(square, UPolyZ::from_coeffs({Integer(-3), Integer(1)})) : square;
+    fmpz_poly_scalar_mul_fmpz(q.raw_mut(), q.raw(), pow10(2 * e).raw());
+    fmpz_sub_ui(q.raw_mut()->coeffs, q.raw()->coeffs, 2);
+    return mul(q, far);
+  };
+  const std::vector<std::tuple<std::string, UPolyZ, size_t>> cases = {
+      {"real pair 1e-1000", cluster(1000, false), 3},
+      {"real pair 1e-300", cluster(300, false), 3},
+      {"complex pair 1e-300 and 3", cluster(300, true), 2},
+      {"17x^4 - 15x^3 - 17x^2 + 5x + 6, roots * 10^1000",
+       scale_roots(
+           UPolyZ::from_coeffs({Integer(6), Integer(5), Integer(-17), Integer(-15), Integer(17)}),
+           pow10(1000)),
+       2}};
+  for (const auto& [what, p, k] : cases) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto s = algebra::isolate_real_roots_descartes(p);
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(s.num_roots(), k) << what;
+    expect_certified(p, s, what);
+    EXPECT_LT(secs, 5.0) << what;
+  }
+}
+
+TEST(ExtremeInputs, LoopIsolatorChecksTheBudget) {
+  const algebra::UPolyZ p = sphere_pencil(pow10(16000));
+  core::BudgetScope scope(1e-3);
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  EXPECT_THROW(algebra::isolate_real_roots_descartes(p), core::BudgetExceeded);
 }
 
 TEST(ExtremeInputs, HugeAndTinySpherePencilsClassifyQuickly) {

@@ -45,6 +45,12 @@ RootSeparation isolate_real_roots_cgal(const UPolyZ& squarefree);
 /// The fallback in place of CGAL for coefficients beyond kCgalMaxBits, whose Descartes
 /// recursion (one frame per halving) overflowed the stack near 66,000 bits. Checks the
 /// thread's time budget (core/budget.hpp) once per interval. Exact.
+/// Not Arb (measured in its place, bench/real_roots_bench and the tests' cases): with the
+/// factors apart, arb_fmpz_poly_complex_roots plus Arb's Newton steps matched the loop on the
+/// sphere pencils, but Arb's root finder (Durand-Kerner at a fixed iteration count per
+/// precision, which it then doubles, with no budget check) ran 3.9 s on two roots of one
+/// quadratic 10^-300 apart and past 60 s at 10^-1000 or on a quartic's roots scaled by
+/// 10^1000, where the loop takes under a millisecond.
 RootSeparation isolate_real_roots_descartes(const UPolyZ& squarefree);
 
 /// Bits of the largest coefficient of p (absolute value).
