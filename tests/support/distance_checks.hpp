@@ -7,6 +7,7 @@
 #include "surfcert/core/io/surface_reader.hpp"
 #include "surfcert/core/quadric.hpp"
 
+#include <gmp.h>
 #include <mpfr.h>
 
 #include <algorithm>
@@ -139,6 +140,29 @@ inline core::Mat4 scaling(const core::Rational& s) {
     p[i][i] = core::Rational(1) / s;
   p[3][3] = core::Rational(1);
   return p;
+}
+
+/// out = (sqrt(s) - t) / u for rationals s >= 0, t, u != 0 given as "p/q" text, at 1200 bits
+/// (a closed-form distance to compare an enclosure with).
+inline void closed_form(mpfr_t out, const char* s, const char* t, const char* u) {
+  mpq_t a;
+  mpq_init(a);
+  mpfr_t x;
+  mpfr_init2(x, 1200);
+  mpq_set_str(a, s, 10);
+  mpq_canonicalize(a);
+  mpfr_set_q(out, a, MPFR_RNDN);
+  mpfr_sqrt(out, out, MPFR_RNDN);
+  mpq_set_str(a, t, 10);
+  mpq_canonicalize(a);
+  mpfr_set_q(x, a, MPFR_RNDN);
+  mpfr_sub(out, out, x, MPFR_RNDN);
+  mpq_set_str(a, u, 10);
+  mpq_canonicalize(a);
+  mpfr_set_q(x, a, MPFR_RNDN);
+  mpfr_div(out, out, x, MPFR_RNDN);
+  mpfr_clear(x);
+  mpq_clear(a);
 }
 
 } // namespace surfcert::testing

@@ -24,6 +24,7 @@
 #include <string>
 
 using namespace surfcert;
+using surfcert::testing::closed_form;
 using surfcert::testing::contains;
 using surfcert::testing::log10_rel_width;
 using surfcert::testing::motion;
@@ -33,28 +34,6 @@ namespace {
 
 using certify::Method;
 using certify::Status;
-
-// out = (sqrt(s) - t) / u for rationals s >= 0, t, u != 0 given as "p/q" text, at 1200 bits.
-void closed_form(mpfr_t out, const char* s, const char* t, const char* u) {
-  mpq_t a;
-  mpq_init(a);
-  mpfr_t x;
-  mpfr_init2(x, 1200);
-  mpq_set_str(a, s, 10);
-  mpq_canonicalize(a);
-  mpfr_set_q(out, a, MPFR_RNDN);
-  mpfr_sqrt(out, out, MPFR_RNDN);
-  mpq_set_str(a, t, 10);
-  mpq_canonicalize(a);
-  mpfr_set_q(x, a, MPFR_RNDN);
-  mpfr_sub(out, out, x, MPFR_RNDN);
-  mpq_set_str(a, u, 10);
-  mpq_canonicalize(a);
-  mpfr_set_q(x, a, MPFR_RNDN);
-  mpfr_div(out, out, x, MPFR_RNDN);
-  mpfr_clear(x);
-  mpq_clear(a);
-}
 
 struct Case {
   const char* degenerate; // the line or double plane

@@ -32,6 +32,7 @@
 #include <string>
 
 using namespace surfcert;
+using surfcert::testing::closed_form;
 using surfcert::testing::contains;
 using surfcert::testing::log10_rel_width;
 using surfcert::testing::q;
@@ -42,28 +43,6 @@ using certify::Method;
 using certify::Status;
 using core::Rational;
 using Vec3 = std::array<Rational, 3>;
-
-// out = (sqrt(s) - t) / u for rationals given as "p/q" text, at 1200 bits.
-void closed_form(mpfr_t out, const char* s, const char* t, const char* u) {
-  mpq_t a;
-  mpq_init(a);
-  mpfr_t x;
-  mpfr_init2(x, 1200);
-  mpq_set_str(a, s, 10);
-  mpq_canonicalize(a);
-  mpfr_set_q(out, a, MPFR_RNDN);
-  mpfr_sqrt(out, out, MPFR_RNDN);
-  mpq_set_str(a, t, 10);
-  mpq_canonicalize(a);
-  mpfr_set_q(x, a, MPFR_RNDN);
-  mpfr_sub(out, out, x, MPFR_RNDN);
-  mpq_set_str(a, u, 10);
-  mpq_canonicalize(a);
-  mpfr_set_q(x, a, MPFR_RNDN);
-  mpfr_div(out, out, x, MPFR_RNDN);
-  mpfr_clear(x);
-  mpq_clear(a);
-}
 
 // A rigid motion x -> M x + t (M from the integer quaternion (w, x, y, z)), applied to a torus
 // directly and to a quadric as the congruence testing::motion builds for the same motion.

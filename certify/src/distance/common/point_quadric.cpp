@@ -12,6 +12,7 @@
 // undecided (ok = false, with a note).
 #include "surfcert/certify/distance/point_quadric.hpp"
 #include "surfcert/certify/distance/ball.hpp"
+#include "surfcert/core/rational_vec3.hpp"
 
 #include "surfcert/algebra/arb.hpp"
 #include "surfcert/algebra/real_roots.hpp"
@@ -29,24 +30,15 @@ namespace surfcert::certify {
 
 using algebra::UPolyQ;
 using algebra::UPolyZ;
+using core::add;
+using core::dot;
 using core::Rational;
+using core::scale;
+using core::sub;
 
 namespace {
 
 using Vec3 = std::array<Rational, 3>;
-
-Rational dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 add(const Vec3& a, const Vec3& b) {
-  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-}
-Vec3 scale(const Rational& s, const Vec3& a) {
-  return {s * a[0], s * a[1], s * a[2]};
-}
 
 void set_enclosure(CriticalDistance& out, const arb_t d, long digits, long prec) {
   arf_t lo, hi;

@@ -1,4 +1,5 @@
 #include "surfcert/certify/distance/degenerate_locus.hpp"
+#include "surfcert/core/rational_vec3.hpp"
 
 #include "surfcert/certify/distance/ball.hpp"
 #include "surfcert/certify/distance/sphere_gap.hpp"
@@ -12,25 +13,17 @@
 
 namespace surfcert::certify {
 
+using core::along;
+using core::cross;
+using core::dot;
 using core::Rational;
+using core::sub;
 
 namespace {
 
 using Vec3 = std::array<Rational, 3>;
 using Point = std::array<double, 3>;
 
-Rational dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 along(const Vec3& p, const Rational& t, const Vec3& d) { // p + t d
-  return {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]};
-}
 bool is_zero(const Vec3& v) {
   return v[0].is_zero() && v[1].is_zero() && v[2].is_zero();
 }

@@ -28,6 +28,7 @@
 // then G = Q'^2 P != 0 (Q' has leading coefficient 2 |d|^2); if P = k (t - t0)^2, G = 0 would
 // need Q'^2 = 4 R^2 k, a constant.
 #include "surfcert/certify/distance/degenerate_locus.hpp"
+#include "surfcert/core/rational_vec3.hpp"
 
 #include "surfcert/certify/distance/ball.hpp"
 
@@ -45,6 +46,7 @@ namespace surfcert::certify {
 
 using algebra::UPolyQ;
 using algebra::UPolyZ;
+using core::dot;
 using core::Rational;
 
 namespace {
@@ -52,9 +54,6 @@ namespace {
 using Vec3 = std::array<Rational, 3>;
 using Point = std::array<double, 3>;
 
-Rational dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 Point approx(const Vec3& v) {
   return {v[0].to_double_approx(), v[1].to_double_approx(), v[2].to_double_approx()};
 }
