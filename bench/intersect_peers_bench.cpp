@@ -371,7 +371,8 @@ int main(int argc, char** argv) {
     const auto cases = named_cases();
     run_pair(warm, cases[0].s1, cases[0].s2, Pose{}, 3, tol, occt_tol, r);
   }
-  const std::string only = argc > 6 ? argv[6] : ""; // run only the cases (named or random kinds) containing this
+  const std::string only =
+      argc > 6 ? argv[6] : ""; // run only the cases (named or random kinds) containing this
   for (const Case& c : named_cases()) {
     if (!only.empty() && c.name.find(only) == std::string::npos) continue;
     Row row;
