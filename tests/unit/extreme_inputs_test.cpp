@@ -177,17 +177,24 @@ void expect_certified(const algebra::UPolyZ& p, const algebra::RootSeparation& s
   }
 }
 
+// Coefficients of a random polynomial of degree 1..max_degree, entries in [-bound, bound],
+// leading coefficient nonzero.
+std::vector<Integer> random_coefficients(std::mt19937_64& rng, int bound, int max_degree) {
+  std::uniform_int_distribution<int> coef(-bound, bound), deg(1, max_degree);
+  std::vector<Integer> c;
+  const int d = deg(rng);
+  for (int i = 0; i <= d; ++i)
+    c.emplace_back(coef(rng));
+  if (c.back().is_zero()) c.back() = Integer(1);
+  return c;
+}
+
 } // namespace
 
 TEST(ExtremeInputs, LoopIsolatorAgreesWithCgalOnSmallPolynomials) {
   std::mt19937_64 rng(20);
-  std::uniform_int_distribution<int> coef(-40, 40), deg(1, 7);
   for (int it = 0; it < 300; ++it) {
-    std::vector<Integer> c;
-    const int d = deg(rng);
-    for (int i = 0; i <= d; ++i)
-      c.emplace_back(coef(rng));
-    if (c.back().is_zero()) c.back() = Integer(1);
+    const std::vector<Integer> c = random_coefficients(rng, 40, 7);
     // Square-free part of a product with a rational root or two, so that factors meet.
     const algebra::UPolyZ sq =
         squarefree_part(mul(algebra::UPolyZ::from_coeffs(c),
@@ -205,13 +212,8 @@ TEST(ExtremeInputs, LoopIsolatorAgreesWithCgalOnSmallPolynomials) {
 // polynomial at s).
 TEST(ExtremeInputs, LoopIsolatorOnScaledSmallPolynomials) {
   std::mt19937_64 rng(24);
-  std::uniform_int_distribution<int> coef(-20, 20), deg(1, 6);
   for (int it = 0; it < 60; ++it) {
-    std::vector<Integer> c;
-    const int d = deg(rng);
-    for (int i = 0; i <= d; ++i)
-      c.emplace_back(coef(rng));
-    if (c.back().is_zero()) c.back() = Integer(1);
+    const std::vector<Integer> c = random_coefficients(rng, 20, 6);
     const algebra::UPolyZ p = squarefree_part(algebra::UPolyZ::from_coeffs(c));
     if (p.degree() < 1) continue;
     const size_t k = algebra::isolate_real_roots_cgal(p).num_roots();

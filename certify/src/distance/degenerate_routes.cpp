@@ -55,16 +55,19 @@ bool line_apply(const Query& q) {
   return a != nullptr && b != nullptr && !a->is_plane() && !b->is_plane() &&
          (line(q.a) || line(q.b));
 }
-Outcome line_run(Query& q) {
-  const bool first = line(q.a);
-  const RealLocus l = real_locus(*quadric(first ? q.a : q.b));
-  auto r = line_quadric_distance(l, *quadric(first ? q.b : q.a), first, q.digits);
+// A line route's result as the answer of method line_locus (not applicable when none).
+template <class Result> Outcome line_answer(std::optional<Result> r) {
   if (!r) return Outcome::not_applicable();
   r->method = Method::LineLocus;
   r->note = "a quadric whose real points form a line (rank 2, semidefinite: exact), answered "
             "as that line" +
             std::string(r->note.empty() ? "" : "; " + r->note);
   return Outcome::answer(std::move(*r));
+}
+Outcome line_run(Query& q) {
+  const bool first = line(q.a);
+  const RealLocus l = real_locus(*quadric(first ? q.a : q.b));
+  return line_answer(line_quadric_distance(l, *quadric(first ? q.b : q.a), first, q.digits));
 }
 
 // Quadric-torus pairs come in canonical order: the quadric first.
@@ -72,14 +75,8 @@ bool line_torus_apply(const Query& q) {
   return !q.solid && std::holds_alternative<core::Torus>(q.b) && line(q.a);
 }
 Outcome line_torus_run(Query& q) {
-  auto r =
-      line_torus_distance(real_locus(*quadric(q.a)), std::get<core::Torus>(q.b), true, q.digits);
-  if (!r) return Outcome::not_applicable();
-  r->method = Method::LineLocus;
-  r->note = "a quadric whose real points form a line (rank 2, semidefinite: exact), answered "
-            "as that line" +
-            std::string(r->note.empty() ? "" : "; " + r->note);
-  return Outcome::answer(std::move(*r));
+  return line_answer(
+      line_torus_distance(real_locus(*quadric(q.a)), std::get<core::Torus>(q.b), true, q.digits));
 }
 
 } // namespace
