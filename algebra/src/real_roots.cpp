@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <optional>
@@ -234,20 +235,47 @@ namespace {
 // root's ball is detected exactly real by conjugate symmetry): separators between the real
 // balls. Much cheaper than a Sturm sequence for high degrees and large coefficients (degree 36
 // with 11,000-bit coefficients: 17 ms against 360 ms). nullopt if the balls are not disjoint
-// on the real line (never expected; the caller then falls back). Used from degree 12 only:
-// below it the float guess + CGAL's Descartes isolation is fast, while Arb's Durand-Kerner
-// needs thousands of bits when the roots span a huge dynamic range (the pencil of spheres of
-// radius 1e-150 and 1 at 1e150 apart: minutes in Arb, 30 ms now).
+// on the real line (never expected) or when the precision the roots need passes the cap below:
+// the caller then falls back to the Sturm count and the exact isolators, which check the
+// thread's budget. Used from degree 12 only: below it the float guess + CGAL's Descartes
+// isolation is fast, while Arb's Durand-Kerner needs thousands of bits when the roots span a
+// huge dynamic range (the pencil of spheres of radius 1e-150 and 1 at 1e150 apart: minutes in
+// Arb, 30 ms now).
+// Not arb_fmpz_poly_complex_roots: it doubles the precision until it succeeds, with no limit
+// and no budget check (helper-21 measured stalls past 60 s on clustered or hugely scaled
+// roots). The same steps here (Durand-Kerner at a precision, Arb's validation of the balls and
+// of the real ones, doubling) stop at a cap and check the budget between rounds.
 std::optional<RootSeparation> isolate_with_arb(const UPolyZ& p) {
   const slong d = p.degree();
-  acb_ptr r = _acb_vec_init(d);
-  arb_fmpz_poly_complex_roots(r, p.raw(), 0, 53);
+  ComplexBallVec roots(d);
+  acb_ptr r = roots.v;
+  ComplexBallPoly cp;
+  // Where this pays, the rounds succeed early: over the distance, pencil and trace tests every
+  // success came at 64 to 1024 bits. Where it does not (two roots 10^-1000 apart among 13, or
+  // roots near 10^1000), the rounds at 16384 and 32768 bits took 3.4 and 9.6 s before failing
+  // anyway, and the exact isolators then answered in 0.5 s. So: at most 8192 bits, and no
+  // further round after one that took over 50 ms (the next costs about four times more).
+  constexpr slong kCap = 8192;
+  constexpr double kSlowRoundMs = 50;
+  bool done = false;
+  for (slong prec = 64; prec <= kCap && !done; prec *= 2) {
+    core::check_budget();
+    const auto t0 = std::chrono::steady_clock::now();
+    acb_poly_set_fmpz_poly(cp.v, p.raw(), prec);
+    const slong maxiter = std::min<slong>(4 * d + 64, prec);
+    const slong isolated = acb_poly_find_roots(r, cp.v, prec == 64 ? nullptr : r, maxiter, prec);
+    done = isolated == d && acb_poly_validate_real_roots(r, cp.v, prec);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!done && ms > kSlowRoundMs) break;
+  }
+  if (!done) return std::nullopt;
   std::vector<std::pair<Rational, Rational>> iv;
   arf_t lo, hi;
   arf_init(lo);
   arf_init(hi);
   for (slong i = 0; i < d; ++i)
-    if (arb_is_zero(acb_imagref(r + i))) {
+    if (arb_contains_zero(acb_imagref(r + i))) {
       arb_get_lbound_arf(lo, acb_realref(r + i), 64);
       arb_get_ubound_arf(hi, acb_realref(r + i), 64);
       Rational a, b;
@@ -257,7 +285,6 @@ std::optional<RootSeparation> isolate_with_arb(const UPolyZ& p) {
     }
   arf_clear(lo);
   arf_clear(hi);
-  _acb_vec_clear(r, d);
   RootSeparation out;
   if (iv.empty()) {
     out.separators = {Rational(0)};

@@ -327,6 +327,49 @@ TEST(ExtremeInputs, LoopIsolatorOnClustersAndHugeRootsOfOneFactor) {
   }
 }
 
+// The same clusters and huge roots at degree >= 12, where isolate_real_roots asks Arb's complex
+// root finder first: Arb's own driver (arb_fmpz_poly_complex_roots) doubled its precision
+// without limit there; the dispatcher's capped rounds give up instead and the exact isolators
+// answer. Each case times (x + 1)(x + 2)...(x + 10) (ten more real roots).
+TEST(ExtremeInputs, DispatcherOnHighDegreeClustersAndHugeRoots) {
+  using algebra::UPolyZ;
+  UPolyZ ten = UPolyZ::from_coeffs({Integer(1)});
+  for (long k = 1; k <= 10; ++k)
+    ten = mul(ten, UPolyZ::from_coeffs({Integer(k), Integer(1)}));
+  const UPolyZ square = UPolyZ::from_coeffs({Integer(1), Integer(-2), Integer(1)});
+  const UPolyZ far = UPolyZ::from_coeffs({-pow10(1000), Integer(1)});
+  auto cluster = [&](unsigned long e, bool cubic) {
+    UPolyZ q = cubic ? mul(square, UPolyZ::from_coeffs({Integer(-3), Integer(1)})) : square;
+    fmpz_poly_scalar_mul_fmpz(q.raw_mut(), q.raw(), pow10(2 * e).raw());
+    fmpz_sub_ui(q.raw_mut()->coeffs, q.raw()->coeffs, 2);
+    return mul(q, far);
+  };
+  const std::vector<std::tuple<std::string, UPolyZ, size_t>> cases = {
+      {"real pair 1e-1000", cluster(1000, false), 13},
+      {"real pair 1e-300", cluster(300, false), 13},
+      {"complex pair 1e-300 and 3", cluster(300, true), 12},
+      {"quartic roots * 10^1000",
+       scale_roots(
+           UPolyZ::from_coeffs({Integer(6), Integer(5), Integer(-17), Integer(-15), Integer(17)}),
+           pow10(1000)),
+       12},
+      {"ten small roots alone", ten, 10}};
+  for (const auto& [what, p0, k] : cases) {
+    const UPolyZ p = k == 10 ? mul(p0, UPolyZ::from_coeffs({Integer(1), Integer(0), Integer(1),
+                                                            Integer(0), Integer(1)}))
+                             : mul(p0, ten);
+    ASSERT_GE(p.degree(), 12) << what;
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto s = algebra::isolate_real_roots(p);
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(s.num_roots(), k) << what;
+    EXPECT_EQ(static_cast<long>(s.num_roots()), algebra::count_real_roots(p)) << what;
+    expect_certified(p, s, what);
+    EXPECT_LT(secs, 10.0) << what;
+  }
+}
+
 TEST(ExtremeInputs, LoopIsolatorChecksTheBudget) {
   const algebra::UPolyZ p = sphere_pencil(pow10(16000));
   core::BudgetScope scope(1e-3);

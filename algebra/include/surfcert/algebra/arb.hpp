@@ -1,5 +1,6 @@
 // surfcert's one door to Arb (ball arithmetic): the Arb headers, and the value types over
-// Arb's raw structs that the rest of the code uses (Ball, BallVec, Arf).
+// Arb's raw structs that the rest of the code uses (Ball, BallVec, Arf; ComplexBallVec and
+// ComplexBallPoly for Arb's complex root finder).
 //
 // Why one header: FLINT 3 merged Arb into FLINT, which moved every Arb module from the flat
 // <arb.h> of the separate Arb 2.x library to <flint/arb.h>. Every file that needs Arb
@@ -131,6 +132,25 @@ struct BallVec {
   BallVec(const BallVec&) = delete;
   BallVec& operator=(const BallVec&) = delete;
   ~BallVec() { _arb_vec_clear(v, n); }
+};
+
+/// n complex balls (acb) in one contiguous Arb vector, all exact 0 at first; `.v` is the acb_ptr.
+struct ComplexBallVec {
+  acb_ptr v;
+  slong n;
+  explicit ComplexBallVec(slong k) : v(_acb_vec_init(k)), n(k) {}
+  ComplexBallVec(const ComplexBallVec&) = delete;
+  ComplexBallVec& operator=(const ComplexBallVec&) = delete;
+  ~ComplexBallVec() { _acb_vec_clear(v, n); }
+};
+
+/// RAII over acb_poly_t (a polynomial with complex ball coefficients; 0 at first).
+struct ComplexBallPoly {
+  acb_poly_t v;
+  ComplexBallPoly() { acb_poly_init(v); }
+  ComplexBallPoly(const ComplexBallPoly&) = delete;
+  ComplexBallPoly& operator=(const ComplexBallPoly&) = delete;
+  ~ComplexBallPoly() { acb_poly_clear(v); }
 };
 
 /// RAII over arf_t (copyable: an exact binary floating-point number).

@@ -6,7 +6,10 @@
 // exact number of real roots (Sturm count) and k+1 points of alternating nonzero sign, every
 // gap holds an odd number of roots, hence exactly one. With no real root, separators = {0}.
 //
-// How: a float guess first (Aberth iteration on the complex roots, separators at midpoints of
+// How: from degree 12, Arb's complex root finder at 64, 128, ... bits, at most 8192 and no
+// further after a slow round (its balls, validated by Arb, each hold one root; the real ones
+// are proven real by conjugate symmetry); below degree 12 or when those rounds give up, a
+// float guess first (Aberth iteration on the complex roots, separators at midpoints of
 // the k real-most guesses, converted exactly to dyadic rationals), checked with exact signs;
 // if the check fails (clustered roots, a separator landing on a root), CGAL's Descartes
 // isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead, or,
