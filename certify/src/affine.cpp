@@ -1609,6 +1609,7 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   }
   const std::string amb = "the points at infinity can be shared among the components in "
                           "several ways the exact facts allow";
+  if (lv.size() > 1 || uv.size() > 1) out.readings.assign(res.begin(), res.end());
   if (lv.size() == 1)
     out.loops = *lv.begin();
   else
@@ -1681,6 +1682,21 @@ Json affine_json(const AffineTopology& t) {
     inf.push_back(e);
   }
   o.set("at_infinity_only", t.computed ? inf : Json::null());
+  if (!t.loop_boxes.empty()) {
+    // Route "proven_loops": the boxes each proven to hold one loop wholly inside.
+    Json boxes = Json::array();
+    for (const auto& bx : t.loop_boxes) {
+      Json e = Json::object();
+      for (size_t s = 0; s < 2; ++s) {
+        Json c = Json::array();
+        for (const auto& x : bx[s])
+          c.push_back(Json::string(x.to_string()));
+        e.set(s == 0 ? "min" : "max", c);
+      }
+      boxes.push_back(e);
+    }
+    o.set("loop_boxes", boxes);
+  }
   Json und = Json::array();
   for (const auto& [f, why] : t.undecided) {
     Json e = Json::object();

@@ -63,6 +63,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace surfcert::certify {
@@ -91,7 +92,8 @@ struct ComponentAtInfinity {
 struct AffineTopology {
   bool computed = false; ///< false: nothing established (see reason)
   std::string route;     ///< "pencil", "plane_section", "pencil_plane", "plane_plane",
-                         ///< "plane_pair", "common_apex", "parallel_cylinders" or "cubic_line"
+                         ///< "plane_pair", "common_apex", "parallel_cylinders", "cubic_line"
+                         ///< or "proven_loops" (certify/proven_loops.hpp)
   std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
   std::vector<PointAtInfinity> points_at_infinity;
   bool points_at_infinity_complete = false;
@@ -117,6 +119,14 @@ struct AffineTopology {
   std::vector<RulingLine> ruling_lines;
   /// Route "cubic_line": the exact line and cubic.
   std::optional<CubicAndLine> cubic_line;
+  /// Every (loops, unbounded_branches) reading the exact facts allow, when they allow several
+  /// (the points at infinity shared among smooth ovals in several ways); empty otherwise. A
+  /// proven lower bound on the loops may leave one (certify/proven_loops.hpp).
+  std::vector<std::pair<int, int>> readings;
+  /// Route "proven_loops": pairwise disjoint boxes (min corner, max corner; in the
+  /// coordinates of the pair the reading was made for), each holding one loop wholly inside
+  /// (proven exactly); the loops are at least as many.
+  std::vector<std::array<std::array<core::Rational, 3>, 2>> loop_boxes;
   bool certified() const {
     return computed && loops && unbounded_branches && isolated_points && lines && conics &&
            points_at_infinity_complete;
