@@ -16,6 +16,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 
@@ -1267,7 +1268,8 @@ namespace {
 // certify::proven_loops proves exactly, on the original pair, that a loop lies wholly inside
 // (no crossing with the box's faces, at least one with a plane splitting it). The floats only
 // choose the boxes; a loop the tracer missed proves nothing, so only the readings with fewer
-// loops than proven are dropped (nullopt when that leaves more than one, or nothing was proven).
+// loops than proven are dropped. When more than one remains, certify::loops_upper_bound may
+// drop those with more loops than it proves at most (nullopt when neither leaves one reading).
 std::optional<certify::AffineTopology> settle_by_traced_loops(const core::QuadricMatrix& a,
                                                               const core::QuadricMatrix& b,
                                                               const CurveResult& out) {
@@ -1309,11 +1311,23 @@ std::optional<certify::AffineTopology> settle_by_traced_loops(const core::Quadri
     }
     if (!boxes.empty()) proposals.push_back(std::move(boxes));
   }
-  if (proposals.empty()) return std::nullopt;
-  const certify::ProvenLoops p = certify::proven_loops(a.matrix(), b.matrix(), proposals);
+  const certify::ProvenLoops p = proposals.empty()
+                                     ? certify::ProvenLoops{}
+                                     : certify::proven_loops(a.matrix(), b.matrix(), proposals);
   certify::AffineTopology af = out.affine;
-  if (!certify::settle_by_proven_loops(af, p)) return std::nullopt;
-  return af;
+  if (certify::settle_by_proven_loops(af, p)) return af;
+  // Readings with more loops than proven remain: an upper bound, exact, from the critical
+  // points of the coordinates (no float proposal): at most p.count compact components leaves
+  // one reading when the tracer saw every loop.
+  const certify::LoopUpperBound u = certify::loops_upper_bound(a.matrix(), b.matrix(), p.count);
+  if (std::getenv("LOOPS25_DEBUG")) {
+    std::fprintf(stderr, "proven %d; upper %s (%s)\n", p.count,
+                 u.bound ? std::to_string(*u.bound).c_str() : "none", u.reason.c_str());
+    for (const auto& r : p.rejected)
+      std::fprintf(stderr, "  rejected: %s\n", r.c_str());
+  }
+  if (u.bound && certify::settle_by_proven_loops(af, p, &u)) return af;
+  return std::nullopt;
 }
 
 } // namespace

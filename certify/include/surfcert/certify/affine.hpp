@@ -127,6 +127,9 @@ struct AffineTopology {
   /// coordinates of the pair the reading was made for), each holding one loop wholly inside
   /// (proven exactly); the loops are at least as many.
   std::vector<std::array<std::array<core::Rational, 3>, 2>> loop_boxes;
+  /// Route "proven_loops" with an upper bound: a box proven to hold every compact component,
+  /// where no more loops than `loops` were proven to lie (certify/proven_loops.hpp).
+  std::optional<std::array<std::array<core::Rational, 3>, 2>> all_loops_box;
   bool certified() const {
     return computed && loops && unbounded_branches && isolated_points && lines && conics &&
            points_at_infinity_complete;

@@ -24,8 +24,19 @@
 // (a crossing on its boundary, no crossing of any split, a box_exits not certified) is listed
 // with the reason and counts 0; nothing is a guess.
 //
-// What it does not do: an upper bound (a loop the tracer missed is not ruled out; that is
-// certify/inner_loops.hpp's job, inside a box known to hold every compact component).
+// A lower bound alone cannot rule out a loop the tracer missed. loops_upper_bound is the
+// other side, with no float proposal at all: for each axis k, every real solution of
+// f = g = h_k = 0 (h_k = (grad f x grad g)_k: where x_k is critical on the curve, or the curve
+// is singular) has its x_k among the real roots of P_k = Res_v(Res_u(f, g), Res_u(f, h_k)) (u, v
+// the other two coordinates; a resultant lies in the ideal of its two polynomials, so P_k
+// vanishes at every common zero, whatever the leading coefficients do; P_k == 0 identically,
+// in both elimination orders, gives no bound). A compact component of the real affine curve
+// attains its maximum and minimum of x_k, at solutions of that system: so it lies in the
+// open slab between the least and the largest real root of P_k (isolated exactly), and every
+// compact component lies inside the box B of the three slabs (widened to dyadic doubles; no
+// root at all: no compact component). certify/inner_loops.hpp then bounds the compact
+// components wholly inside B (box_exits of B certified, B nudged outwards when not), i.e. all
+// of them.
 #pragma once
 
 #include "surfcert/certify/affine.hpp"
@@ -33,6 +44,7 @@
 #include "surfcert/core/rational.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,11 +80,25 @@ struct ProvenLoops {
 ProvenLoops proven_loops(const core::Mat4& a, const core::Mat4& b,
                          const std::vector<std::vector<RationalBox>>& proposals);
 
+struct LoopUpperBound {
+  std::optional<int> bound; ///< proven: the curve has at most this many compact components
+  RationalBox box;          ///< every compact component lies inside (when bound is set)
+  std::string reason;       ///< why no bound
+};
+
+/// The bound above; inner_component_bound is asked for `wanted` (the least bound it may stop
+/// at) with `budget` cells per direction.
+LoopUpperBound loops_upper_bound(const core::Mat4& a, const core::Mat4& b, int wanted,
+                                 long budget = 20000);
+
 /// Keeps the readings of `t` (AffineTopology::readings, the (loops, unbounded) pairs the exact
 /// facts allow when they leave loops or unbounded_branches undecided) with loops >= p.count.
 /// When exactly one remains, loops and unbounded_branches are set from it, their `undecided`
 /// entries removed, the route becomes "proven_loops" and `loop_boxes` records p.boxes; returns
 /// true then. Otherwise t is unchanged (false). p.count == 0 never changes anything.
-bool settle_by_proven_loops(AffineTopology& t, const ProvenLoops& p);
+/// With `upper` (set: a proven upper bound), only the readings with loops <= *upper->bound are
+/// kept too, and `all_loops_box` records upper->box; p.count == 0 then needs no box.
+bool settle_by_proven_loops(AffineTopology& t, const ProvenLoops& p,
+                            const LoopUpperBound* upper = nullptr);
 
 } // namespace surfcert::certify
