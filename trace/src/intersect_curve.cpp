@@ -16,7 +16,6 @@
 #include <climits>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <limits>
 
@@ -1320,12 +1319,6 @@ std::optional<certify::AffineTopology> settle_by_traced_loops(const core::Quadri
   // points of the coordinates (no float proposal): at most p.count compact components leaves
   // one reading when the tracer saw every loop.
   const certify::LoopUpperBound u = certify::loops_upper_bound(a.matrix(), b.matrix(), p.count);
-  if (std::getenv("LOOPS25_DEBUG")) {
-    std::fprintf(stderr, "proven %d; upper %s (%s)\n", p.count,
-                 u.bound ? std::to_string(*u.bound).c_str() : "none", u.reason.c_str());
-    for (const auto& r : p.rejected)
-      std::fprintf(stderr, "  rejected: %s\n", r.c_str());
-  }
   if (u.bound && certify::settle_by_proven_loops(af, p, &u)) return af;
   return std::nullopt;
 }
