@@ -12,7 +12,8 @@ loop; one reaching the border of [-R, R]^3 is a piece of an unbounded branch. Ru
 resolutions: the counts must agree (components closer than 3 h would merge).
 
 Usage: loop_count_float.py 'A as JSON 4x4' 'B as JSON 4x4' [--R 20] [--n 3000]
-Prints {"loops": n, "unbounded_pieces": m, "loop_boxes": [[min], [max]] ...}.
+Prints {"loops": n, "unbounded_pieces": m, "loop_boxes": [[min], [max]] ...} (the boxes in the
+rotated frame: the counts are what is compared).
 """
 import argparse
 import json

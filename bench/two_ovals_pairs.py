@@ -5,14 +5,12 @@ four real points at infinity are answered, and which of them have det(lA - B) ir
 Q (no member of the pencil is a cone or cylinder with a rational apex, so
 certify/cone_ovals.hpp cannot split the points at infinity among the ovals).
 
-For each such pair an independent float count of the bounded loops: the curve is sampled
-along many planes x = c (the conics of both surfaces in that plane meet in <= 4 points, from
-the quartic resultant by numpy roots) over a wide range, the points joined across consecutive
-planes into branches by nearest neighbour, and a branch that is born and dies inside the range
-(first and last plane with points both interior) is a loop. Loose: a rough witness, not a proof.
+The loop counts certified there can be checked independently, pair by pair, with
+bench/loop_count_float.py (dense plane sampling).
 
 Usage: two_ovals_pairs.py SURFCERT [--count 2000] [--seed 1] [--dump pairs.jsonl]
-Prints one JSON line per two_ovals pair with 4 points at infinity, then a summary line.
+Prints one JSON line per two_ovals pair with 4 points at infinity (its matrices, status, affine
+route and counts, irreducibility), then a summary line.
 """
 import argparse
 import json

@@ -22,11 +22,12 @@
 // component's intersection with a plane (an oval of a bounded morphology, a conic: even; a
 // branch meeting every plane, a twisted cubic, a line: odd). Every assignment of the points at
 // infinity to the components that these facts allow is enumerated; a count is certified when
-// all of them agree, otherwise it stays unset with a reason. When one quadric is a plane
-// (written as a degenerate quadric: plane ∪ plane at infinity) the affine curve is the plane
-// section, classified exactly as a plane conic; the other quadric's conic at infinity is then
-// a component lying at infinity. The same holds when the quadratic parts are proportional
-// (B_inf = c A_inf, e.g. two paraboloids with parallel axes and equal shapes, parallel
+// all of them agree, otherwise it stays unset with a reason (for smooth ovals the readings left
+// are kept in `readings`: certify/proven_loops.hpp may settle them with proven loop bounds). When
+// one quadric is a plane (written as a degenerate quadric: plane ∪ plane at infinity) the affine
+// curve is the plane section, classified exactly as a plane conic; the other quadric's conic at
+// infinity is then a component lying at infinity. The same holds when the quadratic parts are
+// proportional (B_inf = c A_inf, e.g. two paraboloids with parallel axes and equal shapes, parallel
 // cylinders of equal radii): B - c A is then such a plane (route "pencil_plane"). Two planes
 // (route "plane_plane") meet in one line with the rational direction n_A x n_B, or nowhere
 // (parallel), or coincide (not computed); the plane at infinity they share as quadrics is not
