@@ -1575,8 +1575,9 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     out.undecided.push_back({"unbounded_branches", why});
     return out;
   }
-  if (res.size() > 1 && m.loops > 0 && m.conics == 0 && m.lines == 0 && m.cubics == 0 &&
-      t.special_points.empty()) {
+  const bool smooth_ovals =
+      m.loops > 0 && m.conics == 0 && m.lines == 0 && m.cubics == 0 && t.special_points.empty();
+  if (res.size() > 1 && smooth_ovals) {
     // Smooth ovals: when a member of the pencil is a real cone or cylinder (A, B, or the
     // member at a rational root of det(l A - B)), its generators tell which oval each point at
     // infinity lies on (certify/cone_ovals.hpp). Every reading found must agree.
@@ -1609,6 +1610,10 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   }
   const std::string amb = "the points at infinity can be shared among the components in "
                           "several ways the exact facts allow";
+  // The readings left, for a bound on the loops to choose from (certify/proven_loops.hpp):
+  // smooth ovals only, where a loop is exactly a compact connected component of the affine
+  // curve (what those bounds count).
+  if ((lv.size() > 1 || uv.size() > 1) && smooth_ovals) out.readings.assign(res.begin(), res.end());
   if (lv.size() == 1)
     out.loops = *lv.begin();
   else
@@ -1681,6 +1686,25 @@ Json affine_json(const AffineTopology& t) {
     inf.push_back(e);
   }
   o.set("at_infinity_only", t.computed ? inf : Json::null());
+  auto box_json = [](const std::array<std::array<Rational, 3>, 2>& bx) {
+    Json e = Json::object();
+    for (size_t s = 0; s < 2; ++s) {
+      Json c = Json::array();
+      for (const auto& x : bx[s])
+        c.push_back(Json::string(x.to_string()));
+      e.set(s == 0 ? "min" : "max", c);
+    }
+    return e;
+  };
+  if (t.route == "proven_loops") {
+    // The boxes each proven to hold one loop wholly inside; the box proven to hold every
+    // compact component (null without an upper bound).
+    Json boxes = Json::array();
+    for (const auto& bx : t.loop_boxes)
+      boxes.push_back(box_json(bx));
+    o.set("loop_boxes", boxes);
+    o.set("all_loops_box", t.all_loops_box ? box_json(*t.all_loops_box) : Json::null());
+  }
   Json und = Json::array();
   for (const auto& [f, why] : t.undecided) {
     Json e = Json::object();

@@ -6,6 +6,7 @@
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/inner_loops.hpp"
+#include "surfcert/certify/proven_loops.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/special_points.hpp"
 #include "surfcert/trace/conics.hpp"
@@ -1257,6 +1258,73 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
 
 } // namespace
 
+namespace {
+
+// The affine reading left undecided only by how the points at infinity are shared among the
+// ovals (AffineTopology::readings), settled by the loops the tracer drew closed: each closed
+// branch proposes tight dyadic boxes around it (its points' bounding box widened by 1/16,
+// 1/4, then 1/64 of its largest extent, outwards to the grid of dyadic_outward), and
+// certify::proven_loops proves exactly, on the original pair, that a loop lies wholly inside
+// (no crossing with the box's faces, at least one with a plane splitting it). The floats only
+// choose the boxes; a loop the tracer missed proves nothing, so only the readings with fewer
+// loops than proven are dropped. When more than one remains, certify::loops_upper_bound may
+// drop those with more loops than it proves at most (nullopt when neither leaves one reading).
+std::optional<certify::AffineTopology> settle_by_traced_loops(const core::QuadricMatrix& a,
+                                                              const core::QuadricMatrix& b,
+                                                              const CurveResult& out) {
+  if (out.affine.readings.size() < 2 || out.affine.certified()) return std::nullopt;
+  std::vector<std::vector<certify::RationalBox>> proposals;
+  for (const auto& br : out.branches) {
+    if (!br.closed || br.points.size() < 3) continue;
+    Box bb;
+    bool finite = true;
+    for (size_t k = 0; k < 3; ++k)
+      bb.min[k] = HUGE_VAL, bb.max[k] = -HUGE_VAL;
+    for (const auto& p : br.points)
+      for (size_t k = 0; k < 3; ++k) {
+        finite = finite && std::isfinite(p[k]);
+        bb.min[k] = std::min(bb.min[k], p[k]);
+        bb.max[k] = std::max(bb.max[k], p[k]);
+      }
+    double extent = 0;
+    for (size_t k = 0; k < 3; ++k)
+      extent = std::max(extent, bb.max[k] - bb.min[k]);
+    if (!finite || !(extent > 0) || !std::isfinite(extent)) continue;
+    std::vector<certify::RationalBox> boxes;
+    for (double margin : {1.0 / 16, 1.0 / 4, 1.0 / 64}) {
+      Box m = bb;
+      for (size_t k = 0; k < 3; ++k) {
+        m.min[k] -= margin * extent;
+        m.max[k] += margin * extent;
+      }
+      m = dyadic_outward(m);
+      certify::RationalBox r;
+      bool ok = true;
+      for (size_t k = 0; k < 3; ++k) {
+        ok = ok && std::isfinite(m.min[k]) && std::isfinite(m.max[k]) && m.min[k] < m.max[k];
+        if (!ok) break;
+        r.lo[k] = core::Rational::exact_from_double(m.min[k]);
+        r.hi[k] = core::Rational::exact_from_double(m.max[k]);
+      }
+      if (ok) boxes.push_back(std::move(r));
+    }
+    if (!boxes.empty()) proposals.push_back(std::move(boxes));
+  }
+  const certify::ProvenLoops p = proposals.empty()
+                                     ? certify::ProvenLoops{}
+                                     : certify::proven_loops(a.matrix(), b.matrix(), proposals);
+  certify::AffineTopology af = out.affine;
+  if (certify::settle_by_proven_loops(af, p)) return af;
+  // Readings with more loops than proven remain: an upper bound, exact, from the critical
+  // points of the coordinates (no float proposal): at most p.count compact components leaves
+  // one reading when the tracer saw every loop.
+  const certify::LoopUpperBound u = certify::loops_upper_bound(a.matrix(), b.matrix(), p.count);
+  if (u.bound && certify::settle_by_proven_loops(af, p, &u)) return af;
+  return std::nullopt;
+}
+
+} // namespace
+
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         QsicResult topology, const TraceOptions& opt) {
   if (opt.box && !std::isfinite(opt.box->diagonal())) {
@@ -1275,6 +1343,12 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     return out;
   }
   CurveResult out = trace_curve_at(a, b, std::move(topology), opt, 0);
+  if (auto settled = settle_by_traced_loops(a, b, out)) {
+    // The affine reading is now certified: the picture is judged against it from the start
+    // (the same routes, translated or rescaled copies included, with this reading carried).
+    QsicResult t = out.topology;
+    out = trace_curve_at(a, b, std::move(t), opt, 0, &*settled);
+  }
   check_picture(out);
   // Doubles beyond the range (a unit pair's hyperbolas followed out to a given box 1e300 wide,
   // where f ~ x^2 overflows) make no picture: nothing half-written, an honest undecided.

@@ -22,11 +22,12 @@
 // component's intersection with a plane (an oval of a bounded morphology, a conic: even; a
 // branch meeting every plane, a twisted cubic, a line: odd). Every assignment of the points at
 // infinity to the components that these facts allow is enumerated; a count is certified when
-// all of them agree, otherwise it stays unset with a reason. When one quadric is a plane
-// (written as a degenerate quadric: plane ∪ plane at infinity) the affine curve is the plane
-// section, classified exactly as a plane conic; the other quadric's conic at infinity is then
-// a component lying at infinity. The same holds when the quadratic parts are proportional
-// (B_inf = c A_inf, e.g. two paraboloids with parallel axes and equal shapes, parallel
+// all of them agree, otherwise it stays unset with a reason (for smooth ovals the readings left
+// are kept in `readings`: certify/proven_loops.hpp may settle them with proven loop bounds). When
+// one quadric is a plane (written as a degenerate quadric: plane ∪ plane at infinity) the affine
+// curve is the plane section, classified exactly as a plane conic; the other quadric's conic at
+// infinity is then a component lying at infinity. The same holds when the quadratic parts are
+// proportional (B_inf = c A_inf, e.g. two paraboloids with parallel axes and equal shapes, parallel
 // cylinders of equal radii): B - c A is then such a plane (route "pencil_plane"). Two planes
 // (route "plane_plane") meet in one line with the rational direction n_A x n_B, or nowhere
 // (parallel), or coincide (not computed); the plane at infinity they share as quadrics is not
@@ -63,6 +64,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace surfcert::certify {
@@ -91,7 +93,8 @@ struct ComponentAtInfinity {
 struct AffineTopology {
   bool computed = false; ///< false: nothing established (see reason)
   std::string route;     ///< "pencil", "plane_section", "pencil_plane", "plane_plane",
-                         ///< "plane_pair", "common_apex", "parallel_cylinders" or "cubic_line"
+                         ///< "plane_pair", "common_apex", "parallel_cylinders", "cubic_line"
+                         ///< or "proven_loops" (certify/proven_loops.hpp)
   std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
   std::vector<PointAtInfinity> points_at_infinity;
   bool points_at_infinity_complete = false;
@@ -117,6 +120,17 @@ struct AffineTopology {
   std::vector<RulingLine> ruling_lines;
   /// Route "cubic_line": the exact line and cubic.
   std::optional<CubicAndLine> cubic_line;
+  /// Every (loops, unbounded_branches) reading the exact facts allow, when they allow several
+  /// (the points at infinity shared among smooth ovals in several ways); empty otherwise. A
+  /// proven lower bound on the loops may leave one (certify/proven_loops.hpp).
+  std::vector<std::pair<int, int>> readings;
+  /// Route "proven_loops": pairwise disjoint boxes (min corner, max corner; in the
+  /// coordinates of the pair the reading was made for), each holding one loop wholly inside
+  /// (proven exactly); the loops are at least as many.
+  std::vector<std::array<std::array<core::Rational, 3>, 2>> loop_boxes;
+  /// Route "proven_loops" with an upper bound: a box proven to hold every compact component,
+  /// where no more loops than `loops` were proven to lie (certify/proven_loops.hpp).
+  std::optional<std::array<std::array<core::Rational, 3>, 2>> all_loops_box;
   bool certified() const {
     return computed && loops && unbounded_branches && isolated_points && lines && conics &&
            points_at_infinity_complete;

@@ -30,6 +30,11 @@
 // first — on the pair translated exactly to its least-squares centre (a centre, an apex, a
 // vertex) — and at unit size when that is undecided (docs/methods.md). Points that far out
 // are doubles: max_residual then includes their rounding (~2^-53 of the distance).
+// Two smooth ovals whose points at infinity leave the loop count open (no cone member of the
+// pencil decides, certify/affine.hpp) are settled after a first trace: each traced closed
+// branch proposes tight dyadic boxes, certify/proven_loops.hpp proves exactly that a loop lies
+// in each (a lower bound) and bounds the compact components from above by the coordinates'
+// exact critical points; when one reading is left the pair is traced again against it.
 // Whatever the route, a certified picture has no straight-line branch where the affine reading
 // has no line, and every traced point lies within 1e-9 of the curve's own size (plus 16 ulps of
 // its coordinates) of both exact surfaces; otherwise it is undecided.
