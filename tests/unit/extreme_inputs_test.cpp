@@ -291,22 +291,28 @@ TEST(ExtremeInputs, LoopIsolatorSeparatesKnownAndNearCoincidentRoots) {
   }
 }
 
+// 10^(2e) (x - 1)^2 - 2 (real roots 1 +- sqrt2 10^-e), or with (x - 1)^2 (x - 3) (a complex
+// pair 10^-e from 1), each times x - 10^1000.
+namespace {
+
+algebra::UPolyZ cluster(unsigned long e, bool cubic) {
+  using algebra::UPolyZ;
+  const UPolyZ square = UPolyZ::from_coeffs({Integer(1), Integer(-2), Integer(1)}); // (x-1)^2
+  const UPolyZ far = UPolyZ::from_coeffs({-pow10(1000), Integer(1)});               // x - 10^1000
+  UPolyZ q = cubic ? mul(square, UPolyZ::from_coeffs({Integer(-3), Integer(1)})) : square;
+  fmpz_poly_scalar_mul_fmpz(q.raw_mut(), q.raw(), pow10(2 * e).raw());
+  fmpz_sub_ui(q.raw_mut()->coeffs, q.raw()->coeffs, 2);
+  return mul(q, far);
+}
+
+} // namespace
+
 // Inputs on which Arb's arb_fmpz_poly_complex_roots (tried in place of the loop in session 24)
 // ran for seconds to minutes, uninterruptibly: two roots of one irreducible factor 10^-1000 or
 // 10^-300 apart (real or complex), and well separated roots all near 10^1000. The loop: well
 // under a second each.
 TEST(ExtremeInputs, LoopIsolatorOnClustersAndHugeRootsOfOneFactor) {
   using algebra::UPolyZ;
-  const UPolyZ square = UPolyZ::from_coeffs({Integer(1), Integer(-2), Integer(1)}); // (x-1)^2
-  const UPolyZ far = UPolyZ::from_coeffs({-pow10(1000), Integer(1)});               // x - 10^1000
-  // 10^(2e) (x - 1)^2 - 2 (real roots 1 +- sqrt2 10^-e), times (x - 3) and - 2 (a complex pair
-  // 10^-e from 1), each times x - 10^1000.
-  auto cluster = [&](unsigned long e, bool cubic) {
-    UPolyZ q = cubic ? mul(square, UPolyZ::from_coeffs({Integer(-3), Integer(1)})) : square;
-    fmpz_poly_scalar_mul_fmpz(q.raw_mut(), q.raw(), pow10(2 * e).raw());
-    fmpz_sub_ui(q.raw_mut()->coeffs, q.raw()->coeffs, 2);
-    return mul(q, far);
-  };
   const std::vector<std::tuple<std::string, UPolyZ, size_t>> cases = {
       {"real pair 1e-1000", cluster(1000, false), 3},
       {"real pair 1e-300", cluster(300, false), 3},
@@ -336,14 +342,6 @@ TEST(ExtremeInputs, DispatcherOnHighDegreeClustersAndHugeRoots) {
   UPolyZ ten = UPolyZ::from_coeffs({Integer(1)});
   for (long k = 1; k <= 10; ++k)
     ten = mul(ten, UPolyZ::from_coeffs({Integer(k), Integer(1)}));
-  const UPolyZ square = UPolyZ::from_coeffs({Integer(1), Integer(-2), Integer(1)});
-  const UPolyZ far = UPolyZ::from_coeffs({-pow10(1000), Integer(1)});
-  auto cluster = [&](unsigned long e, bool cubic) {
-    UPolyZ q = cubic ? mul(square, UPolyZ::from_coeffs({Integer(-3), Integer(1)})) : square;
-    fmpz_poly_scalar_mul_fmpz(q.raw_mut(), q.raw(), pow10(2 * e).raw());
-    fmpz_sub_ui(q.raw_mut()->coeffs, q.raw()->coeffs, 2);
-    return mul(q, far);
-  };
   const std::vector<std::tuple<std::string, UPolyZ, size_t>> cases = {
       {"real pair 1e-1000", cluster(1000, false), 13},
       {"real pair 1e-300", cluster(300, false), 13},

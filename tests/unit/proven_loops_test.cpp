@@ -67,14 +67,6 @@ bool char_poly_irreducible(const Mat4& a, const Mat4& b) {
   return irreducible;
 }
 
-Mat4 times(const Mat4& m, const Rational& c) {
-  Mat4 r;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      r[i][j] = m[i][j] * c;
-  return r;
-}
-
 struct Variant {
   std::string name;
   core::QuadricMatrix a, b;
@@ -91,8 +83,8 @@ std::vector<Variant> variants(const Mat4& a0, const Mat4& b0) {
       {"swapped", b, a},
       {"moved swapped", b.congruent(m), a.congruent(m)},
       {"scaled", a.congruent(scaling(Rational(7, 2))), b.congruent(scaling(Rational(7, 2)))},
-      {"multiplied", core::QuadricMatrix(times(a0, Rational(-3))),
-       core::QuadricMatrix(times(b0, Rational(5, 2)))},
+      {"multiplied", core::QuadricMatrix(core::scaled(a0, Rational(-3))),
+       core::QuadricMatrix(core::scaled(b0, Rational(5, 2)))},
   };
 }
 
