@@ -221,7 +221,7 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
     if (hi[k] - lo[k] > scale) scale = hi[k] - lo[k];
   // The pair and the box in intervals, once: a face whose two conics (neither a line of the
   // face) the interval filter proves apart from these needs no exact face form at all (most
-  // faces; the exact forms were ~8% of this call). Its enclosures contain the exact forms'
+  // faces; the exact forms were ~14% of this call). Its enclosures contain the exact forms'
   // (inclusion-isotone operations), so every cell it excludes the filter on the exact forms
   // excludes too: when it proves a face, so would the exact forms' filter; when it does not,
   // that filter runs as before. Either way the same answer.

@@ -88,9 +88,9 @@ private:
     std::optional<ShapeSpec> shape;
     std::optional<DoubleMat4> doubles;
     std::once_flag formed; ///< used only when shape or doubles is set (m formed lazily)
-    /// kind() once computed (-1: not yet): its exact minors and determinant were ~4% of an
-    /// intersect, asked for the same quadric by several stages. The matrix never changes, so
-    /// any thread's value is the value; relaxed order suffices (an int, no other data).
+    /// kind() once computed (-1: not yet): its exact minors and determinant were 1-1.5% of an
+    /// intersect's instructions, asked for the same quadric by several stages. The matrix never
+    /// changes, so any thread's value is the value; relaxed order suffices (an int, no other data).
     mutable std::atomic<int> kind{-1};
   };
   std::shared_ptr<State> state_;
