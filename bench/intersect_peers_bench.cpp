@@ -13,6 +13,9 @@
 // (isolated points apart), and how many of them close up. Usage: intersect_peers_bench
 // [repetitions=20] [random_pairs=300] [seed=2026] [tol=2e-4]
 //        [occt_tol=1e-7] [only: run the named cases whose name contains this]
+// SURFCERT_DUMP=FILE: each pair's answer (curve_envelope_json at --detail topology, then a second
+// call's at --detail full, outside the timings) written to FILE as JSON lines, one per pair:
+// the reference that a speed-up must reproduce (certified fields equal, points within tolerance).
 #include "occt_quadric_peer.hpp"
 #include "support/distance_checks.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
@@ -286,6 +289,22 @@ void run_pair(Row& row, const Surf& s1, const Surf& s2, const Pose& pair, double
   }();
   for (long i = 0; i < repeat; ++i)
     (void)trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Topology);
+  static FILE* dump = [] {
+    const char* e = std::getenv("SURFCERT_DUMP");
+    return e ? std::fopen(e, "w") : nullptr;
+  }();
+  if (dump) {
+    static long index = 0;
+    const auto full =
+        trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Full);
+    std::string line = "{\"index\":" + std::to_string(index++) + ",\"case\":";
+    core::io::append_json_string(line, row.name);
+    line += ",\"topology\":" +
+            core::io::dump(trace::curve_envelope_json(r, a, b, certify::Detail::Topology)) +
+            ",\"full\":" + core::io::dump(trace::curve_envelope_json(full, a, b)) + "}\n";
+    std::fputs(line.c_str(), dump);
+    std::fflush(dump);
+  }
   { // The classification alone (not part of the figure above): where our time goes.
     const double c0 = cpu_us();
     const auto t = certify::classify_qsic(a, b, certify::Mode::Filtered);

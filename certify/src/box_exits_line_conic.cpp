@@ -31,6 +31,18 @@ algebra::Ball enclose(const QuadraticNumber& q) {
   return x;
 }
 
+// The sign of x - c: from the enclosure bx of x when it decides (a ball of x - c that
+// excludes 0 has the exact sign), else exactly (x on the face's edge, or within 2^-128 of it).
+int sign_minus(const QuadraticNumber& x, const algebra::Ball& bx, const Rational& c) {
+  constexpr long prec = 128;
+  algebra::Ball d;
+  arb_set_fmpq(d.v, c.raw(), prec);
+  arb_sub(d.v, bx.v, d.v, prec);
+  if (arb_is_positive(d.v)) return 1;
+  if (arb_is_negative(d.v)) return -1;
+  return QuadraticNumber{x.a - c, x.b, x.d}.sign();
+}
+
 } // namespace
 
 LineConic line_conic_crossings(const FaceForm& line, const FaceForm& conic, const Rational& u_lo,
@@ -77,16 +89,15 @@ LineConic line_conic_crossings(const FaceForm& line, const FaceForm& conic, cons
     // u = pu + du t, v = pv + dv t: exact numbers of the same field.
     const QuadraticNumber u{p[0] + d[0] * t.a, d[0] * t.b, t.d};
     const QuadraticNumber v{p[1] + d[1] * t.a, d[1] * t.b, t.d};
-    auto minus = [](const QuadraticNumber& x, const Rational& c) {
-      return QuadraticNumber{x.a - c, x.b, x.d};
-    };
-    const int su0 = minus(u, u_lo).sign(), su1 = minus(u, u_hi).sign();
-    const int sv0 = minus(v, v_lo).sign(), sv1 = minus(v, v_hi).sign();
+    // The enclosures first (the reported point's): they decide most of the four signs (exact
+    // signs in Q(sqrt D) were ~35% of this call).
+    const algebra::Ball bu = enclose(u), bv = enclose(v);
+    const int su0 = sign_minus(u, bu, u_lo), su1 = sign_minus(u, bu, u_hi);
+    const int sv0 = sign_minus(v, bv, v_lo), sv1 = sign_minus(v, bv, v_hi);
     const bool outside = su0 < 0 || su1 > 0 || sv0 < 0 || sv1 > 0;
     if (outside) continue; // not on this face (a tangency there touches no face point)
     if (!simple) return LineConic::Tangent;
     if (su0 == 0 || su1 == 0 || sv0 == 0 || sv1 == 0) return LineConic::Edge;
-    const algebra::Ball bu = enclose(u), bv = enclose(v);
     FacePoint fp;
     fp.u = arf_get_d(arb_midref(bu.v), ARF_RND_NEAR);
     fp.v = arf_get_d(arb_midref(bv.v), ARF_RND_NEAR);

@@ -70,13 +70,23 @@ std::optional<std::pair<long, long>> first_square(const Integer& a, const Intege
                       bm = fmpz_fdiv_ui(b.raw(), square_modulus),
                       cm = fmpz_fdiv_ui(c.raw(), square_modulus);
   Integer d, t;
-  for (long q = 1; q <= 40; ++q)
-    for (long p = -60; p <= 60; ++p) {
-      // Every factor below M < 2^22: each product below 2^44, the sum exact in a word.
-      const auto pm = static_cast<unsigned long>(p + static_cast<long>(square_modulus));
-      const auto qu = static_cast<unsigned long>(q);
-      const unsigned long pp = (pm * pm) % square_modulus, pq = (pm * qu) % square_modulus;
-      if (!maybe_square((am * pp + bm * pq + cm * qu * qu) % square_modulus)) continue;
+  const unsigned long m = square_modulus;
+  auto add_mod = [m](unsigned long x, unsigned long y) { // x, y < m
+    const unsigned long z = x + y;
+    return z >= m ? z - m : z;
+  };
+  const unsigned long a2 = add_mod(am, am);
+  for (long q = 1; q <= 40; ++q) {
+    // d(p, q) mod M along p by differences (two additions mod M a candidate instead of three
+    // divisions): d(p + 1) - d(p) = A (2p + 1) + B q, whose own difference is 2A. Every
+    // factor below M < 2^22: each product below 2^44, exact in a word.
+    const auto qu = static_cast<unsigned long>(q);
+    const auto p0 = static_cast<unsigned long>(-60 + static_cast<long>(m)); // p = -60 mod M
+    const auto odd0 = static_cast<unsigned long>(2 * -60 + 1 + static_cast<long>(m));
+    unsigned long v = (am * ((p0 * p0) % m) + bm * ((p0 * qu) % m) + cm * qu * qu) % m;
+    unsigned long step = (am * odd0 + bm * qu) % m;
+    for (long p = -60; p <= 60; ++p, v = add_mod(v, step), step = add_mod(step, a2)) {
+      if (!maybe_square(v)) continue;
       fmpz_mul_si(d.raw_mut(), a.raw(), p * p);
       fmpz_mul_si(t.raw_mut(), b.raw(), p * q);
       fmpz_add(d.raw_mut(), d.raw(), t.raw());
@@ -84,6 +94,7 @@ std::optional<std::pair<long, long>> first_square(const Integer& a, const Intege
       fmpz_add(d.raw_mut(), d.raw(), t.raw());
       if (fmpz_sgn(d.raw()) >= 0 && fmpz_is_square(d.raw())) return std::make_pair(p, q);
     }
+  }
   return std::nullopt;
 }
 

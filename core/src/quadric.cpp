@@ -303,14 +303,10 @@ bool QuadricMatrix::is_plane() const {
   return true;
 }
 
-QuadricKind QuadricMatrix::kind() const {
-  // Upper 3x3 block definite (up to sign) <=> ellipsoid-like; then real iff det has the
-  // opposite sign of the definite block's sign (e.g. diag(1,1,1,-1): det < 0).
-  if (const ShapeSpec* sp = shape()) // by construction (radii > 0, R invertible)
-    return sp->type == ShapeType::Sphere || sp->type == ShapeType::Ellipsoid
-               ? QuadricKind::Ellipsoid
-               : QuadricKind::Other;
-  const Mat4& mm = matrix();
+namespace {
+
+// kind() from the exact matrix (see kind()).
+QuadricKind kind_of(const Mat4& mm) {
   Rational d1 = leading_minor(mm, 1), d2 = leading_minor(mm, 2), d3 = leading_minor(mm, 3);
   int s = d1.sign();
   bool definite = s != 0 && d2.sign() > 0 && d3.sign() == s;
@@ -321,6 +317,22 @@ QuadricKind QuadricMatrix::kind() const {
   if (sd < 0) return QuadricKind::Ellipsoid;
   if (sd > 0) return QuadricKind::ImaginaryEllipsoid;
   return QuadricKind::Other; // a single point (imaginary cone with real vertex)
+}
+
+} // namespace
+
+QuadricKind QuadricMatrix::kind() const {
+  // Upper 3x3 block definite (up to sign) <=> ellipsoid-like; then real iff det has the
+  // opposite sign of the definite block's sign (e.g. diag(1,1,1,-1): det < 0).
+  if (const ShapeSpec* sp = shape()) // by construction (radii > 0, R invertible)
+    return sp->type == ShapeType::Sphere || sp->type == ShapeType::Ellipsoid
+               ? QuadricKind::Ellipsoid
+               : QuadricKind::Other;
+  const int known = state_->kind.load(std::memory_order_relaxed);
+  if (known >= 0) return static_cast<QuadricKind>(known);
+  const QuadricKind k = kind_of(matrix());
+  state_->kind.store(static_cast<int>(k), std::memory_order_relaxed);
+  return k;
 }
 
 bool QuadricMatrix::is_sphere() const {
