@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 namespace surfcert::certify {
@@ -252,26 +253,30 @@ InnerComponentBound inner_component_bound(const core::Mat4& a, const core::Mat4&
       out.reason = "the box is empty or not finite";
       return out;
     }
-  // The axes first, then the face and the body diagonals.
-  static const std::array<std::array<int, 3>, 13> directions{{{1, 0, 0},
-                                                              {0, 1, 0},
-                                                              {0, 0, 1},
-                                                              {1, 1, 0},
-                                                              {1, -1, 0},
-                                                              {1, 0, 1},
-                                                              {1, 0, -1},
-                                                              {0, 1, 1},
-                                                              {0, 1, -1},
-                                                              {1, 1, 1},
-                                                              {1, 1, -1},
-                                                              {1, -1, 1},
-                                                              {-1, 1, 1}}};
+  // The axes first, then the face and the body diagonals, then the primitive directions with
+  // an entry +-2 (up to sign).
+  static const std::vector<std::array<int, 3>> directions = [] {
+    std::vector<std::array<int, 3>> v{{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 0},  {1, -1, 0},
+                                      {1, 0, 1},  {1, 0, -1}, {0, 1, 1}, {0, 1, -1}, {1, 1, 1},
+                                      {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+    for (int x = -2; x <= 2; ++x)
+      for (int y = -2; y <= 2; ++y)
+        for (int z = -2; z <= 2; ++z) {
+          if (std::abs(x) != 2 && std::abs(y) != 2 && std::abs(z) != 2) continue;
+          const std::array<int, 3> d{x, y, z};
+          const std::array<int, 3> n{-x, -y, -z};
+          if (std::gcd(std::gcd(std::abs(x), std::abs(y)), std::abs(z)) != 1) continue;
+          if (std::find(v.begin(), v.end(), n) != v.end()) continue;
+          v.push_back(d);
+        }
+    return v;
+  }();
   CGAL::Protect_FPU_rounding<true> guard;
   const IM4 ia = enclose_matrix(a), ib = enclose_matrix(b);
   const bool crossings = exits && exits->certified;
   // Iterative deepening over the directions (budgets 1/64, 1/8, 1 of `budget`): an easy
   // direction is found before a hard one spends the whole budget.
-  std::array<bool, 13> done{};
+  std::vector<bool> done(directions.size());
   for (long share : {64L, 8L, 1L})
     for (size_t i = 0; i < directions.size(); ++i) {
       if (done[i]) continue;

@@ -19,6 +19,10 @@
 //  - RANDOM274 (1 loop) and RANDOM10 (0 loops): pairs 274 and 10 of bench/two_ovals_pairs.py
 //    --seed 1 (integer entries in [-5, 5]); loop_count_float.py --R 30 --n 2000: 1 loop and 0
 //    loops, each agreeing at half resolution.
+//  - RANDOM1039 (0 loops): pair 1039 of 2000 drawn by two_ovals_pairs.py's random_quadric with
+//    seed 11 (all morphologies kept); loop_count_float.py --R 30 --n 2000: 0 loops, agreeing at
+//    half resolution. No axis, face or body diagonal bounds its compact components by 0 (the
+//    critical points of the unbounded arcs in the box): a direction with an entry +-2 does.
 #include "support/distance_checks.hpp"
 #include "support/fixtures.hpp"
 
@@ -55,6 +59,10 @@ const Mat4 kRandom274A = ints({{{5, 4, -3, 4}, {4, 4, 0, -1}, {-3, 0, -4, 3}, {4
 const Mat4 kRandom274B = ints({{{1, -4, 1, -3}, {-4, -1, 1, 3}, {1, 1, 1, -5}, {-3, 3, -5, -4}}});
 const Mat4 kRandom10A = ints({{{-2, 3, 2, 4}, {3, -5, -5, 5}, {2, -5, 4, -2}, {4, 5, -2, -1}}});
 const Mat4 kRandom10B = ints({{{5, 2, -3, 3}, {2, 0, 2, 1}, {-3, 2, -4, -2}, {3, 1, -2, 4}}});
+const Mat4 kRandom1039A =
+    ints({{{1, -2, 2, -3}, {-2, -4, -5, 4}, {2, -5, -3, -3}, {-3, 4, -3, 1}}});
+const Mat4 kRandom1039B =
+    ints({{{-5, -4, 3, -3}, {-4, 0, 0, -4}, {3, 0, -2, -1}, {-3, -4, -1, -3}}});
 
 // det(lA - B) irreducible over Q (FLINT's factorisation of its primitive integer multiple).
 bool char_poly_irreducible(const Mat4& a, const Mat4& b) {
@@ -130,7 +138,8 @@ TEST(ProvenLoops, NoLoopIsCertifiedOnlyByTheUpperBound) {
   // loops_upper_bound proves at most 0 compact components, else undecided.
   for (const auto& [a0, b0] : {std::pair<Mat4, Mat4>{surfcert::testing::q(kNoLoopA).matrix(),
                                                      surfcert::testing::q(kPerturbedB).matrix()},
-                               std::pair<Mat4, Mat4>{kRandom10A, kRandom10B}}) {
+                               std::pair<Mat4, Mat4>{kRandom10A, kRandom10B},
+                               std::pair<Mat4, Mat4>{kRandom1039A, kRandom1039B}}) {
     ASSERT_TRUE(char_poly_irreducible(a0, b0));
     const auto u = certify::loops_upper_bound(a0, b0, 0);
     ASSERT_TRUE(u.bound.has_value()) << u.reason;

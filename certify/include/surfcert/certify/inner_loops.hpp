@@ -27,7 +27,9 @@
 //    (n+, n- the crossings with sigma = +, -).
 // So the number of compact components wholly in B is at most (K_d - |n+ - n-| / 2) / 2
 // (K_d = 0 needs no crossing). Directions are tried in turn (the axes, the face and the body
-// diagonals) until one gives a bound <= `wanted`; the least bound found is returned. Nothing is
+// diagonals, then the 36 other primitive integer directions with entries in -2..2, up to sign:
+// the cells that hold critical points of unbounded arcs differ with the direction) until one
+// gives a bound <= `wanted`; the least bound found is returned. Nothing is
 // a guess: where no direction's cover completes (within `budget` cells each), no bound.
 #pragma once
 
