@@ -247,6 +247,7 @@ struct Row {
   long pairs = 0;
   std::vector<double> ours_us, occt_us, classify_us;
   long exact_fallbacks = 0;
+  long exact_starts = 0; ///< pairs whose loops needed the exact extreme points
   long ours_undecided = 0, ours_wrong = 0, reference_missing = 0, hand_disagrees = 0;
   long occt_failed = 0, occt_count = 0, occt_closure = 0, occt_lines_differ = 0;
   std::map<std::string, long> certified; ///< "loops/unbounded" -> pairs
@@ -281,6 +282,7 @@ void run_pair(Row& row, const Surf& s1, const Surf& s2, const Pose& pair, double
       trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Topology);
   const double ours = cpu_us() - t0;
   row.ours_us.push_back(ours);
+  row.exact_starts += r.exact_start_points ? 1 : 0;
   // SURFCERT_PROFILE_REPEAT=n: our side n more times, outside the figures, so that a sampling
   // profiler of the whole run sees mostly our code (OCCT takes ~30x our time per pair).
   static const long repeat = [] {
@@ -459,6 +461,21 @@ int main(int argc, char** argv) {
               total.ours_undecided, total.ours_wrong, total.reference_missing);
   std::printf("OCCT: %ld wrong piece counts, %ld wrong closure (right count), %ld failed.\n",
               total.occt_count, total.occt_closure, total.occt_failed);
+  // Where our time goes: each case's share of our total (the ratio of means is total against
+  // total), its mean, and how many pairs needed the exact extreme points (a loop the float
+  // start points missed: the costliest fallback of the tracer).
+  {
+    double sum = 0;
+    for (const Row& r : rows)
+      sum += mean(r.ours_us) * static_cast<double>(r.ours_us.size());
+    std::printf("\nOur time by case (share of our total, mean us, pairs with exact start points):");
+    for (const Row& r : rows)
+      std::printf("%s %s %.1f%% %.0f %ld", &r == &rows.front() ? "" : ";", r.name.c_str(),
+                  sum > 0 ? 100 * mean(r.ours_us) * static_cast<double>(r.ours_us.size()) / sum
+                          : 0.0,
+                  mean(r.ours_us), r.exact_starts);
+    std::printf("\n");
+  }
   std::printf("(intersect_peers_bench %ld %ld %lu %g %g)\n", reps, random_pairs, seed, tol,
               occt_tol);
   { // The run's circumstances: machine, date (UTC), load; times above are thread CPU time.
