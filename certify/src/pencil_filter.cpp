@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <optional>
 
 namespace surfcert::certify {
 
@@ -79,9 +80,38 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   CGAL::Protect_FPU_rounding<true> guard; // interval arithmetic needs rounding upwards
   // Enclosures of the exact matrices; for shapes posed in doubles, straight from the doubles
   // (the exact rationals are not formed unless this filter fails).
-  const Mat4T<I> a = enclose(qa), b = enclose(qb);
+  Mat4T<I> a = enclose(qa), b = enclose(qb);
   auto f = algebra::pencil_char_coeffs(a, b);
-  if (isign(f[4]) == 2 || isign(f[4]) == 0) return false; // det A ~ 0: exact path re-bases
+  if (isign(f[4]) == 2 || isign(f[4]) == 0) {
+    // det A = 0 (a cone, a cylinder, a plane ...: most natural quadrics; every such pair once
+    // went to the exact path): re-based here as the exact path does, to a' = t A - B, b' = -A
+    // with the first t of 0, -1, 1, -2, 2, ... where f(t) = det(tA - B) != 0, so that the facts
+    // are the exact path's (the same basis, the same t). Every t skipped must be a proven zero
+    // of f: det A itself and f(0) = det B exactly (QuadricMatrix::singular, asked only here);
+    // any other f(t) whose sign is not certain leaves the pencil to the exact path.
+    if (!qa.singular()) return false; // det A != 0, not certain in intervals
+    std::optional<long> base;
+    for (long k = 0; k < 16 && !base; ++k) {
+      const long t = (k % 2 == 0) ? k / 2 : -(k + 1) / 2; // the exact path's order
+      const int sg = isign(horner(f, static_cast<double>(t)));
+      if (sg == 1 || sg == -1)
+        base = t;
+      else if (sg == 2 && !(t == 0 && qb.singular())) // sg == 0: the enclosure is {0}, a proof
+        return false;
+    }
+    if (!base) return false;
+    const double t = static_cast<double>(*base); // a small integer: exact in double
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        const I ta = a[i][j] * t - b[i][j];
+        b[i][j] = -a[i][j];
+        a[i][j] = ta;
+      }
+    f = algebra::pencil_char_coeffs(a, b);
+    if (isign(f[4]) == 2 || isign(f[4]) == 0) return false; // f(t) != 0 was certain; wider now
+    out.rebased = true;
+    out.rebase_t = *base;
+  }
   // D4 first: D3 and D2 matter only when D4 > 0 (E never here).
   const algebra::detail::QuarticTerms<I> q(f);
   int s4 = isign(q.D4());
@@ -164,6 +194,13 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
     r.index_right = out.indices[static_cast<size_t>(i) + 1];
     r.sigma =
         Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
+    // Re-based because det A = 0: l = 0 is a root, exactly (f(0) = det(-b') = det A), the
+    // one of the gap around 0 (a separator at 0 would have had no certain sign); reported
+    // exact, as the exact path's linear factor l reports it.
+    if (out.rebased && r.lo.sign() < 0 && r.hi.sign() > 0) {
+      r.rational_value = Rational(0);
+      fmpz_poly_set_coeff_si(r.factor.raw_mut(), 1, 1);
+    }
     out.real_roots.push_back(std::move(r));
   }
   out.complex_roots = 4 - k;

@@ -48,6 +48,32 @@ std::optional<Mode> parse_mode(const std::string& s) {
   return std::nullopt;
 }
 
+namespace {
+
+// The filter does not copy the matrices (no big-number copies on its fast path): the facts'
+// a and b, in their basis (re-based like the exact path's: a' = t A - B, b' = -A), on first need.
+void fill_filtered_matrices(QsicResult& r, const core::QuadricMatrix& a,
+                            const core::QuadricMatrix& b) {
+  if (r.mode != Mode::Filtered || r.exact_fallback || r.matrices_filled) return;
+  if (r.facts.rebased) {
+    const Rational t(r.facts.rebase_t);
+    core::Mat4 ra, rb;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        ra[i][j] = t * a.matrix()[i][j] - b.matrix()[i][j];
+        rb[i][j] = -a.matrix()[i][j];
+      }
+    r.facts.a = ra;
+    r.facts.b = rb;
+  } else {
+    r.facts.a = a.matrix();
+    r.facts.b = b.matrix();
+  }
+  r.matrices_filled = true;
+}
+
+} // namespace
+
 QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode) {
   QsicResult r;
   r.mode = mode;
@@ -100,11 +126,7 @@ void complete_special_points(QsicResult& r, const core::QuadricMatrix& a,
     r.special_points_done = true;
     return;
   }
-  if (r.mode == Mode::Filtered && !r.exact_fallback && !r.matrices_filled) {
-    r.facts.a = a.matrix(); // the filter does not copy the matrices
-    r.facts.b = b.matrix();
-    r.matrices_filled = true;
-  }
+  fill_filtered_matrices(r, a, b);
   r.special_points = special_points(r.facts, r.tu_case, r.special_points_complete);
   r.special_points_done = true;
 }
@@ -117,11 +139,7 @@ void complete_report_data(QsicResult& r, const core::QuadricMatrix& a, const cor
   if (r.status == Status::Certified || (r.mode == Mode::Float && r.status == Status::Uncertified))
     if (r.ellipsoid_relation.empty()) ellipsoid_relation(r, a, b);
   if (detail < Detail::Certificate || r.mode == Mode::Float) return;
-  if (r.mode == Mode::Filtered && !r.exact_fallback && !r.matrices_filled) {
-    r.facts.a = a.matrix(); // the filter does not copy the matrices
-    r.facts.b = b.matrix();
-    r.matrices_filled = true;
-  }
+  fill_filtered_matrices(r, a, b);
   if (!r.facts.invariants_filled) complete_exact_invariants(r.facts);
   if (detail == Detail::Full) complete_special_points(r, a, b);
 }

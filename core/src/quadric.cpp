@@ -335,6 +335,21 @@ QuadricKind QuadricMatrix::kind() const {
   return k;
 }
 
+bool QuadricMatrix::singular() const {
+  if (const ShapeSpec* sp = shape()) {
+    // det diag(q0, q1, [[q2, lz/2], [lz/2, k]]) = q0 q1 (q2 k - lz^2 / 4), up to the positive
+    // factors of the radii and the congruence by the (invertible) pose.
+    const LocalForm lf = local_form(sp->type);
+    const int q01 = lf.q_sign[0] * lf.q_sign[1];
+    return q01 == 0 || 4 * lf.q_sign[2] * lf.constant == lf.linear_z * lf.linear_z;
+  }
+  const int known = state_->singular.load(std::memory_order_relaxed);
+  if (known >= 0) return known == 1;
+  const bool s = det(matrix()).is_zero();
+  state_->singular.store(s ? 1 : 0, std::memory_order_relaxed);
+  return s;
+}
+
 bool QuadricMatrix::is_sphere() const {
   if (kind() != QuadricKind::Ellipsoid) return false;
   const Mat4& mm = matrix();

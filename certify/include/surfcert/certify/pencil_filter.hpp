@@ -8,7 +8,11 @@
 // sign it needs is certain: the discriminant D4 != 0 (all roots simple), the root count from
 // D2, D3, D4, separators whose f-signs alternate (k exact roots, k+1 alternating signs: one
 // root per gap), and nonzero charpoly coefficients or a certain determinant for the indices.
-// Otherwise it returns nullopt and the caller falls back to exact arithmetic. Its facts carry
+// Otherwise it returns nullopt and the caller falls back to exact arithmetic. A pencil whose A
+// is singular (det A = 0 exactly: QuadricMatrix::singular) is re-based as the exact path does
+// (a' = t A - B, b' = -A, the same first t with det(tA - B) != 0; every t skipped a proven
+// zero), so its facts are the exact path's; rebased and rebase_t are set, facts.a / facts.b
+// stay empty (qsic.cpp fills them, in that basis, when a later stage needs them). Its facts carry
 // exact dyadic separators but no exact f/D values (fill them with complete_exact_invariants).
 //
 // analyze_pencil_float: doubles throughout (facts.a / facts.b left empty). The root pattern from

@@ -75,6 +75,11 @@ public:
   /// power of two: nothing is rounded).
   QuadricMatrix rescaled(int k) const;
   QuadricKind kind() const;
+  /// True when det of the matrix is exactly 0 (a cone, a cylinder, a plane, a plane pair ...):
+  /// for a posed shape by construction (its local form's determinant, radii > 0, R
+  /// invertible), otherwise by the exact determinant, computed once per quadric (copies share
+  /// it). The interval filter asks it only when the determinant's enclosure contains 0.
+  bool singular() const;
   /// True when the quadratic block is zero (a plane written as a degenerate quadric).
   bool is_plane() const;
   /// True when the upper 3x3 block is a nonzero multiple of the identity and the quadric is
@@ -92,6 +97,7 @@ private:
     /// intersect's instructions, asked for the same quadric by several stages. The matrix never
     /// changes, so any thread's value is the value; relaxed order suffices (an int, no other data).
     mutable std::atomic<int> kind{-1};
+    mutable std::atomic<int> singular{-1}; ///< singular() once computed (-1: not yet), as kind
   };
   std::shared_ptr<State> state_;
 };
