@@ -66,7 +66,17 @@ V3 normalise(V3 d) {
   return d;
 }
 
-std::array<double, 3> unit_approx(const std::array<double, 3>& d) {
+std::array<double, 3> unit_approx(std::array<double, 3> d) {
+  // Scaled by the largest magnitude first: the squares of directions ~1e300 (a pair posed at
+  // 1e300) overflowed, and the quotient inf / inf wrote NaN into the JSON (an internal error
+  // at --json; helper-26's probe). A component that itself overflowed (its exact value beyond
+  // the doubles) dominates the others: it is read as +-1 and the finite ones as 0.
+  double m = 0;
+  for (double x : d)
+    m = std::max(m, std::fabs(x));
+  if (!(m > 0) || std::isnan(m)) return {0, 0, 0};
+  for (double& x : d)
+    x = std::isinf(m) ? (std::isinf(x) ? (x > 0 ? 1.0 : -1.0) : 0.0) : x / m;
   double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   if (!(n > 0)) return d;
   // Sign: first nonzero coordinate positive (the same projective point either way).
@@ -234,8 +244,24 @@ std::vector<Root> roots_of(const Chart& ch) {
       algebra::refine_root_newton(g, lo, hi, Rational(1, 1UL << 60)); // an estimate: any bracket
       const double t0 = ((lo + hi) * Rational(1, 2)).to_double_approx();
       std::array<double, 3> ap{};
-      for (size_t k = 0; k < 3; ++k)
+      bool finite = true;
+      for (size_t k = 0; k < 3; ++k) {
         ap[k] = eval_double(dir[k], t0);
+        finite = finite && std::isfinite(ap[k]);
+      }
+      if (!finite) {
+        // Coefficients beyond the doubles (a pair posed at 1e300): the direction at the
+        // bracket's midpoint exactly, divided by its largest component before rounding.
+        const Rational mid = (lo + hi) * Rational(1, 2);
+        std::array<Rational, 3> ex;
+        Rational big(0);
+        for (size_t k = 0; k < 3; ++k) {
+          ex[k] = dir[k].evaluate(mid);
+          big = std::max(big, core::abs(ex[k]));
+        }
+        for (size_t k = 0; k < 3; ++k)
+          ap[k] = big.is_zero() ? 0.0 : (ex[k] / big).to_double_approx();
+      }
       r.p.approx = unit_approx(ap);
       r.p.polynomial = g;
       r.p.lo = r.lo;

@@ -213,3 +213,63 @@ TEST(ExtremeTrace, CurveBeyondTheDoubleRangeIsUndecidedNotAnError) {
   EXPECT_NO_THROW(trace::append_curve_envelope(out, r, a, b));
   EXPECT_FALSE(out.empty());
 }
+
+// An ellipsoid and a cone whose apex lies on it (a cuspidal loop), moved by rational
+// translations: the least-squares centre stayed "far" after every exact move and intersect
+// recursed until the stack overflowed (helper-26's probe; 8 of 150 random translations, and a
+// batch lost every later line). It must end, certified or honestly undecided, with the
+// certified topology and affine reading of the unmoved pair, its points on both surfaces.
+TEST(ExtremeTrace, TranslatedCuspPairEndsWithTheUnmovedAnswer) {
+  const std::pair<const char*, const char*> pairs[] = {
+      {"x^2 + 2y^2 + 4(z)^2 = 1", "y^2 + (x-1)z = 0"}, // unmoved: apex (1, 0, 0) on the ellipsoid
+      {"(x-27/5)^2 + 2(y+6)^2 + 4(z-7/5)^2 = 1", "(y+6)^2 + (x-32/5)(z-7/5) = 0"},
+      {"(x-3/7)^2 + 2(y-11/3)^2 + 4(z+5/9)^2 = 1", "(y-11/3)^2 + (x-10/7)(z+5/9) = 0"}};
+  for (const auto& [ea, eb] : pairs) {
+    const auto a = q(ea), b = q(eb);
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    SCOPED_TRACE(eb);
+    EXPECT_EQ(r.topology.tu_case, 9);
+    ASSERT_TRUE(r.affine.certified());
+    EXPECT_EQ(*r.affine.loops, 1);
+    EXPECT_EQ(*r.affine.unbounded_branches, 0);
+    if (r.status == certify::Status::Certified) {
+      ASSERT_EQ(r.branches.size(), 1u);
+      EXPECT_TRUE(r.branches[0].closed);
+    }
+    for (const auto& br : r.branches)
+      for (size_t i = 0; i < br.points.size(); i += 97) {
+        EXPECT_TRUE(within(a, br.points[i], Rational(1, 1000000000)));
+        EXPECT_TRUE(within(b, br.points[i], Rational(1, 1000000000)));
+      }
+  }
+}
+
+// Two cones through the origin with four common lines, their equations multiplied by 1e300 (one
+// or both): the directions' squares overflowed and NaN reached the JSON writer (an internal
+// error at --json; helper-26's probe). The report must be written, with the unscaled pair's
+// counts and its four directions at infinity (estimates within 1e-12).
+TEST(ExtremeTrace, EquationsTimes1e300KeepTheirDirectionsAtInfinity) {
+  const auto a0 = q("x^2 + y^2 - z^2 = 0"), b0 = q("x^2 + z^2 - 3y^2 = 0");
+  const auto r0 = trace::intersect_curve(a0, b0, Mode::Filtered, trace::TraceOptions{});
+  ASSERT_TRUE(r0.affine.certified());
+  ASSERT_EQ(r0.affine.points_at_infinity.size(), 4u);
+  const std::pair<const char*, const char*> scaled[] = {
+      {"1e300 x^2 + 1e300 y^2 - 1e300 z^2 = 0", "1e300 x^2 + 1e300 z^2 - 3e300 y^2 = 0"},
+      {"x^2 + y^2 - z^2 = 0", "1e300 x^2 + 1e300 z^2 - 3e300 y^2 = 0"}};
+  for (const auto& [ea, eb] : scaled) {
+    SCOPED_TRACE(std::string(ea) + " / " + eb);
+    const auto a = q(ea), b = q(eb);
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    std::string text;
+    EXPECT_NO_THROW(text = core::io::dump(trace::curve_envelope_json(r, a, b)));
+    EXPECT_EQ(text.find("nan"), std::string::npos);
+    ASSERT_TRUE(r.affine.certified());
+    EXPECT_EQ(*r.affine.lines, *r0.affine.lines);
+    EXPECT_EQ(*r.affine.unbounded_branches, *r0.affine.unbounded_branches);
+    ASSERT_EQ(r.affine.points_at_infinity.size(), 4u);
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t k = 0; k < 3; ++k)
+        EXPECT_NEAR(r.affine.points_at_infinity[i].approx[k],
+                    r0.affine.points_at_infinity[i].approx[k], 1e-12);
+  }
+}

@@ -1450,8 +1450,14 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
                    : "no regular pencil: curves of degenerate pencils are not traced";
     return out;
   }
-  std::optional<Point3> far = far_centre(a, b);
-  if (!far && centre) far = *centre;
+  // Translations nest at most max_translation_depth deep: an ellipsoid and a cone whose apex
+  // lies on it, moved by (27/5, -6, 7/5), had a least-squares centre that stayed "far" after
+  // every exact move, and the calls recursed until the stack overflowed (helper-26's probe;
+  // a batch lost every later line). Past the limit the pair is traced where it is.
+  constexpr int max_translation_depth = 16;
+  std::optional<Point3> far =
+      depth < max_translation_depth ? far_centre(a, b) : std::optional<Point3>{};
+  if (!far && centre && depth < max_translation_depth) far = *centre;
   if (const auto& c = far) {
     // Traced on the pair translated exactly by -c (its classification re-done there: the same
     // certified answer, the special points and singular members in the new coordinates), the
