@@ -273,3 +273,23 @@ TEST(ExtremeTrace, EquationsTimes1e300KeepTheirDirectionsAtInfinity) {
                     r0.affine.points_at_infinity[i].approx[k], 1e-12);
   }
 }
+
+// A paraboloid of radius ~5e-91 and a sphere of radius ~2e-181 through its vertex, posed as
+// shapes: matrix entries beyond the doubles (1/r^2 ~ 4e180 and more) rounded to inf where the
+// final point refinement chose its power-of-two scale, and intersect threw an internal error
+// (helper-26's probe). It must answer: the certified topology (a conic and an isolated point,
+// the vertex), the curve certified or honestly undecided.
+TEST(ExtremeTrace, ShapesWithEntriesBeyondTheDoublesAnswerWithoutAnInternalError) {
+  core::ShapeSpec p, s;
+  p.type = core::ShapeType::EllipticParaboloid;
+  p.radii = {4.909093465297727e-91, 4.909093465297727e-91, 1};
+  s.type = core::ShapeType::Sphere;
+  s.radii = {2.409919865102884e-181, 2.409919865102884e-181, 2.409919865102884e-181};
+  s.center = {0, 0, 2.409919865102884e-181};
+  const core::QuadricMatrix a(p), b(s);
+  trace::CurveResult r;
+  ASSERT_NO_THROW(r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{}));
+  EXPECT_EQ(r.topology.status, certify::Status::Certified);
+  EXPECT_EQ(r.topology.tu_case, 24);
+  EXPECT_NE(r.status, certify::Status::Error);
+}

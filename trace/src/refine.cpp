@@ -8,7 +8,10 @@
 // Double-double coefficients (~1e-32) shrink that waist below 1e-15.
 #include "surfcert/trace/curve.hpp"
 
+#include <flint/fmpq.h>
+
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 namespace surfcert::trace {
@@ -50,14 +53,19 @@ double dot3(const Point3& a, const Point3& b) {
 
 RefinedPair::RefinedPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb) {
   auto fill = [](const core::QuadricMatrix& q, Form& out) {
-    // Scaled by a power of two (exact) so that the largest entry is ~1.
-    double mx = 0;
+    // Scaled by a power of two (exact) so that the largest entry is ~1: its binary order from
+    // the exact numerators' and denominators' bits, not from doubles (entries beyond the
+    // doubles, a paraboloid of radius 5e-91 posed exactly, rounded to inf and the scale was
+    // never applied: an internal error; helper-26's probe).
+    long e = LONG_MIN;
     for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        mx = std::max(mx, std::fabs(q(i, j).to_double_approx()));
-    int e = 0;
-    if (std::isfinite(mx) && mx > 0) std::frexp(mx, &e);
-    const core::Rational s = core::Rational::exact_from_double(std::ldexp(1.0, -e));
+      for (int j = 0; j < 4; ++j) {
+        const core::Rational& v = q(i, j);
+        if (v.is_zero()) continue;
+        e = std::max(e, static_cast<long>(fmpz_bits(fmpq_numref(v.raw()))) -
+                            static_cast<long>(fmpz_bits(fmpq_denref(v.raw()))));
+      }
+    const core::Rational s = core::pow2(e == LONG_MIN ? 0 : -e);
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j) {
         const core::Rational v = q(static_cast<int>(i), static_cast<int>(j)) * s;
