@@ -4,6 +4,8 @@
 // 0 success, 2 bad input or bad command line (message with location or option on stderr,
 // nothing written), 3 finished with undecided results, 1 internal error (for batch: some line
 // was answered with an "internal" error line, e.g. FLINT/Arb aborted on it).
+#include "../src/write_all.hpp"
+
 #include "surfcert/app/batch_line.hpp"
 #include "surfcert/app/batch_mpi.hpp"
 #include "surfcert/app/batch_stream.hpp"
@@ -561,10 +563,19 @@ int batch_exit_code(const app::BatchStats& st) {
   return st.undecided > 0 ? 3 : 0;
 }
 
+// A summary line reaches stderr in one write(2): under mpirun, Open MPI's own messages share
+// rank 0's stderr, and a line written piecewise (std::cerr writes every << at once) came out
+// cut in two by one of them (CI, session 27), breaking whoever parses the line.
+void stderr_line(const std::ostringstream& line) {
+  const std::string s = line.str();
+  app::write_all(STDERR_FILENO, s.data(), s.size());
+}
+
 void print_batch_summary(const app::BatchStats& st) {
-  std::cerr << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors ("
-            << st.internal << " internal), " << st.undecided << " undecided, " << st.fallbacks
-            << " exact fallbacks\n";
+  std::ostringstream s;
+  s << "surfcert batch: " << st.lines << " lines, " << st.errors << " errors (" << st.internal
+    << " internal), " << st.undecided << " undecided, " << st.fallbacks << " exact fallbacks\n";
+  stderr_line(s);
 }
 
 // batch --mpi (and its hidden compute child, --mpi-child): app/batch_mpi.hpp.
@@ -594,11 +605,13 @@ int cmd_batch_mpi(const Opts& o, int out_fd) {
   // the exit code (mpirun under --enable-recovery exits 0 whatever rank 0 returns); whether
   // rank 0 answered lines itself, no worker being left. New keys go last (a contract).
   const int rc = batch_exit_code(st);
-  std::cerr << "surfcert batch --mpi: resumed=" << rep.resumed << " retried=" << rep.retried
-            << " lost_twice=" << rep.lost_twice << " second_pass=" << rep.second_pass
-            << " returned=" << rep.returned << " dead_ranks=" << rep.dead_ranks
-            << " recovery=" << (rep.recovery ? 1 : 0) << " exit=" << rc
-            << " local_fallback=" << (rep.local_fallback ? 1 : 0) << "\n";
+  std::ostringstream s;
+  s << "surfcert batch --mpi: resumed=" << rep.resumed << " retried=" << rep.retried
+    << " lost_twice=" << rep.lost_twice << " second_pass=" << rep.second_pass
+    << " returned=" << rep.returned << " dead_ranks=" << rep.dead_ranks
+    << " recovery=" << (rep.recovery ? 1 : 0) << " exit=" << rc
+    << " local_fallback=" << (rep.local_fallback ? 1 : 0) << "\n";
+  stderr_line(s);
   return rc;
 }
 

@@ -574,8 +574,11 @@ void run_root(BatchMaster& master, int size, const MpiBatchOptions& o, bool reco
     dead[i] = 1;
     want[i] = 0;
     --alive;
-    std::cerr << "surfcert batch --mpi: rank " << w << " " << why
-              << ": its lines go to the others (" << alive << " workers left)\n";
+    // One write(2): Open MPI's messages share this stderr (see cmd_batch_mpi's summary).
+    const std::string msg = "surfcert batch --mpi: rank " + std::to_string(w) + " " + why +
+                            ": its lines go to the others (" + std::to_string(alive) +
+                            " workers left)\n";
+    write_all(STDERR_FILENO, msg.data(), msg.size());
     master.on_rank_dead(w);
   };
   // One round of heartbeats (recovery only): the silent are dead, the others hear from rank 0.
