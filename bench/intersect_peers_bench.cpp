@@ -16,6 +16,8 @@
 // SURFCERT_DUMP=FILE: each pair's answer (curve_envelope_json at --detail topology, then a second
 // call's at --detail full, outside the timings) written to FILE as JSON lines, one per pair:
 // the reference that a speed-up must reproduce (certified fields equal, points within tolerance).
+// SURFCERT_BENCH_ORDER=interleaved: OCCT's call right after ours for each pair (default: our
+// side on every pair, then OCCT on every pair; see main).
 #include "occt_quadric_peer.hpp"
 #include "support/distance_checks.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
@@ -28,7 +30,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <deque>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <unistd.h>
@@ -267,9 +271,22 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0 : s / static_cast<double>(v.size());
 }
 
-void run_pair(Row& row, const Surf& s1, const Surf& s2, const Pose& pair, double half_width,
-              double tol, double occt_tol, std::vector<double>& ratios) {
-  const auto a = exact_surface(s1, pair), b = exact_surface(s2, pair);
+// One pair of a run: the surfaces, the pair's pose and box half width, and our answer once
+// computed (kept for the OCCT pass and the comparison).
+struct Job {
+  Row* row;
+  Surf s1, s2;
+  Pose pair;
+  double half_width;
+  std::optional<trace::CurveResult> ours;
+  double ours_us = 0;
+};
+
+// Our side of a job: the timed call (and, outside the figure, the profiling repeats, the dump
+// and the classification alone).
+void run_ours(Job& job, double tol) {
+  Row& row = *job.row;
+  const auto a = exact_surface(job.s1, job.pair), b = exact_surface(job.s2, job.pair);
   trace::TraceOptions opt;
   opt.tolerance = tol;
   ++row.pairs;
@@ -278,19 +295,22 @@ void run_pair(Row& row, const Surf& s1, const Surf& s2, const Pose& pair, double
   // grown until every unbounded branch shows); OCCT gets the same box. Pairs with an ellipsoid
   // (bounded curves, no box) use the pair's translation +- half_width.
   const double t0 = cpu_us();
-  const auto r =
-      trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Topology);
-  const double ours = cpu_us() - t0;
-  row.ours_us.push_back(ours);
+  job.ours = trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Topology);
+  job.ours_us = cpu_us() - t0;
+  const trace::CurveResult& r = *job.ours;
+  row.ours_us.push_back(job.ours_us);
   row.exact_starts += r.exact_start_points ? 1 : 0;
   // SURFCERT_PROFILE_REPEAT=n: our side n more times, outside the figures, so that a sampling
-  // profiler of the whole run sees mostly our code (OCCT takes ~30x our time per pair).
+  // profiler of the whole run sees mostly our code (OCCT takes ~30x our time per pair). The
+  // repeats run on fresh copies of the quadrics: the same quadric object keeps what it cached
+  // (its kind, whether it is singular), which a first call pays.
   static const long repeat = [] {
     const char* e = std::getenv("SURFCERT_PROFILE_REPEAT");
     return e ? std::max(0L, std::atol(e)) : 0L;
   }();
   for (long i = 0; i < repeat; ++i)
-    (void)trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Topology);
+    (void)trace::intersect_curve(core::QuadricMatrix(a.matrix()), core::QuadricMatrix(b.matrix()),
+                                 certify::Mode::Filtered, opt, certify::Detail::Topology);
   static FILE* dump = [] {
     const char* e = std::getenv("SURFCERT_DUMP");
     return e ? std::fopen(e, "w") : nullptr;
@@ -313,20 +333,26 @@ void run_pair(Row& row, const Surf& s1, const Surf& s2, const Pose& pair, double
     row.classify_us.push_back(cpu_us() - c0);
     row.exact_fallbacks += t.exact_fallback ? 1 : 0;
   }
+}
+
+// OCCT's side of a job (our answer computed), and both sides' counts against the reference.
+void run_occt(const Job& job, double occt_tol, std::vector<double>& ratios) {
+  Row& row = *job.row;
+  const trace::CurveResult& r = *job.ours;
   trace::Box box;
   if (r.box) {
     box = *r.box;
   } else {
-    const auto c = to_d(pair.t);
+    const auto c = to_d(job.pair.t);
     for (size_t k = 0; k < 3; ++k)
-      box.min[k] = c[k] - half_width, box.max[k] = c[k] + half_width;
+      box.min[k] = c[k] - job.half_width, box.max[k] = c[k] + job.half_width;
   }
 
-  const auto o = bench::occt_intersect_in_box(peer_surface(s1, pair), peer_surface(s2, pair),
-                                              box.min, box.max, occt_tol);
+  const auto o = bench::occt_intersect_in_box(
+      peer_surface(job.s1, job.pair), peer_surface(job.s2, job.pair), box.min, box.max, occt_tol);
   if (o.ok) {
     row.occt_us.push_back(o.cpu_seconds * 1e6);
-    ratios.push_back(o.seconds * 1e6 / ours);
+    ratios.push_back(o.seconds * 1e6 / job.ours_us);
   }
 
   int loops = -1, unbounded = -1;
@@ -386,23 +412,33 @@ int main(int argc, char** argv) {
   std::mt19937_64 rng(seed);
   std::vector<Row> rows;
   std::vector<double> ratios;
+  // SURFCERT_BENCH_ORDER=interleaved: each pair's OCCT call right after ours (the order of
+  // sessions up to 26). By default ("blocked") our side answers every pair, then OCCT answers
+  // every pair: each library runs as in a user's loop over a list of pairs, after its own
+  // previous pair, not after the other library's (whose ~10 ms evict our code and data from
+  // the caches: measured at session 27, a first call after OCCT's took ~1.7x the time of the
+  // same call repeated on fresh copies of the quadrics). The pairs are the same either way.
+  const char* order_env = std::getenv("SURFCERT_BENCH_ORDER");
+  const bool interleaved = order_env && std::string(order_env) == "interleaved";
   { // Warm-up outside the figures (first-call costs: library initialisation, caches).
     Row warm;
     std::vector<double> r;
     const auto cases = named_cases();
-    run_pair(warm, cases[0].s1, cases[0].s2, Pose{}, 3, tol, occt_tol, r);
+    Job w{&warm, cases[0].s1, cases[0].s2, Pose{}, 3, std::nullopt, 0};
+    run_ours(w, tol);
+    run_occt(w, occt_tol, r);
   }
   const std::string only =
       argc > 6 ? argv[6] : ""; // run only the cases (named or random kinds) containing this
+  std::deque<Row> named_rows;
+  std::vector<Job> jobs;
   for (const Case& c : named_cases()) {
     if (!only.empty() && c.name.find(only) == std::string::npos) continue;
-    Row row;
+    Row& row = named_rows.emplace_back();
     row.group = c.group, row.name = c.name;
     row.want_loops = c.loops, row.want_unbounded = c.unbounded;
     for (long i = 0; i < reps; ++i)
-      run_pair(row, c.s1, c.s2, random_pose(rng, 100), c.half_width, tol, occt_tol, ratios);
-    std::fprintf(stderr, "%s: %s done\n", c.group.c_str(), c.name.c_str());
-    rows.push_back(std::move(row));
+      jobs.push_back({&row, c.s1, c.s2, random_pose(rng, 100), c.half_width, std::nullopt, 0});
   }
   // Random natural-quadric pairs: sphere, circular cylinder, circular cone, plane (not two
   // planes), each with its own random rational pose, in the box [-3, 3]^3.
@@ -418,9 +454,25 @@ int main(int argc, char** argv) {
     if (!only.empty() && (n1 + "-" + n2).find(only) == std::string::npos) continue;
     Row& row = random_rows[n1 + "-" + n2];
     row.group = "random natural", row.name = n1 + "-" + n2;
-    run_pair(row, s1, s2, Pose{}, 3, tol, occt_tol, ratios);
+    jobs.push_back({&row, s1, s2, Pose{}, 3, std::nullopt, 0});
   }
-  std::fprintf(stderr, "random pairs done\n");
+  const auto progress = [&](size_t i, const char* side) {
+    if ((i + 1) % 100 == 0 || i + 1 == jobs.size())
+      std::fprintf(stderr, "\r%s: %zu of %zu pairs", side, i + 1, jobs.size());
+    if (i + 1 == jobs.size()) std::fprintf(stderr, "\n");
+  };
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    run_ours(jobs[i], tol);
+    if (interleaved) run_occt(jobs[i], occt_tol, ratios);
+    progress(i, interleaved ? "surfcert and OCCT" : "surfcert");
+  }
+  if (!interleaved)
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      run_occt(jobs[i], occt_tol, ratios);
+      progress(i, "OCCT");
+    }
+  for (auto& r : named_rows)
+    rows.push_back(std::move(r));
   for (auto& [k, r] : random_rows)
     rows.push_back(std::move(r));
 
@@ -476,8 +528,8 @@ int main(int argc, char** argv) {
                   mean(r.ours_us), r.exact_starts);
     std::printf("\n");
   }
-  std::printf("(intersect_peers_bench %ld %ld %lu %g %g)\n", reps, random_pairs, seed, tol,
-              occt_tol);
+  std::printf("(intersect_peers_bench %ld %ld %lu %g %g; order %s)\n", reps, random_pairs, seed,
+              tol, occt_tol, interleaved ? "interleaved" : "blocked");
   { // The run's circumstances: machine, date (UTC), load; times above are thread CPU time.
     std::string cpu = "unknown CPU";
     if (FILE* f = std::fopen("/proc/cpuinfo", "r")) {
