@@ -2,6 +2,7 @@
 #include "surfcert/certify/box_exits.hpp"
 
 #include "box_exits_double_line.hpp"
+#include "box_exits_filter.hpp"
 #include "box_exits_line_conic.hpp"
 
 #include "surfcert/certify/conic_pair.hpp"
@@ -116,82 +117,6 @@ Where against(const Ball& v, const Rational& lo, const Rational& hi, long prec) 
   return Where::Unknown;
 }
 
-using IMat4 = algebra::Mat4T<Interval>;
-
-// A face conic in interval arithmetic (entries enclosing the exact ones).
-struct IConic {
-  Interval c00, c01, c11, c02, c12, c22;
-  explicit IConic(const M3& m)
-      : c00(enclose(m[0][0])), c01(enclose(m[0][1])), c11(enclose(m[1][1])), c02(enclose(m[0][2])),
-        c12(enclose(m[1][2])), c22(enclose(m[2][2])) {}
-  // face_form(m, i, j, k, c) in intervals, from enclosures of m's entries and of c (each
-  // entry encloses the exact one: interval operations are inclusion-isotone).
-  IConic(const IMat4& m, size_t i, size_t j, size_t k, const Interval& c)
-      : c00(m[i][i]), c01(m[i][j]), c11(m[j][j]), c02(m[i][k] * c + m[i][3]),
-        c12(m[j][k] * c + m[j][3]), c22((m[k][k] * c + m[k][3] + m[3][k]) * c + m[3][3]) {}
-  // An enclosure of the form over the cell mu + du, mv + dv (centred form: exact Taylor
-  // expansion at the midpoint, tight on small cells).
-  Interval over(double mu, double mv, const Interval& du, const Interval& dv) const {
-    const Interval u(mu), v(mv);
-    const Interval fu = c00 * u + c01 * v + c02, fv = c01 * u + c11 * v + c12;
-    const Interval f = (fu + c02) * u + (fv + c12) * v + c22; // the form at the midpoint
-    return f + Interval(2) * (fu * du + fv * dv + c01 * du * dv) + c00 * CGAL::square(du) +
-           c11 * CGAL::square(dv);
-  }
-};
-
-// The float filter's proof that the two face conics have no common point in the closed
-// rectangle [u_lo, u_hi] x [v_lo, v_hi]: rigorous interval enclosures (rounding upwards) over
-// the cells of a subdivision, each cell excluded when one form's enclosure misses 0. False
-// (nothing proved: the exact route decides) when `budget` cells did not suffice — a crossing,
-// or conics passing close, on this face.
-bool no_common_point(const IConic& a, const IConic& b, const Rational& u_lo, const Rational& u_hi,
-                     const Rational& v_lo, const Rational& v_hi, int budget) {
-  CGAL::Protect_FPU_rounding<true> guard;
-  struct Cell {
-    double u0, u1, v0, v1;
-  };
-  // The rectangle grown outwards to doubles (the cells cover it).
-  const Interval iu0 = enclose(u_lo), iu1 = enclose(u_hi), iv0 = enclose(v_lo), iv1 = enclose(v_hi);
-  std::vector<Cell> todo{{iu0.inf(), iu1.sup(), iv0.inf(), iv1.sup()}};
-  // A cell 1/64 of the face on both sides where both forms may vanish most likely holds a
-  // crossing: the exact route then, without spending the rest of the budget splitting around
-  // it (depth first, the search narrows onto it; a face with a crossing used all 256 cells,
-  // 10% of a plane section's time).
-  const double small_u = (iu1.sup() - iu0.inf()) / 64, small_v = (iv1.sup() - iv0.inf()) / 64;
-  while (!todo.empty()) {
-    if (budget-- <= 0) return false;
-    const Cell c = todo.back();
-    todo.pop_back();
-    // Any midpoint will do: du, dv enclose [u0, u1] - mu and [v0, v1] - mv (rounded outwards).
-    const double mu = 0.5 * c.u0 + 0.5 * c.u1, mv = 0.5 * c.v0 + 0.5 * c.v1;
-    const Interval du = Interval(c.u0, c.u1) - Interval(mu),
-                   dv = Interval(c.v0, c.v1) - Interval(mv);
-    if (!std::isfinite(du.inf()) || !std::isfinite(du.sup()) || !std::isfinite(dv.inf()) ||
-        !std::isfinite(dv.sup()))
-      return false;
-    if (!a.over(mu, mv, du, dv).do_overlap(Interval(0)) ||
-        !b.over(mu, mv, du, dv).do_overlap(Interval(0)))
-      continue;
-    if (c.u1 - c.u0 <= small_u && c.v1 - c.v0 <= small_v) return false;
-    if (!(c.u0 < mu && mu < c.u1) || !(c.v0 < mv && mv < c.v1)) return false; // no split left
-    if (c.u1 - c.u0 >= c.v1 - c.v0) {
-      todo.push_back({c.u0, mu, c.v0, c.v1});
-      todo.push_back({mu, c.u1, c.v0, c.v1});
-    } else {
-      todo.push_back({c.u0, c.u1, c.v0, mv});
-      todo.push_back({c.u0, c.u1, mv, c.v1});
-    }
-  }
-  return true;
-}
-
-bool no_common_point(const M3& ca, const M3& cb, const Rational& u_lo, const Rational& u_hi,
-                     const Rational& v_lo, const Rational& v_hi, int budget) {
-  CGAL::Protect_FPU_rounding<true> guard;
-  return no_common_point(IConic(ca), IConic(cb), u_lo, u_hi, v_lo, v_hi, budget);
-}
-
 // A box with lo >= hi in some coordinate: not certified, with the reason (its crossings would
 // be refined towards a width of 0 without end). Nullopt for a proper box.
 std::optional<BoxExits> flat_box(const std::array<Rational, 3>& lo,
@@ -208,7 +133,8 @@ std::optional<BoxExits> flat_box(const std::array<Rational, 3>& lo,
 } // namespace
 
 BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
-                   const std::array<Rational, 3>& lo, const std::array<Rational, 3>& hi) {
+                   const std::array<Rational, 3>& lo, const std::array<Rational, 3>& hi,
+                   bool interval_filter) {
   // Integer multiples (the same curve): the face forms and the crossings' polynomials then
   // have the box's dyadic denominators only, and their products skip most gcds (on a pair
   // posed in doubles this was ~30% of an intersect, in gcds of ~150-digit denominators).
@@ -248,12 +174,32 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
       const size_t ku = static_cast<size_t>(k);
       const size_t i = (ku + 1) % 3, j = (ku + 2) % 3;
       const Rational& c = side ? hi[ku] : lo[ku];
-      if (!linear_on(a, i, j) && !linear_on(b, i, j)) {
-        CGAL::Protect_FPU_rounding<true> guard;
-        const Interval& ic = side ? ihi[ku] : ilo[ku];
-        if (no_common_point(IConic(ia, i, j, ku, ic), IConic(ib, i, j, ku, ic), lo[i], hi[i], lo[j],
-                            hi[j], 256))
+      if (interval_filter && !linear_on(a, i, j) && !linear_on(b, i, j)) {
+        // The face's crossings proved in interval arithmetic (box_exits_filter.hpp): none on
+        // most faces, else each a Krawczyk-proved simple root inside the face (the exact
+        // resultant, root isolation and Arb refinement below were ~40% of a cone-cone pair).
+        std::optional<std::vector<detail::FacePoint>> pts;
+        {
+          CGAL::Protect_FPU_rounding<true> guard;
+          const Interval& ic = side ? ihi[ku] : ilo[ku];
+          pts =
+              detail::face_crossings(detail::IConic(ia, i, j, ku, ic),
+                                     detail::IConic(ib, i, j, ku, ic), lo[i], hi[i], lo[j], hi[j]);
+        }
+        if (pts) {
+          if (!pts->empty()) ++out.filtered_faces;
+          for (const auto& fp : *pts) {
+            BoxCrossing bc;
+            bc.axis = k;
+            bc.at_max = side == 1;
+            bc.approx[ku] = c.to_double_approx();
+            bc.approx[i] = fp.u;
+            bc.approx[j] = fp.v;
+            bc.radius = fp.radius;
+            out.points.push_back(bc);
+          }
           continue;
+        }
       }
       // (u, v, 1) -> (x, y, z, w): u along axis i, v along axis j, x_k = c.
       const M3 ca = face_form(a, i, j, ku, c), cb = face_form(b, i, j, ku, c);
@@ -333,7 +279,12 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
       }
       // The float filter first: a face the curve provably misses needs no exact work (most
       // faces: every face of a box around bounded loops).
-      if (no_common_point(ca, cb, lo[i], hi[i], lo[j], hi[j], 256)) continue;
+      {
+        CGAL::Protect_FPU_rounding<true> guard; // IConic encloses with rounding upwards
+        if (detail::no_common_point(detail::IConic(ca), detail::IConic(cb), lo[i], hi[i], lo[j],
+                                    hi[j], 256))
+          continue;
+      }
       FaceChart fc;
       switch (face_chart(ca, cb, fc)) {
       case ChartOutcome::SharedComponent:

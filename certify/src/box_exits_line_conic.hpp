@@ -16,8 +16,9 @@ namespace surfcert::certify::detail {
 
 using FaceForm = std::array<std::array<core::Rational, 3>, 3>; ///< a form in (u, v, 1)
 
-/// One crossing in the face's coordinates: double midpoints of 128-bit Arb enclosures of the
-/// exact coordinates, and the larger of their radii.
+/// One crossing in the face's coordinates: double midpoints of enclosures of the exact
+/// coordinates (128-bit Arb balls here, intervals in box_exits_filter), and the larger of their
+/// radii.
 struct FacePoint {
   double u = 0, v = 0, radius = 0;
 };

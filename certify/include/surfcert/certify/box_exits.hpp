@@ -7,13 +7,16 @@
 // inside the box is a set of closed loops and exactly points.size() / 2 arcs, each arc ending
 // on two of these points (a traced picture must show that many open pieces, ending there).
 //
-// A filter first: a face is skipped when interval arithmetic (directed rounding, over a
-// subdivision of at most 256 cells) proves that the two face conics have no common point in the
-// closed face rectangle — a proof, not an estimate; a face it cannot clear goes the exact route
-// (at once when a cell 1/64 of the face on both sides may hold a common point: a crossing,
-// most likely).
-// (Such a face then carries no crossing even when the face's plane holds a component of the
-// curve outside the rectangle, which the exact route reports as not certified.)
+// A filter first (box_exits_filter.hpp): on a face where neither surface's section is a line,
+// interval arithmetic (directed rounding) over a subdivision of the face proves either that the
+// two face conics have no common point in the closed face rectangle, or the complete list of
+// their common points there: every cell not excluded lies in a box where the Krawczyk test
+// proves exactly one root with every Jacobian nonsingular (a transversal crossing at a smooth
+// point), and each root's tight enclosure lies inside the open rectangle or outside the closed
+// one. A proof, not an estimate; a face it cannot prove (a tangency, a singular point, crossings
+// closer than its cells, a crossing near an edge, its budget spent) goes the exact route.
+// (A face it proves says nothing about a component of the curve in the face's plane wholly
+// outside the rectangle, which the exact route reports as not certified.)
 //
 // How (exact): on the face x_k = c both quadrics restrict to conics in the face's coordinates
 // (u, v); in a chart (x, y) sheared from (u, v) by a fixed rational matrix, chosen so that
@@ -63,14 +66,20 @@ struct BoxExits {
   bool certified = false;
   std::vector<BoxCrossing> points; ///< complete when certified
   std::string reason;              ///< why not certified
+  /// Faces whose crossings (at least one) the interval filter proved; the other faces were
+  /// read by the filter's subdivision alone (no crossing), in closed form or by the exact route.
+  /// Information for tests and profiles: no certified field depends on the route.
+  int filtered_faces = 0;
 };
 
 /// The crossings of Q_A ∩ Q_B with the faces of [lo, hi] (lo < hi coordinate-wise; a flat or
 /// empty box, lo >= hi somewhere, is answered not certified with that reason: its crossings
 /// would be refined to a width of 0, for ever).
+/// interval_filter false: every face by the exact route (the filter's proofs compared with it
+/// in tests; the answer is the same wherever both are certified).
 BoxExits box_exits(const core::Mat4& a, const core::Mat4& b,
-                   const std::array<core::Rational, 3>& lo,
-                   const std::array<core::Rational, 3>& hi);
+                   const std::array<core::Rational, 3>& lo, const std::array<core::Rational, 3>& hi,
+                   bool interval_filter = true);
 
 /// The crossings of a curve known to be the lines p + t d_i (rational p and directions,
 /// distinct directions: two cones with the common apex p, a plane pair through it), exact:
