@@ -17,7 +17,8 @@
 // call's at --detail full, outside the timings) written to FILE as JSON lines, one per pair:
 // the reference that a speed-up must reproduce (certified fields equal, points within tolerance).
 // SURFCERT_BENCH_ORDER=interleaved: OCCT's call right after ours for each pair (default: our
-// side on every pair, then OCCT on every pair; see main).
+// side on every pair, then OCCT on every pair; see main). SURFCERT_BENCH_NO_PEER=1: our side
+// only (a profile of our code; the OCCT columns and the comparisons then stay empty).
 #include "occt_quadric_peer.hpp"
 #include "support/distance_checks.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
@@ -456,6 +457,8 @@ int main(int argc, char** argv) {
     row.group = "random natural", row.name = n1 + "-" + n2;
     jobs.push_back({&row, s1, s2, Pose{}, 3, std::nullopt, 0});
   }
+  // SURFCERT_BENCH_NO_PEER=1: our side only (for a profiler: no OCCT samples, no ratios).
+  const bool no_peer = std::getenv("SURFCERT_BENCH_NO_PEER") != nullptr;
   const auto progress = [&](size_t i, const char* side) {
     if ((i + 1) % 100 == 0 || i + 1 == jobs.size())
       std::fprintf(stderr, "\r%s: %zu of %zu pairs", side, i + 1, jobs.size());
@@ -463,10 +466,10 @@ int main(int argc, char** argv) {
   };
   for (size_t i = 0; i < jobs.size(); ++i) {
     run_ours(jobs[i], tol);
-    if (interleaved) run_occt(jobs[i], occt_tol, ratios);
+    if (interleaved && !no_peer) run_occt(jobs[i], occt_tol, ratios);
     progress(i, interleaved ? "surfcert and OCCT" : "surfcert");
   }
-  if (!interleaved)
+  if (!interleaved && !no_peer)
     for (size_t i = 0; i < jobs.size(); ++i) {
       run_occt(jobs[i], occt_tol, ratios);
       progress(i, "OCCT");

@@ -66,6 +66,167 @@ I horner(const std::array<I, 5>& f, double x) {
   return r;
 }
 
+// The index (number of positive eigenvalues) of the member s*A - B, whose determinant has the
+// certain sign fsign (+-1): Jacobi's rule on the leading minors when they are certainly
+// nonzero, else Descartes on the interval characteristic polynomial. False when a sign it
+// needs is not certain.
+bool index_at(const Mat4T<I>& a, const Mat4T<I>& b, double s, int fsign, int& index) {
+  // The leading 3x3 block of s*A - B first: Jacobi's rule needs no more.
+  Mat4T<I> m;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = i; j < 3; ++j)
+      m[i][j] = m[j][i] = a[i][j] * s - b[i][j];
+  // Jacobi's rule: with leading minors d1, d2, d3 certainly nonzero and d4 = f(s) (its sign
+  // is certain), the negative eigenvalues are the sign changes of 1, d1..d4.
+  I d2 = m[0][0] * m[1][1] - m[0][1] * m[0][1];
+  I d3 = m[2][0] * (m[0][1] * m[1][2] - m[0][2] * m[1][1]) -
+         m[2][1] * (m[0][0] * m[1][2] - m[0][2] * m[1][0]) + m[2][2] * d2;
+  int lead[5] = {1, isign(m[0][0]), isign(d2), isign(d3), fsign};
+  bool certain = true;
+  for (int t = 1; t < 4; ++t)
+    certain = certain && (lead[t] == 1 || lead[t] == -1);
+  if (certain) {
+    int neg = 0;
+    for (int t = 0; t < 4; ++t)
+      neg += lead[t] != lead[t + 1];
+    index = 4 - neg;
+    return true;
+  }
+  for (size_t i = 0; i < 4; ++i) // a leading minor may vanish: Descartes instead
+    m[i][3] = m[3][i] = a[i][3] * s - b[i][3];
+  auto c = algebra::charpoly_coeffs(m);
+  int sg[4];
+  for (size_t t = 0; t < 4; ++t) {
+    sg[t] = isign(c[t]);
+    if (sg[t] == 2) return false;
+  }
+  index = algebra::inertia_from_charpoly_signs(sg).p;
+  return true;
+}
+
+// Whether q is a plane n . x + d = 0 with n != 0 exactly (its matrix of rank 2), read without
+// forming exact rationals where that can be avoided: no posed shape is a plane; a matrix of
+// doubles is read through its exact symmetric part (d_ij + d_ji = 0 exactly iff d_ji = -d_ij).
+bool proper_plane(const core::QuadricMatrix& q) {
+  if (q.shape()) return false;
+  if (const core::DoubleMat4* d = q.double_matrix()) {
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        if ((*d)[i][j] != -(*d)[j][i]) return false;
+    for (size_t i = 0; i < 3; ++i)
+      if ((*d)[i][3] != -(*d)[3][i]) return true;
+    return false;
+  }
+  const Mat4& m = q.matrix();
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      if (!m[i][j].is_zero()) return false;
+  for (size_t i = 0; i < 3; ++i)
+    if (!m[i][3].is_zero()) return true;
+  return false;
+}
+
+// The pencil l*a - b with a plane among its members, at l = theta (rational, exact): that
+// member has rank 2, so f = (l - theta)^2 g(l) exactly, g = f / (l - theta)^2 a quadratic
+// (synthetic division in intervals, theta enclosed). The facts follow when these signs are
+// certain: g(theta) != 0 (theta exactly double), the discriminant of g (two simple real roots
+// or none), g at separators around theta and g's float roots (one sign change in each gap of a
+// root of g; sign f = sign g away from theta); the indices as for simple roots. The double
+// root's rank is 2 and its inertia (1, 1) (a plane's matrix [[0, n/2], [n^T/2, d]], n != 0, has
+// one positive and one negative eigenvalue; so has any nonzero multiple). False: the exact path.
+bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I, 5>& f,
+                        const Rational& theta, PencilFacts& out) {
+  const I th = enclose(theta);
+  const I g2 = f[4], g1 = f[3] + I(2) * th * g2, g0 = f[2] + I(2) * th * g1 - th * th * g2;
+  const int s2 = isign(g2);
+  if (s2 != 1 && s2 != -1) return false;
+  const int at_theta = isign((g2 * th + g1) * th + g0);
+  if (at_theta != 1 && at_theta != -1) return false; // theta may be a root of g too
+  const int sd = isign(g1 * g1 - I(4) * g2 * g0);
+  if (sd != 1 && sd != -1) return false; // g may have a double root
+  const double td = CGAL::to_double(th);
+  // The points to separate: theta and g's float roots, in increasing order.
+  std::vector<double> pts{td};
+  if (sd > 0) {
+    const double c2 = CGAL::to_double(g2), c1 = CGAL::to_double(g1), c0 = CGAL::to_double(g0);
+    const double disc = c1 * c1 - 4 * c2 * c0;
+    if (!(disc > 0)) return false;
+    const double qq = -0.5 * (c1 + std::copysign(std::sqrt(disc), c1));
+    if (!(qq != 0)) return false;
+    pts.push_back(qq / c2);
+    pts.push_back(c0 / qq);
+  }
+  std::sort(pts.begin(), pts.end());
+  double w = 1;
+  for (double x : pts)
+    w = std::max(w, 1 + std::fabs(x));
+  std::vector<double> seps{pts.front() - w};
+  for (size_t i = 1; i < pts.size(); ++i)
+    seps.push_back(0.5 * pts[i - 1] + 0.5 * pts[i]);
+  seps.push_back(pts.back() + w);
+  for (size_t i = 0; i < seps.size(); ++i)
+    if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return false;
+  // theta in its gap, strictly (exact comparisons), and g's sign at every separator certain.
+  size_t theta_gap = seps.size();
+  for (size_t i = 0; i + 1 < seps.size(); ++i)
+    if (Rational::exact_from_double(seps[i]) < theta &&
+        theta < Rational::exact_from_double(seps[i + 1]))
+      theta_gap = i;
+  if (theta_gap == seps.size()) return false;
+  std::vector<int> gsign(seps.size());
+  for (size_t i = 0; i < seps.size(); ++i) {
+    const double x = seps[i];
+    gsign[i] = isign((g2 * x + g1) * x + g0);
+    if (gsign[i] != 1 && gsign[i] != -1) return false;
+  }
+  // g's two real roots (sd > 0) in the two other gaps: a sign change in each; theta's gap then
+  // holds none, and shows no change.
+  for (size_t i = 0; i + 1 < seps.size(); ++i)
+    if ((gsign[i] != gsign[i + 1]) != (i != theta_gap)) return false;
+  out.indices.reserve(seps.size());
+  out.samples.reserve(seps.size());
+  for (size_t i = 0; i < seps.size(); ++i) {
+    int index = 0;
+    if (!index_at(a, b, seps[i], gsign[i], index)) return false;
+    out.indices.push_back(index);
+    out.samples.push_back(Rational::exact_from_double(seps[i]));
+  }
+  for (int idx : out.indices)
+    if (idx == 0 || idx == 4) out.definite_member = true;
+  for (size_t i = 0; i + 1 < seps.size(); ++i) {
+    RootFacts r;
+    r.lo = out.samples[i];
+    r.hi = out.samples[i + 1];
+    r.index_left = out.indices[i];
+    r.index_right = out.indices[i + 1];
+    if (i == theta_gap) {
+      r.multiplicity = 2;
+      r.rank = 2;
+      r.sigma = Inertia{1, 1};
+      r.rational_value = theta;
+      // The primitive linear factor with a positive leading coefficient: den * l - num.
+      fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 1, fmpq_denref(theta.raw()));
+      fmpz_t num;
+      fmpz_init(num);
+      fmpz_neg(num, fmpq_numref(theta.raw()));
+      fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 0, num);
+      fmpz_clear(num);
+    } else {
+      r.sigma =
+          Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
+      // Re-based because det A = 0: l = 0 is a root of f, so of g when theta != 0 (see the
+      // simple-root path); the gap around 0 holds it.
+      if (out.rebased && r.lo.sign() < 0 && r.hi.sign() > 0) {
+        r.rational_value = Rational(0);
+        fmpz_poly_set_coeff_si(r.factor.raw_mut(), 1, 1);
+      }
+    }
+    out.real_roots.push_back(std::move(r));
+  }
+  out.complex_roots = sd > 0 ? 0 : 2;
+  out.root_pattern = sd > 0 ? "R4" : "R5";
+  return true;
+}
 } // namespace
 
 std::optional<PencilFacts> analyze_pencil_filtered(const core::QuadricMatrix& qa,
@@ -112,6 +273,14 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
     out.rebased = true;
     out.rebase_t = *base;
   }
+  // A plane among the members (a plane section: a plane against any quadric): its root is
+  // double by construction, which D4 cannot show in intervals; read as f = (l - theta)^2 g.
+  // Not re-based, b is the member at l = 0; re-based, -A is, and B sits at l = -1/t (t != 0:
+  // t = 0 was skipped, det B being 0).
+  if (!out.rebased ? proper_plane(qb) : proper_plane(qa))
+    return plane_member_facts(a, b, f, Rational(0), out);
+  if (out.rebased && proper_plane(qb))
+    return plane_member_facts(a, b, f, Rational(-1) / Rational(out.rebase_t), out);
   // D4 first: D3 and D2 matter only when D4 > 0 (E never here).
   const algebra::detail::QuarticTerms<I> q(f);
   int s4 = isign(q.D4());
@@ -149,39 +318,10 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   out.indices.reserve(nsep);
   out.samples.reserve(nsep);
   for (size_t si = 0; si < nsep; ++si) {
-    double s = seps[si];
-    // The leading 3x3 block of s*A - B first: Jacobi's rule needs no more.
-    Mat4T<I> m;
-    for (size_t i = 0; i < 3; ++i)
-      for (size_t j = i; j < 3; ++j)
-        m[i][j] = m[j][i] = a[i][j] * s - b[i][j];
-    // Jacobi's rule: with leading minors d1, d2, d3 certainly nonzero and d4 = f(s) (its sign
-    // is certain from above), the negative eigenvalues are the sign changes of 1, d1..d4.
-    I d2 = m[0][0] * m[1][1] - m[0][1] * m[0][1];
-    I d3 = m[2][0] * (m[0][1] * m[1][2] - m[0][2] * m[1][1]) -
-           m[2][1] * (m[0][0] * m[1][2] - m[0][2] * m[1][0]) + m[2][2] * d2;
-    int lead[5] = {1, isign(m[0][0]), isign(d2), isign(d3), fsign[si]};
-    bool certain = true;
-    for (int t = 1; t < 4; ++t)
-      certain = certain && (lead[t] == 1 || lead[t] == -1);
-    if (certain) {
-      int neg = 0;
-      for (int t = 0; t < 4; ++t)
-        neg += lead[t] != lead[t + 1];
-      out.indices.push_back(4 - neg);
-      out.samples.push_back(Rational::exact_from_double(s));
-      continue;
-    }
-    for (size_t i = 0; i < 4; ++i) // a leading minor may vanish: Descartes instead
-      m[i][3] = m[3][i] = a[i][3] * s - b[i][3];
-    auto c = algebra::charpoly_coeffs(m);
-    int sg[4];
-    for (size_t t = 0; t < 4; ++t) {
-      sg[t] = isign(c[t]);
-      if (sg[t] == 2) return false;
-    }
-    out.indices.push_back(algebra::inertia_from_charpoly_signs(sg).p);
-    out.samples.push_back(Rational::exact_from_double(s));
+    int index = 0;
+    if (!index_at(a, b, seps[si], fsign[si], index)) return false;
+    out.indices.push_back(index);
+    out.samples.push_back(Rational::exact_from_double(seps[si]));
   }
   for (int idx : out.indices)
     if (idx == 0 || idx == 4) out.definite_member = true;

@@ -268,3 +268,169 @@ TEST(Filter, RebaseChoosesTheExactPathsTAndNeverRebasesANonsingularA) {
     }
   }
 }
+
+namespace {
+
+// The filter's facts on a pencil with a plane among its members against the exact path's, field
+// by field (what the decision rules and the special points read), and the case, Segre symbol
+// and special points of the classification. Returns whether the filter answered.
+bool expect_plane_pencil_like_exact(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb,
+                                    const std::string& ctx) {
+  certify::QsicResult f = certify::classify_qsic(qa, qb, certify::Mode::Filtered);
+  certify::QsicResult x = certify::classify_qsic(qa, qb, certify::Mode::Exact);
+  EXPECT_EQ(f.status, certify::Status::Certified) << ctx;
+  EXPECT_EQ(f.pencil, x.pencil) << ctx;
+  EXPECT_EQ(f.tu_case, x.tu_case) << ctx;
+  EXPECT_EQ(f.segre, x.segre) << ctx;
+  if (f.exact_fallback || f.pencil != algebra::PencilKind::Regular) return false;
+  const algebra::PencilFacts &ff = f.facts, &xf = x.facts;
+  EXPECT_EQ(ff.rebased, xf.rebased) << ctx;
+  EXPECT_EQ(ff.rebase_t, xf.rebase_t) << ctx;
+  EXPECT_EQ(ff.root_pattern, xf.root_pattern) << ctx;
+  EXPECT_EQ(ff.complex_roots, xf.complex_roots) << ctx;
+  EXPECT_EQ(ff.complex_double_pair, xf.complex_double_pair) << ctx;
+  EXPECT_EQ(ff.definite_member, xf.definite_member) << ctx;
+  EXPECT_EQ(ff.indices, xf.indices) << ctx;
+  EXPECT_EQ(ff.samples.size(), ff.real_roots.size() + 1) << ctx;
+  EXPECT_EQ(ff.samples.size(), ff.indices.size()) << ctx;
+  if (ff.real_roots.size() != xf.real_roots.size()) {
+    ADD_FAILURE() << ctx << ": " << ff.real_roots.size() << " real roots vs "
+                  << xf.real_roots.size();
+    return true;
+  }
+  for (size_t i = 0; i < ff.real_roots.size(); ++i) {
+    const algebra::RootFacts &r = ff.real_roots[i], &e = xf.real_roots[i];
+    const std::string rc = ctx + " root " + std::to_string(i);
+    EXPECT_EQ(r.multiplicity, e.multiplicity) << rc;
+    EXPECT_EQ(r.rank, e.rank) << rc;
+    EXPECT_EQ(r.sigma, e.sigma) << rc;
+    EXPECT_EQ(r.index_left, e.index_left) << rc;
+    EXPECT_EQ(r.index_right, e.index_right) << rc;
+    // The filter's isolating interval holds the exact root: the exact one's value lies in it.
+    if (e.rational_value) {
+      EXPECT_TRUE(r.lo < *e.rational_value && *e.rational_value < r.hi)
+          << rc << ": " << e.rational_value->to_string() << " not in (" << r.lo.to_string() << ", "
+          << r.hi.to_string() << "), t " << ff.rebase_t << " mult " << r.multiplicity;
+    }
+    if (r.rational_value) {
+      // An exact value the filter reports (the double root, l = 0 when re-based) is that root:
+      // a zero of the exact f inside the exact path's isolating interval (which may not name
+      // it when its square-free factor is not linear).
+      EXPECT_EQ(xf.f.evaluate(*r.rational_value).sign(), 0) << rc;
+      EXPECT_TRUE((e.lo < *r.rational_value && *r.rational_value < e.hi) ||
+                  (e.lo == *r.rational_value && e.hi == *r.rational_value))
+          << rc;
+      if (e.rational_value) {
+        EXPECT_EQ(*r.rational_value, *e.rational_value) << rc;
+      }
+      EXPECT_EQ(r.factor.degree(), 1) << rc;
+      EXPECT_EQ(r.factor.sign_at(*r.rational_value), 0) << rc;
+    }
+  }
+  // What a report reads next: the special points (from the multiple root), exactly equal.
+  certify::complete_special_points(f, qa, qb);
+  certify::complete_special_points(x, qa, qb);
+  EXPECT_EQ(f.special_points.size(), x.special_points.size()) << ctx;
+  EXPECT_EQ(f.special_points_complete, x.special_points_complete) << ctx;
+  return true;
+}
+
+} // namespace
+
+// A plane against a quadric (the pencil of a plane section): the plane's member has rank 2, so
+// its root is double by construction, which the discriminant cannot show in intervals (every
+// such pencil went to the exact path: 40-60 us of a 5-9 us classification). Random planes
+// against random quadrics of rank 4, 3 (cones, cylinders) and 2, in both orders, the plane
+// given as an exact matrix or as a matrix of doubles (its symmetric part); the filter must
+// answer most of them, with the exact path's facts.
+TEST(Filter, PlaneSectionsAreReadWithTheirDoubleRootLikeTheExactPath) {
+  std::mt19937_64 rng(20261204UL);
+  std::uniform_int_distribution<long> e(-4, 4), dv(-3, 3);
+  int regular = 0, answered = 0, plane_second = 0, doubles = 0;
+  for (int it = 0; it < 400; ++it) {
+    std::array<long, 4> n{};
+    do {
+      for (long& x : n)
+        x = e(rng);
+    } while (n[0] == 0 && n[1] == 0 && n[2] == 0);
+    core::Mat4 plane;
+    for (size_t i = 0; i < 3; ++i)
+      plane[i][3] = plane[3][i] = Rational(n[i], 2);
+    plane[3][3] = Rational(n[3]);
+    std::array<std::array<long, 4>, 4> p{};
+    for (auto& row : p)
+      for (long& x : row)
+        x = e(rng);
+    const int rank = 4 - it % 3; // 4, 3, 2
+    std::array<long, 4> d{};
+    for (int k = 0; k < 4; ++k)
+      d[static_cast<size_t>(k)] = k < rank ? (dv(rng) | 1) : 0;
+    const core::Mat4 q = congruent_diag(d, p);
+    bool zero = true;
+    for (const auto& row : q)
+      for (const auto& x : row)
+        zero = zero && x.is_zero();
+    if (zero) continue;
+    // Every fourth plane as a matrix of doubles with all of its linear part in the last row.
+    const bool as_doubles = it % 4 == 1;
+    core::DoubleMat4 pd{};
+    for (size_t i = 0; i < 3; ++i)
+      pd[3][i] = static_cast<double>(n[i]);
+    pd[3][3] = static_cast<double>(n[3]);
+    const core::QuadricMatrix qp =
+        as_doubles ? core::QuadricMatrix::from_double_matrix(pd) : core::QuadricMatrix(plane);
+    const core::QuadricMatrix qq(q);
+    for (bool second : {false, true}) {
+      const std::string ctx = "it " + std::to_string(it) + (second ? " plane second" : "");
+      const core::QuadricMatrix &qa = second ? qq : qp, &qb = second ? qp : qq;
+      const algebra::PencilFacts ex = algebra::analyze_pencil_exact(qa.matrix(), qb.matrix());
+      if (ex.kind != algebra::PencilKind::Regular) continue;
+      const bool simple_rest = ex.root_pattern == "R4" || ex.root_pattern == "R5";
+      regular += simple_rest;
+      if (expect_plane_pencil_like_exact(qa, qb, ctx)) {
+        EXPECT_TRUE(simple_rest) << ctx << ": answered " << ex.root_pattern;
+        ++answered;
+        plane_second += second;
+        doubles += as_doubles;
+      }
+    }
+  }
+  std::printf("regular with a double root and simple others %d, answered %d (plane second %d, "
+              "as doubles %d)\n",
+              regular, answered, plane_second, doubles);
+  EXPECT_GT(regular, 300);
+  EXPECT_GT(answered, regular * 9 / 10);
+  EXPECT_GT(plane_second, 100);
+  EXPECT_GT(doubles, 50);
+}
+
+// The unit sphere against the plane z = 1 - eps: a circle (eps > 0), the tangent point
+// (eps = 0: the pencil has a root of multiplicity > 2, not the filter's to read), nothing
+// (eps < 0); eps = 1e-10, 1e-20, 1e-30, 2^-100 from both sides, both orders. Filter and exact
+// path classify alike; the real circle and the empty cases differ in the index sequence.
+TEST(Filter, PlaneNearlyTangentToASphereIsClassifiedLikeTheExactPath) {
+  core::Mat4 sphere;
+  sphere[0][0] = sphere[1][1] = sphere[2][2] = Rational(1);
+  sphere[3][3] = Rational(-1);
+  const Rational e10 = Rational(1) / Rational(10000000000L);
+  int answered = 0;
+  for (const Rational& g : {Rational(0), e10, e10 * e10, e10 * e10 * e10, core::pow2(-100)})
+    for (int sign : {1, -1}) {
+      if (g.is_zero() && sign < 0) continue;
+      const Rational eps = sign > 0 ? g : -g;
+      core::Mat4 plane; // z - (1 - eps)
+      plane[2][3] = plane[3][2] = Rational(1, 2);
+      plane[3][3] = eps - Rational(1);
+      for (bool second : {false, true}) {
+        const core::QuadricMatrix qs(sphere), qp(plane);
+        const std::string ctx = "eps " + eps.to_string() + (second ? " plane second" : "");
+        const bool fast = second ? expect_plane_pencil_like_exact(qs, qp, ctx)
+                                 : expect_plane_pencil_like_exact(qp, qs, ctx);
+        if (g.is_zero()) {
+          EXPECT_FALSE(fast) << ctx; // a tangency: a higher multiplicity
+        }
+        answered += fast;
+      }
+    }
+  EXPECT_GT(answered, 0);
+}

@@ -12,8 +12,13 @@
 // is singular (det A = 0 exactly: QuadricMatrix::singular) is re-based as the exact path does
 // (a' = t A - B, b' = -A, the same first t with det(tA - B) != 0; every t skipped a proven
 // zero), so its facts are the exact path's; rebased and rebase_t are set, facts.a / facts.b
-// stay empty (qsic.cpp fills them, in that basis, when a later stage needs them). Its facts carry
-// exact dyadic separators but no exact f/D values (fill them with complete_exact_invariants).
+// stay empty (qsic.cpp fills them, in that basis, when a later stage needs them). A pencil with
+// a plane among its members (exactly: a plane n . x + d = 0, n != 0, as either quadric) has that
+// member's root theta double by construction (rank 2; theta = 0, or -1/t when B is the plane and
+// the pencil was re-based): f = (l - theta)^2 g is read with g's discriminant, g(theta) and its
+// signs at the separators certain, the double root reported exact with rank 2 and inertia (1, 1)
+// (a plane's); any other multiple root goes to the exact path. Its facts carry exact dyadic
+// separators but no exact f/D values (fill them with complete_exact_invariants).
 //
 // analyze_pencil_float: doubles throughout (facts.a / facts.b left empty). The root pattern from
 // the float roots of f (Aberth): a cluster of m roots is one m-fold root when f is within
