@@ -89,6 +89,9 @@ struct DConic {
 // only (the Krawczyk test decides): on a pair posed far out the conics' rounded coefficients
 // leave the last steps wandering at ~1e-11 of the coordinates, which is close enough.
 bool newton(const DConic& a, const DConic& b, double& u, double& v) {
+  // Rounding to nearest here (the callers round upwards for the intervals): the converged
+  // point is then usually the double nearest the crossing, which is what gets reported.
+  CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
   double last = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 30; ++it) {
     double fa, au, av, fb, bu, bv;
@@ -142,6 +145,7 @@ bool krawczyk(const IConic& a, const IConic& b, double pu, double pv, const Inte
 struct Root {
   Interval xu, xv; ///< the box where it is the only root
   Interval eu, ev; ///< its tight enclosure (inside X)
+  double pu, pv;   ///< Newton's converged point (the reported one when inside the enclosure)
 };
 
 bool inside(const Interval& a, const Interval& b) {
@@ -154,6 +158,7 @@ bool prove_root(const IConic& a, const IConic& b, const DConic& da, const DConic
                 double face_size, Root& out) {
   double pu = 0.5 * c.u0 + 0.5 * c.u1, pv = 0.5 * c.v0 + 0.5 * c.v1;
   if (!newton(da, db, pu, pv)) return false;
+  out.pu = pu, out.pv = pv;
   const double wu = c.u1 - c.u0, wv = c.v1 - c.v0;
   // A root far from the cell says nothing about the cell.
   if (pu < c.u0 - 2 * wu || pu > c.u1 + 2 * wu || pv < c.v0 - 2 * wv || pv > c.v1 + 2 * wv)
@@ -276,8 +281,10 @@ face_crossings(const IConic& a, const IConic& b, const core::Rational& u_lo,
     if (pu == Place::Outside || pv == Place::Outside) continue;          // a root beyond the face
     if (pu != Place::Inside || pv != Place::Inside) return std::nullopt; // near an edge
     FacePoint fp;
-    fp.u = mid(rt.eu);
-    fp.v = mid(rt.ev);
+    // Newton's point when the enclosure holds it (usually the double nearest the crossing: a
+    // rational crossing such as (1/2, sqrt(3)/2) reads 0.5, not an enclosure's midpoint ulps off).
+    fp.u = rt.eu.inf() <= rt.pu && rt.pu <= rt.eu.sup() ? rt.pu : mid(rt.eu);
+    fp.v = rt.ev.inf() <= rt.pv && rt.pv <= rt.ev.sup() ? rt.pv : mid(rt.ev);
     fp.radius = std::max(0.5 * (rt.eu.sup() - rt.eu.inf()), 0.5 * (rt.ev.sup() - rt.ev.inf()));
     out.push_back(fp);
   }

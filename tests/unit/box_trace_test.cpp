@@ -383,6 +383,75 @@ TEST(BoxTrace, GivenBoxCutsClosedConics) {
   }
 }
 
+// Ellipsoid pairs (bounded curves, traced whole without a box) honour a given box like every
+// other pair (they once ignored it, or answered undecided when it cut a loop off):
+//  * two spheres meeting in the circle x = 1/2, y^2 + z^2 = 3/4: the box z >= 0 keeps half of
+//    it, one open piece from (1/2, -sqrt(3)/2, 0) to (1/2, sqrt(3)/2, 0); a box around it keeps
+//    it closed; a box beside it, nothing;
+//  * the two-oval pair x^2 + 2y^2 + 4z^2 = 1, y^2 + z^2 = 1/16 (ovals near x = +-0.93): the box
+//    x >= -1/2 holds one oval whole and proves the other outside; x >= 9/10 cuts its oval into
+//    two arcs; the slab |y| <= 1/5 cuts both ovals, four arcs, eight crossings. Swapped too.
+TEST(BoxTrace, EllipsoidPairsHonourAGivenBox) {
+  const double s = std::sqrt(3.0) / 2;
+  for (bool swap : {false, true}) {
+    const auto a = q("x^2 + y^2 + z^2 = 1"), b = q("x^2 + y^2 + z^2 - 2x = 0");
+    auto run = [&](const trace::Point3& lo, const trace::Point3& hi) {
+      return swap ? trace::intersect_curve(b, a, Mode::Filtered, given_box(lo, hi))
+                  : trace::intersect_curve(a, b, Mode::Filtered, given_box(lo, hi));
+    };
+    const auto half = run({-2, -2, 0}, {2, 2, 2});
+    ASSERT_EQ(half.status, certify::Status::Certified) << half.note;
+    ASSERT_TRUE(half.box.has_value());
+    expect_crossings(half, {{0.5, -s, 0}, {0.5, s, 0}}, "half circle");
+    ASSERT_EQ(half.branches.size(), 1u);
+    EXPECT_FALSE(half.branches[0].closed);
+    for (const auto& p : half.branches[0].points) {
+      EXPECT_GE(p[2], -1e-15);
+      EXPECT_NEAR(p[0], 0.5, 1e-13);
+      EXPECT_NEAR(p[1] * p[1] + p[2] * p[2], 0.75, 1e-13);
+    }
+    const auto whole = run({-2, -2, -2}, {2, 2, 2});
+    ASSERT_EQ(whole.status, certify::Status::Certified) << whole.note;
+    expect_crossings(whole, {}, "whole circle");
+    ASSERT_EQ(whole.branches.size(), 1u);
+    EXPECT_TRUE(whole.branches[0].closed);
+    const auto beside = run({2, 2, 2}, {3, 3, 3});
+    ASSERT_EQ(beside.status, certify::Status::Certified) << beside.note;
+    EXPECT_TRUE(beside.branches.empty());
+  }
+  for (bool swap : {false, true}) {
+    const auto a = q("x^2 + 2y^2 + 4z^2 = 1"), b = q("y^2 + z^2 = 1/16");
+    auto run = [&](const trace::Point3& lo, const trace::Point3& hi) {
+      return swap ? trace::intersect_curve(b, a, Mode::Filtered, given_box(lo, hi))
+                  : trace::intersect_curve(a, b, Mode::Filtered, given_box(lo, hi));
+    };
+    struct Want {
+      trace::Point3 lo, hi;
+      int closed, open, crossings;
+    };
+    for (const Want& w :
+         {Want{{-0.5, -1, -1}, {1, 1, 1}, 1, 0, 0}, Want{{0.9, -1, -1}, {2, 1, 1}, 0, 2, 4},
+          Want{{-1.5, -0.2, -1}, {1.5, 0.2, 1}, 0, 4, 8}}) {
+      const auto r = run(w.lo, w.hi);
+      const std::string ctx = "box x >= " + std::to_string(w.lo[0]) + (swap ? " swapped" : "");
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      ASSERT_TRUE(r.box_exits.has_value()) << ctx;
+      EXPECT_EQ(static_cast<int>(r.box_exits->points.size()), w.crossings) << ctx;
+      int closed = 0, open = 0;
+      for (const auto& br : r.branches) {
+        (br.closed ? closed : open) += 1;
+        for (const auto& p : br.points)
+          for (size_t k = 0; k < 3; ++k) {
+            EXPECT_GE(p[k], w.lo[k] - 1e-12) << ctx;
+            EXPECT_LE(p[k], w.hi[k] + 1e-12) << ctx;
+          }
+      }
+      EXPECT_EQ(closed, w.closed) << ctx;
+      EXPECT_EQ(open, w.open) << ctx;
+    }
+  }
+}
+
 // Cylinder x^2 + y^2 = 1 cut by the plane z = x/2 (an ellipse): the face x = -1/2 meets it at
 // y = -+sqrt(3)/2, z = -1/4; a box containing the ellipse has no crossing at all.
 TEST(BoxTrace, CylinderPlaneCrossings) {

@@ -1560,7 +1560,8 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
 void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
                 const TraceOptions& opt) {
   const QsicResult& t = out.topology;
-  if (a.kind() != core::QuadricKind::Ellipsoid && b.kind() != core::QuadricKind::Ellipsoid) {
+  if (opt.box ||
+      (a.kind() != core::QuadricKind::Ellipsoid && b.kind() != core::QuadricKind::Ellipsoid)) {
     trace_in_box(a, b, out, opt);
     return;
   }
