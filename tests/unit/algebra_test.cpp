@@ -116,6 +116,44 @@ TEST(RealRoots, ClusteredAndDyadicRoots) {
   check_against_arb(q, t, "dyadic");
 }
 
+// The float-guess route proved by Descartes' rule (isolate_real_roots' first try below degree
+// 12) on what makes it fail or succeed: quartics with coefficients of hundreds of bits (a
+// rational root a of 150-bit numerator and denominator) times x^2 - e (two real roots 2 sqrt(e)
+// apart) or x^2 + e (a complex pair sqrt(e) off the axis), e = 1e-10, 1e-20, 1e-30, 2^-100 and
+// the pair moved onto a: the separators must always give exactly FLINT's Sturm count and put
+// each of Arb's real roots in its own gap, whichever route answered.
+TEST(RealRoots, CloseRootsAndNearRealPairsWithBigCoefficients) {
+  Integer num, den;
+  fmpz_set_str(num.raw_mut(), "1427247692705959881058285969449495136382746771", 10);
+  fmpz_set_str(den.raw_mut(), "1298074214633706907132624082305024", 10); // 2^110, made odd:
+  fmpz_add_ui(den.raw_mut(), den.raw(), 7);
+  const UPolyZ lin = UPolyZ::from_coeffs({-num, den}); // den x - num
+  const Rational e10(1, 10000000000UL);
+  for (const Rational& e :
+       {e10, e10 * e10, e10 * e10 * e10, Rational::exact_from_double(std::ldexp(1.0, -100))})
+    for (int sign : {1, -1})
+      for (bool at_a : {false, true}) {
+        // x^2 -+ e around 0, or (x - a)^2 -+ e around a: over Z after clearing denominators.
+        const Rational centre = at_a ? Rational(num, den) : Rational(0);
+        const Rational c1 = -Rational(2) * centre, c0 = centre * centre - Rational(sign) * e;
+        Integer l;
+        fmpz_lcm(l.raw_mut(), fmpq_denref(c1.raw()), fmpq_denref(c0.raw()));
+        const UPolyZ q =
+            UPolyZ::from_coeffs({(c0 * Rational(l)).num(), (c1 * Rational(l)).num(), l});
+        UPolyZ p;
+        fmpz_poly_mul(p.raw_mut(), lin.raw(), q.raw());
+        fmpz_poly_mul(p.raw_mut(), p.raw(), UPolyZ::from_coeffs({Integer(3), Integer(-5)}).raw());
+        p = squarefree_part(p);
+        const std::string ctx = "e " + e.to_string() + (sign > 0 ? " real pair" : " complex pair") +
+                                (at_a ? " at a" : "");
+        const auto sep = algebra::isolate_real_roots(p);
+        EXPECT_EQ(static_cast<long>(sep.num_roots()), algebra::count_real_roots(p)) << ctx;
+        for (size_t i = 0; i + 1 < sep.separators.size(); ++i)
+          EXPECT_NE(p.sign_at(sep.separators[i]), p.sign_at(sep.separators[i + 1])) << ctx;
+        check_against_arb(p, sep, ctx);
+      }
+}
+
 TEST(RealRoots, RootsOfHugeDynamicRange) {
   // (2^1000 x - 1)(x - 2^1000)(x + 3)(2^-... ) style products: roots 2^-1000, 2^1000, -3 and
   // a pair 2^-1000 apart near 1. Arb's complex root finder needs thousands of bits here (it
