@@ -117,6 +117,21 @@ Where against(const Ball& v, const Rational& lo, const Rational& hi, long prec) 
   return Where::Unknown;
 }
 
+// The crossings found on the face x_k = c (face coordinates u = x_i, v = x_j), appended.
+void add_face_points(BoxExits& out, int k, bool at_max, size_t i, size_t j, const Rational& c,
+                     const std::vector<detail::FacePoint>& pts) {
+  for (const auto& fp : pts) {
+    BoxCrossing bc;
+    bc.axis = k;
+    bc.at_max = at_max;
+    bc.approx[static_cast<size_t>(k)] = c.to_double_approx();
+    bc.approx[i] = fp.u;
+    bc.approx[j] = fp.v;
+    bc.radius = fp.radius;
+    out.points.push_back(bc);
+  }
+}
+
 // A box with lo >= hi in some coordinate: not certified, with the reason (its crossings would
 // be refined towards a width of 0 without end). Nullopt for a proper box.
 std::optional<BoxExits> flat_box(const std::array<Rational, 3>& lo,
@@ -188,16 +203,7 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
         }
         if (pts) {
           if (!pts->empty()) ++out.filtered_faces;
-          for (const auto& fp : *pts) {
-            BoxCrossing bc;
-            bc.axis = k;
-            bc.at_max = side == 1;
-            bc.approx[ku] = c.to_double_approx();
-            bc.approx[i] = fp.u;
-            bc.approx[j] = fp.v;
-            bc.radius = fp.radius;
-            out.points.push_back(bc);
-          }
+          add_face_points(out, k, side == 1, i, j, c, *pts);
           continue;
         }
       }
@@ -265,16 +271,7 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
           out.reason = "a crossing on an edge of the box on the " + name;
           return out;
         }
-        for (const auto& fp : pts) {
-          BoxCrossing bc;
-          bc.axis = k;
-          bc.at_max = side == 1;
-          bc.approx[ku] = c.to_double_approx();
-          bc.approx[i] = fp.u;
-          bc.approx[j] = fp.v;
-          bc.radius = fp.radius;
-          out.points.push_back(bc);
-        }
+        add_face_points(out, k, side == 1, i, j, c, pts);
         continue;
       }
       // The float filter first: a face the curve provably misses needs no exact work (most

@@ -104,6 +104,25 @@ bool index_at(const Mat4T<I>& a, const Mat4T<I>& b, double s, int fsign, int& in
   return true;
 }
 
+// The simple root in the gap `gap` of the facts' samples: its interval, the indices on both
+// sides and the inertia they imply. Re-based because det A = 0, l = 0 is a root exactly
+// (f(0) = det(-b') = det A), the one of the gap around 0 (a separator at 0 would have had no
+// certain sign); reported exact, as the exact path's linear factor l reports it.
+RootFacts simple_root(const PencilFacts& out, size_t gap) {
+  RootFacts r;
+  r.lo = out.samples[gap];
+  r.hi = out.samples[gap + 1];
+  r.index_left = out.indices[gap];
+  r.index_right = out.indices[gap + 1];
+  r.sigma =
+      Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
+  if (out.rebased && r.lo.sign() < 0 && r.hi.sign() > 0) {
+    r.rational_value = Rational(0);
+    fmpz_poly_set_coeff_si(r.factor.raw_mut(), 1, 1);
+  }
+  return r;
+}
+
 // Whether q is a plane n . x + d = 0 with n != 0 exactly (its matrix of rank 2), read without
 // forming exact rationals where that can be avoided: no posed shape is a plane; a matrix of
 // doubles is read through its exact symmetric part (d_ij + d_ji = 0 exactly iff d_ji = -d_ij).
@@ -194,12 +213,8 @@ bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I
   for (int idx : out.indices)
     if (idx == 0 || idx == 4) out.definite_member = true;
   for (size_t i = 0; i + 1 < seps.size(); ++i) {
-    RootFacts r;
-    r.lo = out.samples[i];
-    r.hi = out.samples[i + 1];
-    r.index_left = out.indices[i];
-    r.index_right = out.indices[i + 1];
-    if (i == theta_gap) {
+    RootFacts r = simple_root(out, i);
+    if (i == theta_gap) { // the plane's root: exact, double, rank 2, inertia (1, 1)
       r.multiplicity = 2;
       r.rank = 2;
       r.sigma = Inertia{1, 1};
@@ -211,15 +226,6 @@ bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I
       fmpz_neg(num, fmpq_numref(theta.raw()));
       fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 0, num);
       fmpz_clear(num);
-    } else {
-      r.sigma =
-          Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
-      // Re-based because det A = 0: l = 0 is a root of f, so of g when theta != 0 (see the
-      // simple-root path); the gap around 0 holds it.
-      if (out.rebased && r.lo.sign() < 0 && r.hi.sign() > 0) {
-        r.rational_value = Rational(0);
-        fmpz_poly_set_coeff_si(r.factor.raw_mut(), 1, 1);
-      }
     }
     out.real_roots.push_back(std::move(r));
   }
@@ -327,21 +333,7 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
     if (idx == 0 || idx == 4) out.definite_member = true;
   out.real_roots.reserve(static_cast<size_t>(k));
   for (int i = 0; i < k; ++i) {
-    RootFacts r;
-    r.lo = out.samples[static_cast<size_t>(i)];
-    r.hi = out.samples[static_cast<size_t>(i) + 1];
-    r.index_left = out.indices[static_cast<size_t>(i)];
-    r.index_right = out.indices[static_cast<size_t>(i) + 1];
-    r.sigma =
-        Inertia{std::min(r.index_left, r.index_right), 4 - std::max(r.index_left, r.index_right)};
-    // Re-based because det A = 0: l = 0 is a root, exactly (f(0) = det(-b') = det A), the
-    // one of the gap around 0 (a separator at 0 would have had no certain sign); reported
-    // exact, as the exact path's linear factor l reports it.
-    if (out.rebased && r.lo.sign() < 0 && r.hi.sign() > 0) {
-      r.rational_value = Rational(0);
-      fmpz_poly_set_coeff_si(r.factor.raw_mut(), 1, 1);
-    }
-    out.real_roots.push_back(std::move(r));
+    out.real_roots.push_back(simple_root(out, static_cast<size_t>(i)));
   }
   out.complex_roots = 4 - k;
   out.root_pattern = k == 4 ? "R1" : (k == 2 ? "R3" : "R2");
