@@ -331,7 +331,9 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
         // refinement, not a coarse one to decide and a second to report: Newton's last steps
         // cost little against a call); wider tries when an end is still too close to call.
         std::optional<std::array<Ball, 2>> uv;
+        long used = 0; // the bits of the enclosure that decided
         for (long bits : {80L, 120L, 200L}) {
+          used = bits;
           uv = enclose(l, h, bits);
           if (!uv) continue;
           const long prec = bits + 64;
@@ -347,14 +349,27 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
           }
         }
         if (where == Where::Inside) {
-          // The reported point: the enclosure that decided (2^-80 of the box or narrower).
+          // The reported point: an enclosure of the crossing within 2^-80 of the box. The
+          // bits above narrow the chart's x; the face coordinates follow through
+          // y = -s10(x) / s11(x), which near a tangency (s11 small: two crossings 1e-15 apart)
+          // is wider by far (helper-27: points 1e-6 off at a face 2^-100 from tangent):
+          // narrowed further until they are, or s11 is not proved nonzero any more.
+          const double want = 0x1p-80 * scale.to_double_approx();
+          auto radius = [](const std::array<Ball, 2>& e) {
+            return std::max(mag_get_d(arb_radref(e[0].v)), mag_get_d(arb_radref(e[1].v)));
+          };
+          while (!(radius(*uv) <= want) && used < 2000) {
+            used += used;
+            auto finer = enclose(l, h, used);
+            if (!finer) break;
+            uv = std::move(finer);
+          }
           bc.axis = k;
           bc.at_max = side == 1;
           bc.approx[ku] = c.to_double_approx();
           bc.approx[i] = arf_get_d(arb_midref((*uv)[0].v), ARF_RND_NEAR);
           bc.approx[j] = arf_get_d(arb_midref((*uv)[1].v), ARF_RND_NEAR);
-          bc.radius =
-              std::max(mag_get_d(arb_radref((*uv)[0].v)), mag_get_d(arb_radref((*uv)[1].v)));
+          bc.radius = radius(*uv);
         }
         if (where == Where::Unknown) {
           out.points.clear();

@@ -1043,18 +1043,31 @@ std::optional<int> extreme_order(const core::QuadricMatrix& a, const core::Quadr
 // A result traced on a moved copy of the pair (translated or rescaled) whose box is reported
 // for the original pair: the box's exact crossings recomputed on the original pair and matched
 // again with the traced ends (the claim is about the box reported).
+// When the moved copy's verdict stopped at its own box crossings (its box's faces rounded
+// onto a tangency, say: helper-27's face 2^-100 above a point where the curve touches y = 0,
+// moved by a translation), the checks that follow settle_box's are made again on the original
+// pair's crossings; otherwise an answer could carry certified `exits` beside a note saying
+// they are not.
 void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& local) {
+  const std::string exits_note = "the crossings with the box's faces are not certified: ";
+  const bool stopped_at_exits = local.status != Status::Certified && local.box_exits &&
+                                !local.box_exits->certified &&
+                                local.note == exits_note + local.box_exits->reason;
   local.box_exits = curve_exits(a, b, local.affine, *local.box, local.topology);
-  if (local.status != Status::Certified) return;
-  const std::string why =
-      local.box_exits->certified
-          ? match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal())
-          : "the crossings with the box's faces are not certified: " + local.box_exits->reason;
-  if (!why.empty()) {
-    local.status = Status::Undecided;
-    local.matches_topology = false;
-    local.note = why;
-  }
+  if (local.status != Status::Certified && !stopped_at_exits) return;
+  std::string why;
+  if (!local.box_exits->certified)
+    why = exits_note + local.box_exits->reason;
+  else if (local.affine.isolated_points &&
+           static_cast<int>(local.isolated_points.size()) != *local.affine.isolated_points)
+    why = std::to_string(local.isolated_points.size()) +
+          " isolated point(s) in the box; the affine topology has " +
+          std::to_string(*local.affine.isolated_points);
+  else
+    why = match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal());
+  local.matches_topology = why.empty();
+  local.status = why.empty() ? Status::Certified : Status::Undecided;
+  local.note = why;
 }
 
 CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
