@@ -11,10 +11,11 @@
 // certified morphology prescribes (loops, figure eight, loop with cusp, conics, double conic,
 // isolated points); otherwise Undecided, with what was found and why. Scope: an ellipsoid (or
 // sphere) and any second quadric, where the real curve is bounded and the projective topology is
-// the affine one; for other pairs (regular pencils) the curve is traced inside a box (given in
-// TraceOptions::box, or chosen to contain the special points, the extreme points and every closed
-// loop, with a margin): loops closed, pieces of unbounded branches open with both ends on the box's
-// faces, conics in closed form clipped to the box.
+// the affine one (traced whole, unless a box is given); for other pairs (regular pencils), and
+// for any pair given TraceOptions::box, the curve is traced inside a box (the given one, or one
+// chosen to contain the special points, the extreme points and every closed loop, with a
+// margin): loops closed, pieces cut by the box (and of unbounded branches) open with both ends on
+// the box's faces, conics in closed form clipped to the box.
 // There status is Certified only when the affine topology (certify/affine.hpp) is certified,
 // the traced closed loops and isolated points have its counts (a given box may cut loops:
 // certified then only when certify/inner_loops.hpp proves that no more loops than those traced
@@ -83,7 +84,7 @@ struct CurveResult {
   double tolerance = 2e-4;
   bool matches_topology = false;
   bool exact_start_points = false; ///< the float start points missed a branch: exact ones used
-  std::optional<Box> box;          ///< the box the curve was traced in (non-ellipsoid pairs)
+  std::optional<Box> box;          ///< the box the curve was traced in (non-ellipsoid pairs, or given)
   bool box_automatic = false;      ///< chosen by the tracer (not given)
   /// The exact crossings of the curve with the box's faces (certify/box_exits.hpp), each
   /// matched with one end of one traced open piece when the answer is certified.
