@@ -84,8 +84,8 @@ struct CurveResult {
   double tolerance = 2e-4;
   bool matches_topology = false;
   bool exact_start_points = false; ///< the float start points missed a branch: exact ones used
-  std::optional<Box> box;          ///< the box the curve was traced in (non-ellipsoid pairs, or given)
-  bool box_automatic = false;      ///< chosen by the tracer (not given)
+  std::optional<Box> box;     ///< the box the curve was traced in (non-ellipsoid pairs, or given)
+  bool box_automatic = false; ///< chosen by the tracer (not given)
   /// The exact crossings of the curve with the box's faces (certify/box_exits.hpp), each
   /// matched with one end of one traced open piece when the answer is certified.
   std::optional<certify::BoxExits> box_exits;
