@@ -206,6 +206,24 @@ BoxExits box_exits(const core::Mat4& a_in, const core::Mat4& b_in,
           add_face_points(out, k, side == 1, i, j, c, *pts);
           continue;
         }
+      } else if (interval_filter && linear_on(a, i, j) != linear_on(b, i, j)) {
+        // A plane's section (a line of the face) against a conic: the quadratic along the
+        // line in intervals (the exact line_conic_crossings below, in Q(sqrt D) and Arb, was
+        // ~30% of a cone-plane pair).
+        std::optional<std::vector<detail::FacePoint>> pts;
+        {
+          CGAL::Protect_FPU_rounding<true> guard;
+          const Interval& ic = side ? ihi[ku] : ilo[ku];
+          const detail::IConic fa(ia, i, j, ku, ic), fb(ib, i, j, ku, ic);
+          const bool a_line = linear_on(a, i, j);
+          pts = detail::line_face_crossings(a_line ? fa : fb, a_line ? fb : fa, lo[i], hi[i], lo[j],
+                                            hi[j]);
+        }
+        if (pts) {
+          if (!pts->empty()) ++out.filtered_faces;
+          add_face_points(out, k, side == 1, i, j, c, *pts);
+          continue;
+        }
       }
       // (u, v, 1) -> (x, y, z, w): u along axis i, v along axis j, x_k = c.
       const M3 ca = face_form(a, i, j, ku, c), cb = face_form(b, i, j, ku, c);

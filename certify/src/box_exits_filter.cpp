@@ -296,4 +296,79 @@ face_crossings(const IConic& a, const IConic& b, const core::Rational& u_lo,
   return out;
 }
 
+std::optional<std::vector<FacePoint>> line_face_crossings(const IConic& line, const IConic& conic,
+                                                          const core::Rational& u_lo,
+                                                          const core::Rational& u_hi,
+                                                          const core::Rational& v_lo,
+                                                          const core::Rational& v_hi) {
+  CGAL::Protect_FPU_rounding<true> guard;
+  const Rect r(u_lo, u_hi, v_lo, v_hi);
+  // The line 2 lu u + 2 lv v + l1 = 0. Parametrised by the coordinate along which it runs
+  // more (its other coordinate a multiple of it that does not blow up): by u when |lv| >= |lu|,
+  // v = m u + n; else by v, u = m v + n (the conic's roles of u and v swapped).
+  const Interval &lu = line.c02, &lv = line.c12, &l1 = line.c22;
+  const bool by_u = std::abs(mid(lv)) >= std::abs(mid(lu));
+  const Interval& lead = by_u ? lv : lu; // divides
+  const Interval& other = by_u ? lu : lv;
+  if (lead.do_overlap(Interval(0))) return std::nullopt;
+  const Interval m = -other / lead, n = -l1 / (Interval(2) * lead);
+  // The conic in (t, s) with t the parameter and s the other coordinate.
+  const Interval &q_tt = by_u ? conic.c00 : conic.c11, &q_ss = by_u ? conic.c11 : conic.c00;
+  const Interval &q_t = by_u ? conic.c02 : conic.c12, &q_s = by_u ? conic.c12 : conic.c02;
+  const Interval& q_ts = conic.c01;
+  // Along s = m t + n: A t^2 + 2 B t + C.
+  const Interval a = q_tt + m * (Interval(2) * q_ts + q_ss * m);
+  const Interval b = (q_ts + q_ss * m) * n + q_t + q_s * m;
+  const Interval c = (q_ss * n + Interval(2) * q_s) * n + conic.c22;
+  const Interval disc = CGAL::square(b) - a * c;
+  if (!std::isfinite(disc.inf()) || !std::isfinite(disc.sup())) return std::nullopt;
+  std::vector<FacePoint> out;
+  if (disc.sup() < 0) return out; // no real common point
+  if (!(disc.inf() > 0) || a.do_overlap(Interval(0))) return std::nullopt;
+  // t = (-B +- sqrt(disc)) / A, the root away from cancellation by -B - sign(B) sqrt(disc)
+  // and the other as C / (A t1) (their product is C / A); both formulas are exact, so either
+  // enclosure is one; the tighter one is used.
+  const Interval sq = CGAL::sqrt(disc);
+  std::array<Interval, 2> t{(-b + sq) / a, (-b - sq) / a}; // line_conic_crossings' order
+  if (b.inf() > 0) {
+    t[1] = (-b - sq) / a;
+    t[0] = c / (a * t[1]);
+  } else if (b.sup() < 0) {
+    t[0] = (-b + sq) / a;
+    t[1] = c / (a * t[0]);
+  }
+  const double face_size = std::max(r.whole.u1 - r.whole.u0, r.whole.v1 - r.whole.v0);
+  std::array<FacePoint, 2> found;
+  size_t count = 0;
+  for (const Interval& ti : t) {
+    if (!std::isfinite(ti.inf()) || !std::isfinite(ti.sup())) return std::nullopt;
+    const Interval si = m * ti + n;
+    const Interval& u = by_u ? ti : si;
+    const Interval& v = by_u ? si : ti;
+    const Place pu = against(u, r.u0, r.u1), pv = against(v, r.v0, r.v1);
+    if (pu == Place::Outside || pv == Place::Outside) continue;          // beyond the face
+    if (pu != Place::Inside || pv != Place::Inside) return std::nullopt; // near an edge
+    FacePoint fp;
+    fp.u = mid(u);
+    fp.v = mid(v);
+    fp.radius = std::max(0.5 * (u.sup() - u.inf()), 0.5 * (v.sup() - v.inf()));
+    const double scale = std::max({face_size, std::abs(fp.u), std::abs(fp.v)});
+    if (!(fp.radius <= 0x1p-46 * scale)) return std::nullopt; // too wide to report
+    found[count++] = fp;
+  }
+  // line_conic_crossings parametrises by u unless lv = 0 exactly (an enclosure [0, 0]), and
+  // lists (-B + sqrt) / A first: the larger parameter first when A > 0. A's sign does not
+  // depend on the parametrisation (the conic's form at the line's direction, up to a square),
+  // and swapping to v reverses the parameter's order when the slope is negative.
+  if (count == 2) {
+    const bool exact_by_u = !(lv.inf() == 0 && lv.sup() == 0);
+    const bool larger_first = a.inf() > 0;
+    const double key0 = exact_by_u ? found[0].u : found[0].v;
+    const double key1 = exact_by_u ? found[1].u : found[1].v;
+    if ((key0 < key1) == larger_first) std::swap(found[0], found[1]);
+  }
+  out.assign(found.begin(), found.begin() + static_cast<long>(count));
+  return out;
+}
+
 } // namespace surfcert::certify::detail

@@ -57,4 +57,19 @@ std::optional<std::vector<FacePoint>>
 face_crossings(const IConic& a, const IConic& b, const core::Rational& u_lo,
                const core::Rational& u_hi, const core::Rational& v_lo, const core::Rational& v_hi);
 
+/// The same for a face where one quadric restricts to a line (`line`: no quadratic part, its
+/// entries c00 = c01 = c11 = 0 exactly) and the other to `conic`: the conic along the line is
+/// a quadratic A t^2 + 2 B t + C with enclosed coefficients; proved when B^2 - A C < 0 (no
+/// common point) or > 0 with A != 0 (two simple roots: transversal crossings at smooth points,
+/// as line_conic_crossings' Complete), each root's face point enclosed within 2^-46 of the
+/// face's scale and placed inside or outside the rectangle. Listed in line_conic_crossings'
+/// order. Nullopt (the exact line_conic_crossings then) for anything else: a double or nearly
+/// double root, the line nearly parallel to an asymptote (A near 0), a point near an edge, the
+/// line's coefficients not proved nonzero.
+std::optional<std::vector<FacePoint>> line_face_crossings(const IConic& line, const IConic& conic,
+                                                          const core::Rational& u_lo,
+                                                          const core::Rational& u_hi,
+                                                          const core::Rational& v_lo,
+                                                          const core::Rational& v_hi);
+
 } // namespace surfcert::certify::detail

@@ -7,7 +7,9 @@
 //    at gaps of +-1e-10, 1e-20, 1e-30, 2^-100 (two crossings that close together, or none), and
 //    a crossing at a rational point moved +-1e-10 ... 2^-100 off an edge of the box. The filter
 //    must prove or defer, never miscount: the answers are the closed form's, with a tangency
-//    and an edge crossing not certified.
+//    and an edge crossing not certified. The same with the spheres' radical plane in place of
+//    the second sphere (line_face_crossings: a line and a conic on each face), and random
+//    planes against posed natural quadrics.
 #include "support/distance_checks.hpp"
 
 #include "surfcert/certify/box_exits.hpp"
@@ -193,44 +195,49 @@ TEST(BoxExitsFilter, CrossingsThatCloseTogetherAreNeverMiscounted) {
       hi{Rational(2), Rational(2), Rational(2)};
   const Mat4 a = sphere_x(Rational(0), Rational(1));
   for (const Rational& g : gaps())
-    for (int sign : {1, -1}) {
-      const Rational eta = sign > 0 ? g : -g;
-      const Rational x0 = Rational(4, 5) - eta;
-      const Mat4 b = sphere_x(Rational(1), Rational(2) - Rational(2) * x0);
-      const std::string ctx = "eta " + eta.to_string();
-      for (bool filter : {true, false}) {
-        const auto r = certify::box_exits(a, b, lo, hi, filter);
-        ASSERT_TRUE(r.certified) << ctx << ": " << r.reason;
-        if (sign < 0) {
-          EXPECT_TRUE(r.points.empty()) << ctx;
-          continue;
+    for (int sign : {1, -1})
+      for (bool plane : {false, true}) {
+        const Rational eta = sign > 0 ? g : -g;
+        const Rational x0 = Rational(4, 5) - eta;
+        const Mat4 sb = sphere_x(Rational(1), Rational(2) - Rational(2) * x0);
+        // The radical plane 2 x - 2 x0 = 0 (a - sb) instead of the second sphere: the same
+        // curve, its face sections a line and a conic (line_face_crossings).
+        const Mat4 b = plane ? a + core::scaled(sb, Rational(-1)) : sb;
+        const std::string ctx = "eta " + eta.to_string() + (plane ? " (plane)" : "");
+        for (bool filter : {true, false}) {
+          const auto r = certify::box_exits(a, b, lo, hi, filter);
+          ASSERT_TRUE(r.certified) << ctx << ": " << r.reason;
+          if (sign < 0) {
+            EXPECT_TRUE(r.points.empty()) << ctx;
+            continue;
+          }
+          ASSERT_EQ(r.points.size(), 2u) << ctx;
+          // y = +-sqrt(eta (8/5 - eta)): the square exact, then one rounding and a square root.
+          const double y = std::sqrt((eta * (Rational(8, 5) - eta)).to_double_approx());
+          std::vector<double> ys;
+          for (const auto& p : r.points) {
+            EXPECT_EQ(p.axis, 2) << ctx;
+            EXPECT_FALSE(p.at_max) << ctx;
+            EXPECT_NEAR(p.approx[0], x0.to_double_approx(), p.radius + 1e-15) << ctx;
+            ys.push_back(p.approx[1]);
+            // The promised width (2^-80 of the box exactly, 2^-46 on the interval route) and the
+            // point within it: near a tangency the chart's root was narrow while the face
+            // coordinates were not (points 1e-6 off at 2^-100, helper-27).
+            EXPECT_LE(p.radius, (filter ? 0x1p-46 : 0x1p-80) * 4) << ctx;
+            EXPECT_LE(std::abs(std::abs(p.approx[1]) - y), p.radius + 4e-16 * y + 1e-300) << ctx;
+          }
+          // Upper and lower bound: one crossing on each side of y = 0.
+          EXPECT_LT(std::min(ys[0], ys[1]), 0) << ctx;
+          EXPECT_GT(std::max(ys[0], ys[1]), 0) << ctx;
         }
-        ASSERT_EQ(r.points.size(), 2u) << ctx;
-        // y = +-sqrt(eta (8/5 - eta)): the square exact, then one rounding and a square root.
-        const double y = std::sqrt((eta * (Rational(8, 5) - eta)).to_double_approx());
-        std::vector<double> ys;
-        for (const auto& p : r.points) {
-          EXPECT_EQ(p.axis, 2) << ctx;
-          EXPECT_FALSE(p.at_max) << ctx;
-          EXPECT_NEAR(p.approx[0], x0.to_double_approx(), p.radius + 1e-15) << ctx;
-          ys.push_back(p.approx[1]);
-          // The promised width (2^-80 of the box exactly, 2^-46 on the interval route) and the
-          // point within it: near a tangency the chart's root was narrow while the face
-          // coordinates were not (points 1e-6 off at 2^-100, helper-27).
-          EXPECT_LE(p.radius, (filter ? 0x1p-46 : 0x1p-80) * 4) << ctx;
-          EXPECT_LE(std::abs(std::abs(p.approx[1]) - y), p.radius + 4e-16 * y + 1e-300) << ctx;
-        }
-        // Upper and lower bound: one crossing on each side of y = 0.
-        EXPECT_LT(std::min(ys[0], ys[1]), 0) << ctx;
-        EXPECT_GT(std::max(ys[0], ys[1]), 0) << ctx;
       }
-    }
   // eta = 0: the circle touches the face (a tangency): not certified on either route.
   const Mat4 b = sphere_x(Rational(1), Rational(2) - Rational(8, 5));
-  for (bool filter : {true, false}) {
-    const auto r = certify::box_exits(a, b, lo, hi, filter);
-    EXPECT_FALSE(r.certified);
-  }
+  for (const Mat4& bb : {b, a + core::scaled(b, Rational(-1))})
+    for (bool filter : {true, false}) {
+      const auto r = certify::box_exits(a, bb, lo, hi, filter);
+      EXPECT_FALSE(r.certified);
+    }
 }
 
 // The spheres above with x0 = 2/3: the circle crosses the face z = 1/3 at (2/3, +-2/3, 1/3),
@@ -240,31 +247,116 @@ TEST(BoxExitsFilter, CrossingsThatCloseTogetherAreNeverMiscounted) {
 // the edge: not certified.
 TEST(BoxExitsFilter, CrossingsNearAnEdgeGoToTheRightFace) {
   const Mat4 a = sphere_x(Rational(0), Rational(1));
-  const Mat4 b = sphere_x(Rational(1), Rational(2, 3));
+  const Mat4 sb = sphere_x(Rational(1), Rational(2, 3));
+  const Mat4 pb = a + core::scaled(sb, Rational(-1)); // the radical plane x = 2/3
   for (const Rational& g : gaps())
-    for (int sign : {1, -1}) {
-      const Rational eps = sign > 0 ? g : -g;
-      const R3 lo{Rational(-2), Rational(-2), Rational(1, 3)};
-      const R3 hi{Rational(2), Rational(2, 3) + eps, Rational(2)};
-      const std::string ctx = "eps " + eps.to_string();
-      for (bool filter : {true, false}) {
-        const auto r = certify::box_exits(a, b, lo, hi, filter);
-        ASSERT_TRUE(r.certified) << ctx << ": " << r.reason;
-        ASSERT_EQ(r.points.size(), 2u) << ctx;
-        int on_bottom = 0, on_side = 0;
-        for (const auto& p : r.points) {
-          if (p.axis == 2 && !p.at_max) {
-            ++on_bottom;
-            EXPECT_NEAR(std::abs(p.approx[1]), 2.0 / 3, p.radius + 1e-15) << ctx;
+    for (int sign : {1, -1})
+      for (const Mat4* bp : {&sb, &pb}) {
+        const Mat4& b = *bp;
+        const Rational eps = sign > 0 ? g : -g;
+        const R3 lo{Rational(-2), Rational(-2), Rational(1, 3)};
+        const R3 hi{Rational(2), Rational(2, 3) + eps, Rational(2)};
+        const std::string ctx = "eps " + eps.to_string() + (bp == &pb ? " (plane)" : "");
+        for (bool filter : {true, false}) {
+          const auto r = certify::box_exits(a, b, lo, hi, filter);
+          ASSERT_TRUE(r.certified) << ctx << ": " << r.reason;
+          ASSERT_EQ(r.points.size(), 2u) << ctx;
+          int on_bottom = 0, on_side = 0;
+          for (const auto& p : r.points) {
+            if (p.axis == 2 && !p.at_max) {
+              ++on_bottom;
+              EXPECT_NEAR(std::abs(p.approx[1]), 2.0 / 3, p.radius + 1e-15) << ctx;
+            }
+            if (p.axis == 1 && p.at_max) ++on_side;
           }
-          if (p.axis == 1 && p.at_max) ++on_side;
+          EXPECT_EQ(on_bottom, sign > 0 ? 2 : 1) << ctx;
+          EXPECT_EQ(on_side, sign > 0 ? 0 : 1) << ctx;
         }
-        EXPECT_EQ(on_bottom, sign > 0 ? 2 : 1) << ctx;
-        EXPECT_EQ(on_side, sign > 0 ? 0 : 1) << ctx;
       }
-    }
   const R3 lo{Rational(-2), Rational(-2), Rational(1, 3)};
   const R3 hi{Rational(2), Rational(2, 3), Rational(2)};
-  for (bool filter : {true, false})
-    EXPECT_FALSE(certify::box_exits(a, b, lo, hi, filter).certified);
+  for (const Mat4* bp : {&sb, &pb})
+    for (bool filter : {true, false})
+      EXPECT_FALSE(certify::box_exits(a, *bp, lo, hi, filter).certified);
+}
+
+// Planes (random rational normals and offsets) against random cones, cylinders and spheres
+// under random rational poses: every face where the plane's section is a line. Wherever the
+// exact route certifies, the filtered one gives the same crossings on the same faces, and the
+// interval route proves most faces with crossings itself; the reported points satisfy both
+// equations (exact substitution of the doubles, within the radius' effect).
+TEST(BoxExitsFilter, PlaneSectionsAgreeWithTheExactRoute) {
+  std::mt19937_64 rng(28);
+  std::uniform_int_distribution<long> q(-9, 9), t(-100, 100), r(30, 100), kind(0, 2);
+  const auto local = [&]() {
+    const Rational a(r(rng), 100);
+    switch (kind(rng)) {
+    case 0:
+      return diag(Rational(1), Rational(1), Rational(1), -a * a);
+    case 1:
+      return diag(Rational(1), Rational(1), Rational(0), -a * a);
+    default:
+      return diag(Rational(1), Rational(1), -a * a, Rational(0));
+    }
+  };
+  const auto pose = [&]() {
+    long w, x, y, z;
+    do {
+      w = q(rng), x = q(rng), y = q(rng), z = q(rng);
+    } while (w == 0 && x == 0 && y == 0 && z == 0);
+    return surfcert::testing::motion(
+        w, x, y, z, {Rational(t(rng), 100), Rational(t(rng), 100), Rational(t(rng), 100)});
+  };
+  int compared = 0, crossing_faces = 0, filtered_faces = 0;
+  for (int n = 0; n < 200; ++n) {
+    const Mat4 a = posed(local(), pose());
+    // n . x = d, n with small integer entries (an axis-parallel plane now and then).
+    Mat4 b;
+    long nx, ny, nz;
+    do {
+      nx = q(rng) / 3, ny = q(rng) / 2, nz = q(rng);
+    } while (nx == 0 && ny == 0 && nz == 0);
+    b[0][3] = b[3][0] = Rational(nx, 2);
+    b[1][3] = b[3][1] = Rational(ny, 2);
+    b[2][3] = b[3][2] = Rational(nz, 2);
+    b[3][3] = Rational(-t(rng), 100);
+    const R3 lo{Rational(-3, 2), Rational(-5, 4), Rational(-2)};
+    const R3 hi{Rational(7, 4), Rational(3, 2), Rational(5, 4)};
+    for (bool swap : {false, true}) {
+      const auto f = swap ? certify::box_exits(b, a, lo, hi) : certify::box_exits(a, b, lo, hi);
+      const auto e =
+          swap ? certify::box_exits(b, a, lo, hi, false) : certify::box_exits(a, b, lo, hi, false);
+      expect_same(f, e, 4, "pair " + std::to_string(n) + (swap ? " swapped" : ""));
+      if (!e.certified || swap) continue;
+      ++compared;
+      std::vector<std::pair<int, bool>> faces;
+      for (const auto& p : e.points)
+        faces.emplace_back(p.axis, p.at_max);
+      std::sort(faces.begin(), faces.end());
+      crossing_faces += static_cast<int>(std::unique(faces.begin(), faces.end()) - faces.begin());
+      filtered_faces += f.filtered_faces;
+      // The filtered points on both surfaces: |X^T M X| at the double point within what a
+      // displacement of radius + rounding can produce (gradients here are below ~30).
+      for (const auto& p : f.points) {
+        std::array<Rational, 4> x;
+        for (size_t k = 0; k < 3; ++k)
+          x[k] = Rational::exact_from_double(p.approx[k]);
+        x[3] = Rational(1);
+        for (const Mat4* m : {&a, static_cast<const Mat4*>(&b)}) {
+          Rational v;
+          for (size_t i = 0; i < 4; ++i)
+            for (size_t j = 0; j < 4; ++j)
+              v += x[i] * (*m)[i][j] * x[j];
+          EXPECT_LE(std::abs(v.to_double_approx()), 100 * (p.radius + 1e-15))
+              << "pair " << n << ": a crossing off a surface";
+        }
+      }
+    }
+  }
+  EXPECT_GE(compared, 180);
+  EXPECT_GE(crossing_faces, 150);
+  EXPECT_GE(filtered_faces, crossing_faces * 3 / 4)
+      << filtered_faces << " of " << crossing_faces << " faces with crossings";
+  std::printf("%d certified, %d faces with crossings, %d proved by the filter\n", compared,
+              crossing_faces, filtered_faces);
 }

@@ -229,17 +229,21 @@ TEST(LineConicExits, TangencyEdgeAndComponentAreRefusedExactly) {
   EXPECT_FALSE(exits(y0, par, {-p2, m1, z}, {p2, p1, p2}).certified);
   // The same tangency outside the face rectangle (x in [1/2, 2]): no point there; the top face
   // z = 2 is crossed once at x = sqrt(2), the side x = 1/2 at z = 1/4.
-  const auto off = exits(y0, par, {Rational(1, 2), m1, z}, {p2, p1, p2});
-  ASSERT_TRUE(off.certified) << off.reason;
-  ASSERT_EQ(off.points.size(), 2u);
-  for (const auto& c : off.points) {
-    if (c.axis == 2) {
-      EXPECT_NEAR(c.approx[0], std::sqrt(2.0), 1e-15);
+  // Both routes: the interval filter (line_face_crossings: points within 2^-46 of the face)
+  // and the exact closed form (128-bit enclosures).
+  for (bool filter : {true, false}) {
+    const auto off = certify::box_exits(y0, par, {Rational(1, 2), m1, z}, {p2, p1, p2}, filter);
+    ASSERT_TRUE(off.certified) << off.reason;
+    ASSERT_EQ(off.points.size(), 2u);
+    for (const auto& c : off.points) {
+      if (c.axis == 2) {
+        EXPECT_NEAR(c.approx[0], std::sqrt(2.0), c.radius + 4e-16);
+      }
+      if (c.axis == 0) {
+        EXPECT_NEAR(c.approx[2], 0.25, c.radius + 1e-16);
+      }
+      EXPECT_LE(c.radius, filter ? 0x1p-46 * 2 : 1e-30);
     }
-    if (c.axis == 0) {
-      EXPECT_NEAR(c.approx[2], 0.25, 1e-15);
-    }
-    EXPECT_LE(c.radius, 1e-30);
   }
   // Crossing z = 1 exactly at the corners x = +-1: an edge.
   EXPECT_FALSE(exits(y0, par, {m1, m1, m1}, {p1, p1, p1}).certified);

@@ -36,7 +36,12 @@
 // a +- b sqrt(D) are placed against the face rectangle by exact signs; a simple root is a
 // transversal crossing at a smooth point, a double root in the closed rectangle or a root on its
 // boundary is not certified (tangency, edge), and the line lying on the other conic is a
-// component in the face's plane.
+// component in the face's plane. Its interval filter first (box_exits_filter.hpp,
+// line_face_crossings): the quadratic's coefficients enclosed; a discriminant proved negative
+// is no crossing, one proved positive with A proved nonzero two simple roots, each enclosed
+// within 2^-46 of the face and proved inside the open rectangle or outside the closed one;
+// anything else (a double or nearly double root, A near 0, a point near an edge) the exact
+// signs above.
 //
 // One exception is read differently, exactly: a plane tangent to the other quadric along a line
 // (the plane's section is a rank-1 conic: a plane along a cylinder's ruling at distance r, a
