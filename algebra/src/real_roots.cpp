@@ -661,12 +661,11 @@ std::optional<std::vector<Rational>> float_guess_descartes(const UPolyZ& p,
 
 } // namespace
 
-RootSeparation isolate_real_roots(const UPolyZ& p) {
-  if (p.degree() >= 12)
-    if (auto s = isolate_with_arb(p)) return *s;
-  RootSeparation out;
-  // Coefficients as doubles scaled by a common power of two (no overflow for huge integers;
-  // the roots are unchanged).
+namespace {
+
+// p's coefficients as doubles scaled by a common power of two (no overflow for huge integers;
+// the roots are unchanged).
+std::vector<double> scaled_doubles(const UPolyZ& p) {
   std::vector<double> c;
   slong emax = LONG_MIN;
   std::vector<slong> ex(static_cast<size_t>(p.degree() + 1));
@@ -680,6 +679,156 @@ RootSeparation isolate_real_roots(const UPolyZ& p) {
     c.push_back(mant[i] == 0
                     ? 0.0
                     : std::ldexp(mant[i], static_cast<int>(std::max<slong>(ex[i] - emax, -2000))));
+  return c;
+}
+
+} // namespace
+
+namespace {
+
+// Descartes' count for (lo, hi) in Arb balls: the coefficients of
+// (1 + x)^n p((lo + hi x) / (1 + x)) = rev(p(lo + (hi - lo) t))(1 + x), at `prec` bits. Their
+// sign variations when every coefficient's sign is certain (a ball not containing 0, or an
+// exact 0); -1 otherwise. The exact count (descartes_variations) multiplies polynomials of
+// coefficients of hundreds of bits; balls of 128 bits decide the same signs in a fraction.
+long ball_variations(const UPolyZ& p, const Rational& lo, const Rational& hi, slong prec) {
+  const slong n = p.degree();
+  BallPoly q;
+  arb_poly_set_fmpz_poly(q.v, p.raw(), prec);
+  Ball a, w;
+  arb_set_fmpq(a.v, lo.raw(), prec);
+  arb_poly_taylor_shift(q.v, q.v, a.v, prec);
+  const Rational width = hi - lo;
+  arb_set_fmpq(w.v, width.raw(), prec);
+  Ball wp(1.0);
+  for (slong i = 0; i <= n; ++i) {
+    arb_mul(q.v->coeffs + i, q.v->coeffs + i, wp.v, prec);
+    arb_mul(wp.v, wp.v, w.v, prec);
+  }
+  _arb_poly_reverse(q.v->coeffs, q.v->coeffs, n + 1, n + 1); // in place: x^n q(1/x)
+  _arb_poly_normalise(q.v);
+  Ball one(1.0);
+  arb_poly_taylor_shift(q.v, q.v, one.v, prec);
+  long v = 0;
+  int prev = 0;
+  for (slong i = 0; i <= n; ++i) {
+    const arb_struct* c = q.v->coeffs + i;
+    if (i >= q.v->length || arb_is_zero(c)) continue;
+    int sg = 0;
+    if (arb_is_positive(c))
+      sg = 1;
+    else if (arb_is_negative(c))
+      sg = -1;
+    else
+      return -1;
+    if (prev != 0 && sg != prev) ++v;
+    prev = sg;
+  }
+  return v;
+}
+
+// p(x) != 0, proved by a ball evaluation or else exactly.
+bool nonzero_at(const UPolyZ& p, const Rational& x) {
+  BallPoly q;
+  arb_poly_set_fmpz_poly(q.v, p.raw(), 128);
+  Ball xb, y;
+  arb_set_fmpq(xb.v, x.raw(), 128);
+  arb_poly_evaluate(y.v, q.v, xb.v, 128);
+  if (!arb_contains_zero(y.v)) return true;
+  return p.sign_at(x) != 0;
+}
+
+// No real root of p on (lo, hi), proved by Descartes' rule on pieces: split at the dyadics
+// nearest the real parts of p's non-real float roots in there (a root off the real axis at a
+// piece's end lies outside the disc on that piece, which by the one-circle theorem is all a
+// count of 0 needs), then halved where a count is still positive, within a budget.
+bool no_root_on(const UPolyZ& p, const Rational& lo, const Rational& hi,
+                const std::vector<double>& hints) {
+  std::vector<Rational> cuts{lo};
+  {
+    std::vector<Rational> inner;
+    for (double x : hints) {
+      const double d = simplest_dyadic_near(x);
+      if (!std::isfinite(d)) continue;
+      const Rational r = Rational::exact_from_double(d);
+      if (lo < r && r < hi) inner.push_back(r);
+    }
+    std::sort(inner.begin(), inner.end());
+    for (const Rational& r : inner)
+      if (cuts.back() < r) cuts.push_back(r);
+  }
+  cuts.push_back(hi);
+  for (size_t i = 1; i + 1 < cuts.size(); ++i)
+    if (!nonzero_at(p, cuts[i])) return false;
+  std::vector<std::pair<Rational, Rational>> todo;
+  for (size_t i = 0; i + 1 < cuts.size(); ++i)
+    todo.emplace_back(cuts[i], cuts[i + 1]);
+  int budget = 32;
+  while (!todo.empty()) {
+    if (budget-- <= 0) return false;
+    const auto [a, b] = todo.back();
+    todo.pop_back();
+    long v = ball_variations(p, a, b, 128);
+    if (v < 0) v = ball_variations(p, a, b, 512);
+    if (v < 0) v = descartes_variations(p, a, b);
+    if (v == 0) continue;
+    if (v % 2 == 1) return false; // a real root there
+    const Rational m = (a + b) * Rational(1, 2);
+    if (!nonzero_at(p, m)) return false;
+    todo.emplace_back(a, m);
+    todo.emplace_back(m, b);
+  }
+  return true;
+}
+
+} // namespace
+
+std::optional<RootRange> real_root_range(const UPolyZ& p) {
+  RootRange out;
+  if (p.degree() < 1) return out; // a nonzero constant
+  const std::vector<double> c = scaled_doubles(p);
+  if (!std::all_of(c.begin(), c.end(), [](double x) { return std::isfinite(x); }) || c.back() == 0)
+    return std::nullopt;
+  double rlo = HUGE_VAL, rhi = -HUGE_VAL;
+  std::vector<double> hints; // real parts of the roots that do not look real
+  for (const auto& z : approx_complex_roots(c)) {
+    if (!std::isfinite(z.real()) || !std::isfinite(z.imag())) return std::nullopt;
+    if (std::fabs(z.imag()) <= 1e-7 * (1 + std::abs(z))) {
+      rlo = std::min(rlo, z.real());
+      rhi = std::max(rhi, z.real());
+    } else {
+      hints.push_back(z.real());
+    }
+  }
+  const Rational bound = root_bound(p);
+  if (rlo > rhi) { // no root looks real: none on (-B, B), i.e. none at all
+    if (!no_root_on(p, -bound, bound, hints)) return std::nullopt;
+    return out;
+  }
+  // A margin of 1/16 of the roots' spread plus 2^-20 of their size, and a short dyadic in the
+  // outer half of it (short: the Taylor shifts below stay cheap).
+  const double margin = (rhi - rlo) / 16 + 0x1p-20 * (1 + std::max(std::fabs(rlo), std::fabs(rhi)));
+  const double dlo = simplest_dyadic_between(rlo - margin, rlo - margin / 2);
+  const double dhi = simplest_dyadic_between(rhi + margin / 2, rhi + margin);
+  if (!std::isfinite(dlo) || !std::isfinite(dhi)) return std::nullopt;
+  out.lo = Rational::exact_from_double(dlo);
+  out.hi = Rational::exact_from_double(dhi);
+  if (out.lo <= -bound) out.lo = -bound; // B bounds every root strictly
+  if (out.hi >= bound) out.hi = bound;
+  if (!(out.lo < out.hi)) return std::nullopt;
+  if (out.hi < bound && (!nonzero_at(p, out.hi) || !no_root_on(p, out.hi, bound, hints)))
+    return std::nullopt;
+  if (-bound < out.lo && (!nonzero_at(p, out.lo) || !no_root_on(p, -bound, out.lo, hints)))
+    return std::nullopt;
+  out.any = true;
+  return out;
+}
+
+RootSeparation isolate_real_roots(const UPolyZ& p) {
+  if (p.degree() >= 12)
+    if (auto s = isolate_with_arb(p)) return *s;
+  RootSeparation out;
+  const std::vector<double> c = scaled_doubles(p);
   if (auto s = float_guess_descartes(p, c)) {
     out.separators = std::move(*s);
     return out;

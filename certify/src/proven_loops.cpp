@@ -136,6 +136,17 @@ std::optional<Slab> critical_slab(const Poly3& f, const Poly3& g,
     Slab out;
     if (p.is_constant()) return out; // a nonzero constant: no solution at all
     const algebra::UPolyZ pz = algebra::to_univariate(algebra::squarefree_part(p), k);
+    // Only the range of the real roots is wanted, proved by Descartes' rule beyond the float
+    // roots (real_root_range); isolating them (Arb's complex roots of a degree-16 eliminant
+    // with coefficients of hundreds of bits) took 10 ms on one cone pair, 6% of the intersect
+    // bench. Isolation only when the range does not prove out.
+    if (const auto range = algebra::real_root_range(pz)) {
+      if (!range->any) return out;
+      out.roots = true;
+      out.lo = range->lo;
+      out.hi = range->hi;
+      return out;
+    }
     const algebra::RootSeparation sep = algebra::isolate_real_roots(pz);
     if (sep.num_roots() == 0) return out;
     out.roots = true;

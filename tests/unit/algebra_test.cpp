@@ -154,6 +154,89 @@ TEST(RealRoots, CloseRootsAndNearRealPairsWithBigCoefficients) {
       }
 }
 
+// real_root_range (the range of the real roots, proved by Descartes' rule beyond the float
+// roots) against the exact isolation and Sturm count, on degree-16 products with coefficients
+// of hundreds of bits: the big-rational linear factor above, complex pairs (x - c)^2 + e and
+// real pairs (x - c)^2 - e (e = 1e-10 ... 2^-100) placed at the ends of the real roots or
+// alone, and a real root near 1.1e12 that the float roots misread as complex (declined, or
+// inside the range). Whenever it answers: `any` false only when there is no real root (Sturm), and
+// every real root strictly inside (lo, hi) (both bounds checked against the isolating intervals'
+// roots, by exact signs); most of these it must answer (it is the fast path).
+TEST(RealRoots, RangeOfTheRealRootsIsProvedOrDeclined) {
+  Integer num, den;
+  fmpz_set_str(num.raw_mut(), "1427247692705959881058285969449495136382746771", 10);
+  fmpz_set_str(den.raw_mut(), "1298074214633706907132624082305031000000000001", 10);
+  const UPolyZ lin = UPolyZ::from_coeffs({-num, den});
+  Integer far_den;
+  fmpz_set_str(far_den.raw_mut(), "1298074214633706907132624082305031", 10);
+  const Rational e10(1, 10000000000UL);
+  const auto pair = [](const Rational& c, const Rational& e, int sign) { // (x - c)^2 - sign e
+    const Rational c1 = -Rational(2) * c, c0 = c * c - Rational(sign) * e;
+    Integer l;
+    fmpz_lcm(l.raw_mut(), fmpq_denref(c1.raw()), fmpq_denref(c0.raw()));
+    return UPolyZ::from_coeffs({(c0 * Rational(l)).num(), (c1 * Rational(l)).num(), l});
+  };
+  const auto times = [](UPolyZ a, const UPolyZ& b) {
+    fmpz_poly_mul(a.raw_mut(), a.raw(), b.raw());
+    return a;
+  };
+  int answered = 0, cases = 0;
+  for (const Rational& e :
+       {e10, e10 * e10, e10 * e10 * e10, Rational::exact_from_double(std::ldexp(1.0, -100))})
+    for (int sign : {1, -1})
+      for (int where = 0; where < 3; ++where)
+        for (int with_real : {1, 0, 2, 3}) {
+          // Background: complex pairs off the axis (degree 10), then the real roots (or not),
+          // then the probed pair: beyond the largest real root (where = 0), below the smallest
+          // (1), or in between (2).
+          UPolyZ p = UPolyZ::from_coeffs({Integer(1)});
+          for (int k = 0; k < 5; ++k)
+            p = times(p, pair(Rational(k - 2, 3), Rational(1, 50 + 7 * k), -1));
+          if (with_real == 1 || with_real == 2) {
+            p = times(p, lin);                                            // the root ~1.0995
+            p = times(p, UPolyZ::from_coeffs({Integer(3), Integer(-5)})); // 3/5
+          }
+          // And one near 1.1e12 (2), or that one instead of ~1.0995 with 3/5 (3): there the
+          // float roots (Aberth in doubles over 12 orders of magnitude) see no real root at all.
+          if (with_real >= 2) p = times(p, UPolyZ::from_coeffs({-num, far_den}));
+          if (with_real == 3) p = times(p, UPolyZ::from_coeffs({Integer(3), Integer(-5)}));
+          const Rational c = where == 0 ? Rational(2) : where == 1 ? Rational(-1) : Rational(4, 5);
+          p = times(p, pair(c, e, sign));
+          p = times(p, pair(Rational(1, 7), Rational(1, 3), -1)); // degree 16 when with_real
+          p = squarefree_part(p);
+          const std::string ctx = "e " + e.to_string() +
+                                  (sign > 0 ? " real pair" : " complex pair") + " at " +
+                                  c.to_string() +
+                                  (with_real == 0   ? ", no other root"
+                                   : with_real >= 2 ? ", a far root"
+                                                    : "");
+          const auto r = algebra::real_root_range(p);
+          const long count = algebra::count_real_roots(p);
+          if (with_real <= 1) ++cases;
+          if (!r) continue;
+          if (with_real <= 1) ++answered;
+          if (!r->any) {
+            EXPECT_EQ(count, 0) << ctx;
+            continue;
+          }
+          ASSERT_LT(r->lo, r->hi) << ctx;
+          // Every real root inside: p's sign at lo and hi, and the isolating intervals' roots
+          // (one sign change per gap) all strictly between lo and hi.
+          const auto sep = algebra::isolate_real_roots(p);
+          ASSERT_EQ(static_cast<long>(sep.num_roots()), count) << ctx;
+          for (size_t i = 0; i + 1 < sep.separators.size(); ++i) {
+            Rational a = sep.separators[i], b = sep.separators[i + 1];
+            algebra::refine_root(p, a, b, (b - a) * Rational(1, 1L << 40));
+            EXPECT_LT(r->lo, a) << ctx << " root " << i;
+            EXPECT_LT(b, r->hi) << ctx << " root " << i;
+          }
+        }
+  // It is the fast path: it must answer most of those without a far root (declining all would
+  // pass the above; with a far root the float roots see no real root and it must decline).
+  EXPECT_GE(answered, cases * 3 / 4) << answered << " of " << cases;
+  std::printf("real_root_range answered %d of %d\n", answered, cases);
+}
+
 TEST(RealRoots, RootsOfHugeDynamicRange) {
   // (2^1000 x - 1)(x - 2^1000)(x + 3)(2^-... ) style products: roots 2^-1000, 2^1000, -3 and
   // a pair 2^-1000 apart near 1. Arb's complex root finder needs thousands of bits here (it

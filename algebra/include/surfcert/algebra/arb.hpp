@@ -144,6 +144,15 @@ struct ComplexBallVec {
   ~ComplexBallVec() { _acb_vec_clear(v, n); }
 };
 
+/// RAII over arb_poly_t (a polynomial with real ball coefficients; 0 at first).
+struct BallPoly {
+  arb_poly_t v;
+  BallPoly() { arb_poly_init(v); }
+  BallPoly(const BallPoly&) = delete;
+  BallPoly& operator=(const BallPoly&) = delete;
+  ~BallPoly() { arb_poly_clear(v); }
+};
+
 /// RAII over acb_poly_t (a polynomial with complex ball coefficients; 0 at first).
 struct ComplexBallPoly {
   acb_poly_t v;
