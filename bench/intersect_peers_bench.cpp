@@ -322,6 +322,7 @@ void run_ours(Job& job, double tol) {
         trace::intersect_curve(a, b, certify::Mode::Filtered, opt, certify::Detail::Full);
     std::string line = "{\"index\":" + std::to_string(index++) + ",\"case\":";
     core::io::append_json_string(line, row.name);
+    line += ",\"ours_us\":" + std::to_string(job.ours_us);
     line += ",\"topology\":" +
             core::io::dump(trace::curve_envelope_json(r, a, b, certify::Detail::Topology)) +
             ",\"full\":" + core::io::dump(trace::curve_envelope_json(full, a, b)) + "}\n";
@@ -456,6 +457,17 @@ int main(int argc, char** argv) {
     Row& row = random_rows[n1 + "-" + n2];
     row.group = "random natural", row.name = n1 + "-" + n2;
     jobs.push_back({&row, s1, s2, Pose{}, 3, std::nullopt, 0});
+  }
+  // SURFCERT_BENCH_JOB=k: the k-th pair only (counted without a case filter from 0; in a
+  // SURFCERT_DUMP file it is the line with "index" k + 1, line 0 being the warm-up): one slow
+  // pair under a profiler, with SURFCERT_PROFILE_REPEAT.
+  if (const char* e = std::getenv("SURFCERT_BENCH_JOB")) {
+    const long k = std::atol(e);
+    if (k < 0 || static_cast<size_t>(k) >= jobs.size()) {
+      std::fprintf(stderr, "SURFCERT_BENCH_JOB=%ld: only %zu pairs\n", k, jobs.size());
+      return 2;
+    }
+    jobs = {jobs[static_cast<size_t>(k)]};
   }
   // SURFCERT_BENCH_NO_PEER=1: our side only (for a profiler: no OCCT samples, no ratios).
   const bool no_peer = std::getenv("SURFCERT_BENCH_NO_PEER") != nullptr;
