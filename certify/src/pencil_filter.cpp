@@ -145,6 +145,100 @@ bool proper_plane(const core::QuadricMatrix& q) {
   return false;
 }
 
+// Whether q is singular at a point at infinity (d, 0), exactly: det q = 0 and det of its
+// quadratic part = 0 (with rank 2 the quadratic part's kernel d has b . d = 0 whenever det q = 0,
+// b q's linear part; with rank <= 1 its kernel meets b's orthogonal plane): a cylinder of any
+// kind (or something of lower rank). For a posed shape by construction (its local form lacks a
+// square term and it is singular), otherwise from the exact 3x3 determinant.
+bool singular_at_infinity(const core::QuadricMatrix& q) {
+  if (!q.singular()) return false;
+  if (const core::ShapeSpec* sp = q.shape()) {
+    const core::LocalForm lf = core::local_form(sp->type);
+    return lf.q_sign[0] == 0 || lf.q_sign[1] == 0 || lf.q_sign[2] == 0;
+  }
+  const Mat4& m = q.matrix();
+  const Rational d = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  return d.is_zero();
+}
+
+// A plane against a quadric singular at a point v at infinity (a cylinder): v lies on the plane's
+// quadric (n . x + d) w = 0 too, so the pencil's member with that singular point has a multiple
+// root (f'(phi) = c v^T P v = 0 for a member of rank 3, adj = c v v^T), as has the plane's: with
+// f of degree 4 and not identically zero, f = c (l - theta)^2 (l - phi)^2 exactly, both
+// parameters exact (0 and -1/t in the re-based basis). Read here: c = f's leading coefficient,
+// whose sign is certain; separators around theta and phi with sign f = sign c; the indices by
+// index_at; the plane's root rank 2, inertia (1, 1); phi's member rank 3 (its charpoly's linear
+// coefficient certainly nonzero, its determinant 0 exactly) with the inertia Descartes reads
+// from its other coefficients' certain signs. False (the exact path) when a sign is not
+// certain, or when g's enclosure at phi excludes 0 (the premise does not hold: never expected).
+bool two_double_roots_facts(const Mat4T<I>& a, const Mat4T<I>& b, const I& g2, const I& g1,
+                            const I& g0, const Rational& theta, const Rational& phi,
+                            PencilFacts& out) {
+  if (theta == phi) return false;
+  const int sc = isign(g2);
+  if (sc != 1 && sc != -1) return false;
+  const I ph = enclose(phi);
+  const int at_phi = isign((g2 * ph + g1) * ph + g0);
+  if (at_phi != 2 && at_phi != 0) return false; // g(phi) != 0: not the premise's pencil
+  const Rational& r1 = theta < phi ? theta : phi;
+  const Rational& r2 = theta < phi ? phi : theta;
+  // Separators: dyadics, exactly checked around the two roots.
+  const double d1 = r1.to_double_approx(), d2 = r2.to_double_approx();
+  const double w = std::max({1.0, std::fabs(d1), std::fabs(d2)});
+  std::array<double, 3> seps{d1 - w, 0.5 * d1 + 0.5 * d2, d2 + w};
+  if (!std::isfinite(seps[0]) || !std::isfinite(seps[2])) return false;
+  const std::array<Rational, 3> rs{Rational::exact_from_double(seps[0]),
+                                   Rational::exact_from_double(seps[1]),
+                                   Rational::exact_from_double(seps[2])};
+  if (!(rs[0] < r1 && r1 < rs[1] && rs[1] < r2 && r2 < rs[2])) return false;
+  out.indices.reserve(3);
+  out.samples.reserve(3);
+  for (size_t i = 0; i < 3; ++i) {
+    int index = 0;
+    if (!index_at(a, b, seps[i], sc, index)) return false;
+    out.indices.push_back(index);
+    out.samples.push_back(rs[i]);
+  }
+  for (int idx : out.indices)
+    if (idx == 0 || idx == 4) out.definite_member = true;
+  // phi's member in intervals: inertia from its charpoly, det = 0 exactly.
+  Mat4T<I> m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = a[i][j] * ph - b[i][j];
+  const auto c = algebra::charpoly_coeffs(m);
+  int sg[4] = {0, isign(c[1]), isign(c[2]), isign(c[3])};
+  if (sg[1] != 1 && sg[1] != -1) return false; // rank 3 not certain
+  if (sg[2] == 2 || sg[3] == 2) return false;
+  const Inertia phi_sigma = algebra::inertia_from_charpoly_signs(sg);
+  if (phi_sigma.rank() != 3) return false;
+  for (size_t i = 0; i < 2; ++i) {
+    RootFacts r;
+    const Rational& v = i == 0 ? r1 : r2;
+    r.lo = out.samples[i];
+    r.hi = out.samples[i + 1];
+    r.index_left = out.indices[i];
+    r.index_right = out.indices[i + 1];
+    r.multiplicity = 2;
+    const bool plane_root = v == theta;
+    r.rank = plane_root ? 2 : 3;
+    r.sigma = plane_root ? Inertia{1, 1} : phi_sigma;
+    r.rational_value = v;
+    fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 1, fmpq_denref(v.raw()));
+    fmpz_t num;
+    fmpz_init(num);
+    fmpz_neg(num, fmpq_numref(v.raw()));
+    fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 0, num);
+    fmpz_clear(num);
+    out.real_roots.push_back(std::move(r));
+  }
+  out.complex_roots = 0;
+  out.root_pattern = "R6";
+  return true;
+}
+
 // The pencil l*a - b with a plane among its members, at l = theta (rational, exact): that
 // member has rank 2, so f = (l - theta)^2 g(l) exactly, g = f / (l - theta)^2 a quadratic
 // (synthetic division in intervals, theta enclosed). The facts follow when these signs are
@@ -154,13 +248,16 @@ bool proper_plane(const core::QuadricMatrix& q) {
 // root's rank is 2 and its inertia (1, 1) (a plane's matrix [[0, n/2], [n^T/2, d]], n != 0, has
 // one positive and one negative eigenvalue; so has any nonzero multiple). False: the exact path.
 bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I, 5>& f,
-                        const Rational& theta, PencilFacts& out) {
+                        const Rational& theta, const std::optional<Rational>& phi,
+                        PencilFacts& out) {
   const I th = enclose(theta);
   const I g2 = f[4], g1 = f[3] + I(2) * th * g2, g0 = f[2] + I(2) * th * g1 - th * th * g2;
   const int s2 = isign(g2);
   if (s2 != 1 && s2 != -1) return false;
   const int at_theta = isign((g2 * th + g1) * th + g0);
   if (at_theta != 1 && at_theta != -1) return false; // theta may be a root of g too
+  // The other quadric singular at infinity (phi given): g = g2 (l - phi)^2 exactly.
+  if (phi) return two_double_roots_facts(a, b, g2, g1, g0, theta, *phi, out);
   const int sd = isign(g1 * g1 - I(4) * g2 * g0);
   if (sd != 1 && sd != -1) return false; // g may have a double root
   const double td = CGAL::to_double(th);
@@ -283,10 +380,21 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   // double by construction, which D4 cannot show in intervals; read as f = (l - theta)^2 g.
   // Not re-based, b is the member at l = 0; re-based, -A is, and B sits at l = -1/t (t != 0:
   // t = 0 was skipped, det B being 0).
-  if (!out.rebased ? proper_plane(qb) : proper_plane(qa))
-    return plane_member_facts(a, b, f, Rational(0), out);
-  if (out.rebased && proper_plane(qb))
-    return plane_member_facts(a, b, f, Rational(-1) / Rational(out.rebase_t), out);
+  // With the other quadric singular at a point at infinity (a cylinder; necessarily singular,
+  // so the pencil is re-based), its own parameter is a second double root: 0 for A, -1/t for B
+  // (t != 0 only when det B = 0 was proved).
+  if (!out.rebased && proper_plane(qb))
+    return plane_member_facts(a, b, f, Rational(0), std::nullopt, out);
+  if (out.rebased && proper_plane(qa)) {
+    std::optional<Rational> phi;
+    if (out.rebase_t != 0 && singular_at_infinity(qb)) phi = Rational(-1) / Rational(out.rebase_t);
+    return plane_member_facts(a, b, f, Rational(0), phi, out);
+  }
+  if (out.rebased && proper_plane(qb)) {
+    std::optional<Rational> phi;
+    if (singular_at_infinity(qa)) phi = Rational(0);
+    return plane_member_facts(a, b, f, Rational(-1) / Rational(out.rebase_t), phi, out);
+  }
   // D4 first: D3 and D2 matter only when D4 > 0 (E never here).
   const algebra::detail::QuarticTerms<I> q(f);
   int s4 = isign(q.D4());

@@ -17,7 +17,13 @@
 // member's root theta double by construction (rank 2; theta = 0, or -1/t when B is the plane and
 // the pencil was re-based): f = (l - theta)^2 g is read with g's discriminant, g(theta) and its
 // signs at the separators certain, the double root reported exact with rank 2 and inertia (1, 1)
-// (a plane's); any other multiple root goes to the exact path. Its facts carry exact dyadic
+// (a plane's). When the other quadric is singular at a point at infinity (a cylinder: det = 0
+// and its quadratic part singular, exactly; by construction for a posed shape), that point lies
+// on the plane's quadric (n . x + d) w = 0 as well, so the other quadric's own parameter phi (0
+// or -1/t) is a second double root: f = c (l - theta)^2 (l - phi)^2 exactly (R6), read with c's
+// sign and the indices at separators around theta and phi certain; phi's member of rank 3 (its
+// charpoly's linear coefficient certainly nonzero) with the inertia its other coefficients' signs
+// give. Any other multiple root goes to the exact path. Its facts carry exact dyadic
 // separators but no exact f/D values (fill them with complete_exact_invariants).
 //
 // analyze_pencil_float: doubles throughout (facts.a / facts.b left empty). The root pattern from
