@@ -145,6 +145,18 @@ bool proper_plane(const core::QuadricMatrix& q) {
   return false;
 }
 
+// The root's exact value v and its primitive linear factor with a positive leading
+// coefficient: den * l - num.
+void set_rational_root(RootFacts& r, const Rational& v) {
+  r.rational_value = v;
+  fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 1, fmpq_denref(v.raw()));
+  fmpz_t num;
+  fmpz_init(num);
+  fmpz_neg(num, fmpq_numref(v.raw()));
+  fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 0, num);
+  fmpz_clear(num);
+}
+
 // Whether q is singular at a point at infinity (d, 0), exactly: det q = 0 and det of its
 // quadratic part = 0 (with rank 2 the quadratic part's kernel d has b . d = 0 whenever det q = 0,
 // b q's linear part; with rank <= 1 its kernel meets b's orthogonal plane): a cylinder of any
@@ -225,13 +237,7 @@ bool two_double_roots_facts(const Mat4T<I>& a, const Mat4T<I>& b, const I& g2, c
     const bool plane_root = v == theta;
     r.rank = plane_root ? 2 : 3;
     r.sigma = plane_root ? Inertia{1, 1} : phi_sigma;
-    r.rational_value = v;
-    fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 1, fmpq_denref(v.raw()));
-    fmpz_t num;
-    fmpz_init(num);
-    fmpz_neg(num, fmpq_numref(v.raw()));
-    fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 0, num);
-    fmpz_clear(num);
+    set_rational_root(r, v);
     out.real_roots.push_back(std::move(r));
   }
   out.complex_roots = 0;
@@ -315,14 +321,7 @@ bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I
       r.multiplicity = 2;
       r.rank = 2;
       r.sigma = Inertia{1, 1};
-      r.rational_value = theta;
-      // The primitive linear factor with a positive leading coefficient: den * l - num.
-      fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 1, fmpq_denref(theta.raw()));
-      fmpz_t num;
-      fmpz_init(num);
-      fmpz_neg(num, fmpq_numref(theta.raw()));
-      fmpz_poly_set_coeff_fmpz(r.factor.raw_mut(), 0, num);
-      fmpz_clear(num);
+      set_rational_root(r, theta);
     }
     out.real_roots.push_back(std::move(r));
   }

@@ -76,6 +76,33 @@ Rational pow2(int k) {
   return Rational::exact_from_double(std::ldexp(1.0, k));
 }
 
+// Random spheres, cylinders and cones (radius or slope in [0.3, 1]) at the origin, and random
+// rational motions (integer quaternions, translations in [-1, 1] by hundredths).
+struct NaturalPairs {
+  std::mt19937_64 rng;
+  std::uniform_int_distribution<long> q{-9, 9}, t{-100, 100}, r{30, 100}, kind{0, 2};
+  explicit NaturalPairs(unsigned long seed) : rng(seed) {}
+  Mat4 local() {
+    const Rational a(r(rng), 100);
+    switch (kind(rng)) {
+    case 0:
+      return diag(Rational(1), Rational(1), Rational(1), -a * a); // sphere
+    case 1:
+      return diag(Rational(1), Rational(1), Rational(0), -a * a); // cylinder
+    default:
+      return diag(Rational(1), Rational(1), -a * a, Rational(0)); // cone
+    }
+  }
+  Mat4 pose() {
+    long w, x, y, z;
+    do {
+      w = q(rng), x = q(rng), y = q(rng), z = q(rng);
+    } while (w == 0 && x == 0 && y == 0 && z == 0);
+    return surfcert::testing::motion(
+        w, x, y, z, {Rational(t(rng), 100), Rational(t(rng), 100), Rational(t(rng), 100)});
+  }
+};
+
 // 1e-10, 1e-20, 1e-30, 2^-100: the gaps every threshold is probed at.
 std::vector<Rational> gaps() {
   const Rational e10(1, 10000000000UL);
@@ -88,27 +115,9 @@ std::vector<Rational> gaps() {
 // wherever the exact route certifies, the filtered one gives the same crossings on the same
 // faces (and the filter proves most faces with crossings itself, or it would save nothing).
 TEST(BoxExitsFilter, AgreesWithTheExactRouteOnRandomNaturalPairs) {
-  std::mt19937_64 rng(27);
-  std::uniform_int_distribution<long> q(-9, 9), t(-100, 100), r(30, 100), kind(0, 2);
-  const auto local = [&]() {
-    const Rational a(r(rng), 100);
-    switch (kind(rng)) {
-    case 0:
-      return diag(Rational(1), Rational(1), Rational(1), -a * a); // sphere
-    case 1:
-      return diag(Rational(1), Rational(1), Rational(0), -a * a); // cylinder
-    default:
-      return diag(Rational(1), Rational(1), -a * a, Rational(0)); // cone
-    }
-  };
-  const auto pose = [&]() {
-    long w, x, y, z;
-    do {
-      w = q(rng), x = q(rng), y = q(rng), z = q(rng);
-    } while (w == 0 && x == 0 && y == 0 && z == 0);
-    return surfcert::testing::motion(
-        w, x, y, z, {Rational(t(rng), 100), Rational(t(rng), 100), Rational(t(rng), 100)});
-  };
+  NaturalPairs gen(27);
+  const auto local = [&]() { return gen.local(); };
+  const auto pose = [&]() { return gen.pose(); };
   int pairs = 0, compared = 0, crossing_faces = 0, filtered_faces = 0;
   for (int n = 0; n < 200; ++n) {
     const Mat4 a = posed(local(), pose()), b = posed(local(), pose());
@@ -286,27 +295,12 @@ TEST(BoxExitsFilter, CrossingsNearAnEdgeGoToTheRightFace) {
 // interval route proves most faces with crossings itself; the reported points satisfy both
 // equations (exact substitution of the doubles, within the radius' effect).
 TEST(BoxExitsFilter, PlaneSectionsAgreeWithTheExactRoute) {
-  std::mt19937_64 rng(28);
-  std::uniform_int_distribution<long> q(-9, 9), t(-100, 100), r(30, 100), kind(0, 2);
-  const auto local = [&]() {
-    const Rational a(r(rng), 100);
-    switch (kind(rng)) {
-    case 0:
-      return diag(Rational(1), Rational(1), Rational(1), -a * a);
-    case 1:
-      return diag(Rational(1), Rational(1), Rational(0), -a * a);
-    default:
-      return diag(Rational(1), Rational(1), -a * a, Rational(0));
-    }
-  };
-  const auto pose = [&]() {
-    long w, x, y, z;
-    do {
-      w = q(rng), x = q(rng), y = q(rng), z = q(rng);
-    } while (w == 0 && x == 0 && y == 0 && z == 0);
-    return surfcert::testing::motion(
-        w, x, y, z, {Rational(t(rng), 100), Rational(t(rng), 100), Rational(t(rng), 100)});
-  };
+  NaturalPairs gen(28);
+  auto& rng = gen.rng;
+  auto& q = gen.q;
+  auto& t = gen.t;
+  const auto local = [&]() { return gen.local(); };
+  const auto pose = [&]() { return gen.pose(); };
   int compared = 0, crossing_faces = 0, filtered_faces = 0;
   for (int n = 0; n < 200; ++n) {
     const Mat4 a = posed(local(), pose());
