@@ -325,9 +325,10 @@ std::optional<std::vector<FacePoint>> line_face_crossings(const IConic& line, co
   std::vector<FacePoint> out;
   if (disc.sup() < 0) return out; // no real common point
   if (!(disc.inf() > 0) || a.do_overlap(Interval(0))) return std::nullopt;
-  // t = (-B +- sqrt(disc)) / A, the root away from cancellation by -B - sign(B) sqrt(disc)
-  // and the other as C / (A t1) (their product is C / A); both formulas are exact, so either
-  // enclosure is one; the tighter one is used.
+  // t = (-B +- sqrt(disc)) / A. When B's sign is certain, the root whose numerator adds two
+  // terms of one sign is computed so, and the other as C / (A t1) (their product is C / A):
+  // both formulas are exact identities, so either gives an enclosure; these avoid the
+  // cancellation that widens the first.
   const Interval sq = CGAL::sqrt(disc);
   std::array<Interval, 2> t{(-b + sq) / a, (-b - sq) / a}; // line_conic_crossings' order
   if (b.inf() > 0) {
@@ -357,9 +358,9 @@ std::optional<std::vector<FacePoint>> line_face_crossings(const IConic& line, co
     found[count++] = fp;
   }
   // line_conic_crossings parametrises by u unless lv = 0 exactly (an enclosure [0, 0]), and
-  // lists (-B + sqrt) / A first: the larger parameter first when A > 0. A's sign does not
+  // lists (-B + sqrt) / A first: its larger parameter first when A > 0. A's sign does not
   // depend on the parametrisation (the conic's form at the line's direction, up to a square),
-  // and swapping to v reverses the parameter's order when the slope is negative.
+  // so the two points are put in that order by the coordinate it parametrises by.
   if (count == 2) {
     const bool exact_by_u = !(lv.inf() == 0 && lv.sup() == 0);
     const bool larger_first = a.inf() > 0;
