@@ -103,6 +103,15 @@ struct NaturalPairs {
   }
 };
 
+// The number of distinct faces holding at least one crossing.
+int faces_with_crossings(const certify::BoxExits& e) {
+  std::vector<std::pair<int, bool>> faces;
+  for (const auto& p : e.points)
+    faces.emplace_back(p.axis, p.at_max);
+  std::sort(faces.begin(), faces.end());
+  return static_cast<int>(std::unique(faces.begin(), faces.end()) - faces.begin());
+}
+
 // 1e-10, 1e-20, 1e-30, 2^-100: the gaps every threshold is probed at.
 std::vector<Rational> gaps() {
   const Rational e10(1, 10000000000UL);
@@ -129,11 +138,7 @@ TEST(BoxExitsFilter, AgreesWithTheExactRouteOnRandomNaturalPairs) {
     expect_same(f, e, 4, "pair " + std::to_string(n));
     if (!e.certified) continue;
     ++compared;
-    std::vector<std::pair<int, bool>> faces;
-    for (const auto& p : e.points)
-      faces.emplace_back(p.axis, p.at_max);
-    std::sort(faces.begin(), faces.end());
-    crossing_faces += static_cast<int>(std::unique(faces.begin(), faces.end()) - faces.begin());
+    crossing_faces += faces_with_crossings(e);
     filtered_faces += f.filtered_faces;
     EXPECT_EQ(e.filtered_faces, 0);
   }
@@ -323,11 +328,7 @@ TEST(BoxExitsFilter, PlaneSectionsAgreeWithTheExactRoute) {
       expect_same(f, e, 4, "pair " + std::to_string(n) + (swap ? " swapped" : ""));
       if (!e.certified || swap) continue;
       ++compared;
-      std::vector<std::pair<int, bool>> faces;
-      for (const auto& p : e.points)
-        faces.emplace_back(p.axis, p.at_max);
-      std::sort(faces.begin(), faces.end());
-      crossing_faces += static_cast<int>(std::unique(faces.begin(), faces.end()) - faces.begin());
+      crossing_faces += faces_with_crossings(e);
       filtered_faces += f.filtered_faces;
       // The filtered points on both surfaces: |X^T M X| at the double point within what a
       // displacement of radius + rounding can produce (gradients here are below ~30).
