@@ -189,4 +189,23 @@ algebra::Mat4T<double> approx(const core::QuadricMatrix& q) {
   return out;
 }
 
+bool approx_is_exact(const core::QuadricMatrix& q) {
+  if (q.shape()) return false;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j) {
+      const core::Rational& e = q.matrix()[i][j];
+      const fmpz* num = fmpq_numref(e.raw());
+      const fmpz* den = fmpq_denref(e.raw());
+      if (fmpz_is_zero(num)) continue;
+      // num / den is a double when den = 2^k and num has at most 53 significant bits, and
+      // approx's quotient of the two doubles is then that double unless it leaves the normal
+      // range (or den does not convert: k > 1023).
+      const flint_bitcnt_t k = fmpz_bits(den) - 1;
+      if (fmpz_val2(den) != k || k > 1000 || fmpz_bits(num) - fmpz_val2(num) > 53 ||
+          fmpz_bits(num) > 1000)
+        return false;
+    }
+  return true;
+}
+
 } // namespace surfcert::certify

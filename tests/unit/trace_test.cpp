@@ -191,9 +191,14 @@ TEST(Trace, QuadricPairNormalisesAndProjects) {
   for (const auto& row : p.a)
     for (double v : row)
       ma = std::max(ma, std::abs(v));
-  EXPECT_EQ(ma, 1.0);
-  EXPECT_DOUBLE_EQ(p.f({2, 0, 0}), 0.0);
-  EXPECT_DOUBLE_EQ(p.f({0, 0, 0}), -1.0);
+  // Scaled by a power of two (rounding nothing): diag(1, 1, 1, -4) / 8.
+  EXPECT_EQ(ma, 0.5);
+  EXPECT_EQ(p.f({2, 0, 0}), 0.0);
+  EXPECT_EQ(p.f({0, 0, 0}), -0.5);
+  EXPECT_EQ(p.a[0][0], 0.125);
+  // Exact coefficients: only the evaluation perturbs f; a third is rounded.
+  EXPECT_LT(p.noise_unit, 0x1p-58);
+  EXPECT_GE(trace::QuadricPair(q("x^2 + y^2 + z^2 = 1/3"), b).noise_unit, 0x1p-53);
   Point3 x{1.2, 0.9, 1.1};
   ASSERT_TRUE(trace::project_onto_curve(p, x));
   // On the sphere of radius 2 and the cylinder: checked without QuadricPair.

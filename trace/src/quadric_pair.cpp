@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace surfcert::trace {
 
@@ -13,22 +14,32 @@ namespace {
 
 using M4 = std::array<std::array<double, 4>, 4>;
 
-// A / max|A| entrywise in double: each entry rounded once (certify::approx: num/den, or for a
-// shape posed in doubles the midpoint of its enclosure, without forming the rationals), then
-// divided by the rounded maximum; a relative error of a few ulps, far below the tracer's
-// tolerances.
-M4 normalised(const core::QuadricMatrix& q) {
+// A scaled to max|A| in [1/2, 1) entrywise in double: each entry rounded once
+// (certify::approx: num/den, or for a shape posed in doubles the midpoint of its enclosure,
+// without forming the rationals), then scaled by a power of two, which rounds nothing. So a
+// matrix posed in doubles is traced exactly as given: a pair of nearly singular members (two
+// pipes rounded to doubles) has a neck of ~1e-8 of its size whose side is decided by
+// perturbations of ~1e-16, and dividing by the maximum would add one of that size.
+// `exact` is cleared unless the result is the exact matrix times that power of two.
+M4 normalised(const core::QuadricMatrix& q, bool& exact) {
   M4 out = certify::approx(q);
+  exact = exact && certify::approx_is_exact(q);
   double mx = 0;
   for (const auto& row : out)
     for (double d : row)
       mx = std::max(mx, std::fabs(d));
   if (std::isfinite(mx) && mx > 0) {
+    int e = 0;
+    std::frexp(mx, &e); // mx = f 2^e, f in [1/2, 1)
     for (auto& row : out)
-      for (auto& x : row)
-        x /= mx;
+      for (auto& x : row) {
+        const double y = std::ldexp(x, -e);
+        if (std::ldexp(y, e) != x) exact = false; // underflow: a tiny entry lost bits
+        x = y;
+      }
     return out;
   }
+  exact = false;
   // Entries beyond the double range: divide exactly first.
   core::Rational mq;
   for (int i = 0; i < 4; ++i)
@@ -93,8 +104,14 @@ double term_size(const std::array<std::array<double, 4>, 4>& m, const Point3& p)
 
 } // namespace
 
-QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb)
-    : a(normalised(qa)), b(normalised(qb)) {}
+QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb) {
+  bool exact = true;
+  a = normalised(qa, exact);
+  b = normalised(qb, exact);
+  // The forms are evaluated in long double (see form()): a few of its units per term.
+  const double evaluation = 8 * static_cast<double>(std::numeric_limits<long double>::epsilon());
+  noise_unit = exact ? evaluation : 0x1p-53 + evaluation;
+}
 
 double QuadricPair::f(const Point3& p) const {
   return form(a, p);
@@ -117,7 +134,7 @@ double QuadricPair::noise_radius(const Point3& p) const {
   const double sine_nf_ng = std::sqrt(dot(c, c)); // sin(angle) |grad f| |grad g|
   if (!(sine_nf_ng > 0)) return HUGE_VAL;
   // max(Fa / nf, Fb / ng) / sin = max(Fa ng, Fb nf) / (sin nf ng)
-  return 0x1p-53 * std::max(term_size(a, p) * ng, term_size(b, p) * nf) / sine_nf_ng;
+  return noise_unit * std::max(term_size(a, p) * ng, term_size(b, p) * nf) / sine_nf_ng;
 }
 
 double QuadricPair::distance_bound(const Point3& p) const {

@@ -31,4 +31,8 @@ Interval enclose(const core::Rational& x);
 /// Doubles near the exact matrix entries (midpoints of the enclosure; no rounding mode needed).
 algebra::Mat4T<double> approx(const core::QuadricMatrix& q);
 
+/// True when approx(q) equals the exact matrix entry for entry: a matrix posed in doubles (or
+/// in any rationals that doubles represent); never for a shape (its exact matrix is not formed).
+bool approx_is_exact(const core::QuadricMatrix& q);
+
 } // namespace surfcert::certify

@@ -65,7 +65,13 @@ struct TraceOptions {
 
 /// The pair as float data, normalised; shared by the tracer's parts.
 struct QuadricPair {
-  std::array<std::array<double, 4>, 4> a, b; ///< symmetric, largest |entry| = 1 each
+  /// Symmetric, each scaled by a power of two to a largest |entry| in [1/2, 1) (scaling
+  /// rounds nothing: a pair posed in doubles is traced exactly as posed).
+  std::array<std::array<double, 4>, 4> a, b;
+  /// Relative size of the perturbation of f and g at a point (per unit of the terms' size F,
+  /// see noise_radius): the rounding of the coefficients (2^-53) plus the evaluation's, or the
+  /// evaluation's alone when a and b are the exact matrices scaled (posed in doubles).
+  double noise_unit = 0x1p-53;
   explicit QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb);
   double f(const Point3& p) const; ///< X^T A X with X = (p, 1)
   double g(const Point3& p) const;
@@ -76,7 +82,7 @@ struct QuadricPair {
   /// far the rounding of the coefficients moves f at p (infinite where a gradient vanishes).
   double distance_bound(const Point3& p) const;
   /// How far the curve of these rounded coefficients may lie from the exact curve near p: the
-  /// rounding moves f by up to 2^-53 F, so the surface by that over |grad f| along its normal,
+  /// rounding moves f by up to noise_unit F, so the surface by that over |grad f| along its normal,
   /// and the curve by the larger of the two surfaces' moves over the sine of the angle between
   /// them (infinite where a gradient vanishes or they are parallel). Large near a cone's apex
   /// (at distance r from an apex ~1 from the origin, ~1e-16 / r) and where the surfaces are
