@@ -20,26 +20,49 @@ using M4 = std::array<std::array<double, 4>, 4>;
 // matrix posed in doubles is traced exactly as given: a pair of nearly singular members (two
 // pipes rounded to doubles) has a neck of ~1e-8 of its size whose side is decided by
 // perturbations of ~1e-16, and dividing by the maximum would add one of that size.
-// `exact` is cleared unless the result is the exact matrix times that power of two.
-M4 normalised(const core::QuadricMatrix& q, bool& exact) {
-  M4 out = certify::approx(q);
-  exact = exact && certify::approx_is_exact(q);
+// A matrix of doubles that is not exactly symmetric (M^T Q M computed in double) stands for its
+// symmetric part, whose entries (d_ij + d_ji) / 2 need up to 54 bits: hi + lo, both doubles
+// (an exact two-sum), which a long double holds exactly; form() evaluates with hi + lo.
+// `exact` is cleared unless hi + lo is the exact matrix times that power of two.
+void normalised(const core::QuadricMatrix& q, M4& out, M4& lo, bool& exact) {
+  lo = M4{};
+  const core::DoubleMat4* d = q.shape() ? nullptr : q.double_matrix();
+  if (d) {
+    for (size_t i = 0; i < 4; ++i) {
+      out[i][i] = (*d)[i][i];
+      for (size_t j = i + 1; j < 4; ++j) {
+        const double x = (*d)[i][j], y = (*d)[j][i];
+        const double s = x + y, yv = s - x, err = (x - (s - yv)) + (y - yv); // s + err = x + y
+        const double h = 0.5 * s, l = 0.5 * err;
+        const long double hl = static_cast<long double>(h) + l;
+        if (h * 2 != s || l * 2 != err || hl - h != l || !std::isfinite(s)) exact = false;
+        out[i][j] = out[j][i] = h;
+        lo[i][j] = lo[j][i] = l;
+      }
+    }
+  } else {
+    out = certify::approx(q);
+    exact = exact && certify::approx_is_exact(q);
+  }
   double mx = 0;
   for (const auto& row : out)
-    for (double d : row)
-      mx = std::max(mx, std::fabs(d));
+    for (double v : row)
+      mx = std::max(mx, std::fabs(v));
   if (std::isfinite(mx) && mx > 0) {
     int e = 0;
     std::frexp(mx, &e); // mx = f 2^e, f in [1/2, 1)
-    for (auto& row : out)
-      for (auto& x : row) {
-        const double y = std::ldexp(x, -e);
-        if (std::ldexp(y, e) != x) exact = false; // underflow: a tiny entry lost bits
-        x = y;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        const double y = std::ldexp(out[i][j], -e), yl = std::ldexp(lo[i][j], -e);
+        // underflow: a tiny entry lost bits
+        if (std::ldexp(y, e) != out[i][j] || std::ldexp(yl, e) != lo[i][j]) exact = false;
+        out[i][j] = y;
+        lo[i][j] = yl;
       }
-    return out;
+    return;
   }
   exact = false;
+  lo = M4{};
   // Entries beyond the double range: divide exactly first.
   core::Rational mq;
   for (int i = 0; i < 4; ++i)
@@ -48,7 +71,6 @@ M4 normalised(const core::QuadricMatrix& q, bool& exact) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
       out[static_cast<size_t>(i)][static_cast<size_t>(j)] = (q(i, j) / mq).to_double_approx();
-  return out;
 }
 
 // Evaluated in long double (64-bit mantissa on x86-64): near the curve f is the difference of
@@ -59,9 +81,12 @@ M4 normalised(const core::QuadricMatrix& q, bool& exact) {
 // pair, a fixed, smooth perturbation of the exact one, not noise.)
 // The symmetric form's ten distinct products (m symmetric): x (m00 x + 2 (m01 y + m02 z +
 // m03)) + y (m11 y + 2 (m12 z + m13)) + z (m22 z + 2 m23) + m33, as form_fast below.
-double form(const M4& m, const Point3& p) {
+// With `lo` (see normalised) the coefficients are m + lo, exact in long double.
+double form(const M4& m, const Point3& p, const M4* lo = nullptr) {
   const long double x = p[0], y = p[1], z = p[2];
-  auto e = [&m](size_t i, size_t j) { return static_cast<long double>(m[i][j]); };
+  auto e = [&m, lo](size_t i, size_t j) {
+    return lo ? static_cast<long double>(m[i][j]) + (*lo)[i][j] : static_cast<long double>(m[i][j]);
+  };
   const long double s = x * (e(0, 0) * x + 2 * (e(0, 1) * y + e(0, 2) * z + e(0, 3))) +
                         y * (e(1, 1) * y + 2 * (e(1, 2) * z + e(1, 3))) +
                         z * (e(2, 2) * z + 2 * e(2, 3)) + e(3, 3);
@@ -106,18 +131,23 @@ double term_size(const std::array<std::array<double, 4>, 4>& m, const Point3& p)
 
 QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb) {
   bool exact = true;
-  a = normalised(qa, exact);
-  b = normalised(qb, exact);
-  // The forms are evaluated in long double (see form()): a few of its units per term.
-  const double evaluation = 8 * static_cast<double>(std::numeric_limits<long double>::epsilon());
+  normalised(qa, a, a_lo, exact);
+  normalised(qb, b, b_lo, exact);
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      split = split || a_lo[i][j] != 0 || b_lo[i][j] != 0;
+  // form() rounds at most 8 times along any term's path (products, the nested sums, the four
+  // partial sums), each by u = epsilon / 2 of its type: |error| <= gamma_8 F ~ 8u F = 4 epsilon F
+  // (long double on x86-64: 4.3e-19 F; where long double is double, 8.9e-16 F).
+  const double evaluation = 4 * static_cast<double>(std::numeric_limits<long double>::epsilon());
   noise_unit = exact ? evaluation : 0x1p-53 + evaluation;
 }
 
 double QuadricPair::f(const Point3& p) const {
-  return form(a, p);
+  return form(a, p, split ? &a_lo : nullptr);
 }
 double QuadricPair::g(const Point3& p) const {
-  return form(b, p);
+  return form(b, p, split ? &b_lo : nullptr);
 }
 Point3 QuadricPair::grad_f(const Point3& p) const {
   return gradient(a, p);
@@ -138,13 +168,13 @@ double QuadricPair::noise_radius(const Point3& p) const {
 }
 
 double QuadricPair::distance_bound(const Point3& p) const {
-  auto one = [&p](const M4& m) {
+  auto one = [&p](const M4& m, const M4* lo) {
     const Point3 g = gradient(m, p);
     const double gn = std::sqrt(dot(g, g));
-    const double f = std::fabs(form(m, p)) + 0x1p-53 * term_size(m, p);
+    const double f = std::fabs(form(m, p, lo)) + 0x1p-53 * term_size(m, p);
     return gn > 0 ? f / gn : HUGE_VAL;
   };
-  return std::max(one(a), one(b));
+  return std::max(one(a, split ? &a_lo : nullptr), one(b, split ? &b_lo : nullptr));
 }
 
 namespace {
@@ -197,6 +227,24 @@ void polish(const QuadricPair& q, Point3& p) {
   const Point3 gf = q.grad_f(p), gg = q.grad_g(p);
   const double a11 = dot(gf, gf), a12 = dot(gf, gg), a22 = dot(gg, gg);
   if (a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
+  if (q.noise_unit < 0x1p-53) {
+    // Traced exactly as posed: the residuals are evaluated to ~1e-19, far below the ~1e-16 at
+    // which a double point on the curve leaves them, so while sideways the band is ~1e-16 / sin
+    // wide (~1e-8 around a neck of pipes posed in doubles), Gauss-Newton's steps, which divide
+    // by sin^2, still see where in it the curve runs. Steps while they shrink, until they no
+    // longer move p.
+    double last = HUGE_VAL;
+    const double floor = 0x1p-50 * (1 + std::sqrt(dot(p, p)));
+    for (int k = 0; k < 6; ++k) {
+      Point3 x{};
+      double sn = 0;
+      if (!gauss_newton_step(q, p, q.f(p), q.g(p), x, sn) || !(sn < last)) return;
+      p = x;
+      if (sn <= floor) return;
+      last = 0.5 * sn;
+    }
+    return;
+  }
   double r = residual(q, p);
   for (int k = 0; k < 2 && r > 0; ++k) {
     Point3 x{};

@@ -68,6 +68,10 @@ struct QuadricPair {
   /// Symmetric, each scaled by a power of two to a largest |entry| in [1/2, 1) (scaling
   /// rounds nothing: a pair posed in doubles is traced exactly as posed).
   std::array<std::array<double, 4>, 4> a, b;
+  /// For a matrix of doubles that is not exactly symmetric: its symmetric part is a + a_lo
+  /// (b + b_lo) exactly, and f, g evaluate with the sums; zero otherwise (split false).
+  std::array<std::array<double, 4>, 4> a_lo{}, b_lo{};
+  bool split = false;
   /// Relative size of the perturbation of f and g at a point (per unit of the terms' size F,
   /// see noise_radius): the rounding of the coefficients (2^-53) plus the evaluation's, or the
   /// evaluation's alone when a and b are the exact matrices scaled (posed in doubles).
