@@ -141,7 +141,7 @@ void finish_points(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
   for (auto& br : out.branches)
     for (size_t i = 0; i < br.points.size(); ++i) {
       Point3& p = br.points[i];
-      double d = q.distance_bound(p);
+      double d = q.distance_bound(p, target);
       if (!(d <= target)) {
         if (!exact) exact.emplace(a, b);
         const bool end = !br.closed && (i == 0 || i + 1 == br.points.size());

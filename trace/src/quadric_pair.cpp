@@ -167,7 +167,19 @@ double QuadricPair::noise_radius(const Point3& p) const {
   return noise_unit * std::max(term_size(a, p) * ng, term_size(b, p) * nf) / sine_nf_ng;
 }
 
-double QuadricPair::distance_bound(const Point3& p) const {
+double QuadricPair::distance_bound(const Point3& p, double enough) const {
+  if (enough > 0) {
+    // form_fast rounds at most 8 times along a term's path: |error| <= 8 2^-53 F; the lo parts
+    // (at most 2^-53 of an entry) add at most 2^-53 F more.
+    auto quick = [&p](const M4& m) {
+      const Point3 g = gradient(m, p);
+      const double gn = std::sqrt(dot(g, g));
+      const double f = std::fabs(form_fast(m, p)) + 0x1p-53 * 10 * term_size(m, p);
+      return gn > 0 ? f / gn : HUGE_VAL;
+    };
+    const double d = std::max(quick(a), quick(b));
+    if (d <= enough) return d;
+  }
   auto one = [&p](const M4& m, const M4* lo) {
     const Point3 g = gradient(m, p);
     const double gn = std::sqrt(dot(g, g));

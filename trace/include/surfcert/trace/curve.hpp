@@ -84,7 +84,10 @@ struct QuadricPair {
   /// An estimate of p's distance to the EXACT surfaces from these rounded coefficients:
   /// max over f, g of (|f(p)| + 2^-53 F) / |grad f(p)|, F = sum |a_ij x_i x_j| bounding how
   /// far the rounding of the coefficients moves f at p (infinite where a gradient vanishes).
-  double distance_bound(const Point3& p) const;
+  /// With `enough`: where |f| evaluated in double plus its rounding bound (8 units, 8.9e-16 F)
+  /// already gives a value <= enough, that (slightly larger) value, without the extended
+  /// evaluation (~5% of a traced pair's time, one per output point).
+  double distance_bound(const Point3& p, double enough = -1) const;
   /// How far the curve of these rounded coefficients may lie from the exact curve near p: the
   /// rounding moves f by up to noise_unit F, so the surface by that over |grad f| along its normal,
   /// and the curve by the larger of the two surfaces' moves over the sine of the angle between
