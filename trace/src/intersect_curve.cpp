@@ -1580,8 +1580,10 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   // it (f ~ r^2 against a rounding of ~1e-16 |c|^2), so a curve passing an apex that close
   // (a cylinder 1e-10 off it: two loops whose necks are 2e-10 apart) cannot be walked there;
   // at the origin the same cone is exact to ~1e-16 r^2. Depth 8 marks the retry (no further
-  // retries inside it).
-  if (out.status != Status::Certified && !centre && depth < 8)
+  // retries inside it). Not while the affine reading itself is open (readings that
+  // settle_by_traced_loops decides after this trace): a retry carries that reading and can
+  // only be undecided too (four retries were ~45 ms of a rounded cone pair's 50).
+  if (out.status != Status::Certified && out.affine.certified() && !centre && depth < 8)
     for (const core::QuadricMatrix* s : {&a, &b})
       if (const auto c = own_centre(*s)) {
         CurveResult again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c);
