@@ -77,8 +77,8 @@ void normalised(const core::QuadricMatrix& q, M4& out, M4& lo, bool& exact) {
 // terms of size ~|p|^2, and where the two surfaces meet at a small angle a the rounding error
 // of f becomes a sideways error of the corrected points ~1/a times larger. Extended precision
 // keeps that below the steps even for loops of size 2^-20 at some distance from the origin.
-// (The coefficients themselves are rounded doubles: the traced curve is that of the rounded
-// pair, a fixed, smooth perturbation of the exact one, not noise.)
+// (Unless the pair is posed in doubles, the coefficients themselves are rounded: the traced
+// curve is then that of the rounded pair, a fixed, smooth perturbation of the exact one.)
 // The symmetric form's ten distinct products (m symmetric): x (m00 x + 2 (m01 y + m02 z +
 // m03)) + y (m11 y + 2 (m12 z + m13)) + z (m22 z + 2 m23) + m33, as form_fast below.
 // With `lo` (see normalised) the coefficients are m + lo, exact in long double.
@@ -240,11 +240,11 @@ void polish(const QuadricPair& q, Point3& p) {
   const double a11 = dot(gf, gf), a12 = dot(gf, gg), a22 = dot(gg, gg);
   if (a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
   if (q.noise_unit < 0x1p-53) {
-    // Traced exactly as posed: the residuals are evaluated to ~1e-19, far below the ~1e-16 at
-    // which a double point on the curve leaves them, so while sideways the band is ~1e-16 / sin
-    // wide (~1e-8 around a neck of pipes posed in doubles), Gauss-Newton's steps, which divide
-    // by sin^2, still see where in it the curve runs. Steps while they shrink, until they no
-    // longer move p.
+    // Traced exactly as posed: the residuals are evaluated to ~1e-19, far below the ~1e-16 that
+    // a double point on the curve leaves. The residual test accepts a band ~1e-16 / sin wide
+    // sideways (~1e-8 around a neck of pipes posed in doubles), but Gauss-Newton's steps, which
+    // divide by sin^2, still see where in it the curve runs: steps while they shrink, until
+    // they no longer move p.
     double last = HUGE_VAL;
     const double floor = 0x1p-50 * (1 + std::sqrt(dot(p, p)));
     for (int k = 0; k < 6; ++k) {
