@@ -199,6 +199,23 @@ TEST(Trace, QuadricPairNormalisesAndProjects) {
   // Exact coefficients: only the evaluation perturbs f; a third is rounded.
   EXPECT_LT(p.noise_unit, 0x1p-58);
   EXPECT_GE(trace::QuadricPair(q("x^2 + y^2 + z^2 = 1/3"), b).noise_unit, 0x1p-53);
+  // The edge of the doubles: 2^53 + 1 needs 54 bits, 2^53 and 2^-100 do not.
+  EXPECT_GE(trace::QuadricPair(q("x^2 + y^2 + z^2 = 9007199254740993"), b).noise_unit, 0x1p-53);
+  EXPECT_LT(trace::QuadricPair(q("x^2 + y^2 + z^2 = 9007199254740992"), b).noise_unit, 0x1p-58);
+  EXPECT_LT(
+      trace::QuadricPair(q("x^2 + y^2 + z^2 = 1/1267650600228229401496703205376"), b).noise_unit,
+      0x1p-58);
+  // A matrix of doubles that is not symmetric: its symmetric part (1 + 2^-52) / 2 ... needs
+  // 54 bits, carried exactly as hi + lo.
+  core::DoubleMat4 d{};
+  d[0][0] = d[1][1] = d[2][2] = 1, d[3][3] = -1;
+  d[0][1] = 1, d[1][0] = 1 + 0x1p-52;
+  const trace::QuadricPair s(core::QuadricMatrix::from_double_matrix(d), b);
+  EXPECT_TRUE(s.split);
+  EXPECT_LT(s.noise_unit, 0x1p-58);
+  EXPECT_EQ(static_cast<long double>(s.a[0][1]) + s.a_lo[0][1],
+            (2 + 0x1p-52L) / 2 / 2); // scaled by 2^-1 (largest entry ~1)
+  EXPECT_NE(s.a_lo[0][1], 0.0);
   Point3 x{1.2, 0.9, 1.1};
   ASSERT_TRUE(trace::project_onto_curve(p, x));
   // On the sphere of radius 2 and the cylinder: checked without QuadricPair.
