@@ -1583,9 +1583,24 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   // retries inside it). Not while the affine reading itself is open (readings that
   // settle_by_traced_loops decides after this trace): a retry carries that reading and can
   // only be undecided too (four retries were ~45 ms of a rounded cone pair's 50).
+  // For a pair traced exactly as posed (QuadricPair::noise_unit at the evaluation's floor) a
+  // frame is tried only when the traced curve comes near its centre (within 1/64 of the
+  // curve's size; nothing traced counts as near): moved to a double centre the matrices are no
+  // longer doubles, and the walk there has the coefficients' 2^-53 to contend with where here
+  // it had ~4e-19, which only pays next to a centre that is nearly on the curve (a cylinder
+  // through a cone's apex). The undecided rounded Steinmetz pairs spent ~40 ms each in retries
+  // at their axes, which the curve never comes near.
+  const bool as_posed = QuadricPair(a, b).noise_unit < 0x1p-53;
+  auto near_curve = [&out](const Point3& c) {
+    double size = points_size(out, true), best = HUGE_VAL;
+    for (const auto& br : out.branches)
+      for (const auto& p : br.points)
+        best = std::min(best, std::hypot(p[0] - c[0], p[1] - c[1], p[2] - c[2]));
+    return !(best > size / 64);
+  };
   if (out.status != Status::Certified && out.affine.certified() && !centre && depth < 8)
     for (const core::QuadricMatrix* s : {&a, &b})
-      if (const auto c = own_centre(*s)) {
+      if (const auto c = own_centre(*s); c && (!as_posed || near_curve(*c))) {
         CurveResult again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c);
         if (again.status == Status::Certified) return again;
         again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c, true);
