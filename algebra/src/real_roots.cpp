@@ -48,8 +48,12 @@ std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>
   for (size_t k = 0; k < n; ++k)
     z[k] = std::polar(r, 2 * M_PI * (static_cast<double>(k) + 0.25) / static_cast<double>(n) + 0.4);
   // Roots whose last correction was below 1e-14 (relative) are frozen: only guesses are
-  // needed here (callers check them exactly or polish them by Newton).
+  // needed here (callers check them exactly or polish them by Newton). So is a root whose
+  // correction, already below 1e-7, stopped shrinking: a multiple root converges linearly to
+  // the rounding's floor (~1e-8 for a double root) and then wanders there; a degree 8
+  // discriminant with a double root ran all 100 iterations (~10% of a traced pipe pair).
   std::vector<char> done(n, 0);
+  std::vector<double> last(n, HUGE_VAL);
   for (int it = 0; it < 100; ++it) {
     double moved = 0;
     for (size_t k = 0; k < n; ++k) {
@@ -75,7 +79,8 @@ std::vector<std::complex<double>> approx_complex_roots(const std::vector<double>
       z[k] -= w;
       double aw = std::fabs(w.real()) + std::fabs(w.imag());
       double rel = aw / (1 + std::fabs(z[k].real()) + std::fabs(z[k].imag()));
-      if (rel < 1e-14) done[k] = 1;
+      if (rel < 1e-14 || (rel < 1e-7 && aw >= last[k])) done[k] = 1;
+      last[k] = aw;
       moved = std::max(moved, rel);
     }
     if (moved < 1e-15) break;
