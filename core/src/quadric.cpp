@@ -219,12 +219,12 @@ QuadricMatrix QuadricMatrix::translated(const std::array<double, 3>& c) const {
               Rational::exact_from_double(moved.center[k]) ==
                   Rational::exact_from_double(sp->center[k]) - Rational::exact_from_double(c[k]);
     }
-    if (exact) return QuadricMatrix(moved);
+    if (exact) return with_invariants_of(QuadricMatrix(moved));
   }
   Mat4 p = identity4();
   for (size_t i = 0; i < 3; ++i)
     p[i][3] = Rational::exact_from_double(c[i]);
-  return congruent(p);
+  return with_invariants_of(congruent(p));
 }
 
 // log2 |x| within 1 (x != 0), from the bit lengths of its numerator and denominator: no
@@ -248,7 +248,7 @@ QuadricMatrix QuadricMatrix::rescaled(int k) const {
       shrink(moved.center[i]);
       shrink(moved.radii[i]);
     }
-    if (exact) return QuadricMatrix(moved);
+    if (exact) return with_invariants_of(QuadricMatrix(moved));
   }
   Mat4 p{};
   for (size_t i = 0; i < 3; ++i)
@@ -261,7 +261,17 @@ QuadricMatrix QuadricMatrix::rescaled(int k) const {
   for (const auto& row : m)
     for (const Rational& x : row)
       if (!x.is_zero()) top = std::max(top, log2_about(x));
-  return QuadricMatrix(top == LONG_MIN ? m : scaled(m, pow2(-top)));
+  return with_invariants_of(QuadricMatrix(top == LONG_MIN ? m : scaled(m, pow2(-top))));
+}
+
+// A translation and a positive scaling are affine changes of coordinates: the moved quadric
+// has this one's kind and is singular exactly when this one is, so what this one has already
+// computed is handed on (the translated pairs of the tracer asked both again: ~4% of a pair).
+QuadricMatrix QuadricMatrix::with_invariants_of(QuadricMatrix moved) const {
+  moved.state_->kind.store(state_->kind.load(std::memory_order_relaxed), std::memory_order_relaxed);
+  moved.state_->singular.store(state_->singular.load(std::memory_order_relaxed),
+                               std::memory_order_relaxed);
+  return moved;
 }
 
 // See quadric.hpp.

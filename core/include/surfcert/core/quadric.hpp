@@ -88,6 +88,9 @@ public:
 
 private:
   QuadricMatrix() = default;
+  /// `moved` (this quadric in other affine coordinates, freshly built) with this one's cached
+  /// kind and singularity, where already computed.
+  QuadricMatrix with_invariants_of(QuadricMatrix moved) const;
   struct State {
     Mat4 m;
     std::optional<ShapeSpec> shape;
