@@ -548,9 +548,9 @@ bool loops_in_given_box(const core::QuadricMatrix& a, const core::QuadricMatrix&
 // pieces' ends match the exact crossings one to one. Returns true when the verdict is
 // undecided because of the traced picture alone (its pieces, their ends), which a finer trace
 // may fix; false when certified or when an exact part is missing.
-bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, CurveResult& out,
-                Box& box, bool automatic, const std::function<void(const Box&)>& retrace,
-                bool special_points_complete) {
+bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const QuadricPair& q,
+                CurveResult& out, Box& box, bool automatic,
+                const std::function<void(const Box&)>& retrace, bool special_points_complete) {
   const certify::AffineTopology& af = out.affine;
   out.box_exits = curve_exits(a, b, af, box, out.topology);
   for (int nudge = 1; nudge <= 3 && automatic && !out.box_exits->certified; ++nudge) {
@@ -572,7 +572,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
   for (const auto& p : out.isolated_points)
     if (box.contains(p)) inside.push_back(p);
   out.isolated_points = inside;
-  finish_points(a, b, QuadricPair(a, b), out);
+  finish_points(a, b, q, out);
 
   int closed = 0, open = 0, open_off_face = 0;
   const double eps = 1e-7 * box.diagonal();
@@ -680,7 +680,7 @@ bool trace_section_lines(const core::QuadricMatrix& a, const core::QuadricMatrix
   };
   trace_at(box);
   out.box_automatic = !opt.box;
-  settle_box(a, b, out, box, !opt.box, trace_at, true);
+  settle_box(a, b, QuadricPair(a, b), out, box, !opt.box, trace_at, true);
   return true;
 }
 
@@ -740,7 +740,7 @@ void trace_cubic_line(const core::QuadricMatrix& a, const core::QuadricMatrix& b
       box.max[k] = c + h;
     }
   }
-  settle_box(a, b, out, box, !opt.box, trace_at, t.special_points_complete);
+  settle_box(a, b, QuadricPair(a, b), out, box, !opt.box, trace_at, t.special_points_complete);
 }
 
 // Non-ellipsoid pairs: the curve inside a box, checked against the affine topology. With
@@ -888,7 +888,20 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   }
   // The exact crossings with the faces; an automatic box whose faces meet the curve
   // non-generically (on an edge, tangentially) is widened a little, unevenly, and retraced.
-  bool retry = settle_box(a, b, out, box, !opt.box, trace_at, t.special_points_complete);
+  bool retry = settle_box(a, b, q, out, box, !opt.box, trace_at, t.special_points_complete);
+  // A picture that does not match is traced again on the exact coefficients first, evaluated in
+  // double-double (QuadricPair::refined): where two pieces of curve pass within ~1e-8 of each
+  // other (the neck of two pipes rounded to doubles, offset pipes 2^-30 from tangency) the
+  // rounding of the coefficients, or of the long double evaluation of a pair posed in doubles,
+  // moves the curve by about that much, and the walk stops there rather than guess which way
+  // it runs (noise_radius against the gap). Several times the cost of a walk's evaluations:
+  // only here, once the plain picture failed.
+  if (retry && !q.refined_form)
+    if (auto r = q.refined(a, b)) {
+      q = std::move(*r);
+      trace_at(box);
+      retry = settle_box(a, b, q, out, box, !opt.box, trace_at, t.special_points_complete);
+    }
   // A traced picture that does not match is traced again with the tolerance divided by 8
   // (twice at most): the step is bounded by 200 times the tolerance, relative to the scene
   // (the box), and where the box is large against the gaps between pieces of curve (an
@@ -901,7 +914,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   for (int refine = 0; refine < 2 && retry; ++refine) {
     topt.tolerance /= 8;
     trace_at(box);
-    retry = settle_box(a, b, out, box, !opt.box, trace_at, t.special_points_complete);
+    retry = settle_box(a, b, q, out, box, !opt.box, trace_at, t.special_points_complete);
     out.tolerance = topt.tolerance;
   }
 }
@@ -1590,7 +1603,6 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   // it had ~4e-19, which only pays next to a centre that is nearly on the curve (a cylinder
   // through a cone's apex). The undecided rounded Steinmetz pairs spent ~40 ms each in retries
   // at their axes, which the curve never comes near.
-  const bool as_posed = QuadricPair(a, b).noise_unit < 0x1p-53;
   auto near_curve = [&out](const Point3& c) {
     double size = points_size(out, true), best = HUGE_VAL;
     for (const auto& br : out.branches)
@@ -1598,14 +1610,16 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
         best = std::min(best, std::hypot(p[0] - c[0], p[1] - c[1], p[2] - c[2]));
     return !(best > size / 64);
   };
-  if (out.status != Status::Certified && out.affine.certified() && !centre && depth < 8)
-    for (const core::QuadricMatrix* s : {&a, &b})
-      if (const auto c = own_centre(*s); c && (!as_posed || near_curve(*c))) {
-        CurveResult again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c);
-        if (again.status == Status::Certified) return again;
-        again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c, true);
-        if (again.status == Status::Certified) return again;
-      }
+  if (out.status == Status::Certified || !out.affine.certified() || centre || depth >= 8)
+    return out;
+  const bool as_posed = QuadricPair(a, b).noise_unit < 0x1p-53;
+  for (const core::QuadricMatrix* s : {&a, &b})
+    if (const auto c = own_centre(*s); c && (!as_posed || near_curve(*c))) {
+      CurveResult again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c);
+      if (again.status == Status::Certified) return again;
+      again = trace_curve_at(a, b, out.topology, opt, 8, &out.affine, &*c, true);
+      if (again.status == Status::Certified) return again;
+    }
   return out;
 }
 
@@ -1625,9 +1639,23 @@ void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
     // Float start points first (cheap); if the branches traced from them do not reproduce the
     // certified topology (a small loop missed), the exact extreme points are used instead.
     out.branches = march(q, extreme_points_float(q), singular, opt);
-    if (!branches_match(out.branches, c)) {
-      out.branches = march(q, extreme_points(a, b), singular, opt);
+    // Every branch of a quartic case is a closed loop here (one surface is an ellipsoid): an
+    // open one is a walk that died.
+    auto whole = [c](const std::vector<Branch>& brs) {
+      return branches_match(brs, c) &&
+             std::all_of(brs.begin(), brs.end(), [](const Branch& br) { return br.closed; });
+    };
+    if (!whole(out.branches)) {
+      const std::vector<Point3> starts = extreme_points(a, b);
+      out.branches = march(q, starts, singular, opt);
       out.exact_start_points = true;
+      // Then on the exact coefficients in double-double (see trace_in_box): a loop whose
+      // pieces pass within ~1e-8 of each other, which the rounded pair cannot separate.
+      if (!whole(out.branches))
+        if (const auto r = q.refined(a, b)) {
+          std::vector<Branch> again = march(*r, starts, singular, opt);
+          if (whole(again)) out.branches = std::move(again);
+        }
     }
   } else if (t.morphology->conics > 0) {
     out.branches = conic_branches(a, b, t.facts, opt, lines_only(t));

@@ -4,6 +4,8 @@
 
 #include "surfcert/certify/enclosure.hpp"
 
+#include "double_double.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,7 +26,10 @@ using M4 = std::array<std::array<double, 4>, 4>;
 // symmetric part, whose entries (d_ij + d_ji) / 2 need up to 54 bits: hi + lo, both doubles
 // (an exact two-sum), which a long double holds exactly; form() evaluates with hi + lo.
 // `exact` is cleared unless hi + lo is the exact matrix times that power of two.
-void normalised(const core::QuadricMatrix& q, M4& out, M4& lo, bool& exact) {
+// `scale` receives e with out = (rounded A) 2^-e; `pow2` is cleared when the entries were
+// divided exactly instead (beyond the doubles).
+void normalised(const core::QuadricMatrix& q, M4& out, M4& lo, bool& exact, int& scale,
+                bool& pow2) {
   lo = M4{};
   const core::DoubleMat4* d = q.shape() ? nullptr : q.double_matrix();
   if (d) {
@@ -59,9 +64,11 @@ void normalised(const core::QuadricMatrix& q, M4& out, M4& lo, bool& exact) {
         out[i][j] = y;
         lo[i][j] = yl;
       }
+    scale = e;
     return;
   }
   exact = false;
+  pow2 = false;
   lo = M4{};
   // Entries beyond the double range: divide exactly first.
   core::Rational mq;
@@ -131,8 +138,8 @@ double term_size(const std::array<std::array<double, 4>, 4>& m, const Point3& p)
 
 QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb) {
   bool exact = true;
-  normalised(qa, a, a_lo, exact);
-  normalised(qb, b, b_lo, exact);
+  normalised(qa, a, a_lo, exact, a_scale, scaled_by_pow2);
+  normalised(qb, b, b_lo, exact, b_scale, scaled_by_pow2);
   for (size_t i = 0; i < 4; ++i)
     for (size_t j = 0; j < 4; ++j)
       split = split || a_lo[i][j] != 0 || b_lo[i][j] != 0;
@@ -143,10 +150,33 @@ QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatri
   noise_unit = exact ? evaluation : 0x1p-53 + evaluation;
 }
 
+std::optional<QuadricPair> QuadricPair::refined(const core::QuadricMatrix& qa,
+                                                const core::QuadricMatrix& qb) const {
+  if (!scaled_by_pow2) return std::nullopt;
+  QuadricPair r = *this;
+  // The remainder of each exact entry, scaled as its double was, after that double: exact as a
+  // rational, rounded once (a matrix of doubles symmetrised: the split's remainder again).
+  auto fill = [](const core::QuadricMatrix& q, int scale, const M4& hi, M4& lo) {
+    const core::Rational s = core::pow2(-scale);
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = i; j < 4; ++j) {
+        const core::Rational v = q(static_cast<int>(i), static_cast<int>(j)) * s;
+        lo[i][j] = lo[j][i] = (v - core::Rational::exact_from_double(hi[i][j])).to_double_approx();
+      }
+  };
+  fill(qa, a_scale, a, r.a_lo);
+  fill(qb, b_scale, b, r.b_lo);
+  r.refined_form = true;
+  r.noise_unit = 0x1p-96;
+  return r;
+}
+
 double QuadricPair::f(const Point3& p) const {
+  if (refined_form) return dd::form(a, a_lo, p);
   return form(a, p, split ? &a_lo : nullptr);
 }
 double QuadricPair::g(const Point3& p) const {
+  if (refined_form) return dd::form(b, b_lo, p);
   return form(b, p, split ? &b_lo : nullptr);
 }
 Point3 QuadricPair::grad_f(const Point3& p) const {
@@ -164,7 +194,13 @@ double QuadricPair::noise_radius(const Point3& p) const {
   const double sine_nf_ng = std::sqrt(dot(c, c)); // sin(angle) |grad f| |grad g|
   if (!(sine_nf_ng > 0)) return HUGE_VAL;
   // max(Fa / nf, Fb / ng) / sin = max(Fa ng, Fb nf) / (sin nf ng)
-  return noise_unit * std::max(term_size(a, p) * ng, term_size(b, p) * nf) / sine_nf_ng;
+  const double r = noise_unit * std::max(term_size(a, p) * ng, term_size(b, p) * nf) / sine_nf_ng;
+  if (!refined_form) return r;
+  // Refined, the evaluation's noise is far below the doubles' spacing: two pieces of curve
+  // closer than a few units of the points' last place cannot be told apart by double points
+  // (a cylinder 2^-60 from a cone's apex: its loops on the two nappes 2e-18 apart).
+  const double big = std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2]), 1.0});
+  return std::max(r, 0x1p-48 * big);
 }
 
 double QuadricPair::distance_bound(const Point3& p, double enough) const {
@@ -236,9 +272,13 @@ double relative_residual(const TermSizes& t, double fv, double gv) {
 void polish(const QuadricPair& q, Point3& p) {
   // Only needed where the surfaces meet at a small angle (sin^2 < 1/100); elsewhere the
   // tolerance band is already as narrow as the rounding floor allows.
+  // In a refined pair (double-double on the exact coefficients) at every angle: the acceptance
+  // test's residual, 1e-15 of the terms, is no distance where a gradient is small (next to a
+  // cone's apex, |grad f| ~ 2r: up to 5e-6 off at r = 1e-10, and walks there stepped from
+  // one nappe to the other), while the evaluation resolves the curve to its double points.
   const Point3 gf = q.grad_f(p), gg = q.grad_g(p);
   const double a11 = dot(gf, gf), a12 = dot(gf, gg), a22 = dot(gg, gg);
-  if (a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
+  if (!q.refined_form && a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
   if (q.noise_unit < 0x1p-53) {
     // Traced exactly as posed: the residuals are evaluated to ~1e-19, far below the ~1e-16 that
     // a double point on the curve leaves. The residual test accepts a band ~1e-16 / sin wide

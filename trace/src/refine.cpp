@@ -8,6 +8,8 @@
 // Double-double coefficients (~1e-32) shrink that waist below 1e-15.
 #include "surfcert/trace/curve.hpp"
 
+#include "double_double.hpp"
+
 #include <flint/fmpq.h>
 
 #include <algorithm>
@@ -17,33 +19,6 @@
 namespace surfcert::trace {
 
 namespace {
-
-// Error-free transformations (Knuth two-sum, fma two-product).
-inline void two_sum(double a, double b, double& s, double& e) {
-  s = a + b;
-  const double bb = s - a;
-  e = (a - (s - bb)) + (b - bb);
-}
-
-inline void two_prod(double a, double b, double& p, double& e) {
-  p = a * b;
-  e = std::fma(a, b, -p);
-}
-
-// (ah + al) * (bh + bl), to ~2^-104 relative.
-inline void dd_mul(double ah, double al, double bh, double bl, double& ph, double& pl) {
-  double p, e;
-  two_prod(ah, bh, p, e);
-  e += ah * bl + al * bh;
-  two_sum(p, e, ph, pl);
-}
-
-inline void dd_add(double& sh, double& sl, double bh, double bl) {
-  double s, e;
-  two_sum(sh, bh, s, e);
-  e += sl + bl;
-  two_sum(s, e, sh, sl);
-}
 
 double dot3(const Point3& a, const Point3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -79,18 +54,7 @@ RefinedPair::RefinedPair(const core::QuadricMatrix& qa, const core::QuadricMatri
 }
 
 double RefinedPair::value(const Form& m, const Point3& p) {
-  const double x[4] = {p[0], p[1], p[2], 1.0};
-  double sh = 0, sl = 0;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = i; j < 4; ++j) {
-      double xh, xl; // x_i x_j exactly
-      two_prod(x[i], x[j], xh, xl);
-      double th, tl;
-      dd_mul(m.hi[i][j], m.lo[i][j], xh, xl, th, tl);
-      if (i != j) th *= 2, tl *= 2;
-      dd_add(sh, sl, th, tl);
-    }
-  return sh + sl;
+  return dd::form(m.hi, m.lo, p);
 }
 
 Point3 RefinedPair::gradient(const Form& m, const Point3& p) {

@@ -76,7 +76,24 @@ struct QuadricPair {
   /// see noise_radius): the rounding of the coefficients (2^-53) plus the evaluation's, or the
   /// evaluation's alone when a and b are the exact matrices scaled (posed in doubles).
   double noise_unit = 0x1p-53;
+  /// True in a pair made by refined(): f and g evaluate a + a_lo, b + b_lo (the exact matrices
+  /// scaled, to ~2^-106 per entry) in double-double.
+  bool refined_form = false;
+  /// The powers of two each matrix was scaled by (a = A 2^-a_scale, rounded entrywise), and
+  /// whether that scaling was exact (false for entries beyond the doubles, divided exactly).
+  int a_scale = 0, b_scale = 0;
+  bool scaled_by_pow2 = true;
   explicit QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb);
+  /// This pair (built from qa, qb) with f and g evaluated in double-double on the exact
+  /// matrices, scaled by the same powers of two: a, b and the gradients are unchanged, a_lo
+  /// and b_lo become the exact matrices' remainders (rounded once, ~2^-106 of an entry), and
+  /// noise_unit 2^-96 (the remainders' rounding and the evaluation's 2^-98 of the terms). The
+  /// zero set a walk then follows is the exact pair's to ~1e-29 of the terms instead of ~1e-16
+  /// (a neck of ~1e-8 between two pieces of curve, which the rounded coefficients cannot place,
+  /// is walked). Several times the cost of f and g: for retries. Nullopt where the scaling was
+  /// not exact.
+  std::optional<QuadricPair> refined(const core::QuadricMatrix& qa,
+                                     const core::QuadricMatrix& qb) const;
   double f(const Point3& p) const; ///< X^T A X with X = (p, 1)
   double g(const Point3& p) const;
   Point3 grad_f(const Point3& p) const;
@@ -93,7 +110,9 @@ struct QuadricPair {
   /// and the curve by the larger of the two surfaces' moves over the sine of the angle between
   /// them (infinite where a gradient vanishes or they are parallel). Large near a cone's apex
   /// (at distance r from an apex ~1 from the origin, ~1e-16 / r) and where the surfaces are
-  /// nearly tangent: there a walk cannot tell two pieces of curve apart.
+  /// nearly tangent: there a walk cannot tell two pieces of curve apart. In a refined pair at
+  /// least 2^-48 max(1, |p|_inf): a few units in the last place of the double points, below
+  /// which no double point tells two pieces apart whatever the evaluation resolves.
   double noise_radius(const Point3& p) const;
 };
 
@@ -132,6 +151,9 @@ private:
 /// does not converge to max(|f| / F, |g| / G) <= 1e-15 within `iterations`, where
 /// F = sum |a_ij x_i x_j| (x = (p, 1)) is the size of the terms of f at p (so the criterion
 /// holds at any scale and translation: the rounding floor of f's evaluation is ~1e-19 F).
+/// Where the surfaces meet at a small angle, or at any angle in a refined pair (next to a
+/// cone's apex the criterion allows points ~1e-15 F / |grad f| off), Gauss-Newton then goes on
+/// while its steps shrink.
 bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations = 30);
 
 /// Start points: for a random-ish direction d, the points of the curve where d.x is critical
