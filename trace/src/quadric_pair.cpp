@@ -179,11 +179,29 @@ double QuadricPair::g(const Point3& p) const {
   if (refined_form) return dd::form(b, b_lo, p);
   return form(b, p, split ? &b_lo : nullptr);
 }
+// In a refined pair the gradient is the exact matrices' too (hi + lo, in long double): next to
+// a cone's apex it is a difference of terms ~|p| that cancel to ~r, and the rounded matrix's
+// moved the tangent grad f x grad g by more than the gap between two pieces of curve there
+// (refined walks stepped against the curve's orientation on 12 of 40 cylinders through the
+// apex of a cone posed in doubles). (A matrix of doubles carried as hi + lo keeps the hi
+// gradient: the same pair read exactly, as rationals, must give the same points.)
+Point3 gradient_refined(const M4& m, const M4& lo, const Point3& p) {
+  Point3 g{};
+  for (size_t i = 0; i < 3; ++i) {
+    long double s = 0;
+    for (size_t j = 0; j < 3; ++j)
+      s += (static_cast<long double>(m[i][j]) + lo[i][j]) * p[j];
+    s += static_cast<long double>(m[i][3]) + lo[i][3];
+    g[i] = static_cast<double>(2 * s);
+  }
+  return g;
+}
+
 Point3 QuadricPair::grad_f(const Point3& p) const {
-  return gradient(a, p);
+  return refined_form ? gradient_refined(a, a_lo, p) : gradient(a, p);
 }
 Point3 QuadricPair::grad_g(const Point3& p) const {
-  return gradient(b, p);
+  return refined_form ? gradient_refined(b, b_lo, p) : gradient(b, p);
 }
 
 double QuadricPair::noise_radius(const Point3& p) const {
@@ -195,10 +213,11 @@ double QuadricPair::noise_radius(const Point3& p) const {
   if (!(sine_nf_ng > 0)) return HUGE_VAL;
   // max(Fa / nf, Fb / ng) / sin = max(Fa ng, Fb nf) / (sin nf ng)
   const double r = noise_unit * std::max(term_size(a, p) * ng, term_size(b, p) * nf) / sine_nf_ng;
-  if (!refined_form) return r;
-  // Refined, the evaluation's noise is far below the doubles' spacing: two pieces of curve
-  // closer than a few units of the points' last place cannot be told apart by double points
-  // (a cylinder 2^-60 from a cone's apex: its loops on the two nappes 2e-18 apart).
+  if (!(noise_unit < 0x1p-53)) return r;
+  // Evaluated beyond its doubles (as posed, or refined), the evaluation's noise can be far below
+  // the doubles' spacing: two pieces of curve closer than a few units of the points' last place
+  // cannot be told apart by double points (a cylinder 2^-60 from a cone's apex: its loops on
+  // the two nappes 2e-18 apart).
   const double big = std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2]), 1.0});
   return std::max(r, 0x1p-48 * big);
 }
@@ -272,13 +291,15 @@ double relative_residual(const TermSizes& t, double fv, double gv) {
 void polish(const QuadricPair& q, Point3& p) {
   // Only needed where the surfaces meet at a small angle (sin^2 < 1/100); elsewhere the
   // tolerance band is already as narrow as the rounding floor allows.
-  // In a refined pair (double-double on the exact coefficients) at every angle: the acceptance
-  // test's residual, 1e-15 of the terms, is no distance where a gradient is small (next to a
-  // cone's apex, |grad f| ~ 2r: up to 5e-6 off at r = 1e-10, and walks there stepped from
-  // one nappe to the other), while the evaluation resolves the curve to its double points.
+  // For a pair evaluated beyond its doubles (traced exactly as posed, or refined) at every
+  // angle: the acceptance test's residual, 1e-15 of the terms, is no distance where a gradient
+  // is small (next to a cone's apex, |grad f| ~ 2r: up to 5e-6 off at r = 1e-10), while the
+  // noise radius there lets the walk in; walks stepped between the two sheets of a rounded
+  // cone's waist and back (a cylinder through the apex posed in doubles: 2 of 40 such pictures
+  // certified with stretches against the curve's orientation), or from one nappe to the other.
   const Point3 gf = q.grad_f(p), gg = q.grad_g(p);
   const double a11 = dot(gf, gf), a12 = dot(gf, gg), a22 = dot(gg, gg);
-  if (!q.refined_form && a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
+  if (!(q.noise_unit < 0x1p-53) && a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
   if (q.noise_unit < 0x1p-53) {
     // Traced exactly as posed: the residuals are evaluated to ~1e-19, far below the ~1e-16 that
     // a double point on the curve leaves. The residual test accepts a band ~1e-16 / sin wide

@@ -110,9 +110,10 @@ struct QuadricPair {
   /// and the curve by the larger of the two surfaces' moves over the sine of the angle between
   /// them (infinite where a gradient vanishes or they are parallel). Large near a cone's apex
   /// (at distance r from an apex ~1 from the origin, ~1e-16 / r) and where the surfaces are
-  /// nearly tangent: there a walk cannot tell two pieces of curve apart. In a refined pair at
-  /// least 2^-48 max(1, |p|_inf): a few units in the last place of the double points, below
-  /// which no double point tells two pieces apart whatever the evaluation resolves.
+  /// nearly tangent: there a walk cannot tell two pieces of curve apart. When noise_unit is
+  /// below 2^-53 (traced as posed, or refined) at least 2^-48 max(1, |p|_inf): a few units in
+  /// the last place of the double points, below which no double point tells two pieces apart
+  /// whatever the evaluation resolves.
   double noise_radius(const Point3& p) const;
 };
 
@@ -151,9 +152,9 @@ private:
 /// does not converge to max(|f| / F, |g| / G) <= 1e-15 within `iterations`, where
 /// F = sum |a_ij x_i x_j| (x = (p, 1)) is the size of the terms of f at p (so the criterion
 /// holds at any scale and translation: the rounding floor of f's evaluation is ~1e-19 F).
-/// Where the surfaces meet at a small angle, or at any angle in a refined pair (next to a
-/// cone's apex the criterion allows points ~1e-15 F / |grad f| off), Gauss-Newton then goes on
-/// while its steps shrink.
+/// Where the surfaces meet at a small angle, or at any angle when noise_unit is below 2^-53
+/// (next to a cone's apex the criterion allows points ~1e-15 F / |grad f| off), Gauss-Newton
+/// then goes on while its steps shrink.
 bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations = 30);
 
 /// Start points: for a random-ish direction d, the points of the curve where d.x is critical
