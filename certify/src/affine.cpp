@@ -1583,6 +1583,19 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   }
   auto comps = components_of(c);
   if (!comps || ((node_at_infinity || other_special) && !all_components_real(c))) {
+    // Lines only (no loop, conic, cubic or real isolated point: two real skew lines beside two
+    // imaginary ones, a real double line): no component lies at infinity (the conics at
+    // infinity share none: the chart's resultant is not zero), and a real line not at infinity
+    // meets the plane at infinity in exactly one point, real. So each real line is one
+    // unbounded branch and there is no loop, however the imaginary lines meet the real ones
+    // (a real point on an imaginary line would be its crossing with the conjugate line: a real
+    // isolated point, which the morphology excludes, or a point of a real line).
+    if (m.lines > 0 && m.loops == 0 && m.conics == 0 && m.cubics == 0 && m.isolated_points == 0 &&
+        static_cast<int>(roots.size()) <= m.lines) {
+      out.loops = 0;
+      out.unbounded_branches = m.lines;
+      return out;
+    }
     out.loops.reset();
     out.unbounded_branches.reset();
     const std::string why = "a singular point at infinity where imaginary components may meet";

@@ -757,8 +757,27 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
     return;
   }
   auto conic_branches_at = [&](const TraceOptions& o) {
-    return section ? section_branches(section->first, core::QuadricMatrix(section->second), o)
-                   : conic_branches(a, b, t.facts, o, lines_only(t));
+    if (section) return section_branches(section->first, core::QuadricMatrix(section->second), o);
+    std::vector<Branch> brs = conic_branches(a, b, t.facts, o, lines_only(t));
+    // Lines only, none drawn from the singular members (two real skew lines from a complex
+    // conjugate pair of members, a real double line): each real point at infinity is the
+    // direction of one real line (affine.cpp), the line through it found on both surfaces.
+    if (brs.empty() && lines_only(t) && af.certified())
+      for (const auto& pi : af.points_at_infinity)
+        if (const auto ln = line_in_direction(a, b, pi.approx)) {
+          const auto& [p, d] = *ln;
+          if (o.box) {
+            if (auto br = line_in_box(p, d, *o.box)) brs.push_back(std::move(*br));
+          } else { // for the sizing: the point nearest the origin in the middle
+            Branch br;
+            br.kind = "line";
+            br.closed = false;
+            for (double u : {-1.0, 0.0, 1.0})
+              br.points.push_back({p[0] + u * d[0], p[1] + u * d[1], p[2] + u * d[2]});
+            brs.push_back(std::move(br));
+          }
+        }
+    return brs;
   };
   QuadricPair q(a, b);
   std::vector<Point3> singular = split_special_points(t, out.isolated_points);

@@ -142,3 +142,43 @@ std::optional<Branch> line_in_box(const Point3& p, const Point3& d, const Box& b
 }
 
 } // namespace surfcert::trace
+
+namespace surfcert::trace {
+
+std::optional<std::pair<Point3, Point3>>
+line_in_direction(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Point3& d) {
+  const QuadricPair q(a, b); // power-of-two scaled doubles (what the tracer walks)
+  auto plane = [&d](const std::array<std::array<double, 4>, 4>& m, Point3& n, double& c) {
+    for (size_t i = 0; i < 3; ++i)
+      n[i] = m[i][0] * d[0] + m[i][1] * d[1] + m[i][2] * d[2];
+    c = m[3][0] * d[0] + m[3][1] * d[1] + m[3][2] * d[2];
+  };
+  Point3 n1{}, n2{};
+  double c1 = 0, c2 = 0;
+  plane(q.a, n1, c1);
+  plane(q.b, n2, c2);
+  // Minimum-norm solution of n1 . p = -c1, n2 . p = -c2: p = N^T (N N^T)^-1 (-c).
+  const double a11 = n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2];
+  const double a12 = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+  const double a22 = n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2];
+  const double det = a11 * a22 - a12 * a12;
+  if (!(det > 1e-12 * a11 * a22) || !std::isfinite(det)) return std::nullopt;
+  const double m1 = (-c1 * a22 + c2 * a12) / det, m2 = (-c2 * a11 + c1 * a12) / det;
+  Point3 p{};
+  for (size_t i = 0; i < 3; ++i)
+    p[i] = m1 * n1[i] + m2 * n2[i];
+  // On both surfaces (relative to the terms at p), else no line of the curve runs this way.
+  for (const auto* m : {&q.a, &q.b}) {
+    double v = 0, size = 0;
+    const double x[4] = {p[0], p[1], p[2], 1.0};
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j) {
+        v += (*m)[i][j] * x[i] * x[j];
+        size += std::fabs((*m)[i][j] * x[i] * x[j]);
+      }
+    if (!(std::fabs(v) <= 1e-9 * size)) return std::nullopt;
+  }
+  return std::make_pair(p, d);
+}
+
+} // namespace surfcert::trace

@@ -38,6 +38,17 @@ std::optional<SectionComponents> section_lines(const core::Mat4& plane, const co
 /// faces), or nullopt when the line misses the box.
 std::optional<Branch> line_in_box(const Point3& p, const Point3& d, const Box& box);
 
+/// The line of the curve of a and b in direction d (a real point at infinity of a curve made of
+/// lines, none at infinity): a line X = p + t d lies on A exactly when d^T A d = 0 (d is at
+/// infinity on A), d . (A_3 p + a_4) = 0 and p is on A; the first two put it in the plane
+/// Pi_A = {p : d . (A_3 p + a_4) = 0}, parallel to d, where A is constant along d. So the
+/// curve's line in direction d is Pi_A ∩ Pi_B when their normals A_3 d, B_3 d are independent.
+/// Returns (point nearest the origin, d) in doubles, or nullopt when the normals are nearly
+/// parallel or the point found is not on both surfaces to ~1e-9 of the terms (a guess: the
+/// caller's exact box crossings judge the picture).
+std::optional<std::pair<Point3, Point3>>
+line_in_direction(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Point3& d);
+
 /// The arcs of the exact twisted cubic of cases 10-12 (certify/cubic_line.hpp) inside the
 /// box: open branches (kind "cubic") sampled from its rational parametrisation with chord
 /// error about `chord` (at most ~max_points points each), both ends on faces (snapped onto
