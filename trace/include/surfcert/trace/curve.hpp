@@ -5,9 +5,8 @@
 // The tracer sits above certify (it uses certify's decisions, never the other way round).
 //
 // Conventions: points are affine (x, y, z) doubles; every returned point has been corrected
-// by Newton steps onto both surfaces; `residual` is the largest max(|f|, |g|)/scale over the
-// returned points, with f, g the quadrics' polynomials normalised so that their largest
-// coefficient has absolute value 1.
+// by Newton steps onto both surfaces; `max_residual` (intersect_curve.hpp) is a geometric
+// distance bound, max(|f| / |grad f|, |g| / |grad g|) over the returned points.
 #pragma once
 
 #include "surfcert/core/quadric.hpp"
@@ -120,9 +119,11 @@ struct QuadricPair {
 /// The pair's exact coefficients in double-double (each entry hi + lo, read from the exact
 /// rationals, the matrix scaled by a power of two): f and g evaluate to ~1e-30 relative at a
 /// double point. For the final correction of traced points onto the exact surfaces and for
-/// measuring how far a point lies from them; the tracer itself walks on QuadricPair's rounded
-/// coefficients, whose curve differs from the exact one by ~1e-16 relative except near a
-/// singular point of a surface (a cone's apex), where it differs by up to ~1e-8.
+/// measuring how far a point lies from them. The tracer walks on QuadricPair's doubles (exact
+/// for a pair posed in doubles; else rounded, a curve that differs from the exact one by
+/// ~1e-16 relative except near a singular point of a surface, a cone's apex, where it differs
+/// by up to ~1e-8), and retraces a picture that failed on QuadricPair::refined, whose
+/// coefficients are these.
 class RefinedPair {
 public:
   RefinedPair(const core::QuadricMatrix& a, const core::QuadricMatrix& b);
