@@ -4,6 +4,7 @@
 
 #include "surfcert/algebra/eigen4.hpp"
 #include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/certify/curve_lines.hpp"
 #include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/inner_loops.hpp"
 #include "surfcert/certify/proven_loops.hpp"
@@ -394,6 +395,31 @@ std::optional<core::QuadricMatrix> double_conic_plane(const QsicResult& t) {
   return std::nullopt;
 }
 
+// The curve's real lines, exactly (certify/curve_lines.hpp), for a certified lines-only
+// morphology: from the pencil's rank-2 rational members and the rational points at infinity.
+// nullopt when they are not all found that way.
+std::optional<std::vector<certify::ExactLine>> exact_lines(const QsicResult& t,
+                                                           const certify::AffineTopology& af) {
+  if (t.status != Status::Certified || !t.morphology || !af.certified()) return std::nullopt;
+  const certify::Morphology& m = *t.morphology;
+  // Lines only: every real component a line (a cubic, conic or loop beside them has crossings
+  // of its own, which the lines' do not include).
+  if (m.lines <= 0 || m.conics || m.cubics || m.loops) return std::nullopt;
+  std::vector<std::array<core::Rational, 3>> dirs;
+  for (const auto& pt : af.points_at_infinity) {
+    if (!pt.rational) continue;
+    std::array<core::Rational, 3> d;
+    bool ok = true;
+    for (size_t k = 0; k < 3 && ok; ++k) {
+      const auto v = core::Rational::from_string(pt.direction[k]);
+      ok = v.has_value();
+      if (v) d[k] = *v;
+    }
+    if (ok) dirs.push_back(d);
+  }
+  return certify::exact_curve_lines(t.facts, t.morphology->lines, dirs);
+}
+
 certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                               const certify::AffineTopology& af, const Box& box,
                               const QsicResult& t) {
@@ -447,6 +473,17 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
   if (af.certified() && !af.plane)
     if (const auto plane = double_conic_plane(t))
       return exact_exits(*plane, a.is_plane() ? b : a, box);
+  if (!af.plane)
+    if (const auto lines = exact_lines(t, af)) {
+      // A curve of lines only (a real double line among them: its crossings are double roots
+      // of the face resultants, which the generic reading refuses), each line exactly.
+      std::array<core::Rational, 3> lo, hi;
+      for (size_t k = 0; k < 3; ++k) {
+        lo[k] = core::Rational::exact_from_double(box.min[k]);
+        hi[k] = core::Rational::exact_from_double(box.max[k]);
+      }
+      return certify::exact_lines_box_exits(*lines, lo, hi);
+    }
   if (!af.certified() || !af.plane || !af.section_of) return exact_exits(a, b, box);
   const core::QuadricMatrix plane(*af.plane), other(*af.section_of);
   certify::BoxExits ex = exact_exits(plane, other, box);
@@ -756,27 +793,45 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
     trace_cubic_line(a, b, out, opt);
     return;
   }
+  const auto exact_lines_found = section ? std::nullopt : exact_lines(t, af);
   auto conic_branches_at = [&](const TraceOptions& o) {
     if (section) return section_branches(section->first, core::QuadricMatrix(section->second), o);
-    std::vector<Branch> brs = conic_branches(a, b, t.facts, o, lines_only(t));
+    std::vector<Branch> brs;
+    auto draw_line = [&o, &brs](const Point3& p, const Point3& d) {
+      if (o.box) {
+        if (auto br = line_in_box(p, d, *o.box)) brs.push_back(std::move(*br));
+      } else { // for the sizing: the point nearest the origin in the middle
+        Branch br;
+        br.kind = "line";
+        br.closed = false;
+        for (double u : {-1.0, 0.0, 1.0})
+          br.points.push_back({p[0] + u * d[0], p[1] + u * d[1], p[2] + u * d[2]});
+        brs.push_back(std::move(br));
+      }
+    };
+    // Lines only, each found exactly (a real double line too, which neither the singular
+    // members' planes nor the diametral planes below give): drawn from the exact lines, the
+    // ones curve_exits reads.
+    if (exact_lines_found) {
+      for (const auto& l : *exact_lines_found) {
+        Point3 p{}, d{};
+        for (size_t k = 0; k < 3; ++k) {
+          p[k] = l.point[k].to_double_approx();
+          d[k] = l.direction[k].to_double_approx();
+        }
+        const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!(n > 0) || !std::isfinite(n)) continue;
+        draw_line(p, {d[0] / n, d[1] / n, d[2] / n});
+      }
+      return brs;
+    }
+    brs = conic_branches(a, b, t.facts, o, lines_only(t));
     // Lines only, none drawn from the singular members (two real skew lines from a complex
     // conjugate pair of members, a real double line): each real point at infinity is the
     // direction of one real line (affine.cpp), the line through it found on both surfaces.
     if (brs.empty() && lines_only(t) && af.certified())
       for (const auto& pi : af.points_at_infinity)
-        if (const auto ln = line_in_direction(a, b, pi.approx)) {
-          const auto& [p, d] = *ln;
-          if (o.box) {
-            if (auto br = line_in_box(p, d, *o.box)) brs.push_back(std::move(*br));
-          } else { // for the sizing: the point nearest the origin in the middle
-            Branch br;
-            br.kind = "line";
-            br.closed = false;
-            for (double u : {-1.0, 0.0, 1.0})
-              br.points.push_back({p[0] + u * d[0], p[1] + u * d[1], p[2] + u * d[2]});
-            brs.push_back(std::move(br));
-          }
-        }
+        if (const auto ln = line_in_direction(a, b, pi.approx)) draw_line(ln->first, ln->second);
     return brs;
   };
   QuadricPair q(a, b);
