@@ -1174,4 +1174,24 @@ void refine_root_newton(const UPolyZ& p, Rational& lo, Rational& hi, const Ratio
   bisect_root(p, slo, lo, hi, width);
 }
 
+int sign_at_root(const UPolyQ& p, const UPolyZ& f, Rational lo, Rational hi) {
+  if (lo == hi) return p.evaluate(lo).sign();
+  for (long bits : {32L, 128L, 512L, 2048L}) {
+    refine_root_newton(f, lo, hi, (hi - lo) * Rational::exact_from_double(std::ldexp(1.0, -bits)));
+    const long prec = bits + 64;
+    Ball x, r, v, c;
+    arb_set_fmpq(x.v, ((lo + hi) * Rational(1, 2)).raw(), prec);
+    arb_set_fmpq(r.v, ((hi - lo) * Rational(1, 2)).raw(), prec);
+    arb_add_error(x.v, r.v);
+    for (long k = p.degree(); k >= 0; --k) {
+      arb_mul(v.v, v.v, x.v, prec);
+      arb_set_fmpq(c.v, p.coeff(k).raw(), prec);
+      arb_add(v.v, v.v, c.v, prec);
+    }
+    if (arb_is_positive(v.v)) return 1;
+    if (arb_is_negative(v.v)) return -1;
+  }
+  return 0;
+}
+
 } // namespace surfcert::algebra

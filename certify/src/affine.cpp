@@ -6,6 +6,7 @@
 
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/inertia.hpp"
+#include "surfcert/algebra/kernel.hpp"
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/algebra/plane_chart.hpp"
 #include "surfcert/algebra/real_roots.hpp"
@@ -352,6 +353,139 @@ std::optional<size_t> match_root(const Chart& ch, const std::vector<Root>& roots
     const QuadraticNumber v = quadratic_div(at(ch.s10), s11);
     if (!is_zero(quadratic_add(v, v0))) return std::nullopt; // v0 must be -s10 / s11
     return i;
+  }
+  return std::nullopt;
+}
+
+// The sign of the linear form l . d at the point at infinity d of r, exactly (0: zero or not
+// decided).
+int form_sign_at(const Root& r, const V3& l) {
+  if (r.p.rational) {
+    Rational s;
+    for (size_t k = 0; k < 3; ++k) {
+      const auto dk = Rational::from_string(r.p.direction[k]);
+      if (!dk) return 0;
+      s += l[k] * *dk;
+    }
+    return s.sign();
+  }
+  UPolyQ s(0);
+  for (size_t k = 0; k < 3; ++k)
+    s = s + UPolyQ(l[k]) * r.p.dir_in_t[k];
+  if (s.is_zero()) return 0;
+  return algebra::sign_at_root(s, r.factor, r.lo, r.hi);
+}
+
+// (s, t) with a s^2 + 2 b s t + c t^2 > 0, exactly; nullopt when the form is <= 0 everywhere.
+std::optional<std::pair<Rational, Rational>> positive_pair(const Rational& a, const Rational& b,
+                                                           const Rational& c) {
+  if (a.sign() > 0) return std::make_pair(Rational(1), Rational(0));
+  if (c.sign() > 0) return std::make_pair(Rational(0), Rational(1));
+  if (b.is_zero()) return std::nullopt; // a, c <= 0
+  // a = 0: at (1, t), t (2 b + c t) > 0 for t = b / (1 + |c|) (then |c t| < |b|); c = 0 alike.
+  if (a.is_zero()) return std::make_pair(Rational(1), b / (Rational(1) + core::abs(c)));
+  if (c.is_zero()) return std::make_pair(b / (Rational(1) + core::abs(a)), Rational(1));
+  // a, c < 0: the maximum over t at (1, t) is at t = -b / c, a - b^2 / c, positive exactly
+  // when b^2 > a c.
+  if (b * b > a * c) return std::make_pair(Rational(1), -b / c);
+  return std::nullopt;
+}
+
+// A vector x with x^T m x > 0 for the symmetric rational 3x3 m, exactly; nullopt when m is
+// negative semidefinite. A positive diagonal entry gives a unit vector; else, at a negative
+// one m_ii, m = (r_i . x)^2 / m_ii + m' with m' zero in row and column i: a positive y of m'
+// (in the other two coordinates), moved along e_i onto r_i . x = 0, is one of m (m' <= 0 there
+// means m <= 0); with the whole diagonal zero, an off-diagonal entry's coordinate plane.
+std::optional<V3> positive_direction(const M3& m) {
+  for (size_t i = 0; i < 3; ++i)
+    if (m[i][i].sign() > 0) {
+      V3 x;
+      x[i] = Rational(1);
+      return x;
+    }
+  for (size_t i = 0; i < 3; ++i) {
+    if (m[i][i].is_zero()) continue;
+    const size_t j = (i + 1) % 3, k = (i + 2) % 3;
+    auto reduced = [&m, i](size_t r, size_t c) { return m[r][c] - m[r][i] * m[i][c] / m[i][i]; };
+    const auto st = positive_pair(reduced(j, j), reduced(j, k), reduced(k, k));
+    if (!st) return std::nullopt;
+    V3 x;
+    x[j] = st->first;
+    x[k] = st->second;
+    x[i] = -(m[i][j] * x[j] + m[i][k] * x[k]) / m[i][i];
+    return x;
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t j = (i + 1) % 3;
+    if (m[i][j].is_zero()) continue;
+    const auto st = positive_pair(Rational(0), m[i][j], Rational(0));
+    V3 x;
+    x[i] = st->first;
+    x[j] = st->second;
+    return x;
+  }
+  return std::nullopt;
+}
+
+// A figure eight (a real curve with one crunode p, affine) by its lobes: how many points at
+// infinity lie on each. The member K of the pencil singular at p is a cone with apex p (its
+// kernel: the rational root of det(l A - B) where rank 3 and the apex lies on the curve), and
+// projecting from p maps the curve minus p one to one onto K's conic at infinity C (the
+// generators' directions; a point at infinity of the curve onto itself), each lobe onto an arc
+// of C between the directions P1, P2 of the node's two branches. Those are the generators of K
+// in the tangent plane n . (x - p) = 0 of the other quadric at p: the line n . d = 0 of the
+// plane at infinity meets C in P1, P2 (real and distinct exactly when n^T adj(K3) n < 0, K3 the
+// quadratic part). In the chart of the plane at infinity sending a line m . d = 0 that misses C
+// (m^T adj(K3) m > 0) to infinity, C is an ellipse and the two arcs lie on the two sides of the
+// chord P1 P2: a point d of C lies on the arc given by the sign of (n . d) / (m . d), decided
+// exactly (rational directions; Arb at the algebraic ones, refined until decided). nullopt
+// when no such cone is found or a sign is not decided.
+std::optional<std::pair<int, int>> lobe_split(const core::Mat4& a, const core::Mat4& b,
+                                              const std::vector<Root>& roots) {
+  // The candidates (K, Q) with K ∩ Q the curve: (A, B), then (l A - B, A) at each rational root
+  // l of det(l A - B) (B itself at l = 0).
+  std::vector<std::pair<core::Mat4, const core::Mat4*>> members{{a, &b}};
+  for (const Rational& l : algebra::rational_roots(algebra::pencil_char_poly(a, b))) {
+    core::Mat4 k;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        k[i][j] = l * a[i][j] - b[i][j];
+    members.emplace_back(k, &a);
+  }
+  for (const auto& [k, q] : members) {
+    const auto ker = algebra::kernel_basis(k);
+    if (ker.size() != 1 || ker[0][3].is_zero()) continue; // not a cone with an affine apex
+    const std::array<Rational, 4>& v = ker[0];
+    if (!algebra::bilinear(*q, v, v).is_zero()) continue; // the apex is not on the curve
+    V3 n; // the normal of Q's tangent plane at the apex
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        n[i] += (*q)[i][j] * v[j];
+    if (n[0].is_zero() && n[1].is_zero() && n[2].is_zero()) return std::nullopt;
+    // adj(K3), K3 the quadratic part of k.
+    M3 adj;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        const size_t i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+        adj[i][j] = k[i1][j1] * k[i2][j2] - k[i1][j2] * k[i2][j1];
+      }
+    auto form = [&adj](const V3& x) {
+      Rational s;
+      for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j)
+          s += x[i] * adj[i][j] * x[j];
+      return s;
+    };
+    if (form(n).sign() >= 0) return std::nullopt; // no crunode's two real branches here
+    const std::optional<V3> m = positive_direction(adj);
+    if (!m) return std::nullopt;
+    int first = 0, second = 0;
+    for (const Root& r : roots) {
+      const int sn = form_sign_at(r, n), sm = form_sign_at(r, *m);
+      if (sn == 0 || sm == 0) return std::nullopt;
+      (sn * sm > 0 ? first : second) += 1;
+    }
+    return std::pair<int, int>{first, second};
   }
   return std::nullopt;
 }
@@ -1616,11 +1750,9 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   }
   const bool smooth_ovals =
       m.loops > 0 && m.conics == 0 && m.lines == 0 && m.cubics == 0 && t.special_points.empty();
-  if (res.size() > 1 && smooth_ovals) {
-    // Smooth ovals: when a member of the pencil is a real cone or cylinder (A, B, or the
-    // member at a rational root of det(l A - B)), its generators tell which oval each point at
-    // infinity lies on (certify/cone_ovals.hpp). Every reading found must agree.
-    const int n = static_cast<int>(roots.size());
+  // A, B and the members at the rational roots of det(l A - B): the cones among them sweep the
+  // curve (certify/cone_ovals.hpp).
+  auto pencil_members = [&a, &b]() {
     std::vector<core::Mat4> members{a.matrix(), b.matrix()};
     for (const Rational& l :
          algebra::rational_roots(algebra::pencil_char_poly(a.matrix(), b.matrix()))) {
@@ -1630,6 +1762,27 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
           k[i][j] = l * a.matrix()[i][j] - b.matrix()[i][j];
       if (!l.is_zero()) members.push_back(k);
     }
+    return members;
+  };
+  const bool lobes = std::any_of(comps->begin(), comps->end(),
+                                 [](const Comp& cp) { return cp.kind == CKind::Lobe; });
+  if (res.size() > 1 && lobes)
+    if (const auto split = lobe_split(a.matrix(), b.matrix(), roots)) {
+      // A figure eight with its node affine: the points at infinity on each lobe give the
+      // reading (the enumeration's rule: the piece through the node, unbounded when a lobe
+      // reaches infinity, and one more piece per further point at infinity on a lobe).
+      const int any = split->first + split->second;
+      const std::pair<int, int> r{any == 0 ? 1 : 0, any == 0 ? 0
+                                                             : 1 + std::max(split->first - 1, 0) +
+                                                                   std::max(split->second - 1, 0)};
+      if (res.count(r)) res = {r};
+    }
+  if (res.size() > 1 && smooth_ovals) {
+    // Smooth ovals: when a member of the pencil is a real cone or cylinder (A, B, or the
+    // member at a rational root of det(l A - B)), its generators tell which oval each point at
+    // infinity lies on (certify/cone_ovals.hpp). Every reading found must agree.
+    const int n = static_cast<int>(roots.size());
+    const std::vector<core::Mat4> members = pencil_members();
     std::optional<std::pair<int, int>> lu;
     bool agree = true;
     for (const auto& k : members) {

@@ -46,30 +46,6 @@ std::vector<std::array<V3, 3>> make_charts() {
   return out;
 }
 
-// The sign of p at the root of the irreducible f isolated in (lo, hi) (p mod f != 0, so the
-// sign is not 0): Arb on the interval narrowed until the enclosure excludes 0; 0 when it
-// never did.
-int sign_at_root(const UPolyQ& p, const algebra::UPolyZ& f, Rational lo, Rational hi) {
-  for (long bits : {32L, 128L, 512L, 2048L}) {
-    if (lo != hi)
-      algebra::refine_root_newton(f, lo, hi,
-                                  (hi - lo) * Rational::exact_from_double(std::ldexp(1.0, -bits)));
-    const long prec = bits + 64;
-    algebra::Ball x, r, v, c;
-    arb_set_fmpq(x.v, ((lo + hi) * Rational(1, 2)).raw(), prec);
-    arb_set_fmpq(r.v, ((hi - lo) * Rational(1, 2)).raw(), prec);
-    arb_add_error(x.v, r.v);
-    for (long k = p.degree(); k >= 0; --k) {
-      arb_mul(v.v, v.v, x.v, prec);
-      arb_set_fmpq(c.v, p.coeff(k).raw(), prec);
-      arb_add(v.v, v.v, c.v, prec);
-    }
-    if (arb_is_positive(v.v)) return 1;
-    if (arb_is_negative(v.v)) return -1;
-  }
-  return 0;
-}
-
 } // namespace
 
 const std::vector<std::array<std::array<Rational, 3>, 3>>& conic_charts() {
@@ -117,7 +93,7 @@ std::optional<bool> conics_meet(const ConicForm& ca, const ConicForm& cb) {
       // s11 = 0 there: the common points over x0 are A's; real iff disc(x0) >= 0.
       if (disc.rem(fq).is_zero()) return true; // a real double root in y
       for (size_t k = 0; k + 1 < s.separators.size(); ++k) {
-        const int sg = sign_at_root(disc, f.poly, s.separators[k], s.separators[k + 1]);
+        const int sg = algebra::sign_at_root(disc, f.poly, s.separators[k], s.separators[k + 1]);
         if (sg > 0) return true;
         if (sg == 0) open = true;
       }

@@ -136,4 +136,11 @@ void refine_root_newton(const UPolyZ& p, Rational& lo, Rational& hi, const Ratio
 void refine_root_near(const UPolyZ& p, Rational& lo, Rational& hi, const Rational& width,
                       const Rational& guess);
 
+/// The sign of p at the root of the irreducible f isolated in (lo, hi) (lo == hi: the rational
+/// root itself): Arb on the interval, narrowed (refine_root_newton) until the enclosure of p
+/// excludes 0. A proof when nonzero; 0 when four narrowings (to 2^-2048 of the interval) never
+/// excluded 0, which is certain when p vanishes at the root (f divides p) and otherwise means
+/// undecided.
+int sign_at_root(const UPolyQ& p, const UPolyZ& f, Rational lo, Rational hi);
+
 } // namespace surfcert::algebra

@@ -23,7 +23,15 @@
 // branch meeting every plane, a twisted cubic, a line: odd). Every assignment of the points at
 // infinity to the components that these facts allow is enumerated; a count is certified when
 // all of them agree, otherwise it stays unset with a reason (for smooth ovals the readings left
-// are kept in `readings`: certify/proven_loops.hpp may settle them with proven loop bounds). When
+// are kept in `readings`: certify/proven_loops.hpp may settle them with proven loop bounds).
+// Two exact sweeps settle ambiguous readings first: for smooth ovals, a real cone or cylinder
+// of the pencil whose generators tell which oval each point at infinity lies on
+// (certify/cone_ovals.hpp); for a figure eight with its node p affine, the member singular at p
+// (a cone with apex p): projecting from p maps each lobe onto an arc of that cone's conic at
+// infinity between the directions of the node's two branches (its generators in the other
+// quadric's tangent plane n . x = 0 at p), and a point at infinity d of the curve lies on the arc
+// given by the sign of (n . d) / (m . d), m . d = 0 a line missing that conic (exact signs; Arb
+// refined at algebraic directions). When
 // one quadric is a plane (written as a degenerate quadric: plane ∪ plane at infinity) the affine
 // curve is the plane section, classified exactly as a plane conic; the other quadric's conic at
 // infinity is then a component lying at infinity. The same holds when the quadratic parts are
