@@ -1795,6 +1795,23 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     }
     if (lu && agree && res.count(*lu)) res = {*lu};
   }
+  if (res.size() > 1 && t.pencil == algebra::PencilKind::Regular)
+    // A rational plane pair in the pencil (a conic and two lines, Tu 23 and 26: the member of
+    // rank 2 at a rational root): the curve is A cut by its two planes, each section read
+    // exactly (plane_pair_route, which refuses a line common to both sections and components
+    // at infinity); a certified reading that the enumeration allows decides.
+    for (const auto& r : t.facts.real_roots) {
+      if (r.rank != 2 || !r.rational_value) continue;
+      const core::Mat4 pm =
+          core::scaled(a.matrix(), *r.rational_value) + core::scaled(b.matrix(), Rational(-1));
+      const auto pp = plane_pair_route(core::QuadricMatrix(pm), a);
+      if (!pp || !pp->certified() || !pp->loops || !pp->unbounded_branches) continue;
+      const std::pair<int, int> reading{*pp->loops, *pp->unbounded_branches};
+      if (res.count(reading)) {
+        res = {reading};
+        break;
+      }
+    }
   std::set<int> lv, uv;
   for (const auto& [l, u] : res) {
     lv.insert(l);

@@ -1,0 +1,58 @@
+// A conic and two lines crossing on it at infinity (Tu case 26), closed forms: A: x^2 - 1 + yz = 0
+// against A + y (x - c) = 0. The member y (x - c) is a rational plane pair: the plane y = 0 cuts A
+// in the parallel lines x = +-1 (direction (0, 0, 1)), the plane x = c in the hyperbola
+// yz = 1 - c^2, whose asymptotic directions are (0, 1, 0) and (0, 0, 1): the lines cross on the
+// conic at the point at infinity (0, 0, 1), where the curve meets the plane at infinity with
+// multiplicity 3. By hand: no loop, 4 unbounded branches (the hyperbola's two, one per line),
+// 2 lines, 1 conic. The points at infinity alone allow other assignments (the triple point shared
+// among the three components in several ways): before, undecided; now the two plane sections
+// are read exactly (plane_pair_route on the rational member of rank 2). Posed by the five rational
+// motions, both orders, for c = 2 and c = 1/2: that reading certified, and the picture traced in a
+// box of half-width 8 around the origin (it holds the hyperbola's vertices and crosses both
+// lines) shows four open branches.
+#include "support/posed_pairs.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace surfcert;
+using surfcert::testing::five_poses;
+using surfcert::testing::posed_pair;
+
+TEST(ConicAndTwoLines, CrossingAtInfinityReadFromThePlanePair) {
+  for (const char* b_eq : {"x^2 - 1 + y*z + y*(x - 2) = 0", "x^2 - 1 + y*z + y*(x - 1/2) = 0"}) {
+    int certified = 0;
+    for (const auto& ps : five_poses())
+      for (bool swapped : {false, true}) {
+        const std::string ctx = std::string(b_eq) + " " + ps.name("0", swapped);
+        const auto [a, b] = posed_pair("x^2 - 1 + y*z = 0", b_eq, ps, swapped);
+        trace::TraceOptions opt;
+        trace::Box box;
+        for (size_t k = 0; k < 3; ++k) {
+          box.min[k] = ps.t[k].to_double_approx() - 8;
+          box.max[k] = ps.t[k].to_double_approx() + 8;
+        }
+        opt.box = box;
+        const auto r = trace::intersect_curve(a, b, certify::Mode::Exact, opt);
+        ASSERT_NE(r.topology.morphology, nullptr) << ctx;
+        EXPECT_EQ(std::string(r.topology.morphology->id), "conic_and_two_lines_crossing_on_it")
+            << ctx;
+        ASSERT_TRUE(r.affine.certified()) << ctx << ": " << r.affine.reason;
+        EXPECT_EQ(*r.affine.loops, 0) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, 4) << ctx;
+        EXPECT_EQ(r.affine.points_at_infinity.size(), 2u) << ctx;
+        ASSERT_TRUE(r.affine.lines && r.affine.conics) << ctx;
+        EXPECT_EQ(*r.affine.lines, 2) << ctx;
+        EXPECT_EQ(*r.affine.conics, 1) << ctx;
+        if (r.status != certify::Status::Certified) {
+          EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+          continue;
+        }
+        ++certified;
+        EXPECT_EQ(r.branches.size(), 4u) << ctx;
+        for (const auto& br : r.branches)
+          EXPECT_FALSE(br.closed) << ctx;
+      }
+    // Measured 10 of 10 each.
+    EXPECT_GE(certified, 9) << b_eq;
+  }
+}
