@@ -4,6 +4,7 @@
 
 #include "surfcert/algebra/eigen4.hpp"
 #include "surfcert/algebra/form_restriction.hpp"
+#include "surfcert/algebra/kernel.hpp"
 #include "surfcert/certify/curve_lines.hpp"
 #include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/inner_loops.hpp"
@@ -471,8 +472,13 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
     }
   }
   if (af.certified() && !af.plane)
-    if (const auto plane = double_conic_plane(t))
-      return exact_exits(*plane, a.is_plane() ? b : a, box);
+    if (const auto plane = double_conic_plane(t)) {
+      // The other quadric: not a plane, and not the double plane itself (A of rank 1, the
+      // plane's square: its section by the plane is the whole plane, "a component in the plane"
+      // of every face it crosses; generate --case 21 --seed 32, pairs 7 and 11).
+      const bool a_flat = a.is_plane() || algebra::kernel_basis(a.matrix()).size() >= 3;
+      return exact_exits(*plane, a_flat ? b : a, box);
+    }
   if (!af.plane)
     if (const auto lines = exact_lines(t, af)) {
       // A curve of lines only (a real double line among them: its crossings are double roots
@@ -563,9 +569,14 @@ std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& 
 // at most (from the critical points of a direction in the box and the crossings `ex`, by
 // interval arithmetic, whatever the tracer saw). Else false, with the reason in `why`.
 bool loops_in_given_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Box& box,
-                        const certify::BoxExits& ex, int closed, int loops, std::string& why) {
+                        const certify::BoxExits& ex, int closed, int loops, int unbounded,
+                        std::string& why) {
   if (closed == loops) return true;
   if (closed > loops) return false;
+  // The whole affine curve one component (a loop) and a certified crossing of the box's faces:
+  // that point lies on it, so it is cut, and no loop lies wholly inside (a double conic, where
+  // the interval proof below meets a curve singular everywhere).
+  if (loops + unbounded == 1 && ex.certified && !ex.points.empty()) return closed == 0;
   const certify::InnerComponentBound p =
       certify::inner_component_bound(a.matrix(), b.matrix(), box.min, box.max, &ex, closed);
   if (p.bound && *p.bound == closed) return true;
@@ -640,7 +651,8 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, cons
     why = std::string("traced points lie up to ") + buf +
           " box diagonals off the surfaces (a picture of another curve)";
   } else if (!(automatic ? closed == *af.loops && open >= *af.unbounded_branches
-                         : loops_in_given_box(a, b, box, *out.box_exits, closed, *af.loops, why))) {
+                         : loops_in_given_box(a, b, box, *out.box_exits, closed, *af.loops,
+                                              *af.unbounded_branches, why))) {
     tracer_fault = true;
     if (why.empty())
       why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
