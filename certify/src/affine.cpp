@@ -1591,6 +1591,22 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     return out;
   }
   const Morphology& m = *t.morphology;
+  // A rational plane pair in a regular pencil (the member of rank 2 at a rational root): the
+  // curve is A cut by its two planes, each section read exactly (plane_pair_route, which refuses
+  // a line common to both sections, an isolated point and components at infinity). Its
+  // (loops, unbounded), or nullopt.
+  auto plane_pair_reading = [&]() -> std::optional<std::pair<int, int>> {
+    if (t.pencil != algebra::PencilKind::Regular) return std::nullopt;
+    for (const auto& r : t.facts.real_roots) {
+      if (r.rank != 2 || !r.rational_value) continue;
+      const core::Mat4 pm =
+          core::scaled(a.matrix(), *r.rational_value) + core::scaled(b.matrix(), Rational(-1));
+      const auto pp = plane_pair_route(core::QuadricMatrix(pm), a);
+      if (pp && pp->certified() && pp->loops && pp->unbounded_branches)
+        return std::make_pair(*pp->loops, *pp->unbounded_branches);
+    }
+    return std::nullopt;
+  };
   if (co == ChartOutcome::Failed) {
     out.reason = "no chart of the plane at infinity separated the points at infinity";
     return out;
@@ -1730,6 +1746,13 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
       out.unbounded_branches = m.lines;
       return out;
     }
+    // Imaginary components may meet the real ones at a special point at infinity (a conic and
+    // two imaginary lines crossing on it, Tu 27): the rational plane pair's sections, if any.
+    if (const auto reading = plane_pair_reading()) {
+      out.loops = reading->first;
+      out.unbounded_branches = reading->second;
+      return out;
+    }
     out.loops.reset();
     out.unbounded_branches.reset();
     const std::string why = "a singular point at infinity where imaginary components may meet";
@@ -1795,23 +1818,10 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
     }
     if (lu && agree && res.count(*lu)) res = {*lu};
   }
-  if (res.size() > 1 && t.pencil == algebra::PencilKind::Regular)
-    // A rational plane pair in the pencil (a conic and two lines, Tu 23 and 26: the member of
-    // rank 2 at a rational root): the curve is A cut by its two planes, each section read
-    // exactly (plane_pair_route, which refuses a line common to both sections and components
-    // at infinity); a certified reading that the enumeration allows decides.
-    for (const auto& r : t.facts.real_roots) {
-      if (r.rank != 2 || !r.rational_value) continue;
-      const core::Mat4 pm =
-          core::scaled(a.matrix(), *r.rational_value) + core::scaled(b.matrix(), Rational(-1));
-      const auto pp = plane_pair_route(core::QuadricMatrix(pm), a);
-      if (!pp || !pp->certified() || !pp->loops || !pp->unbounded_branches) continue;
-      const std::pair<int, int> reading{*pp->loops, *pp->unbounded_branches};
-      if (res.count(reading)) {
-        res = {reading};
-        break;
-      }
-    }
+  if (res.size() > 1)
+    // A rational plane pair in the pencil (a conic and two lines, Tu 23 and 26): a certified
+    // reading of its sections that the enumeration allows decides.
+    if (const auto reading = plane_pair_reading(); reading && res.count(*reading)) res = {*reading};
   std::set<int> lv, uv;
   for (const auto& [l, u] : res) {
     lv.insert(l);

@@ -56,3 +56,34 @@ TEST(ConicAndTwoLines, CrossingAtInfinityReadFromThePlanePair) {
     EXPECT_GE(certified, 9) << b_eq;
   }
 }
+
+// A conic and two imaginary lines crossing on it at infinity (Tu case 27): x^2 + 1 - yz = 0
+// against the same plus z x or z (x - 2). The plane z = 0 cuts A in the conjugate parallel lines
+// x = +-i (direction (0, 1, 0)); the plane x = c in the hyperbola yz = 1 + c^2, whose asymptotic
+// directions are (0, 1, 0) and (0, 0, 1): the imaginary lines meet it at (0, 1, 0), a special
+// point at infinity where the points alone cannot tell what meets (before: undecided). By hand:
+// the real curve is the hyperbola, 0 loops and 2 unbounded branches. Five poses, both orders.
+TEST(ConicAndTwoLines, ImaginaryLinesMeetingOnTheConicAtInfinity) {
+  for (const char* b_eq : {"x^2 + 1 - y*z + z*x = 0", "x^2 + 1 - y*z + z*(x - 2) = 0"}) {
+    int certified = 0;
+    for (const auto& ps : five_poses())
+      for (bool swapped : {false, true}) {
+        const std::string ctx = std::string(b_eq) + " " + ps.name("0", swapped);
+        const auto [a, b] = posed_pair("x^2 + 1 - y*z = 0", b_eq, ps, swapped);
+        const auto r = trace::intersect_curve(a, b, certify::Mode::Exact, {});
+        ASSERT_NE(r.topology.morphology, nullptr) << ctx;
+        EXPECT_EQ(std::string(r.topology.morphology->id), "conic_with_tangency_point") << ctx;
+        ASSERT_TRUE(r.affine.certified()) << ctx << ": " << r.affine.reason;
+        EXPECT_EQ(*r.affine.loops, 0) << ctx;
+        EXPECT_EQ(*r.affine.unbounded_branches, 2) << ctx;
+        if (r.status != certify::Status::Certified) {
+          EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+          continue;
+        }
+        ++certified;
+        EXPECT_EQ(r.branches.size(), 2u) << ctx;
+      }
+    // Measured 10 of 10 each.
+    EXPECT_GE(certified, 9) << b_eq;
+  }
+}
