@@ -4,12 +4,27 @@
 // ~2^-104 of the running sum per operation. Internal to the trace library.
 #pragma once
 
+#include "surfcert/core/quadric.hpp"
+#include "surfcert/core/rational.hpp"
+
 #include <array>
 #include <cmath>
 
 namespace surfcert::trace::dd {
 
 using M4 = std::array<std::array<double, 4>, 4>;
+
+/// The remainders of q's exact entries scaled by `scale` after their doubles `hi`, each exact
+/// as a rational and rounded once: (q s)_ij = hi_ij + lo_ij to ~2^-106 of the entry. The one
+/// builder of the lo part (QuadricPair::refined, RefinedPair).
+inline void remainders(const core::QuadricMatrix& q, const core::Rational& scale, const M4& hi,
+                       M4& lo) {
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i; j < 4; ++j) {
+      const core::Rational v = q(static_cast<int>(i), static_cast<int>(j)) * scale;
+      lo[i][j] = lo[j][i] = (v - core::Rational::exact_from_double(hi[i][j])).to_double_approx();
+    }
+}
 
 /// s + e == a + b exactly.
 inline void two_sum(double a, double b, double& s, double& e) {

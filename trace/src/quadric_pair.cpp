@@ -134,6 +134,24 @@ double term_size(const std::array<std::array<double, 4>, 4>& m, const Point3& p)
          a(3, 3);
 }
 
+// In a refined pair the gradient is the exact matrices' too (hi + lo, in long double): next to
+// a cone's apex it is a difference of terms ~|p| that cancel to ~r, and the rounded matrix's
+// moved the tangent grad f x grad g by more than the gap between two pieces of curve there
+// (refined walks stepped against the curve's orientation on 12 of 40 cylinders through the
+// apex of a cone posed in doubles). (A matrix of doubles carried as hi + lo keeps the hi
+// gradient: the same pair read exactly, as rationals, must give the same points.)
+Point3 gradient_refined(const M4& m, const M4& lo, const Point3& p) {
+  Point3 g{};
+  for (size_t i = 0; i < 3; ++i) {
+    long double s = 0;
+    for (size_t j = 0; j < 3; ++j)
+      s += (static_cast<long double>(m[i][j]) + lo[i][j]) * p[j];
+    s += static_cast<long double>(m[i][3]) + lo[i][3];
+    g[i] = static_cast<double>(2 * s);
+  }
+  return g;
+}
+
 } // namespace
 
 QuadricPair::QuadricPair(const core::QuadricMatrix& qa, const core::QuadricMatrix& qb) {
@@ -156,16 +174,8 @@ std::optional<QuadricPair> QuadricPair::refined(const core::QuadricMatrix& qa,
   QuadricPair r = *this;
   // The remainder of each exact entry, scaled as its double was, after that double: exact as a
   // rational, rounded once (a matrix of doubles symmetrised: the split's remainder again).
-  auto fill = [](const core::QuadricMatrix& q, int scale, const M4& hi, M4& lo) {
-    const core::Rational s = core::pow2(-scale);
-    for (size_t i = 0; i < 4; ++i)
-      for (size_t j = i; j < 4; ++j) {
-        const core::Rational v = q(static_cast<int>(i), static_cast<int>(j)) * s;
-        lo[i][j] = lo[j][i] = (v - core::Rational::exact_from_double(hi[i][j])).to_double_approx();
-      }
-  };
-  fill(qa, a_scale, a, r.a_lo);
-  fill(qb, b_scale, b, r.b_lo);
+  dd::remainders(qa, core::pow2(-a_scale), a, r.a_lo);
+  dd::remainders(qb, core::pow2(-b_scale), b, r.b_lo);
   r.refined_form = true;
   r.noise_unit = 0x1p-96;
   return r;
@@ -179,24 +189,6 @@ double QuadricPair::g(const Point3& p) const {
   if (refined_form) return dd::form(b, b_lo, p);
   return form(b, p, split ? &b_lo : nullptr);
 }
-// In a refined pair the gradient is the exact matrices' too (hi + lo, in long double): next to
-// a cone's apex it is a difference of terms ~|p| that cancel to ~r, and the rounded matrix's
-// moved the tangent grad f x grad g by more than the gap between two pieces of curve there
-// (refined walks stepped against the curve's orientation on 12 of 40 cylinders through the
-// apex of a cone posed in doubles). (A matrix of doubles carried as hi + lo keeps the hi
-// gradient: the same pair read exactly, as rationals, must give the same points.)
-Point3 gradient_refined(const M4& m, const M4& lo, const Point3& p) {
-  Point3 g{};
-  for (size_t i = 0; i < 3; ++i) {
-    long double s = 0;
-    for (size_t j = 0; j < 3; ++j)
-      s += (static_cast<long double>(m[i][j]) + lo[i][j]) * p[j];
-    s += static_cast<long double>(m[i][3]) + lo[i][3];
-    g[i] = static_cast<double>(2 * s);
-  }
-  return g;
-}
-
 Point3 QuadricPair::grad_f(const Point3& p) const {
   return refined_form ? gradient_refined(a, a_lo, p) : gradient(a, p);
 }

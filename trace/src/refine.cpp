@@ -42,12 +42,9 @@ RefinedPair::RefinedPair(const core::QuadricMatrix& qa, const core::QuadricMatri
       }
     const core::Rational s = core::pow2(e == LONG_MIN ? 0 : -e);
     for (size_t i = 0; i < 4; ++i)
-      for (size_t j = 0; j < 4; ++j) {
-        const core::Rational v = q(static_cast<int>(i), static_cast<int>(j)) * s;
-        const double hi = v.to_double_approx();
-        out.hi[i][j] = hi;
-        out.lo[i][j] = (v - core::Rational::exact_from_double(hi)).to_double_approx();
-      }
+      for (size_t j = 0; j < 4; ++j)
+        out.hi[i][j] = (q(static_cast<int>(i), static_cast<int>(j)) * s).to_double_approx();
+    dd::remainders(q, s, out.hi, out.lo);
   };
   fill(qa, a_);
   fill(qb, b_);
