@@ -64,6 +64,18 @@ inline const std::vector<Pose>& five_poses() {
   return p;
 }
 
+/// Trace options with the box of half-width h around the pose's origin (its translation).
+inline trace::TraceOptions box_around_pose(const Pose& ps, double h) {
+  trace::TraceOptions opt;
+  trace::Box box;
+  for (size_t k = 0; k < 3; ++k) {
+    box.min[k] = ps.t[k].to_double_approx() - h;
+    box.max[k] = ps.t[k].to_double_approx() + h;
+  }
+  opt.box = box;
+  return opt;
+}
+
 /// The quadrics of the equations a and b posed by ps, in the order (b, a) when swapped.
 inline std::pair<core::QuadricMatrix, core::QuadricMatrix>
 posed_pair(const std::string& a, const std::string& b, const Pose& ps, bool swapped) {

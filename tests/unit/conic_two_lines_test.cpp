@@ -25,13 +25,7 @@ TEST(ConicAndTwoLines, CrossingAtInfinityReadFromThePlanePair) {
       for (bool swapped : {false, true}) {
         const std::string ctx = std::string(b_eq) + " " + ps.name("0", swapped);
         const auto [a, b] = posed_pair("x^2 - 1 + y*z = 0", b_eq, ps, swapped);
-        trace::TraceOptions opt;
-        trace::Box box;
-        for (size_t k = 0; k < 3; ++k) {
-          box.min[k] = ps.t[k].to_double_approx() - 8;
-          box.max[k] = ps.t[k].to_double_approx() + 8;
-        }
-        opt.box = box;
+        const trace::TraceOptions opt = surfcert::testing::box_around_pose(ps, 8);
         const auto r = trace::intersect_curve(a, b, certify::Mode::Exact, opt);
         ASSERT_NE(r.topology.morphology, nullptr) << ctx;
         EXPECT_EQ(std::string(r.topology.morphology->id), "conic_and_two_lines_crossing_on_it")

@@ -25,13 +25,7 @@ TEST(DoublePlaneSection, CrossingsReadOnTheOtherQuadric) {
     for (bool swapped : {false, true}) {
       const std::string ctx = ps.name("0", swapped);
       const auto [a, b] = posed_pair("(x + y - 1)^2 = 0", "x^2 + y^2 + z^2 - 4 = 0", ps, swapped);
-      trace::TraceOptions opt;
-      trace::Box box;
-      for (size_t k = 0; k < 3; ++k) {
-        box.min[k] = ps.t[k].to_double_approx() - 1.5;
-        box.max[k] = ps.t[k].to_double_approx() + 1.5;
-      }
-      opt.box = box;
+      const trace::TraceOptions opt = surfcert::testing::box_around_pose(ps, 1.5);
       const auto r = trace::intersect_curve(a, b, certify::Mode::Exact, opt);
       ASSERT_NE(r.topology.morphology, nullptr) << ctx;
       EXPECT_EQ(std::string(r.topology.morphology->id), "double_conic") << ctx;

@@ -81,13 +81,7 @@ TEST(FigureEight, LobesShareThePointsAtInfinity) {
         // A box of half-width 32 around the node: every component passes within 12 of it (the
         // second sheet's arcs through (2, 0, +-2), (0, 8, +-8)), and each crosses the box once
         // (an automatic box holds the bounded parts and the node only: a component may miss it).
-        trace::TraceOptions opt;
-        trace::Box box;
-        for (size_t k = 0; k < 3; ++k) {
-          box.min[k] = ps.t[k].to_double_approx() - 32;
-          box.max[k] = ps.t[k].to_double_approx() + 32;
-        }
-        opt.box = box;
+        const trace::TraceOptions opt = surfcert::testing::box_around_pose(ps, 32);
         const auto r = trace::intersect_curve(a, b, certify::Mode::Exact, opt);
         ASSERT_NE(r.topology.morphology, nullptr) << ctx;
         EXPECT_EQ(std::string(r.topology.morphology->id), "figure_eight") << ctx;

@@ -564,6 +564,26 @@ std::string match_exits(std::vector<Branch>& branches, const certify::BoxExits& 
   return "";
 }
 
+// A picture in which more pieces of polyline leave a crossing (crunode: 4) or a cusp (2) than
+// the curve has there: a walk on another piece of curve was drawn through it (the counts and
+// the ends can still match, each component glued to the crossing). Empty when none, else why.
+std::string too_many_arms(const QsicResult& t, const std::vector<Branch>& branches) {
+  for (const auto& sp : t.special_points) {
+    if (sp.at_infinity) continue;
+    const int most = sp.kind == "crunode" ? 4 : sp.kind == "cusp" ? 2 : -1;
+    if (most < 0) continue;
+    int arms = 0;
+    for (const auto& br : branches)
+      for (size_t i = 0; i < br.points.size(); ++i)
+        if (br.points[i] == sp.approx)
+          arms += br.closed || (i > 0 && i + 1 < br.points.size()) ? 2 : 1;
+    if (arms > most)
+      return "the traced pieces leave a " + sp.kind + " along " + std::to_string(arms) +
+             " arms (a picture gluing other pieces of curve to it)";
+  }
+  return "";
+}
+
 // Whether `closed` traced loops are all the loops lying wholly inside a given box (which may
 // cut others): all `loops` of the affine topology, or as many as certify/inner_loops.hpp proves
 // at most (from the critical points of a direction in the box and the crossings `ex`, by
@@ -650,6 +670,9 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, cons
     std::snprintf(buf, sizeof buf, "%.3g", out.max_residual / box.diagonal());
     why = std::string("traced points lie up to ") + buf +
           " box diagonals off the surfaces (a picture of another curve)";
+  } else if (const std::string arms = too_many_arms(out.topology, out.branches); !arms.empty()) {
+    tracer_fault = true;
+    why = arms;
   } else if (!(automatic ? closed == *af.loops && open >= *af.unbounded_branches
                          : loops_in_given_box(a, b, box, *out.box_exits, closed, *af.loops,
                                               *af.unbounded_branches, why))) {
