@@ -34,12 +34,13 @@
 // {v in the tangent plane : v^T (B - mu A) v = 0} (A, B the quadratic parts): two lines
 // (crunode), one double line (cusp; a tacnode looks the same at this order and is treated as
 // one, so conic cases belong to conic_branches) or none (acnode). A walk that gets within
-// h_free of a crunode or cusp ahead of it steps onto it exactly and continues along the
-// branch that best continues its direction (crunode) or back along the other half (cusp);
-// the outgoing point solves f = g = 0, |X - S| = r by Newton. Start points at which the curve
-// is singular (extreme_points returns them) are not starts; they join the list of singular
-// points. A walk further than escape_scenes (100) L from its start is on a non-compact branch
-// and stops.
+// h_free of a crunode or cusp ahead of it, on a branch through it (the chord to it runs along
+// the curve: its midpoint projects within r/50 of itself), steps onto it exactly and continues
+// along the branch that best continues its direction (crunode) or back along the other half
+// (cusp); the outgoing point solves f = g = 0, |X - S| = r by Newton. Start points at which
+// the curve is singular (extreme_points returns them) are not starts; they join the list of
+// singular points. A walk further than escape_scenes (100) L from its start is on a non-compact
+// branch and stops.
 #include "surfcert/trace/curve.hpp"
 
 #include "surfcert/core/budget.hpp"

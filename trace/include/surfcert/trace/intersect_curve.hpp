@@ -19,7 +19,9 @@
 // There status is Certified only when the affine topology (certify/affine.hpp) is certified,
 // the traced closed loops and isolated points have its counts (a given box may cut loops:
 // certified then only when certify/inner_loops.hpp proves that no more loops than those traced
-// closed lie wholly inside it), the exact crossings of the
+// closed lie wholly inside it, or when the whole curve is one loop and it crosses the faces),
+// no crunode (cusp) has more than 4 (2) traced arms leaving it (a walk on another piece of
+// curve drawn through it), the exact crossings of the
 // curve with the box's faces are certified (certify/box_exits.hpp: complete, transversal, off
 // the edges) and the traced open pieces are exactly half as many, their ends matched one to
 // one with those crossings (so a branch crossing the box twice is two certified pieces); an
@@ -51,6 +53,9 @@
 // tangency along a ruling, a double line, is then a rank-1 section, not a multiple crossing),
 // on plane_pair those of both sections, on common_apex those of the rational lines
 // (certify::lines_box_exits). Other degenerate pencils are not traced (undecided). A twisted
+// A regular pencil whose curve is lines only is drawn from its exact lines when they are found
+// (certify/curve_lines.hpp: a real double line too), and their crossings are read exactly; a
+// double conic's crossings are those of its plane's section of the other quadric. A twisted
 // cubic and a line (cases 10-12) come from their exact parametrisations
 // (certify/cubic_line.hpp): the line in closed form, the cubic's arcs sampled from its rational
 // map, checked against the box the same way.
