@@ -2,6 +2,7 @@
 #include "surfcert/certify/affine.hpp"
 
 #include "surfcert/certify/cone_ovals.hpp"
+#include "surfcert/certify/curve_lines.hpp"
 #include "surfcert/certify/distance/quadratic_forms.hpp"
 
 #include "surfcert/algebra/form_restriction.hpp"
@@ -9,6 +10,7 @@
 #include "surfcert/algebra/kernel.hpp"
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/algebra/plane_chart.hpp"
+#include "surfcert/algebra/poly_ops.hpp"
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"
 
@@ -65,6 +67,17 @@ V3 normalise(V3 d) {
       break;
     }
   return d;
+}
+
+// The line n . (x, y, z) = 0 of the plane at infinity as a component lying there (n
+// normalised: one text per line).
+ComponentAtInfinity line_at_infinity(const V3& normal) {
+  const V3 n = normalise(normal);
+  ComponentAtInfinity li;
+  li.kind = "line";
+  li.equation =
+      n[0].to_string() + "*x + " + n[1].to_string() + "*y + " + n[2].to_string() + "*z = 0 (w = 0)";
+  return li;
 }
 
 std::array<double, 3> unit_approx(std::array<double, 3> d) {
@@ -915,13 +928,8 @@ AffineTopology parallel_cylinders_route(const core::QuadricMatrix& a, const core
       if (x[2].is_zero()) {
         // A line at infinity through d and (x_i, x_j): n . (x, y, z) = 0, n = d x e.
         const V3 e = to3(x[0], x[1]);
-        const V3 n = normalise(
-            {d[1] * e[2] - d[2] * e[1], d[2] * e[0] - d[0] * e[2], d[0] * e[1] - d[1] * e[0]});
-        ComponentAtInfinity li;
-        li.kind = "line";
-        li.equation = n[0].to_string() + "*x + " + n[1].to_string() + "*y + " + n[2].to_string() +
-                      "*z = 0 (w = 0)";
-        out.at_infinity_only.push_back(li);
+        out.at_infinity_only.push_back(line_at_infinity(
+            {d[1] * e[2] - d[2] * e[1], d[2] * e[0] - d[0] * e[2], d[0] * e[1] - d[1] * e[0]}));
         continue;
       }
       multiple = multiple || r.p.multiplicity > 1;
@@ -1297,11 +1305,8 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
     if (cm[0][0].is_zero() && cm[0][1].is_zero() && cm[1][1].is_zero()) {
       // The plane's line at infinity lies on the other quadric: a component of the curve at
       // infinity (listed apart); the plane's affine section is a line or nothing.
-      const V3 n = normalise({(*planes)[k][0], (*planes)[k][1], (*planes)[k][2]});
-      ComponentAtInfinity li;
-      li.kind = "line";
-      li.equation = n[0].to_string() + "*x + " + n[1].to_string() + "*y + " + n[2].to_string() +
-                    "*z = 0 (w = 0)";
+      const ComponentAtInfinity li =
+          line_at_infinity({(*planes)[k][0], (*planes)[k][1], (*planes)[k][2]});
       // (Parallel planes share their line at infinity: listed once.)
       if (at_infinity_lines.empty() || at_infinity_lines[0].equation != li.equation)
         at_infinity_lines.push_back(li);
@@ -1461,6 +1466,82 @@ bool definite_at_infinity(const core::QuadricMatrix& q) {
   return k == core::QuadricKind::Ellipsoid || k == core::QuadricKind::ImaginaryEllipsoid;
 }
 
+// Lines only, one of them at infinity (Tu 31, 32, 34, 35 posed with a real line in the plane at
+// infinity: the conics at infinity share that line and are not proportional). A_inf = l mA and
+// B_inf = l mB with l their gcd, a rational line, the only common component: l is a line of the
+// curve, and the other real lines are affine, the morphology's real lines less one. A_inf and
+// B_inf meet in l and P = mA x mB, so every point at infinity of the curve lies on l or at P: an
+// affine line skew to l runs to P, one meeting l lies in a plane through l (a singular member's).
+// exact_curve_lines looks for them there (kernel lines, the line through P, the planes'
+// sections), each checked on both quadrics exactly; the reading needs every one of them.
+// nullopt when this is not such a curve or a line is not found.
+std::optional<AffineTopology> line_at_infinity_route(const QsicResult& t, const M3& ai,
+                                                     const M3& bi) {
+  if (t.status != Status::Certified || !t.morphology) return std::nullopt;
+  const Morphology& m = *t.morphology;
+  if (m.lines <= 0 || m.loops || m.conics || m.cubics || m.isolated_points) return std::nullopt;
+  auto form = [](const M3& q) {
+    core::Poly3::Terms terms;
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j) {
+        core::Poly3::Exponent e{0, 0, 0};
+        ++e[i];
+        ++e[j];
+        terms[e] += q[i][j];
+      }
+    return core::Poly3(terms);
+  };
+  const core::Poly3 fa = form(ai), fb = form(bi);
+  const core::Poly3 g = algebra::gcd(fa, fb);
+  if (g.total_degree() != 1) return std::nullopt;
+  core::Poly3 ma, mb;
+  if (!fmpq_mpoly_divides(ma.raw_mut(), fa.raw(), g.raw(), core::Poly3::ctx()) ||
+      !fmpq_mpoly_divides(mb.raw_mut(), fb.raw(), g.raw(), core::Poly3::ctx()))
+    return std::nullopt;
+  auto linear = [](const core::Poly3& f) {
+    return V3{f.coeff(1, 0, 0), f.coeff(0, 1, 0), f.coeff(0, 0, 1)};
+  };
+  const V3 l = linear(g), la = linear(ma), lb = linear(mb);
+  V3 p{la[1] * lb[2] - la[2] * lb[1], la[2] * lb[0] - la[0] * lb[2], la[0] * lb[1] - la[1] * lb[0]};
+  if (p[0].is_zero() && p[1].is_zero() && p[2].is_zero()) return std::nullopt; // proportional
+  p = normalise(p);
+  const auto lines = exact_curve_lines(t.facts, m.lines, {p}, 1);
+  if (!lines) return std::nullopt;
+  AffineTopology out;
+  out.route = "exact_lines";
+  out.computed = true;
+  out.points_at_infinity_complete = true;
+  out.loops = out.conics = out.isolated_points = 0;
+  out.lines = out.unbounded_branches = static_cast<int>(lines->size());
+  std::vector<V3> seen;
+  for (const ExactLine& ln : *lines) {
+    const V3 d = normalise(ln.direction);
+    const auto it = std::find(seen.begin(), seen.end(), d);
+    if (it != seen.end()) {
+      ++out.points_at_infinity[static_cast<size_t>(it - seen.begin())].multiplicity;
+      continue;
+    }
+    seen.push_back(d);
+    PointAtInfinity pt;
+    pt.rational = true;
+    std::array<double, 3> ap{};
+    for (size_t k = 0; k < 3; ++k) {
+      pt.direction[k] = d[k].to_string();
+      ap[k] = d[k].to_double_approx();
+    }
+    pt.approx = unit_approx(ap);
+    out.points_at_infinity.push_back(std::move(pt));
+  }
+  // P off l and on no real line: a real point of imaginary components only (not met in the
+  // lines-only cases; refused rather than left out).
+  if (!(l[0] * p[0] + l[1] * p[1] + l[2] * p[2]).is_zero() &&
+      std::find(seen.begin(), seen.end(), p) == seen.end())
+    return std::nullopt;
+  out.at_infinity_only.push_back(line_at_infinity(l));
+  out.exact_lines = *lines;
+  return out;
+}
+
 AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
                                const core::QuadricMatrix& b) {
   if ((definite_at_infinity(a) || definite_at_infinity(b)) && t.status == Status::Certified &&
@@ -1538,13 +1619,9 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
           // spanning points (both with w = 0).
           const auto& p = cl.line[0];
           const auto& q2 = cl.line[1];
-          const V3 n = normalise({p[1] * q2[2] - p[2] * q2[1], p[2] * q2[0] - p[0] * q2[2],
-                                  p[0] * q2[1] - p[1] * q2[0]});
-          ComponentAtInfinity li;
-          li.kind = "line";
-          li.equation = n[0].to_string() + "*x + " + n[1].to_string() + "*y + " + n[2].to_string() +
-                        "*z = 0 (w = 0)";
-          out.at_infinity_only.push_back(li);
+          out.at_infinity_only.push_back(
+              line_at_infinity({p[1] * q2[2] - p[2] * q2[1], p[2] * q2[0] - p[0] * q2[2],
+                                p[0] * q2[1] - p[1] * q2[0]}));
           out.cubic_line = std::move(cl);
           return out;
         }
@@ -1569,6 +1646,7 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
           return *pp;
       }
     }
+    if (auto lr = line_at_infinity_route(t, ai, bi)) return std::move(*lr);
     out.reason = "the conics at infinity share a component: part of the curve lies at infinity "
                  "(not analysed)";
     return out;

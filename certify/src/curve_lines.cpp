@@ -4,6 +4,8 @@
 
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/kernel.hpp"
+#include "surfcert/algebra/plane_chart.hpp"
+#include "surfcert/certify/affine.hpp"
 
 #include <flint/fmpz.h>
 
@@ -126,14 +128,53 @@ std::vector<ExactLine> lines_in_diametral_plane(const core::Mat4& m, const V3& d
   return out;
 }
 
+// The affine line of m's section by the plane n . (x, y, z, 1) = 0 when the plane's line at
+// infinity lies on m (the section's quadratic part vanishes in the plane's chart: the section is
+// that line and 2 e s + 2 f t + g = 0); nullopt otherwise, for the plane at infinity, or when
+// the affine section is empty or the whole plane.
+std::optional<ExactLine> line_beside_infinity(const core::Mat4& m, const V4& n) {
+  const auto chart = algebra::plane_chart(plane_as_quadric(n));
+  if (!chart) return std::nullopt;
+  const auto& col = *chart;
+  const auto cm = algebra::restrict_form(m, col);
+  if (!(cm[0][0].is_zero() && cm[0][1].is_zero() && cm[1][1].is_zero())) return std::nullopt;
+  const Rational &e = cm[0][2], &f = cm[1][2], &g = cm[2][2];
+  if (e.is_zero() && f.is_zero()) return std::nullopt;
+  // (s, t) = (-g / 2e, 0) or (0, -g / 2f); direction (-f, e) in (s, t).
+  const Rational s = e.is_zero() ? Rational(0) : -g / (Rational(2) * e);
+  const Rational t = e.is_zero() ? -g / (Rational(2) * f) : Rational(0);
+  ExactLine l;
+  for (size_t k = 0; k < 3; ++k) {
+    l.point[k] = col[0][k] * s + col[1][k] * t + col[2][k];
+    l.direction[k] = e * col[1][k] - f * col[0][k];
+  }
+  if (is_zero(l.direction)) return std::nullopt;
+  return l;
+}
+
+// The rational planes of the singular member e = theta A - B at a root of rank 1 (the double
+// plane: any nonzero row) or 2 (a rational plane pair); none otherwise.
+std::vector<V4> member_planes(const core::Mat4& e, int rank) {
+  if (rank == 1) {
+    for (size_t i = 0; i < 4; ++i)
+      if (!e[i][i].is_zero()) return {V4{e[i][0], e[i][1], e[i][2], e[i][3]}};
+    return {};
+  }
+  if (rank == 2)
+    if (const auto pp = rational_plane_pair(e)) return {(*pp)[0], (*pp)[1]};
+  return {};
+}
+
 } // namespace
 
 std::optional<std::vector<ExactLine>>
 exact_curve_lines(const algebra::PencilFacts& facts, int real_lines,
-                  const std::vector<std::array<Rational, 3>>& directions) {
+                  const std::vector<std::array<Rational, 3>>& directions, int lines_at_infinity) {
   const core::Mat4& a = facts.a;
   const core::Mat4& b = facts.b;
-  if (a == core::Mat4{} || real_lines <= 0) return std::nullopt; // the basis is not set
+  const int affine_lines = real_lines - lines_at_infinity;
+  if (a == core::Mat4{} || real_lines <= 0 || affine_lines < 0)
+    return std::nullopt; // the basis is not set
   std::vector<ExactLine> lines;
   auto add = [&lines](ExactLine l) {
     for (const auto& x : lines)
@@ -154,8 +195,18 @@ exact_curve_lines(const algebra::PencilFacts& facts, int real_lines,
           algebra::bilinear(a, ker[1], ker[1]).is_zero()))
       continue; // the kernel line is not on the curve
     const auto l = affine_line(ker[0], ker[1]);
-    if (!l) return std::nullopt; // a line at infinity: not this reading
+    if (!l) {
+      if (lines_at_infinity > 0) continue; // one of the lines at infinity the caller counted
+      return std::nullopt;                 // a line at infinity: not this reading
+    }
     add(*l);
+  }
+  for (const auto& r : facts.real_roots) {
+    if (r.rank > 2 || !r.rational_value) continue;
+    const core::Mat4 e = core::scaled(a, *r.rational_value) + core::scaled(b, -1);
+    for (const V4& n : member_planes(e, r.rank))
+      if (const auto l = line_beside_infinity(a, n))
+        if (on_quadric(b, *l)) add(*l);
   }
   for (const auto& d : directions) {
     if (is_zero(d)) return std::nullopt;
@@ -166,7 +217,7 @@ exact_curve_lines(const algebra::PencilFacts& facts, int real_lines,
     for (const auto& l : lines_in_diametral_plane(a, d))
       if (on_quadric(a, l) && on_quadric(b, l)) add(l);
   }
-  if (static_cast<int>(lines.size()) != real_lines) return std::nullopt;
+  if (static_cast<int>(lines.size()) != affine_lines) return std::nullopt;
   for (const auto& l : lines)
     if (!on_quadric(a, l) || !on_quadric(b, l)) return std::nullopt; // (a kernel line on A is)
   return lines;

@@ -402,6 +402,7 @@ std::optional<core::QuadricMatrix> double_conic_plane(const QsicResult& t) {
 std::optional<std::vector<certify::ExactLine>> exact_lines(const QsicResult& t,
                                                            const certify::AffineTopology& af) {
   if (t.status != Status::Certified || !t.morphology || !af.certified()) return std::nullopt;
+  if (af.route == "exact_lines") return af.exact_lines; // one line at infinity: the affine ones
   const certify::Morphology& m = *t.morphology;
   // Lines only: every real component a line (a cubic, conic or loop beside them has crossings
   // of its own, which the lines' do not include).
@@ -1297,10 +1298,11 @@ std::optional<Point3> own_centre(const core::QuadricMatrix& s) {
 
 // The affine reading of a pair carried to a copy moved by an exact translation or a scaling
 // by a power of two: its counts and its points at infinity (directions) do not move; routes
-// that hold coordinates (a plane, a section, an apex, a cubic and a line) are read again.
+// that hold coordinates (a plane, a section, an apex, a cubic and a line, exact lines) are read
+// again.
 const certify::AffineTopology* movable(const certify::AffineTopology& af) {
-  const bool coordinates =
-      af.plane || af.plane2 || af.section_of || af.apex || af.ruling || af.cubic_line;
+  const bool coordinates = af.plane || af.plane2 || af.section_of || af.apex || af.ruling ||
+                           af.cubic_line || !af.exact_lines.empty();
   return coordinates ? nullptr : &af;
 }
 

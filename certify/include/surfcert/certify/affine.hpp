@@ -60,12 +60,18 @@
 // real point at infinity of the cubic, one for the line; when the line lies at infinity (the
 // conics at infinity then share it) the affine curve is the cubic alone, its points at
 // infinity are the real roots of X_3, and the line is listed in at_infinity_only (kind
-// "line"). Requires a certified topology,
-// except on these plane and apex routes.
+// "line"). Lines only with one real line at infinity (route "exact_lines"; the conics at
+// infinity share it, gcd of the two, and are not proportional): the other real lines are
+// affine, one unbounded branch each, found exactly (certify/curve_lines.hpp: kernel lines, the
+// line through the remaining common point P of the conics at infinity, lines in the planes of
+// rational singular members) and all required; a point at infinity's multiplicity is then the
+// number of those lines through it, and the line at infinity is listed apart. Requires a
+// certified topology, except on these plane and apex routes.
 #pragma once
 
 #include "surfcert/algebra/upoly.hpp"
 #include "surfcert/certify/cubic_line.hpp"
+#include "surfcert/certify/curve_lines.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 
@@ -101,8 +107,8 @@ struct ComponentAtInfinity {
 struct AffineTopology {
   bool computed = false; ///< false: nothing established (see reason)
   std::string route;     ///< "pencil", "plane_section", "pencil_plane", "plane_plane",
-                         ///< "plane_pair", "common_apex", "parallel_cylinders", "cubic_line"
-                         ///< or "proven_loops" (certify/proven_loops.hpp)
+                         ///< "plane_pair", "common_apex", "parallel_cylinders", "cubic_line",
+                         ///< "exact_lines" or "proven_loops" (certify/proven_loops.hpp)
   std::optional<int> loops, unbounded_branches, isolated_points, lines, conics;
   std::vector<PointAtInfinity> points_at_infinity;
   bool points_at_infinity_complete = false;
@@ -128,6 +134,8 @@ struct AffineTopology {
   std::vector<RulingLine> ruling_lines;
   /// Route "cubic_line": the exact line and cubic.
   std::optional<CubicAndLine> cubic_line;
+  /// Route "exact_lines" (lines only, one at infinity): the curve's real affine lines, exact.
+  std::vector<ExactLine> exact_lines;
   /// Every (loops, unbounded_branches) reading the exact facts allow, when they allow several
   /// (the points at infinity shared among smooth ovals in several ways); empty otherwise. A
   /// proven lower bound on the loops may leave one (certify/proven_loops.hpp).

@@ -16,10 +16,18 @@
 //    d lies in A's diametral plane {p : d . (A_3 p + a_4) = 0}, so the curve's line in
 //    direction d is the meet of A's and B's diametral planes when their normals A_3 d, B_3 d
 //    are independent; kept when it lies on both surfaces (checked exactly).
+//  - a line in a plane of a rational singular member (a double plane at a rank-1 root, either
+//    plane of a rational plane pair at a rank-2 root) whose line at infinity lies on A: A's
+//    section by that plane is then that line at infinity and one affine line (or none); kept
+//    when it lies on B too. (Two lines of the curve meeting at infinity: a plane through both
+//    holds the one at infinity.)
 // The lines found (duplicates merged) are returned only when their number is the morphology's
-// count of real lines and none lies at infinity; otherwise nullopt (the caller keeps its
+// count of real lines less `lines_at_infinity` (the distinct real lines of the curve the caller
+// proved to lie at infinity; a kernel line at infinity is then one of them and skipped), and,
+// when lines_at_infinity is 0, none lies at infinity; otherwise nullopt (the caller keeps its
 // generic route). Preconditions on the caller: a certified classification whose morphology has
-// lines only (no loop, conic or cubic); `directions`: the curve's real points at infinity.
+// lines only (no loop, conic or cubic); `directions`: rational real points at infinity of the
+// curve (each line through one of them is looked for).
 #pragma once
 
 #include "surfcert/algebra/pencil.hpp"
@@ -38,10 +46,11 @@ struct ExactLine {
   std::array<core::Rational, 3> direction;
 };
 
-/// The curve's real lines (see above), or nullopt.
+/// The curve's real affine lines (see above), or nullopt.
 std::optional<std::vector<ExactLine>>
 exact_curve_lines(const algebra::PencilFacts& facts, int real_lines,
-                  const std::vector<std::array<core::Rational, 3>>& directions);
+                  const std::vector<std::array<core::Rational, 3>>& directions,
+                  int lines_at_infinity = 0);
 
 /// The crossings of the union of the distinct lines with the faces of [lo, hi], exact. Each
 /// line as lines_box_exits reads one (a line counts once whatever its multiplicity); certified
