@@ -10,6 +10,9 @@
 //  - z = x^2 + y^2 against z = -x^2 - 2y^2: the origin. Faces at +-1e-10, +-1e-20, +-1e-30,
 //    +-2^-100; and at 0 (on the face: in the closed box, or undecided, measured undecided: the
 //    face's section has a double root there, which box_exits reads as a multiple crossing).
+//  - x^2 + y^2 = z^2 against x^2 + y^2 = 4 z^2: two cones with one apex whose conics at
+//    infinity (circles of radii 1 and 1/2 in z = 1) do not meet: the apex alone (route
+//    common_apex, a degenerate pencil: no special points; the apex is exact), the same faces.
 // Both orders, filtered and exact modes: certified, no branch, the points drawn are the ones
 // lying in the box, each at its closed form.
 #include "support/distance_checks.hpp"
@@ -100,4 +103,16 @@ TEST(IsolatedPointsInBox, RationalPointAgainstFacesAtSmallDistances) {
     probes.push_back({box(-1, e), {o}});
   }
   check("z - x^2 - y^2 = 0", "z + x^2 + 2*y^2 = 0", probes);
+}
+
+TEST(IsolatedPointsInBox, CommonApexAlone) {
+  const trace::Point3 o{0, 0, 0};
+  std::vector<Probe> probes = {{box(0, 1), {o}, true}, {box(-1, 1), {o}}};
+  for (double e : {1e-10, 1e-20, 1e-30, std::ldexp(1.0, -100)}) {
+    probes.push_back({box(e, 1), {}});
+    probes.push_back({box(-e, 1), {o}});
+    probes.push_back({box(-1, -e), {}});
+    probes.push_back({box(-1, e), {o}});
+  }
+  check("x^2 + y^2 - z^2 = 0", "x^2 + y^2 - 4*z^2 = 0", probes);
 }

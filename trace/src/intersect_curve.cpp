@@ -6,6 +6,7 @@
 #include "surfcert/algebra/form_restriction.hpp"
 #include "surfcert/algebra/kernel.hpp"
 #include "surfcert/certify/curve_lines.hpp"
+#include "surfcert/certify/ellipses_in_box.hpp"
 #include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/inner_loops.hpp"
 #include "surfcert/certify/proven_loops.hpp"
@@ -591,9 +592,26 @@ std::string too_many_arms(const QsicResult& t, const std::vector<Branch>& branch
 // interval arithmetic, whatever the tracer saw). Else false, with the reason in `why`.
 bool loops_in_given_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Box& box,
                         const certify::BoxExits& ex, int closed, int loops, int unbounded,
-                        std::string& why) {
+                        const QsicResult& t, std::string& why) {
   if (closed == loops) return true;
   if (closed > loops) return false;
+  // Loops that are conics of rational planes (certify/ellipses_in_box.hpp): each one inside
+  // the box or not, exactly (the interval proof below fails on a curve singular where two
+  // conics cross: two crossing ellipses in a box cutting one of them).
+  if (t.status == Status::Certified) {
+    std::array<core::Rational, 3> lo, hi;
+    for (size_t k = 0; k < 3; ++k) {
+      lo[k] = core::Rational::exact_from_double(box.min[k]);
+      hi[k] = core::Rational::exact_from_double(box.max[k]);
+    }
+    if (const auto inside = certify::ellipses_in_box(t.facts, loops, lo, hi)) {
+      if (*inside == closed) return true;
+      why = "traced " + std::to_string(closed) + " closed branch(es) in the box; " +
+            std::to_string(*inside) + " of the curve's " + std::to_string(loops) +
+            " loop(s) (conics) lie wholly inside it";
+      return false;
+    }
+  }
   // The whole affine curve one component (a loop) and a certified crossing of the box's faces:
   // that point lies on it, so it is cut, and no loop lies wholly inside (a double conic, where
   // the interval proof below meets a curve singular everywhere).
@@ -617,29 +635,46 @@ bool loops_in_given_box(const core::QuadricMatrix& a, const core::QuadricMatrix&
 // an acnode left the answer undecided: 140 of 1480 generated pairs in boxes.)
 std::optional<std::vector<Point3>>
 isolated_in_box(const QsicResult& t, const certify::AffineTopology& af, const Box& box) {
-  if (!af.isolated_points || !t.special_points_complete) return std::nullopt;
+  if (!af.isolated_points) return std::nullopt;
+  auto in_box = [&box](const std::array<algebra::QuadraticNumber, 3>& c) {
+    bool in = true;
+    for (size_t k = 0; k < 3 && in; ++k) {
+      const auto side = [&c, k](double face) {
+        return algebra::QuadraticNumber{c[k].a - core::Rational::exact_from_double(face), c[k].b,
+                                        c[k].d}
+            .sign();
+      };
+      in = side(box.min[k]) >= 0 && side(box.max[k]) <= 0;
+    }
+    return in;
+  };
+  if (af.apex && af.lines && *af.lines == 0 && *af.isolated_points == 1) {
+    // Two cones with one common apex and no real common generator: the apex alone, exact.
+    std::array<algebra::QuadraticNumber, 3> c;
+    Point3 approx{};
+    for (size_t k = 0; k < 3; ++k) {
+      c[k] = {(*af.apex)[k], core::Rational(0), core::Integer(0)};
+      approx[k] = (*af.apex)[k].to_double_approx();
+    }
+    return in_box(c) ? std::vector<Point3>{approx} : std::vector<Point3>{};
+  }
+  if (!t.special_points_complete) return std::nullopt;
   int total = 0;
   std::vector<Point3> inside;
   for (const auto& p : t.special_points) {
     if (p.at_infinity || !isolated_kind(p.kind)) continue;
     ++total;
-    bool in = true;
-    for (size_t k = 0; k < 3 && in; ++k) {
-      algebra::QuadraticNumber c;
+    std::array<algebra::QuadraticNumber, 3> c;
+    for (size_t k = 0; k < 3; ++k) {
       if (p.numbers) {
-        c = (*p.numbers)[k];
+        c[k] = (*p.numbers)[k];
       } else {
         const auto r = p.exact ? core::Rational::from_string(p.coords[k]) : std::nullopt;
         if (!r) return std::nullopt;
-        c = {*r, core::Rational(0), core::Integer(0)};
+        c[k] = {*r, core::Rational(0), core::Integer(0)};
       }
-      const auto side = [&c](double face) {
-        return algebra::QuadraticNumber{c.a - core::Rational::exact_from_double(face), c.b, c.d}
-            .sign();
-      };
-      in = side(box.min[k]) >= 0 && side(box.max[k]) <= 0;
     }
-    if (in) inside.push_back(p.approx);
+    if (in_box(c)) inside.push_back(p.approx);
   }
   if (total != *af.isolated_points) return std::nullopt;
   return inside;
@@ -719,7 +754,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, cons
     why = arms;
   } else if (!(automatic ? closed == *af.loops && open >= *af.unbounded_branches
                          : loops_in_given_box(a, b, box, *out.box_exits, closed, *af.loops,
-                                              *af.unbounded_branches, why))) {
+                                              *af.unbounded_branches, out.topology, why))) {
     tracer_fault = true;
     if (why.empty())
       why = "traced " + std::to_string(closed) + " closed and " + std::to_string(open) +
