@@ -11,7 +11,9 @@
 // a real ellipse is sampled uniformly in its angle parameter with step sqrt(8 h / r_max)
 // (chord error <= r_max dt^2 / 8 <= h, h = tolerance * scene size, the scene being the
 // bounding box of the conics produced); a hyperbola or parabola (non-ellipsoid inputs only) is
-// sampled the same way inside a clipping box and returned as open branches. Empty, imaginary
+// sampled the same way inside a clipping box and returned as open branches. In a box, each
+// conic (and line) is also sampled where it crosses the planes of the box's faces and between
+// those crossings, so that no arc the box keeps falls between two samples. Empty, imaginary
 // and degenerate conics (a point: a tangent plane; a line pair) are skipped, as are planes at
 // infinity and planes already used. Each sample is corrected by Gauss-Newton onto
 // {plane = 0, Q = 0} (transversal even along a double conic, where grad f x grad g vanishes).
@@ -642,6 +644,94 @@ std::vector<Branch> section_branches(const core::Mat4& plane, const core::Quadri
 
 namespace {
 
+// The parameters where the conic crosses the planes of the box's faces (closed forms: a cos t +
+// b sin t = f for the ellipse, a quadratic in e^t for the hyperbola, in t for the parabola)
+// and the midpoints between consecutive ones, merged into the sorted samples ts within
+// [lo, hi] (the ellipse's wrapping around too). The samples of the whole conic, spaced for its
+// size, could all miss a short arc the box keeps near an edge (generate --case 23 --seed 50
+// pair 2 in a given box: an arc of 0.4 between two exact crossings, nothing drawn), or step
+// over a crossing a hair from tangency; the clipping then finds every crossing between an
+// inside and an outside sample.
+void with_face_parameters(const PlaneConic& pc, const Box& box, double lo, double hi,
+                          std::vector<double>& ts) {
+  std::vector<double> cross;
+  auto keep = [&](double t) {
+    if (pc.type == PlaneConic::Ellipse) {
+      t = std::fmod(t - lo, 2 * kPi);
+      if (t < 0) t += 2 * kPi;
+      t += lo;
+    }
+    if (std::isfinite(t) && t >= lo && t <= hi) cross.push_back(t);
+  };
+  for (size_t k = 0; k < 3; ++k)
+    for (double f : {box.min[k], box.max[k]}) {
+      const double g = f - pc.c[k];
+      if (pc.type == PlaneConic::Ellipse) {
+        const double a = pc.r1 * pc.e1[k], b = pc.r2 * pc.e2[k], r = std::hypot(a, b);
+        if (!(r > 0) || std::fabs(g) > r) continue;
+        const double phi = std::atan2(b, a), w = std::acos(g / r);
+        keep(phi + w);
+        keep(phi - w);
+      } else {
+        // Hyperbola: a (u + 1/u) / 2 + b (u - 1/u) / 2 = g, u = e^t: (a + b) u^2 - 2 g u +
+        // (a - b) = 0. Parabola: k e2 t^2 + e1 t - g = 0.
+        double qa, qb, qc;
+        if (pc.type == PlaneConic::Hyperbola) {
+          const double a = pc.r1 * pc.e1[k], b = pc.r2 * pc.e2[k];
+          qa = a + b, qb = -2 * g, qc = a - b;
+        } else if (pc.type == PlaneConic::Parabola) {
+          qa = pc.k * pc.e2[k], qb = pc.e1[k], qc = -g;
+        } else { // Line: e1 t = g
+          qa = 0, qb = pc.e1[k], qc = -g;
+        }
+        std::vector<double> roots;
+        if (qa == 0) {
+          if (qb != 0) roots.push_back(-qc / qb);
+        } else {
+          const double disc = qb * qb - 4 * qa * qc;
+          if (disc < 0) continue;
+          const double sq = std::sqrt(disc), m = -0.5 * (qb + std::copysign(sq, qb));
+          if (m != 0) roots.push_back(qc / m);
+          roots.push_back(m / qa);
+        }
+        for (double u : roots)
+          if (pc.type == PlaneConic::Parabola || pc.type == PlaneConic::Line)
+            keep(u);
+          else if (u > 0)
+            keep(std::log(u));
+      }
+    }
+  if (cross.empty()) return;
+  std::sort(cross.begin(), cross.end());
+  // A midpoint only where no sample lies between two crossings (a sample at a parabola's vertex
+  // 7e-11 from a cone's apex, where the correction does not converge, was left off the curve).
+  const bool ellipse = pc.type == PlaneConic::Ellipse;
+  auto sampled_between = [&ts](double u, double v) {
+    const auto it = std::upper_bound(ts.begin(), ts.end(), u);
+    return it != ts.end() && *it < v;
+  };
+  const size_t m = cross.size();
+  std::vector<double> mids;
+  for (size_t i = 0; i <= m; ++i) {
+    double u = i == 0 ? lo : cross[i - 1], v = i == m ? hi : cross[i];
+    if (ellipse && i == 0) continue; // the wrap-around arc is the one after the last crossing
+    if (ellipse && i == m) v = cross[0] + 2 * kPi;
+    bool between = sampled_between(u, std::min(v, hi));
+    if (ellipse && v > hi) between = between || sampled_between(lo - 1, v - 2 * kPi);
+    if (between) continue;
+    double mid = 0.5 * (u + v);
+    if (ellipse && mid >= lo + 2 * kPi) mid -= 2 * kPi;
+    if (mid >= lo && mid <= hi) mids.push_back(mid);
+  }
+  cross.insert(cross.end(), mids.begin(), mids.end());
+  ts.insert(ts.end(), cross.begin(), cross.end());
+  std::sort(ts.begin(), ts.end());
+  ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
+  if (pc.type == PlaneConic::Ellipse)
+    while (!ts.empty() && ts.back() >= lo + 2 * kPi)
+      ts.pop_back(); // the closing sample is the first one
+}
+
 std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const TraceOptions& opt) {
   std::vector<Branch> out;
   if (conics.empty()) return out;
@@ -692,6 +782,7 @@ std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const Trace
       // The line through two corrected points away from the crossing (near it the surfaces
       // may be singular, as at a cone's apex, and the correction would not converge there);
       // every sample is then exactly on that line.
+      if (opt.box) with_face_parameters(pc, *opt.box, -pc.t_max, pc.t_max, ts);
       const double far = 1 + norm(pc.c);
       V3 p1 = pc.at(-far), p2 = pc.at(far);
       correct(pc, p1, far);
@@ -714,9 +805,14 @@ std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const Trace
     n = std::min(n, static_cast<long>(ellipse ? cap : cap - 1));
     double t0 = ellipse ? 0 : -pc.t_max;
     long count = ellipse ? n : n + 1;
-    br.points.reserve(static_cast<size_t>(count));
-    for (long i = 0; i < count; ++i) {
-      V3 x = pc.at(t0 + span * static_cast<double>(i) / static_cast<double>(n));
+    std::vector<double> ts;
+    ts.reserve(static_cast<size_t>(count));
+    for (long i = 0; i < count; ++i)
+      ts.push_back(t0 + span * static_cast<double>(i) / static_cast<double>(n));
+    if (opt.box) with_face_parameters(pc, *opt.box, t0, t0 + span, ts);
+    br.points.reserve(ts.size());
+    for (double t : ts) {
+      V3 x = pc.at(t);
       correct(pc, x, scene);
       br.points.push_back(x);
     }

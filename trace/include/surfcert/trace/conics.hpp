@@ -8,7 +8,8 @@
 // Q_A in a conic; the real, non-empty ones are the conic components (for a double plane the
 // conic is a double component: the surfaces are tangent along it, and a tracer using
 // grad f x grad g would stall there). Points are sampled so that the chord error stays below
-// the tolerance and corrected onto both surfaces. Approximate (floating point), like all of
+// the tolerance (and, in a box, at the conic's crossings with the faces' planes and between
+// them) and corrected onto both surfaces. Approximate (floating point), like all of
 // surfcert::trace.
 #pragma once
 
