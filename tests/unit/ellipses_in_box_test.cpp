@@ -9,6 +9,12 @@
 //    closed pieces are the circles the box holds, certified (the interval proof of
 //    inner_loops.hpp could not settle such curves, singular at the conics' complex crossings
 //    on some pairs; here it measures the exact route).
+//  - pipes of radius 1 crossing at 45 degrees, y^2 + z^2 = 1 against (x - y)^2 / 2 + z^2 = 1:
+//    their difference splits only over Q(sqrt 2), into the planes y = (sqrt 2 - 1) x (ellipse A,
+//    |x| <= sqrt 2 + 1) and y = -(sqrt 2 + 1) x (ellipse B, |x| <= sqrt 2 - 1; both |y|, |z| <= 1).
+//    Directly: |x| <= the truncation of sqrt 2 - 1 to k = 10, 20, 30 decimals cuts B (0 inside),
+//    that plus 10^-k holds it (1); and in boxes of doubles, |x| <= 1/2 holds B and cuts A, z >= 0
+//    cuts both (undecided before: "not proven how many lie wholly inside").
 //  - two generated pairs in random given boxes that were undecided before ("not proven how
 //    many lie wholly inside"): generate --case all --seed 32 (exact) case 26 pair 14 and
 //    --seed 51 --encoding double case 24 pair 6; certified now, in both orders.
@@ -145,5 +151,50 @@ TEST(EllipsesInBox, GeneratedBoxesUndecidedBefore) {
       const auto r = trace::intersect_curve(a, b, certify::Mode::Filtered, opt);
       ASSERT_TRUE(r.affine.certified()) << ctx;
       EXPECT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+    }
+}
+
+TEST(EllipsesInBox, PipesAtFortyFiveDegreesOverQSqrt2) {
+  const char* pa = "y^2 + z^2 - 1 = 0";
+  const char* pb = "(x - y)^2/2 + z^2 - 1 = 0";
+  const auto t = certify::classify_qsic(q(pa), q(pb), certify::Mode::Exact);
+  ASSERT_EQ(t.status, certify::Status::Certified);
+  const Rational two(2);
+  const std::vector<std::string> digits = {"4142135623", "41421356237309504880",
+                                           "414213562373095048801688724209"};
+  for (const std::string& d : digits) {
+    Rational ten_k(1);
+    for (size_t i = 0; i < d.size(); ++i)
+      ten_k = ten_k * Rational(10);
+    const Rational below = *Rational::from_string(d) / ten_k, above = below + Rational(1) / ten_k;
+    const std::string ctx = "sqrt 2 - 1 to " + std::to_string(d.size()) + " decimals";
+    EXPECT_EQ(certify::ellipses_in_box(t.facts, 2, r3(-below, -two, -two), r3(below, two, two)),
+              std::optional<int>(0))
+        << ctx;
+    EXPECT_EQ(certify::ellipses_in_box(t.facts, 2, r3(-above, -two, -two), r3(above, two, two)),
+              std::optional<int>(1))
+        << ctx;
+  }
+  EXPECT_EQ(
+      certify::ellipses_in_box(t.facts, 2, r3(-Rational(3), -two, -two), r3(Rational(3), two, two)),
+      std::optional<int>(2));
+  struct Probe {
+    trace::Box box;
+    int closed;
+  };
+  for (const Probe& pr : {Probe{{{-0.5, -2, -2}, {0.5, 2, 2}}, 1},
+                          Probe{{{-5, -5, 0}, {5, 5, 2}}, 0}, Probe{{{-5, -5, -2}, {5, 5, 2}}, 2}})
+    for (bool swapped : {false, true}) {
+      auto a = q(pa), b = q(pb);
+      if (swapped) std::swap(a, b);
+      trace::TraceOptions opt;
+      opt.box = pr.box;
+      const auto r = trace::intersect_curve(a, b, certify::Mode::Filtered, opt);
+      const std::string ctx = "closed " + std::to_string(pr.closed) + (swapped ? " swapped" : "");
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      int closed = 0;
+      for (const auto& br : r.branches)
+        closed += br.closed ? 1 : 0;
+      EXPECT_EQ(closed, pr.closed) << ctx;
     }
 }
