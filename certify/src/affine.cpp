@@ -1410,6 +1410,17 @@ std::optional<AffineTopology> plane_pair_route(const core::QuadricMatrix& pair,
 } // namespace
 
 // See affine.hpp.
+std::vector<std::array<Rational, 4>> rational_member_planes(const core::Mat4& e, int rank) {
+  if (rank == 1) {
+    for (size_t i = 0; i < 4; ++i)
+      if (!e[i][i].is_zero()) return {{e[i][0], e[i][1], e[i][2], e[i][3]}};
+    return {};
+  }
+  if (rank == 2)
+    if (const auto pp = rational_plane_pair(e)) return {(*pp)[0], (*pp)[1]};
+  return {};
+}
+
 // The two planes of a rational plane pair, as 4-vectors n (n . (x, y, z, 1) = 0), or nullopt.
 // x^T M x = (C^T x)^T S^-1 (C^T x) for a rank-2 M, S a nonzero principal 2x2 minor and C its
 // two columns (checked exactly, which also proves rank 2); the binary form splits over Q when

@@ -152,19 +152,6 @@ std::optional<ExactLine> line_beside_infinity(const core::Mat4& m, const V4& n) 
   return l;
 }
 
-// The rational planes of the singular member e = theta A - B at a root of rank 1 (the double
-// plane: any nonzero row) or 2 (a rational plane pair); none otherwise.
-std::vector<V4> member_planes(const core::Mat4& e, int rank) {
-  if (rank == 1) {
-    for (size_t i = 0; i < 4; ++i)
-      if (!e[i][i].is_zero()) return {V4{e[i][0], e[i][1], e[i][2], e[i][3]}};
-    return {};
-  }
-  if (rank == 2)
-    if (const auto pp = rational_plane_pair(e)) return {(*pp)[0], (*pp)[1]};
-  return {};
-}
-
 } // namespace
 
 std::optional<std::vector<ExactLine>>
@@ -204,7 +191,7 @@ exact_curve_lines(const algebra::PencilFacts& facts, int real_lines,
   for (const auto& r : facts.real_roots) {
     if (r.rank > 2 || !r.rational_value) continue;
     const core::Mat4 e = core::scaled(a, *r.rational_value) + core::scaled(b, -1);
-    for (const V4& n : member_planes(e, r.rank))
+    for (const V4& n : rational_member_planes(e, r.rank))
       if (const auto l = line_beside_infinity(a, n))
         if (on_quadric(b, *l)) add(*l);
   }

@@ -136,19 +136,6 @@ std::optional<std::array<P4<QN>, 2>> conjugate_planes(const core::Mat4& e, Integ
   return std::nullopt;
 }
 
-// The planes of the member e at a root of rank 1 (its nonzero rows are multiples of the double
-// plane) or 2 (a rational plane pair); none otherwise.
-std::vector<P4<Rational>> rational_planes(const core::Mat4& e, int rank) {
-  if (rank == 1) {
-    for (size_t i = 0; i < 4; ++i)
-      if (!e[i][i].is_zero()) return {P4<Rational>{e[i][0], e[i][1], e[i][2], e[i][3]}};
-    return {};
-  }
-  if (rank == 2)
-    if (const auto pp = rational_plane_pair(e)) return {(*pp)[0], (*pp)[1]};
-  return {};
-}
-
 } // namespace
 
 std::optional<int> ellipses_in_box(const algebra::PencilFacts& facts, int loops,
@@ -167,7 +154,7 @@ std::optional<int> ellipses_in_box(const algebra::PencilFacts& facts, int loops,
   for (const auto& root : facts.real_roots) {
     if (root.rank > 2 || !root.rational_value) continue;
     const core::Mat4 e = core::scaled(a, *root.rational_value) + core::scaled(b, -1);
-    const auto planes = rational_planes(e, root.rank);
+    const auto planes = rational_member_planes(e, root.rank);
     for (const auto& n : planes) {
       bool again = false;
       for (const auto& m : seen)

@@ -11,6 +11,7 @@
 // substitution). And a generated pair whose short segment of a line was missed:
 // generate --case 23 --seed 50 pair 2 in a given box (two exact crossings, nothing drawn).
 #include "support/distance_checks.hpp"
+#include "support/exact_points.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
@@ -23,22 +24,9 @@
 using namespace surfcert;
 using core::Rational;
 using surfcert::testing::q;
+using surfcert::testing::relative_value;
 
 namespace {
-
-// |X^T M X| / (max |M_ij| (1 + |p|^2)) at X = (p, 1), exactly.
-double relative_value(const core::QuadricMatrix& m, const trace::Point3& p) {
-  std::array<Rational, 4> x{Rational::exact_from_double(p[0]), Rational::exact_from_double(p[1]),
-                            Rational::exact_from_double(p[2]), Rational(1)};
-  Rational v(0);
-  double big = 0;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      v += x[i] * m.matrix()[i][j] * x[j];
-      big = std::max(big, std::fabs(m.matrix()[i][j].to_double_approx()));
-    }
-  return std::fabs(v.to_double_approx()) / (big * (1 + p[0] * p[0] + p[1] * p[1] + p[2] * p[2]));
-}
 
 void expect_picture(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                     const trace::Box& box, int open, int closed, size_t crossings,

@@ -7,6 +7,8 @@
 // dropped (march). Asserted, in both orders: certified, one closed branch, every point on both
 // quadrics (exact substitution of its doubles), passing the cusp within 1e-6 of the curve's
 // size, and nothing else drawn.
+#include "support/exact_points.hpp"
+
 #include "surfcert/trace/intersect_curve.hpp"
 
 #include <gtest/gtest.h>
@@ -17,33 +19,8 @@
 #include <string>
 
 using namespace surfcert;
-
-namespace {
-
-core::QuadricMatrix from_ints(const std::array<std::array<long, 4>, 4>& rows) {
-  core::Mat4 m;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      m[i][j] = core::Rational(rows[i][j]);
-  return core::QuadricMatrix(m);
-}
-
-// |X^T M X| / (max |M_ij| (1 + |p|^2)) at X = (p, 1), exactly.
-double relative_value(const core::QuadricMatrix& q, const trace::Point3& p) {
-  std::array<core::Rational, 4> x{core::Rational::exact_from_double(p[0]),
-                                  core::Rational::exact_from_double(p[1]),
-                                  core::Rational::exact_from_double(p[2]), core::Rational(1)};
-  core::Rational v(0);
-  double big = 0;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      v += x[i] * q.matrix()[i][j] * x[j];
-      big = std::max(big, std::fabs(q.matrix()[i][j].to_double_approx()));
-    }
-  return std::fabs(v.to_double_approx()) / (big * (1 + p[0] * p[0] + p[1] * p[1] + p[2] * p[2]));
-}
-
-} // namespace
+using surfcert::testing::from_ints;
+using surfcert::testing::relative_value;
 
 TEST(CuspWalk, DeadArcBesideTheCuspIsDropped) {
   const auto a0 = from_ints({{{-8, 4, 32, 40}, {4, 0, 8, 52}, {32, 8, -16, 48}, {40, 52, 48, 40}}});

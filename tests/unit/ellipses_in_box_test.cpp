@@ -19,6 +19,7 @@
 //    many lie wholly inside"): generate --case all --seed 32 (exact) case 26 pair 14 and
 //    --seed 51 --encoding double case 24 pair 6; certified now, in both orders.
 #include "support/distance_checks.hpp"
+#include "support/exact_points.hpp"
 
 #include "surfcert/certify/ellipses_in_box.hpp"
 #include "surfcert/trace/intersect_curve.hpp"
@@ -30,6 +31,7 @@
 
 using namespace surfcert;
 using core::Rational;
+using surfcert::testing::from_ints;
 using surfcert::testing::q;
 
 namespace {
@@ -117,13 +119,6 @@ TEST(EllipsesInBox, TracedLoopsAreTheOnesInside) {
 }
 
 TEST(EllipsesInBox, GeneratedBoxesUndecidedBefore) {
-  auto from_ints = [](const std::array<std::array<long, 4>, 4>& rows) {
-    core::Mat4 m;
-    for (size_t i = 0; i < 4; ++i)
-      for (size_t j = 0; j < 4; ++j)
-        m[i][j] = Rational(rows[i][j]);
-    return core::QuadricMatrix(m);
-  };
   struct Case {
     const char* name;
     std::array<std::array<long, 4>, 4> a, b;

@@ -11,6 +11,7 @@
 //    --seed 50 pair 8 (exact), Tu 7 (acnode) --seed 50 pair 18 (--encoding double). Certified,
 //    no branch, each isolated point on both quadrics (exact substitution of its doubles: the
 //    values within 1e-12 of the matrices' size).
+#include "support/exact_points.hpp"
 #include "support/posed_pairs.hpp"
 
 #include <gtest/gtest.h>
@@ -21,34 +22,9 @@
 
 using namespace surfcert;
 using surfcert::testing::five_poses;
+using surfcert::testing::from_ints;
 using surfcert::testing::posed_pair;
-
-namespace {
-
-core::QuadricMatrix from_ints(const std::array<std::array<long, 4>, 4>& rows) {
-  core::Mat4 m;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j)
-      m[i][j] = core::Rational(rows[i][j]);
-  return core::QuadricMatrix(m);
-}
-
-// |X^T M X| / (max |M_ij| (1 + |p|^2)) at X = (p, 1), exactly (p's doubles read exactly).
-double relative_value(const core::QuadricMatrix& q, const trace::Point3& p) {
-  std::array<core::Rational, 4> x{core::Rational::exact_from_double(p[0]),
-                                  core::Rational::exact_from_double(p[1]),
-                                  core::Rational::exact_from_double(p[2]), core::Rational(1)};
-  core::Rational v(0);
-  double big = 0;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < 4; ++j) {
-      v += x[i] * q.matrix()[i][j] * x[j];
-      big = std::max(big, std::fabs(q.matrix()[i][j].to_double_approx()));
-    }
-  return std::fabs(v.to_double_approx()) / (big * (1 + p[0] * p[0] + p[1] * p[1] + p[2] * p[2]));
-}
-
-} // namespace
+using surfcert::testing::relative_value;
 
 TEST(PointsOnly, ClosedFormParaboloidsTouchingAtAPoint) {
   int certified = 0;

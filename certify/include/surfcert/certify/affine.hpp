@@ -159,6 +159,10 @@ struct AffineTopology {
 std::optional<std::array<std::array<core::Rational, 4>, 2>>
 rational_plane_pair(const core::Mat4& m);
 
+/// The rational planes of a singular member e of the pencil at a root of rank 1 (the double
+/// plane: any row with a nonzero diagonal entry) or 2 (rational_plane_pair's two planes); empty
+/// otherwise (other ranks, conjugate planes, planes over Q(sqrt d)).
+std::vector<std::array<core::Rational, 4>> rational_member_planes(const core::Mat4& e, int rank);
 /// The plane n . (x, y, z, 1) = 0 written as a quadric (zero quadratic block).
 core::Mat4 plane_as_quadric(const std::array<core::Rational, 4>& n);
 
