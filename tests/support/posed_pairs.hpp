@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -93,6 +94,50 @@ inline bool certified_or_undecided(const trace::CurveResult& r, bool must_certif
   EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
   EXPECT_FALSE(r.note.empty()) << ctx;
   return false;
+}
+
+/// A closed-form line in a pose's local coordinates: true when the point lies on it (to eps).
+using OnLocalLine = std::function<bool(const std::array<double, 3>&, double)>;
+
+/// The picture of a curve made of lines: every branch an open "line" whose points all lie on
+/// exactly one of `lines` (the pose's local coordinates, to 1e-9 (1 + |t|)), each line drawn
+/// once, both ends of each on the box's faces, and two exact crossings per line.
+inline void expect_each_line_drawn_once(const trace::CurveResult& r, const Pose& ps,
+                                        const std::vector<OnLocalLine>& lines,
+                                        const std::string& ctx) {
+  const size_t n = lines.size();
+  ASSERT_TRUE(r.box.has_value()) << ctx;
+  ASSERT_TRUE(r.box_exits.has_value()) << ctx;
+  EXPECT_TRUE(r.box_exits->certified) << ctx;
+  EXPECT_EQ(r.box_exits->points.size(), 2 * n) << ctx;
+  ASSERT_EQ(r.branches.size(), n) << ctx;
+  const double eps = 1e-9 * (1 + ps.offset());
+  std::vector<int> drawn(n, 0);
+  for (const auto& br : r.branches) {
+    EXPECT_EQ(br.kind, "line") << ctx;
+    EXPECT_FALSE(br.closed) << ctx;
+    ASSERT_GE(br.points.size(), 2u) << ctx;
+    int which = -1, holders = 0;
+    for (size_t i = 0; i < n; ++i) {
+      bool all = true;
+      for (const auto& p : br.points)
+        all = all && lines[i](ps.local(p), eps);
+      if (all) {
+        which = static_cast<int>(i);
+        ++holders;
+      }
+    }
+    ASSERT_EQ(holders, 1) << ctx << ": a branch off every closed-form line";
+    ++drawn[static_cast<size_t>(which)];
+    for (const auto* e : {&br.points.front(), &br.points.back()}) {
+      bool on_face = false;
+      for (size_t k = 0; k < 3; ++k)
+        on_face = on_face || (*e)[k] == r.box->min[k] || (*e)[k] == r.box->max[k];
+      EXPECT_TRUE(on_face) << ctx << ": an end off the box's faces";
+    }
+  }
+  for (size_t i = 0; i < n; ++i)
+    EXPECT_EQ(drawn[i], 1) << ctx << ": closed-form line " << i;
 }
 
 /// The pair (sa, sb) in each of the five poses and both orders: f(pose, ctx, a, b, r) with r

@@ -30,7 +30,7 @@ namespace {
 
 using Local = std::array<double, 3>;
 // A closed-form line: on it when both residuals vanish (local coordinates).
-using OnLine = std::function<bool(const Local&, double)>;
+using OnLine = surfcert::testing::OnLocalLine;
 
 struct Family {
   const char* name;
@@ -83,39 +83,7 @@ TEST(DoubleLine, CertifiedAsExactLines) {
         EXPECT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
         if (r.status != certify::Status::Certified) continue;
         ++certified;
-        ASSERT_TRUE(r.box.has_value()) << ctx;
-        ASSERT_TRUE(r.box_exits.has_value()) << ctx;
-        EXPECT_TRUE(r.box_exits->certified) << ctx;
-        EXPECT_EQ(r.box_exits->points.size(), 2 * n) << ctx;
-        ASSERT_EQ(r.branches.size(), n) << ctx;
-        const double eps = 1e-9 * (1 + ps.offset());
-        std::vector<int> drawn(n, 0);
-        for (const auto& br : r.branches) {
-          EXPECT_EQ(br.kind, "line") << ctx;
-          EXPECT_FALSE(br.closed) << ctx;
-          ASSERT_GE(br.points.size(), 2u) << ctx;
-          // The closed-form line holding every point of the branch: exactly one.
-          int which = -1, holders = 0;
-          for (size_t i = 0; i < n; ++i) {
-            bool all = true;
-            for (const auto& p : br.points)
-              all = all && fam.lines[i](ps.local(p), eps);
-            if (all) {
-              which = static_cast<int>(i);
-              ++holders;
-            }
-          }
-          ASSERT_EQ(holders, 1) << ctx << ": a branch off every closed-form line";
-          ++drawn[static_cast<size_t>(which)];
-          for (const auto* e : {&br.points.front(), &br.points.back()}) {
-            bool on_face = false;
-            for (size_t k = 0; k < 3; ++k)
-              on_face = on_face || (*e)[k] == r.box->min[k] || (*e)[k] == r.box->max[k];
-            EXPECT_TRUE(on_face) << ctx << ": an end off the box's faces";
-          }
-        }
-        for (size_t i = 0; i < n; ++i)
-          EXPECT_EQ(drawn[i], 1) << ctx << ": closed-form line " << i;
+        surfcert::testing::expect_each_line_drawn_once(r, ps, fam.lines, ctx);
       }
     // Measured 10 of 10 for each family; 0 before (a multiple crossing, nothing drawn).
     EXPECT_EQ(certified, 10) << fam.name;
