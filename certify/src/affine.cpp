@@ -1477,6 +1477,30 @@ bool definite_at_infinity(const core::QuadricMatrix& q) {
   return k == core::QuadricKind::Ellipsoid || k == core::QuadricKind::ImaginaryEllipsoid;
 }
 
+// The member theta A' - B' of the pencil at a root theta of the facts' characteristic polynomial,
+// in the facts' basis (A' = t A - B, B' = -A when re-based: the roots are that pencil's);
+// nullopt when that basis is not at hand.
+std::optional<core::Mat4> member_at_root(const QsicResult& t, const core::QuadricMatrix& a,
+                                         const core::QuadricMatrix& b, const Rational& theta) {
+  const core::Mat4& fa = t.facts.a;
+  if (!(fa == core::Mat4{})) return core::scaled(fa, theta) + core::scaled(t.facts.b, Rational(-1));
+  if (t.facts.rebased) return std::nullopt;
+  return core::scaled(a.matrix(), theta) + core::scaled(b.matrix(), Rational(-1));
+}
+
+// The rational plane pairs among A, B and the pencil's members at rational roots of rank 2,
+// each with the quadric (not a plane) whose sections by its planes are the curve.
+std::vector<std::pair<core::Mat4, const core::QuadricMatrix*>>
+plane_pair_candidates(const QsicResult& t, const core::QuadricMatrix& a,
+                      const core::QuadricMatrix& b) {
+  std::vector<std::pair<core::Mat4, const core::QuadricMatrix*>> pairs{{a.matrix(), &b},
+                                                                       {b.matrix(), &a}};
+  for (const auto& r : t.facts.real_roots)
+    if (r.rank == 2 && r.rational_value)
+      if (auto m = member_at_root(t, a, b, *r.rational_value)) pairs.emplace_back(*m, &a);
+  return pairs;
+}
+
 // Lines only, one of them at infinity (Tu 31, 32, 34, 35 posed with a real line in the plane at
 // infinity: the conics at infinity share that line and are not proportional). A_inf = l mA and
 // B_inf = l mB with l their gcd, a rational line, the only common component: l is a line of the
@@ -1644,14 +1668,7 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
       // A rational plane pair in the pencil (z = xy against z = xy + (x - 1)(y + z - 2), whose
       // member A - B is one; x^2 = 1/4 against z = xy): the curve is the other quadric cut by
       // its two planes, read as the plane-pair route reads it.
-      std::vector<std::pair<core::Mat4, const core::QuadricMatrix*>> pairs{{a.matrix(), &b},
-                                                                           {b.matrix(), &a}};
-      for (const auto& r : t.facts.real_roots)
-        if (r.rank == 2 && r.rational_value)
-          pairs.emplace_back(core::scaled(a.matrix(), *r.rational_value) +
-                                 core::scaled(b.matrix(), Rational(-1)),
-                             &a);
-      for (const auto& [pm, quad] : pairs) {
+      for (const auto& [pm, quad] : plane_pair_candidates(t, a, b)) {
         if (quad->is_plane()) continue;
         if (auto pp = plane_pair_route(core::QuadricMatrix(pm), *quad); pp && pp->certified())
           return *pp;
@@ -1686,11 +1703,9 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   // (loops, unbounded), or nullopt.
   auto plane_pair_reading = [&]() -> std::optional<std::pair<int, int>> {
     if (t.pencil != algebra::PencilKind::Regular) return std::nullopt;
-    for (const auto& r : t.facts.real_roots) {
-      if (r.rank != 2 || !r.rational_value) continue;
-      const core::Mat4 pm =
-          core::scaled(a.matrix(), *r.rational_value) + core::scaled(b.matrix(), Rational(-1));
-      const auto pp = plane_pair_route(core::QuadricMatrix(pm), a);
+    for (const auto& [pm, quad] : plane_pair_candidates(t, a, b)) {
+      if (quad->is_plane()) continue;
+      const auto pp = plane_pair_route(core::QuadricMatrix(pm), *quad);
       if (pp && pp->certified() && pp->loops && pp->unbounded_branches)
         return std::make_pair(*pp->loops, *pp->unbounded_branches);
     }
@@ -1833,6 +1848,19 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
         static_cast<int>(roots.size()) <= m.lines) {
       out.loops = 0;
       out.unbounded_branches = m.lines;
+      return out;
+    }
+    // Tu 27: one real conic and two imaginary lines crossing on it. An imaginary line's only
+    // real point is its crossing with the conjugate line, on the conic: the curve's distinct real
+    // points at infinity are the conic's own. Two: a hyperbola (two unbounded branches); one: a
+    // parabola (tangent to the plane at infinity); none: an ellipse (a loop). (The plane pair of
+    // the pencil, when rational, reads the same below; over Q(sqrt d) it is not read: generate
+    // --case 27 --seed 32 pair 1 was undecided.)
+    if (t.tu_case == 27 && m.conics == 1 && m.loops == 0 && m.lines == 0 && m.cubics == 0 &&
+        m.isolated_points == 0 && roots.size() <= 2) {
+      const int n = static_cast<int>(roots.size());
+      out.loops = n == 0 ? 1 : 0;
+      out.unbounded_branches = n;
       return out;
     }
     // Imaginary components may meet the real ones at a special point at infinity (a conic and

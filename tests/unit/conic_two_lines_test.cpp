@@ -10,6 +10,7 @@
 // motions, both orders, for c = 2 and c = 1/2: that reading certified, and the picture traced in a
 // box of half-width 8 around the origin (it holds the hyperbola's vertices and crosses both
 // lines) shows four open branches.
+#include "support/exact_points.hpp"
 #include "support/posed_pairs.hpp"
 
 #include <gtest/gtest.h>
@@ -79,5 +80,35 @@ TEST(ConicAndTwoLines, ImaginaryLinesMeetingOnTheConicAtInfinity) {
       }
     // Measured 10 of 10 each.
     EXPECT_GE(certified, 9) << b_eq;
+  }
+}
+
+// Tu 27 with the pencil's plane pair being one of the given quadrics, the four-fold root at
+// infinity of the given basis (generate --case 27 --count 20 --seed 32, pair 1: A is the plane
+// pair 4 (x + 2y + z)(x - y - 2z) = 0). By hand (sympy, exact): the plane x = -2y - z cuts B in
+// -2 (3 (y + z) + 1)^2 - 2 = 0, two imaginary parallel lines; the plane x = y + 2z in a
+// hyperbola (its quadratic part -9 y^2 + 9 z^2). So: no loop, two unbounded branches. Was
+// undecided ("a singular point at infinity where imaginary components may meet": the plane pair
+// was looked for at the re-based pencil's root but built from the given matrices, and A itself
+// was not tried); now read two ways, the Tu 27 rule (the conic's own points at infinity) and
+// the plane pair, which agree on all 120 case-27 pairs of seeds 32, 50, 51 (exact and double).
+TEST(ConicAndTwoLines, PlanePairGivenAsOneOfTheQuadrics) {
+  const auto a = surfcert::testing::from_ints(
+      {{{4, 2, -2, 0}, {2, -8, -10, 0}, {-2, -10, -8, 0}, {0, 0, 0, 0}}});
+  const auto b = surfcert::testing::from_ints(
+      {{{3, 3, 3, 5}, {3, -18, -15, 4}, {3, -15, -15, -1}, {5, 4, -1, -4}}});
+  for (bool swapped : {false, true}) {
+    const auto r = swapped ? trace::intersect_curve(b, a, certify::Mode::Filtered, {})
+                           : trace::intersect_curve(a, b, certify::Mode::Filtered, {});
+    ASSERT_NE(r.topology.morphology, nullptr);
+    EXPECT_EQ(std::string(r.topology.morphology->id), "conic_with_tangency_point");
+    ASSERT_TRUE(r.affine.certified()) << r.affine.reason;
+    EXPECT_EQ(*r.affine.loops, 0);
+    EXPECT_EQ(*r.affine.unbounded_branches, 2);
+    ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+    int open = 0;
+    for (const auto& br : r.branches)
+      open += br.closed ? 0 : 1;
+    EXPECT_EQ(open, 2);
   }
 }
