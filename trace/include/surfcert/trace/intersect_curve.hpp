@@ -18,8 +18,12 @@
 // the box's faces, conics in closed form clipped to the box.
 // There status is Certified only when the affine topology (certify/affine.hpp) is certified,
 // the traced closed loops and isolated points have its counts (a given box may cut loops:
-// certified then only when certify/inner_loops.hpp proves that no more loops than those traced
-// closed lie wholly inside it, or when the whole curve is one loop and it crosses the faces),
+// certified then only when the loops lying wholly inside it are exactly those traced closed —
+// decided exactly when the loops are conics of singular members' planes,
+// certify/ellipses_in_box.hpp — or when certify/inner_loops.hpp proves that no more lie inside,
+// or when the whole curve is one loop and it crosses the faces; the isolated points in a box
+// are those of the exact special points lying in it, decided exactly; a curve of isolated
+// points only is not walked),
 // no crunode (cusp) has more than 4 (2) traced arms leaving it (a walk on another piece of
 // curve drawn through it), the exact crossings of the
 // curve with the box's faces are certified (certify/box_exits.hpp: complete, transversal, off
