@@ -93,26 +93,24 @@ TEST(IsolatedPointsInBox, IrrationalPointsAgainstNeighbouringFaces) {
         });
 }
 
-TEST(IsolatedPointsInBox, RationalPointAgainstFacesAtSmallDistances) {
+// Faces through the origin (the point on a face: certified or undecided), around it, and at
+// +-1e-10, 1e-20, 1e-30, 2^-100 from it on either side: the origin in the box or not.
+std::vector<Probe> probes_around_origin() {
   const trace::Point3 o{0, 0, 0};
-  std::vector<Probe> probes = {{box(0, 1), {o}, true}, {box(-1, 0), {o}, true}};
+  std::vector<Probe> probes = {{box(0, 1), {o}, true}, {box(-1, 0), {o}, true}, {box(-1, 1), {o}}};
   for (double e : {1e-10, 1e-20, 1e-30, std::ldexp(1.0, -100)}) {
     probes.push_back({box(e, 1), {}});
     probes.push_back({box(-e, 1), {o}});
     probes.push_back({box(-1, -e), {}});
     probes.push_back({box(-1, e), {o}});
   }
-  check("z - x^2 - y^2 = 0", "z + x^2 + 2*y^2 = 0", probes);
+  return probes;
+}
+
+TEST(IsolatedPointsInBox, RationalPointAgainstFacesAtSmallDistances) {
+  check("z - x^2 - y^2 = 0", "z + x^2 + 2*y^2 = 0", probes_around_origin());
 }
 
 TEST(IsolatedPointsInBox, CommonApexAlone) {
-  const trace::Point3 o{0, 0, 0};
-  std::vector<Probe> probes = {{box(0, 1), {o}, true}, {box(-1, 1), {o}}};
-  for (double e : {1e-10, 1e-20, 1e-30, std::ldexp(1.0, -100)}) {
-    probes.push_back({box(e, 1), {}});
-    probes.push_back({box(-e, 1), {o}});
-    probes.push_back({box(-1, -e), {}});
-    probes.push_back({box(-1, e), {o}});
-  }
-  check("x^2 + y^2 - z^2 = 0", "x^2 + y^2 - 4*z^2 = 0", probes);
+  check("x^2 + y^2 - z^2 = 0", "x^2 + y^2 - 4*z^2 = 0", probes_around_origin());
 }
