@@ -13,6 +13,7 @@
 // certified the open pieces match the exact crossings.
 #include "support/canonical.hpp"
 #include "support/distance_checks.hpp"
+#include "support/exact_points.hpp"
 #include "support/fixtures.hpp"
 #include "support/posed_pairs.hpp"
 
@@ -289,4 +290,36 @@ TEST(CubicLine, CrossingsAtConjugateRoots) {
         expect_pieces(r, a.matrix(), b.matrix(), ctx);
       });
   EXPECT_EQ(certified, 10);
+}
+
+// A cubic running beside its tangent line far out (Tu 12, `surfcert generate --case 12 --seed
+// 61`, pair 14; boxes of 10^3 to 10^5 around it): the cubic's ends on the faces, evaluated in
+// doubles from its parametrisation, lay 5.5e-8 off a surface in the box 2e4 wide (2.9e-12 of
+// the curve's size; there the surfaces meet at a small angle and the correction within the
+// face could not recover it), and in the box 2e5 wide could not be told from the line's ends
+// (undecided). Every point, ends included, within 1e-12 of the box's diagonal of both surfaces
+// (exactly), ends matched to the exact crossings; the ends themselves within 1e-14 of it.
+TEST(CubicLine, FarEndsBesideTheTangentLine) {
+  const auto a = surfcert::testing::from_ints(
+      {{{32, -4, -40, -72}, {-4, -6, 32, 20}, {-40, 32, -112, -36}, {-72, 20, -36, 86}}});
+  const auto b = surfcert::testing::from_ints(
+      {{{8, -2, -4, -14}, {-2, 0, 4, 4}, {-4, 4, -16, -8}, {-14, 4, -8, 16}}});
+  const trace::Point3 lo{-13431.291113464162, -7293.549193088953, -12365.08332326248},
+      hi{7809.360606630843, 13181.092465642947, 11168.0479634701};
+  for (const double scale : {1.0, 0.1, 0.37, 3.0, 10.0})
+    for (bool swapped : {false, true}) {
+      const std::string ctx = "scale " + std::to_string(scale) + (swapped ? " swapped" : "");
+      trace::TraceOptions opt;
+      trace::Box box;
+      for (size_t k = 0; k < 3; ++k)
+        box.min[k] = lo[k] * scale, box.max[k] = hi[k] * scale;
+      opt.box = box;
+      const auto r = swapped ? trace::intersect_curve(b, a, Mode::Filtered, opt)
+                             : trace::intersect_curve(a, b, Mode::Filtered, opt);
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      expect_pieces(r, a.matrix(), b.matrix(), ctx);
+      for (const auto& br : r.branches)
+        for (const auto* p : {&br.points.front(), &br.points.back()})
+          EXPECT_LE(geometric_residual(a.matrix(), b.matrix(), *p), 1e-14 * box.diagonal()) << ctx;
+    }
 }

@@ -5,8 +5,9 @@
 // face plane of the box (X_k - c X_3 = 0) are the real roots of binary cubics with rational
 // coefficients, isolated exactly (algebra::isolate_real_roots) and rounded; between two
 // consecutive ones the point stays on one side of every face plane, so each such interval is
-// inside the box or outside. The inside ones are sampled (chord error below `chord`) with
-// their ends snapped onto their face planes. Floating point, like all of surfcert::trace:
+// inside the box or outside. The inside ones are sampled (chord error below `chord`); their
+// ends are the cubic's points at the face roots' parameters (to 2^-110) computed exactly,
+// rounded, and put onto their face planes. Floating point, like all of surfcert::trace:
 // intersect_curve checks the pieces against the exact crossings with the faces.
 #include "surfcert/algebra/real_roots.hpp"
 #include "surfcert/algebra/upoly.hpp"
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace surfcert::trace {
 
@@ -24,16 +26,24 @@ namespace {
 using core::Rational;
 using Form = std::array<Rational, 4>; // c[k] s^(3-k) t^k
 
+// A root of a binary cubic on the circle: u, and tan u to ~2^-110 of its size (a rational
+// in the root's isolating interval; none at s = 0, u = pi / 2).
+struct CircleRoot {
+  double u;
+  std::optional<Rational> tan_u;
+};
+
 struct Break {
   double u;
   int axis = -1; ///< the face plane x_axis = value (-1: a point at infinity)
   double value = 0;
+  std::optional<Rational> tan_u; ///< see CircleRoot
 };
 
 // Real roots u in (-pi/2, pi/2] of the binary cubic f(cos u, sin u) (f not identically 0).
-std::vector<double> roots_on_circle(const Form& f) {
-  std::vector<double> out;
-  if (f[3].is_zero()) out.push_back(M_PI / 2); // s = 0
+std::vector<CircleRoot> roots_on_circle(const Form& f) {
+  std::vector<CircleRoot> out;
+  if (f[3].is_zero()) out.push_back({M_PI / 2, std::nullopt}); // s = 0
   const algebra::UPolyQ p = algebra::UPolyQ::from_coeffs({f[0], f[1], f[2], f[3]});
   if (p.degree() <= 0) return out;
   algebra::UPolyZ z = p.primitive_integer(), dz = z.derivative(), g, sq;
@@ -45,8 +55,12 @@ std::vector<double> roots_on_circle(const Form& f) {
     Rational lo = sep.separators[i], hi = sep.separators[i + 1];
     const double m =
         std::max({1.0, std::fabs(lo.to_double_approx()), std::fabs(hi.to_double_approx())});
-    algebra::refine_root(sq, lo, hi, Rational::exact_from_double(std::ldexp(m, -60)));
-    out.push_back(std::atan(((lo + hi) / Rational(2)).to_double_approx()));
+    // To 2^-110 of its size, not 2^-60: a face crossing's point is computed from it exactly
+    // (end_point below), and far out (|X| >> 1, X_3 small) the point moves by ~|X|^2 times
+    // the parameter's error.
+    algebra::refine_root(sq, lo, hi, Rational::exact_from_double(std::ldexp(m, -110)));
+    const Rational mid = (lo + hi) / Rational(2);
+    out.push_back({std::atan(mid.to_double_approx()), mid});
   }
   return out;
 }
@@ -73,6 +87,21 @@ struct Param {
   }
 };
 
+// X(1, tau) / X_3(1, tau) exactly, then rounded (nullopt at a point at infinity). In doubles
+// (Param::at), a point far out carries an error ~2^-53 |X|^2 / |X_3| of its coordinates: a
+// cubic's end on a face 10^4 out, where the cubic runs beside its tangent line, lay 5e-8 off
+// the surfaces and could not be told from the line's end at 10^5.
+std::optional<Point3> exact_point(const certify::CubicAndLine& cl, const Rational& tau) {
+  const Rational m[4] = {Rational(1), tau, tau * tau, tau * tau * tau};
+  std::array<Rational, 4> x;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t k = 0; k < 4; ++k)
+      x[i] += cl.cubic[i][k] * m[k];
+  if (x[3].is_zero()) return std::nullopt;
+  return Point3{(x[0] / x[3]).to_double_approx(), (x[1] / x[3]).to_double_approx(),
+                (x[2] / x[3]).to_double_approx()};
+}
+
 double dist(const Point3& p, const Point3& q) {
   return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
                    (p[2] - q[2]) * (p[2] - q[2]));
@@ -86,8 +115,8 @@ std::vector<Break> sorted(std::vector<Break> b) {
 
 std::vector<Break> infinity_breaks(const certify::CubicAndLine& cl) {
   std::vector<Break> out;
-  for (double u : roots_on_circle(cl.cubic[3]))
-    out.push_back({u, -1, 0});
+  for (const CircleRoot& r : roots_on_circle(cl.cubic[3]))
+    out.push_back({r.u, -1, 0, std::nullopt});
   return sorted(out);
 }
 
@@ -104,14 +133,15 @@ std::vector<Branch> cubic_in_box(const certify::CubicAndLine& cl, const Box& box
       for (size_t j = 0; j < 4; ++j)
         f[j] = cl.cubic[k][j] - c * cl.cubic[3][j];
       if (f[0].is_zero() && f[1].is_zero() && f[2].is_zero() && f[3].is_zero()) continue;
-      for (double u : roots_on_circle(f))
-        br.push_back({u, static_cast<int>(k), v});
+      for (const CircleRoot& r : roots_on_circle(f))
+        br.push_back({r.u, static_cast<int>(k), v, r.tan_u});
     }
   br = sorted(br);
   std::vector<Branch> out;
   if (br.empty()) return out; // X_3 has a real root: not reached
   auto end_point = [&](const Break& b) {
-    Point3 p = par.at(b.u);
+    std::optional<Point3> e = b.tan_u ? exact_point(cl, *b.tan_u) : std::nullopt;
+    Point3 p = e ? *e : par.at(b.u);
     if (b.axis >= 0) p[static_cast<size_t>(b.axis)] = b.value;
     return p;
   };

@@ -52,8 +52,9 @@ line_in_direction(const core::QuadricMatrix& a, const core::QuadricMatrix& b, co
 
 /// The arcs of the exact twisted cubic of cases 10-12 (certify/cubic_line.hpp) inside the
 /// box: open branches (kind "cubic") sampled from its rational parametrisation with chord
-/// error about `chord` (at most ~max_points points each), both ends on faces (snapped onto
-/// the face plane). An arc touching a face from inside is cut there (two pieces).
+/// error about `chord` (at most ~max_points points each), both ends on faces (each the
+/// cubic's point at its face crossing's parameter, computed exactly and rounded, then put
+/// onto the face plane). An arc touching a face from inside is cut there (two pieces).
 std::vector<Branch> cubic_in_box(const certify::CubicAndLine& cl, const Box& box, double chord,
                                  int max_points);
 
