@@ -167,22 +167,87 @@ constexpr std::array<unsigned long, 303> small_primes() {
   return out;
 }
 
+// The primes in runs whose products fit a machine word (greedy, in order): one remainder of d
+// per run instead of one per prime. kRuns[k] = (first index, product).
+struct PrimeRun {
+  size_t first = 0;
+  unsigned long product = 1;
+};
+constexpr size_t kRunCount = [] {
+  size_t n = 1;
+  unsigned long prod = 1;
+  for (const unsigned long p : small_primes()) {
+    if (prod > ~0UL / p) ++n, prod = 1;
+    prod *= p;
+  }
+  return n;
+}();
+constexpr std::array<PrimeRun, kRunCount> prime_runs() {
+  std::array<PrimeRun, kRunCount> out{};
+  size_t n = 0;
+  const auto primes = small_primes();
+  for (size_t i = 0; i < primes.size(); ++i) {
+    if (out[n].product > ~0UL / primes[i]) out[++n].first = i;
+    out[n].product *= primes[i];
+  }
+  return out;
+}
+
+// Divisibility of a word by each odd prime without a division: p | r exactly when
+// r * p^-1 mod 2^64 <= (2^64 - 1) / p (p^-1 the inverse of p modulo 2^64).
+struct WordDivisor {
+  unsigned long inverse = 0, limit = 0;
+};
+constexpr std::array<WordDivisor, 303> word_divisors() {
+  std::array<WordDivisor, 303> out{};
+  const auto primes = small_primes();
+  for (size_t i = 0; i < primes.size(); ++i) {
+    const unsigned long p = primes[i];
+    if (p % 2 == 0) continue; // 2: the low bit
+    unsigned long x = p;      // p * p == 1 mod 8: correct to 3 bits, doubled per step
+    for (int k = 0; k < 5; ++k)
+      x *= 2 - p * x;
+    out[i] = {x, ~0UL / p};
+  }
+  return out;
+}
+constexpr bool inverses_hold() {
+  const auto primes = small_primes();
+  const auto d = word_divisors();
+  for (size_t i = 1; i < primes.size(); ++i)
+    if (primes[i] * d[i].inverse != 1) return false;
+  return true;
+}
+static_assert(inverses_hold(), "p * p^-1 == 1 mod 2^64 for every odd prime below 2000");
+
 } // namespace
 
 QuadraticNumber QuadraticNumber::normalized() const {
   QuadraticNumber r = *this;
   if (r.b.is_zero() || r.d.sign() <= 0) return r;
   // The square factors p^2 of d for the primes p < 2000 moved out of the root (a composite's
-  // square divides no more once its primes' are out), then a perfect square rest. A machine-
-  // word remainder tests each p^2 (d has several limbs: a full division per candidate was most
-  // of a plane section's special points).
+  // square divides no more once its primes' are out), then a perfect square rest. Only the
+  // primes dividing d are tried, found from one remainder of d per run of primes (a word) by
+  // a multiplication each (a remainder of d for each of the 303 was a sixth of a cone-plane
+  // pair's instructions).
   static constexpr auto primes = small_primes();
+  static constexpr auto runs = prime_runs();
+  static constexpr auto divisors = word_divisors();
   core::Integer out(1), rest = r.d;
-  for (const unsigned long p : primes)
-    while (fmpz_fdiv_ui(rest.raw(), p * p) == 0) {
-      fmpz_divexact_ui(rest.raw_mut(), rest.raw(), p * p);
-      fmpz_mul_ui(out.raw_mut(), out.raw(), p);
+  for (size_t k = 0; k < runs.size(); ++k) {
+    // p divides d exactly when it divides d mod (the run's product).
+    const unsigned long m = fmpz_fdiv_ui(rest.raw(), runs[k].product);
+    const size_t end = k + 1 < runs.size() ? runs[k + 1].first : primes.size();
+    for (size_t i = runs[k].first; i < end; ++i) {
+      const unsigned long p = primes[i];
+      const bool divides = p == 2 ? (m & 1) == 0 : m * divisors[i].inverse <= divisors[i].limit;
+      if (!divides) continue;
+      while (fmpz_fdiv_ui(rest.raw(), p * p) == 0) {
+        fmpz_divexact_ui(rest.raw_mut(), rest.raw(), p * p);
+        fmpz_mul_ui(out.raw_mut(), out.raw(), p);
+      }
     }
+  }
   core::Integer s;
   fmpz_sqrt(s.raw_mut(), rest.raw());
   if (s * s == rest) {

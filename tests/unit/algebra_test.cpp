@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <set>
 
 using namespace surfcert;
 using algebra::UPolyZ;
@@ -634,6 +635,53 @@ TEST(QuadraticNumbers, NormalizedMovesSmallPrimeSquaresOut) {
   const auto n2 = y.normalized();
   EXPECT_TRUE(n2.b.is_zero());
   EXPECT_EQ(n2.a, Rational(1) + Rational(big));
+  // Random radicands: products of primes below 2000 (drawn across the whole range, each to a
+  // power 1..4) times 1, a large prime, or its square; the result known by construction (a
+  // large prime's square stays in d unless it is all that is left: then d is a perfect square).
+  std::mt19937_64 rng(20261204);
+  std::vector<long> primes;
+  for (long p = 2; p < 2000; ++p) {
+    bool prime = true;
+    for (long q = 2; q * q <= p && prime; ++q)
+      prime = p % q != 0;
+    if (prime) primes.push_back(p);
+  }
+  for (int trial = 0; trial < 300; ++trial) {
+    Integer d(1), free(1), root(1);
+    const int factors = static_cast<int>(rng() % 7);
+    std::set<long> used;
+    for (int f = 0; f < factors; ++f) {
+      const long p = primes[rng() % primes.size()];
+      if (!used.insert(p).second) continue;
+      const int e = 1 + static_cast<int>(rng() % 4);
+      for (int k = 0; k < e; ++k)
+        d = d * Integer(p);
+      for (int k = 0; k < e / 2; ++k)
+        root = root * Integer(p);
+      if (e % 2 == 1) free = free * Integer(p);
+    }
+    const int tail = static_cast<int>(rng() % 3); // 1, big, big^2
+    if (tail >= 1) d = d * big, free = free * big;
+    if (tail == 2) {
+      d = d * big;
+      if (free == big) {
+        free = Integer(1), root = root * big;
+      } else {
+        free = free * big;
+      }
+    }
+    const QuadraticNumber z{Rational(2), Rational(3, 5), d};
+    const auto nz = z.normalized();
+    const std::string ctx = "trial " + std::to_string(trial) + ", d = " + d.to_string();
+    if (free == Integer(1)) {
+      EXPECT_TRUE(nz.b.is_zero()) << ctx;
+      EXPECT_EQ(nz.a, Rational(2) + Rational(3, 5) * Rational(root)) << ctx;
+    } else {
+      check(z, nz, ctx.c_str());
+      EXPECT_EQ(nz.d, free) << ctx;
+      EXPECT_EQ(nz.b, Rational(3, 5) * Rational(root)) << ctx;
+    }
+  }
 }
 
 // simplest_root_form: a root of a square-free factor that still splits over Q is given by its

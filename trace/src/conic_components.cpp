@@ -732,6 +732,76 @@ void with_face_parameters(const PlaneConic& pc, const Box& box, double lo, doubl
       ts.pop_back(); // the closing sample is the first one
 }
 
+// An ellipse's or a parabola's parameters: uniform, the step from the largest |gamma''| (a
+// chord error |gamma''| dt^2 / 8 <= h; a parabola's is constant); an ellipse's at least 16
+// (the closing sample is the first), a parabola's at least 8 steps from -t_max to t_max.
+std::vector<double> uniform_parameters(const PlaneConic& pc, double h, int cap) {
+  const bool ellipse = pc.type == PlaneConic::Ellipse;
+  const double bound = pc.second_derivative_bound();
+  const double dt = bound > 0 ? std::sqrt(8 * h / bound) : 1.0;
+  const double span = ellipse ? 2 * kPi : 2 * pc.t_max, t0 = ellipse ? 0 : -pc.t_max;
+  long n = static_cast<long>(std::ceil(span / dt));
+  n = std::max(n, ellipse ? 16L : 8L);
+  n = std::min(n, static_cast<long>(ellipse ? cap : cap - 1));
+  const long count = ellipse ? n : n + 1;
+  std::vector<double> ts(static_cast<size_t>(count));
+  for (long i = 0; i < count; ++i)
+    ts[static_cast<size_t>(i)] = t0 + span * static_cast<double>(i) / static_cast<double>(n);
+  return ts;
+}
+
+// A hyperbola's parameters on [-t_max, t_max], outward from the vertex, symmetric about it.
+// Each step keeps the chord within h of the arc by either of two bounds, the longer step
+// taken: (1) in the parameter, |gamma''| dt^2 / 8 <= h with |gamma''| = |gamma - c| at the
+// step's outer end, where it is largest; (2) along the curve, an arc length L <= min(
+// sqrt(8 h / kappa), 0.2 / kappa, 200 h) (the walker's step, valid while kappa L is small),
+// kappa the curvature at the inner end, where it is largest (it falls away from the vertex),
+// and the parameter step L / |gamma'| with the speed at the outer end of a first guess (the
+// speed grows outward, so the arc is at most L). Far out (1) shrinks like 1 / sqrt(|gamma|)
+// while the branch straightens: the uniform step of the largest |gamma''| put ~150 samples on
+// a unit hyperbola's branch in a box of 6 (sinh, cosh and the correction of each were ~15% of
+// a cone-plane pair). The first samples at +-dt/2, none at the vertex (a narrow turn next to
+// a cone's apex, where a sample's correction may not converge). At least 8 steps, at most cap
+// points.
+std::vector<double> hyperbola_parameters(const PlaneConic& pc, double h, int cap) {
+  const double tm = pc.t_max, r1 = std::fabs(pc.r1), r2 = std::fabs(pc.r2);
+  // cosh and sinh from one exp (an estimate for the step: sinh's cancellation near 0 leaves an
+  // absolute error ~1e-16, nothing here); inf beyond ~710 gives the floor step.
+  auto accel_speed = [&](double t) {
+    const double e = std::exp(t), ie = 1 / e;
+    const double c = 0.5 * (e + ie), sh = 0.5 * (e - ie);
+    return std::make_pair(std::sqrt(r1 * r1 * c * c + r2 * r2 * sh * sh),
+                          std::sqrt(r1 * r1 * sh * sh + r2 * r2 * c * c));
+  };
+  auto accel = [&](double t) { return accel_speed(t).first; };
+  auto speed = [&](double t) { return accel_speed(t).second; };
+  const double dt_floor = 2 * tm / std::max(cap - 1, 8); // never more than cap points
+  const double dt_ceiling = tm / 4;                      // at least 8 steps
+  std::vector<double> half;
+  for (double t = 0; t < tm;) {
+    const auto [a0, v] = accel_speed(t);
+    double dp = std::sqrt(8 * h / a0);
+    dp = std::sqrt(8 * h / accel(std::min(t + dp, tm)));
+    const double kappa = r1 * r2 / (v * v * v);
+    double len = 200 * h;
+    if (kappa > 0) len = std::min({len, std::sqrt(8 * h / kappa), 0.2 / kappa});
+    double dg = len / v;
+    dg = len / speed(std::min(t + dg, tm));
+    double dt = std::max(std::isfinite(dp) ? dp : 0.0, std::isfinite(dg) ? dg : 0.0);
+    dt = std::clamp(dt, dt_floor, dt_ceiling);
+    if (!(dt > 0)) break; // t_max 0 or not finite
+    t = std::min(t + (half.empty() ? 0.5 * dt : dt), tm);
+    half.push_back(t);
+  }
+  if (half.empty()) return {0.0};
+  std::vector<double> ts;
+  ts.reserve(2 * half.size());
+  for (size_t i = half.size(); i-- > 0;)
+    ts.push_back(-half[i]);
+  ts.insert(ts.end(), half.begin(), half.end());
+  return ts;
+}
+
 std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const TraceOptions& opt) {
   std::vector<Branch> out;
   if (conics.empty()) return out;
@@ -797,22 +867,22 @@ std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const Trace
       continue;
     }
     br.closed = ellipse;
-    double bound = pc.second_derivative_bound();
-    double dt = bound > 0 ? std::sqrt(8 * h / bound) : 1.0;
-    double span = ellipse ? 2 * kPi : 2 * pc.t_max;
-    long n = static_cast<long>(std::ceil(span / dt));
-    n = std::max(n, ellipse ? 16L : 8L);
-    n = std::min(n, static_cast<long>(ellipse ? cap : cap - 1));
-    double t0 = ellipse ? 0 : -pc.t_max;
-    long count = ellipse ? n : n + 1;
-    std::vector<double> ts;
-    ts.reserve(static_cast<size_t>(count));
-    for (long i = 0; i < count; ++i)
-      ts.push_back(t0 + span * static_cast<double>(i) / static_cast<double>(n));
+    const double span = ellipse ? 2 * kPi : 2 * pc.t_max;
+    const double t0 = ellipse ? 0 : -pc.t_max;
+    std::vector<double> ts = pc.type == PlaneConic::Hyperbola ? hyperbola_parameters(pc, h, cap)
+                                                              : uniform_parameters(pc, h, cap);
     if (opt.box) with_face_parameters(pc, *opt.box, t0, t0 + span, ts);
     br.points.reserve(ts.size());
     for (double t : ts) {
-      V3 x = pc.at(t);
+      V3 x;
+      if (pc.type == PlaneConic::Hyperbola) {
+        // at(t) with cosh and sinh from one exp (a sinh and a cosh per sample were ~8% of a
+        // cone-plane pair); the correction below puts the sample on the curve either way.
+        const double e = std::exp(t), ie = 1 / e;
+        x = axpy(axpy(pc.c, pc.r1 * 0.5 * (e + ie), pc.e1), pc.r2 * 0.5 * (e - ie), pc.e2);
+      } else {
+        x = pc.at(t);
+      }
       correct(pc, x, scene);
       br.points.push_back(x);
     }
