@@ -12,12 +12,14 @@
 // has at most 4 arms at the crunode, and its affine reading is the one checked independently
 // (3 unbounded pieces: 50-digit sweep of the singular member's generators).
 #include "support/distance_checks.hpp"
+#include "support/trace_boxes.hpp"
 
 #include "surfcert/trace/intersect_curve.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <vector>
 #include <string>
 
 using namespace surfcert;
@@ -84,4 +86,96 @@ TEST(CrunodeArms, OtherComponentsAreNotGluedToTheCrossing) {
     }
   // Measured 5 of 6 certified (pair 1 in the box of 10000 undecided).
   EXPECT_GE(certified, 4);
+}
+
+// Given boxes ~3e4 across around unit-size curves with a crunode (figure eights, Tu 5; a
+// crunode on unbounded branches, Tu 8; `generate --case all --count 20 --seed 61`, boxes of
+// `bench/boxed_pairs.py --boxes 2 --seed 61`): at the tolerance relative to the box (~7 units)
+// and its two refinements by 8, walks on the other components still passed the crunode within
+// a step and were glued to it (6 or 8 arms), or joined pieces a unit apart: undecided. The
+// third refinement draws the chords 64 times finer with the same steps. Asserted: each is
+// certified, at most 4 arms leave the crunode, every point lies on both surfaces to 1e-12 of
+// the box's diagonal (exact substitution), and the ends match the exact crossings one to one.
+TEST(CrunodeArms, LargeGivenBoxesAroundUnitCurves) {
+  struct Case {
+    const char* id;
+    std::array<std::array<const char*, 4>, 4> a, b;
+    trace::Point3 lo, hi;
+  };
+  const std::vector<Case> cases = {{"case05-0007-b1",
+                                    {{{"-191/3", "217/3", "4", "-166/3"},
+                                      {"217/3", "-191/3", "-26/3", "76/3"},
+                                      {"4", "-26/3", "58/3", "28"},
+                                      {"-166/3", "76/3", "28", "-23"}}},
+                                    {{{"-82/3", "86/3", "8", "-74/3"},
+                                      {"86/3", "-82/3", "-4/3", "38/3"},
+                                      {"8", "-4/3", "11/3", "11"},
+                                      {"-74/3", "38/3", "11", "-22"}}},
+                                    {-13865.407500151641, -11288.658672893358, -8787.428028990003},
+                                    {13271.889947092308, 11942.235474538691, 14900.377218896598}},
+                                   {"case05-0016-b0",
+                                    {{{"-8", "-2", "2", "2"},
+                                      {"-2", "4", "6", "4"},
+                                      {"2", "6", "-3", "4"},
+                                      {"2", "4", "4", "11"}}},
+                                    {{{"2", "17/2", "-2", "-1"},
+                                      {"17/2", "-1", "0", "15/2"},
+                                      {"-2", "0", "1/2", "-3"},
+                                      {"-1", "15/2", "-3", "-7/2"}}},
+                                    {-10443.255136602647, -7094.277362674218, -7406.7011298215975},
+                                    {11104.512242688948, 14016.429001452603, 11538.90447888551}},
+                                   {"case08-0007-b0",
+                                    {{{"1", "12", "-20", "-7"},
+                                      {"12", "-20", "22", "14"},
+                                      {"-20", "22", "6", "-4"},
+                                      {"-7", "14", "-4", "-9"}}},
+                                    {{{"-4", "-8", "20", "8"},
+                                      {"-8", "16", "-20", "-12"},
+                                      {"20", "-20", "-6", "2"},
+                                      {"8", "-12", "2", "6"}}},
+                                    {-8176.64279728578, -12869.590581516086, -11227.808956069777},
+                                    {14471.123270405365, 10113.887669907399, 13385.000203985413}},
+                                   {"case08-0015-b0",
+                                    {{{"20", "40", "-4", "-2"},
+                                      {"40", "38", "-25", "18"},
+                                      {"-4", "-25", "-13", "27"},
+                                      {"-2", "18", "27", "-53"}}},
+                                    {{{"40", "82", "-4", "-14"},
+                                      {"82", "77", "-51", "34"},
+                                      {"-4", "-51", "-31", "61"},
+                                      {"-14", "34", "61", "-111"}}},
+                                    {-6547.929173632108, -8498.451862451542, -14240.752157927267},
+                                    {5225.721793525669, 6156.4236422648355, 5921.798880940436}}};
+  for (const auto& c : cases) {
+    const auto a = from_rows(c.a), b = from_rows(c.b);
+    trace::TraceOptions opt;
+    trace::Box box;
+    box.min = c.lo;
+    box.max = c.hi;
+    opt.box = box;
+    const auto r = trace::intersect_curve(a, b, certify::Mode::Filtered, opt);
+    ASSERT_EQ(r.status, certify::Status::Certified) << c.id << ": " << r.note;
+    ASSERT_TRUE(r.box_exits && r.box_exits->certified) << c.id;
+    size_t ends = 0;
+    for (const auto& br : r.branches) {
+      if (!br.closed) {
+        ends += 2;
+        EXPECT_EQ(br.exits.size(), 2u) << c.id;
+      }
+      for (const auto& p : br.points) {
+        EXPECT_LE(surfcert::testing::geometric_residual(a, p), 1e-12 * box.diagonal()) << c.id;
+        EXPECT_LE(surfcert::testing::geometric_residual(b, p), 1e-12 * box.diagonal()) << c.id;
+      }
+    }
+    EXPECT_EQ(ends, r.box_exits->points.size()) << c.id;
+    for (const auto& sp : r.topology.special_points) {
+      if (sp.at_infinity || sp.kind != "crunode") continue;
+      int arms = 0;
+      for (const auto& br : r.branches)
+        for (size_t i = 0; i < br.points.size(); ++i)
+          if (br.points[i] == sp.approx)
+            arms += br.closed || (i > 0 && i + 1 < br.points.size()) ? 2 : 1;
+      EXPECT_LE(arms, 4) << c.id;
+    }
+  }
 }

@@ -834,7 +834,7 @@ std::vector<Branch> sampled_branches(std::vector<PlaneConic> conics, const Trace
     pc.extend(lo, hi); // a line has no size of its own
   double scene = norm(sub(hi, lo));
   if (!(scene > 0) || !std::isfinite(scene)) scene = 1;
-  const double h = opt.tolerance * scene;
+  const double h = opt.tolerance * opt.chord_scale * scene;
   const int cap = std::max(8, opt.max_points_per_branch);
 
   for (const auto& pc : conics) {

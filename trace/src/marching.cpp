@@ -263,7 +263,8 @@ struct Walk {
 class Tracer {
 public:
   Tracer(const QuadricPair& q, const TraceOptions& opt, double scene)
-      : q_(q), opt_(opt), scene_(scene), tol_(opt.tolerance * scene), hmax_(200 * tol_) {}
+      : q_(q), opt_(opt), scene_(scene), tol_(opt.tolerance * opt.chord_scale * scene),
+        hmax_(200 * opt.tolerance * scene) {}
 
   // Whether p lies on a face of the box with the travel direction t pointing out of it.
   bool leaving_at(const V& p, const V& t) const {

@@ -48,6 +48,10 @@ struct Box {
 
 struct TraceOptions {
   double tolerance = 2e-4; ///< bound on chord error and on the step (relative to the scene size)
+  /// The chord error's bound alone is tolerance * chord_scale (the step's stays tolerance): a
+  /// retrace in a box far larger than the curve's features refines the chords near them
+  /// without shortening the steps along the straight stretches far out.
+  double chord_scale = 1;
   int max_points_per_branch = 200000;
   /// A walk further than this many scene sizes from its start is on a non-compact branch and
   /// stops (without a box; with one, walks stop on its faces).
