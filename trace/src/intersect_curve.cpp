@@ -1046,6 +1046,18 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
       auto run = [&](std::vector<V> st) {
         const auto faces = box_face_points(q, in);
         st.insert(st.end(), faces.begin(), faces.end());
+        // Retraced in the same box: the exact crossings with its faces start walks too. The
+        // float face points come from a quartic's roots in doubles, where two crossings of
+        // arms sharing a point at infinity lie close together on a far face (a near-double
+        // root, dropped as complex): a given box 3e4 across missed arms that only start there.
+        if (out.box_exits && out.box_exits->certified && out.box && out.box->min == in.min &&
+            out.box->max == in.max)
+          for (const auto& x : out.box_exits->points) {
+            V p = x.approx;
+            const auto k = static_cast<size_t>(x.axis);
+            p[k] = x.at_max ? in.max[k] : in.min[k];
+            st.push_back(p);
+          }
         return march(q, st, stops, bopt);
       };
       out.branches = run(starts);
