@@ -1,7 +1,8 @@
 // Helpers shared by the tracer's box tests: trace options with a given box (the curve is
 // clipped to [lo, hi], its exits on the box's faces counted), instead of the automatic one;
 // the geometric residual of a traced point against an exact quadric; the checks of a
-// certified picture made only of open pieces (expect_open_pieces).
+// certified picture made only of open pieces (expect_open_pieces) and of any certified picture
+// in a given box (expect_matched_in_box).
 #pragma once
 
 #include "surfcert/core/rational.hpp"
@@ -112,6 +113,32 @@ inline void expect_open_pieces(const trace::CurveResult& r, const core::QuadricM
     }
   }
   EXPECT_EQ(static_cast<int>(used.size()), 2 * pieces) << ctx;
+}
+
+/// A picture in a given box, certified: its crossings with the faces certified, each open
+/// piece's two ends matched to exact crossings (as many ends as crossings), every point within
+/// 1e-12 of the box's diagonal of both surfaces (exact substitution). Returns the number of ends.
+inline size_t expect_matched_in_box(const trace::CurveResult& r, const core::QuadricMatrix& a,
+                                    const core::QuadricMatrix& b, const std::string& ctx) {
+  EXPECT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+  if (!r.box || !r.box_exits || !r.box_exits->certified) {
+    ADD_FAILURE() << ctx << ": no certified crossings";
+    return 0;
+  }
+  const double diag = r.box->diagonal();
+  size_t ends = 0;
+  for (const auto& br : r.branches) {
+    if (!br.closed) {
+      ends += 2;
+      EXPECT_EQ(br.exits.size(), 2u) << ctx;
+    }
+    for (const auto& p : br.points) {
+      EXPECT_LE(geometric_residual(a, p), 1e-12 * diag) << ctx;
+      EXPECT_LE(geometric_residual(b, p), 1e-12 * diag) << ctx;
+    }
+  }
+  EXPECT_EQ(ends, r.box_exits->points.size()) << ctx;
+  return ends;
 }
 
 } // namespace surfcert::testing
