@@ -36,8 +36,10 @@
 // one, so conic cases belong to conic_branches) or none (acnode). A walk that gets within
 // h_free of a crunode or cusp ahead of it, on a branch through it (the chord to it runs along
 // the curve: its midpoint projects within r/50 of itself), steps onto it exactly and continues
-// along the branch that best continues its direction (crunode) or back along the other half
-// (cusp); the outgoing point solves f = g = 0, |X - S| = r by Newton. Start points at which
+// along the branch that best continues its direction (crunode: the arm's tangent there read as
+// 2 chord - t, and while that is not clearly nearer one line than the other the walk first
+// comes closer) or back along the other half (cusp); the outgoing point solves f = g = 0,
+// |X - S| = r by Newton. Start points at which
 // the curve is singular (extreme_points returns them) are not starts; they join the list of
 // singular points. A walk further than escape_scenes (100) L from its start is on a non-compact
 // branch and stops. A walk that ended off the box's faces at both ends and lies wholly on another
@@ -355,30 +357,46 @@ public:
 
   double hmin(const V& p) const { return std::max(1e-290, 0x1p-40 * norm(p)); }
 
-  // Through singular point sp (index si) arriving from p: returns the first point after it.
-  bool pass_singular(const Singular& s, const V& p, double h_free, V& out) const {
+  enum class Pass { Through, Failed, NotYet };
+
+  // Through singular point sp arriving from p with unit tangent t: the first point after it.
+  // NotYet: at a crunode, which of its two lines the arm arrives along is not clear from p yet.
+  Pass pass_singular(const Singular& s, const V& p, const V& t, double h_free, V& out) const {
     const double r = dist(s.p, p);
     if (s.kind == SKind::Crunode) {
+      // The arm's tangent at the crunode, from the chord and the tangent at p: on a circular
+      // arc the chord halves the angle between the end tangents, so 2 chord - t is the far end's
+      // tangent to second order. The chord alone deviates from it by ~kappa r / 2: where the
+      // two lines cross at a small angle that picked the other line (a figure eight in a box
+      // 3e4 wide: one face point ending three pieces, generate --case 5 --seed 32).
       const V din = unit(sub(s.p, p));
+      const V tin = unit(sub(mul(2, din), t));
       V best{};
-      double bd = -2;
-      for (const V& d : s.dirs)
-        for (double sg : {1.0, -1.0}) {
-          const double v = sg * dot(d, din);
-          if (v > bd) {
-            bd = v;
-            best = mul(sg, d);
-          }
+      double bd = -2, other = -2;
+      for (const V& d : s.dirs) {
+        const double v = std::abs(dot(d, tin));
+        if (v > bd) {
+          other = bd;
+          bd = v;
+          best = mul(dot(d, tin) >= 0 ? 1 : -1, d);
+        } else {
+          other = std::max(other, v);
         }
+      }
+      // The estimate's error grows like the change of curvature times r^2: while the angle to
+      // the chosen line is not well below the angle to the other one, the walk first comes
+      // closer (down to h_free / 64: then the best guess, as before).
+      const double a_best = std::acos(std::min(1.0, bd)), a_other = std::acos(std::min(1.0, other));
+      if (!(a_best < 0.25 * a_other) && r > h_free / 64) return Pass::NotYet;
       double rr = std::max(r, 0.5 * h_free);
       for (int attempt = 0; attempt < 6; ++attempt, rr *= 0.5) {
         V x = add(s.p, mul(rr, best));
         if (!newton_sphere(q_, s.p, rr, x)) continue;
         if (dist(x, add(s.p, mul(rr, best))) > 0.3 * rr) continue;
         out = x;
-        return true;
+        return Pass::Through;
       }
-      return false;
+      return Pass::Failed;
     }
     if (s.kind == SKind::Cusp) {
       V d = s.dirs[0];
@@ -392,11 +410,11 @@ public:
         if (dot(sub(x, s.p), d) <= 0) continue;
         if (dist(x, p) <= std::max(std::abs(b), 1e-9 * r)) continue; // came back to p
         out = x;
-        return true;
+        return Pass::Through;
       }
-      return false;
+      return Pass::Failed;
     }
-    return false;
+    return Pass::Failed;
   }
 
   Walk walk(const V& p0, double s0) const {
@@ -481,7 +499,12 @@ public:
           if (!project_onto_curve(q_, x) || dist(x, mid) > 0.02 * r) continue;
         }
         V x;
-        if (!pass_singular(sg, p, hfree, x)) {
+        const Pass how = pass_singular(sg, p, t, hfree, x);
+        if (how == Pass::NotYet) { // closer first, by ordinary steps
+          h = std::min(h, 0.5 * r);
+          continue;
+        }
+        if (how == Pass::Failed) {
           w.dead = true;
           return w;
         }
