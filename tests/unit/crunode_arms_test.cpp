@@ -35,12 +35,12 @@ core::QuadricMatrix from_rows(const std::array<std::array<const char*, 4>, 4>& r
   return core::QuadricMatrix(m);
 }
 
-// The largest number of polyline arms leaving a crunode (a finite special point of that kind)
-// in the picture: a point of a closed branch or inside an open one counts 2, an end 1.
-int most_arms_at_a_crunode(const trace::CurveResult& r) {
+// The largest number of polyline arms leaving a finite special point of the given kind in the
+// picture: a point of a closed branch or inside an open one counts 2, an end 1.
+int most_arms_at(const trace::CurveResult& r, const std::string& kind) {
   int most = 0;
   for (const auto& sp : r.topology.special_points) {
-    if (sp.at_infinity || sp.kind != "crunode") continue;
+    if (sp.at_infinity || sp.kind != kind) continue;
     int arms = 0;
     for (const auto& br : r.branches)
       for (size_t i = 0; i < br.points.size(); ++i)
@@ -49,6 +49,10 @@ int most_arms_at_a_crunode(const trace::CurveResult& r) {
     most = std::max(most, arms);
   }
   return most;
+}
+
+int most_arms_at_a_crunode(const trace::CurveResult& r) {
+  return most_arms_at(r, "crunode");
 }
 
 } // namespace
@@ -229,5 +233,53 @@ TEST(CrunodeArms, LinesCrossingAtASmallAngle) {
                                           surfcert::testing::given_box(c.lo, c.hi));
     surfcert::testing::expect_matched_in_box(r, a, b, c.id);
     EXPECT_LE(most_arms_at_a_crunode(r), 4) << c.id;
+  }
+}
+
+// Another piece of curve passing a crunode (Tu 8) or a cusp (Tu 9) well within a step, in given
+// boxes ~2e4 across around unit-size curves (`generate --case all --count 20 --encoding exact`,
+// seed 32 with `boxed_pairs.py --boxes 3 --seed 4`, seed 61 with `--boxes 2 --seed 61`). A walk
+// on that piece, heading at the singular point, was snapped onto it from ~19 away (the chord
+// test passes for a straight piece passing at 0.5), and a walk leaving the crunode at ~12 landed
+// on the piece passing 0.58 from it: two pieces ended on one face point, or 6-8 arms at the
+// point, at every refinement. Now a walk comes to within h_free / 16 before stepping onto a
+// singular point, leaves it at that distance, and keeps its steps below half its distance to it.
+TEST(CrunodeArms, PiecesPassingCloseToTheSingularPoint) {
+  struct Case {
+    const char* id;
+    const char* kind;
+    std::array<std::array<const char*, 4>, 4> a, b;
+    trace::Point3 lo, hi;
+  };
+  const std::vector<Case> cases = {{"seed 32 case08-0008-b0",
+                                    "crunode",
+                                    {{{"10/3", "43/3", "-77/3", "-10"},
+                                      {"43/3", "-3", "-23/3", "-7/3"},
+                                      {"-77/3", "-23/3", "-11/3", "-9"},
+                                      {"-10", "-7/3", "-9", "-22/3"}}},
+                                    {{{"4/3", "49/3", "-59/3", "-8"},
+                                      {"49/3", "-1", "-59/3", "-25/3"},
+                                      {"-59/3", "-59/3", "-17/3", "-11"},
+                                      {"-8", "-25/3", "-11", "-28/3"}}},
+                                    {-7134.40243939752, -6600.003627888826, -13664.935808894123},
+                                    {6625.247456884149, 9742.664730166249, 7992.33940023044}},
+                                   {"seed 61 case09-0008-b1",
+                                    "cusp",
+                                    {{{"-6", "10", "4", "4"},
+                                      {"10", "4", "-6", "6"},
+                                      {"4", "-6", "18", "-6"},
+                                      {"4", "6", "-6", "6"}}},
+                                    {{{"-35/2", "-1/2", "-8", "-2"},
+                                      {"-1/2", "1/2", "-8", "1"},
+                                      {"-8", "-8", "18", "-12"},
+                                      {"-2", "1", "-12", "3"}}},
+                                    {-11421.970943472461, -8599.785371006437, -9696.895960712549},
+                                    {9984.988812720407, 8320.10685907702, 7894.400376829077}}};
+  for (const auto& c : cases) {
+    const auto a = from_rows(c.a), b = from_rows(c.b);
+    const auto r = trace::intersect_curve(a, b, certify::Mode::Filtered,
+                                          surfcert::testing::given_box(c.lo, c.hi));
+    surfcert::testing::expect_matched_in_box(r, a, b, c.id);
+    EXPECT_LE(most_arms_at(r, c.kind), std::string(c.kind) == "cusp" ? 2 : 4) << c.id;
   }
 }

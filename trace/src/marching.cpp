@@ -33,13 +33,15 @@
 // gradients are parallel, g - mu f is singular at S, and the tangent cone of the curve is
 // {v in the tangent plane : v^T (B - mu A) v = 0} (A, B the quadratic parts): two lines
 // (crunode), one double line (cusp; a tacnode looks the same at this order and is treated as
-// one, so conic cases belong to conic_branches) or none (acnode). A walk that gets within
-// h_free of a crunode or cusp ahead of it, on a branch through it (the chord to it runs along
-// the curve: its midpoint projects within r/50 of itself), steps onto it exactly and continues
-// along the branch that best continues its direction (crunode: the arm's tangent there read as
-// 2 chord - t, and while that is not clearly nearer one line than the other the walk first
-// comes closer) or back along the other half (cusp); the outgoing point solves f = g = 0,
-// |X - S| = r by Newton. Start points at which
+// one, so conic cases belong to conic_branches) or none (acnode). Next to a crunode or cusp
+// the steps stay below half the distance to it (other pieces of curve may pass that close). A
+// walk that gets within h_free / 16 of one ahead of it, on a branch through it (the chord to it
+// runs along the curve: its midpoint projects within r/50 of itself), steps onto it exactly and
+// continues along the branch that best continues its direction (crunode: the arm's tangent
+// there read as 2 chord - t, and while that is not clearly nearer one line than the other the
+// walk first comes closer) or back along the other half (cusp); the outgoing point solves
+// f = g = 0, |X - S| = r by Newton (at a crunode r >= h_free / 64, and the chord from the
+// crunode to it must run along the curve too). Start points at which
 // the curve is singular (extreme_points returns them) are not starts; they join the list of
 // singular points. A walk further than escape_scenes (100) L from its start is on a non-compact
 // branch and stops. A walk that ended off the box's faces at both ends and lies wholly on another
@@ -388,11 +390,18 @@ public:
       // closer (down to h_free / 64: then the best guess, as before).
       const double a_best = std::acos(std::min(1.0, bd)), a_other = std::acos(std::min(1.0, other));
       if (!(a_best < 0.25 * a_other) && r > h_free / 64) return Pass::NotYet;
-      double rr = std::max(r, 0.5 * h_free);
+      double rr = std::max(r, h_free / 64);
       for (int attempt = 0; attempt < 6; ++attempt, rr *= 0.5) {
         V x = add(s.p, mul(rr, best));
         if (!newton_sphere(q_, s.p, rr, x)) continue;
         if (dist(x, add(s.p, mul(rr, best))) > 0.3 * rr) continue;
+        // On the arm, not on another piece of curve passing the crunode within rr (then the
+        // chord from the crunode runs along the curve, as on arrival): a walk leaving a
+        // crunode at 2 units landed on a component passing it 0.58 away, and two pieces ended
+        // on one face point (generate --case 8 --seed 32, pair 8, box 2.6e4 wide).
+        const V mid = add(s.p, mul(0.5, sub(x, s.p)));
+        V y = mid;
+        if (!project_onto_curve(q_, y) || dist(y, mid) > 0.02 * rr) continue;
         out = x;
         return Pass::Through;
       }
@@ -466,6 +475,14 @@ public:
         h = target(p, t, kest, &hfree);
       }
       if (hlast > 0) h = std::min(h, 2 * hlast);
+      // Next to a crunode or cusp other pieces of curve come as close as the point is to it:
+      // the step stays below half that distance (not below h_free / 64: a walk on a branch
+      // through it that does not step onto it passes it as before). Long straight steps (a box 3e4
+      // wide around a unit-size curve: steps of ~20) passing a crunode 1 away on another component
+      // landed on one of its arms running the same way, and two walks ended on one face point.
+      for (const Singular& sg : sing)
+        if (sg.kind == SKind::Crunode || sg.kind == SKind::Cusp)
+          h = std::min(h, std::max(0.5 * dist(p, sg.p), hfree / 64));
       // Closing the loop.
       const double d0 = dist(p, p0);
       if (!away && d0 > 1.5 * h && w.pts.size() > 2) away = true;
@@ -486,7 +503,7 @@ public:
         if (sg.kind != SKind::Crunode && sg.kind != SKind::Cusp) continue;
         const V d = sub(sg.p, p);
         const double r = norm(d);
-        if (!(r > 0) || r > hfree || dot(d, t) <= 0.9 * r) continue;
+        if (!(r > 0) || r > hfree / 16 || dot(d, t) <= 0.9 * r) continue;
         // Only from a branch through it: there the chord to the point runs along the curve
         // (its midpoint within a tenth of r of it). Another piece of curve passing by within
         // h_free (a figure eight's other components in a box 2000 wide) was snapped onto the
