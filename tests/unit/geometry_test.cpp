@@ -183,3 +183,55 @@ TEST(Geometry, SingularFirstQuadricIsRebased) {
   EXPECT_EQ(r.tu_case, s.tu_case);
   EXPECT_EQ(r.tu_case, 14); // closed form: two disjoint circles x^2+y^2=1 at z = +-sqrt(3)/2
 }
+
+// kind() against the inertia known by construction: P^T diag(d) P with P an affine map (the
+// last row (0, 0, 0, 1): the 3x3 block and its definiteness are carried along) and a nonzero
+// rational factor of either sign. Every sign pattern of the four diagonal entries, zeros too,
+// so each leading minor of the posed block is met positive, negative and zero.
+TEST(Geometry, QuadricKindFromTheInertiaByConstruction) {
+  unsigned long long seed = 88172645463325252ull;
+  auto next = [&seed](int lo, int hi) {
+    seed ^= seed << 13;
+    seed ^= seed >> 7;
+    seed ^= seed << 17;
+    return lo + static_cast<int>(seed % static_cast<unsigned long long>(hi - lo + 1));
+  };
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    std::array<int, 4> d{};
+    for (int& x : d)
+      x = next(-1, 1) * next(1, 5);
+    core::Mat4 p{}, m{};
+    Rational det3(0);
+    while (det3.is_zero()) {
+      for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j)
+          p[i][j] = Rational(next(-4, 4));
+      det3 = p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
+             p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+             p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
+    }
+    for (size_t i = 0; i < 3; ++i)
+      p[i][3] = Rational(next(-9, 9), next(1, 7));
+    p[3][3] = Rational(1);
+    for (size_t i = 0; i < 4; ++i)
+      m[i][i] = Rational(d[i]);
+    if (d == std::array<int, 4>{}) continue;
+    const Rational factor(next(1, 9) * (next(0, 1) ? 1 : -1), next(1, 5));
+    core::Mat4 posed = core::congruence(p, m);
+    for (auto& row : posed)
+      for (auto& x : row)
+        x = x * factor;
+    // Expected: the block diag(d0, d1, d2) definite and d3 of the opposite sign: a real
+    // ellipsoid; of the same sign: no real point; anything else (d3 = 0 included): other.
+    const int s0 = (d[0] > 0) - (d[0] < 0), s1 = (d[1] > 0) - (d[1] < 0),
+              s2 = (d[2] > 0) - (d[2] < 0), s3 = (d[3] > 0) - (d[3] < 0);
+    core::QuadricKind want = core::QuadricKind::Other;
+    if (s0 != 0 && s0 == s1 && s1 == s2 && s3 != 0)
+      want = s3 == -s0 ? core::QuadricKind::Ellipsoid : core::QuadricKind::ImaginaryEllipsoid;
+    EXPECT_EQ(core::QuadricMatrix(posed).kind(), want)
+        << "trial " << trial << " d " << d[0] << " " << d[1] << " " << d[2] << " " << d[3];
+    ++checked;
+  }
+  EXPECT_GT(checked, 350);
+}
