@@ -427,26 +427,34 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
                               const certify::AffineTopology& af, const Box& box,
                               const QsicResult& t) {
   if (af.certified() && af.apex) {
-    // Route common_apex: the lines from the apex, exact when every direction is rational (a
-    // line along which the surfaces are tangent is then no multiple crossing).
+    // Route common_apex: the lines from the apex, exact (a line along which the surfaces are
+    // tangent is then no multiple crossing): rational directions, and algebraic ones (a double
+    // rational line beside two conjugate ones) compared with the faces at their roots.
     std::vector<std::array<core::Rational, 3>> dirs;
-    bool rational = true;
+    std::vector<certify::AlgebraicDirection> algebraic;
+    bool exact = true;
     for (const auto& pt : af.points_at_infinity) {
+      if (!pt.rational) {
+        exact = exact && pt.polynomial.degree() >= 2;
+        algebraic.push_back({pt.polynomial, pt.lo, pt.hi, pt.dir_in_t});
+        continue;
+      }
       std::array<core::Rational, 3> d;
-      for (size_t k = 0; k < 3 && rational; ++k) {
-        const auto v = pt.rational ? core::Rational::from_string(pt.direction[k]) : std::nullopt;
-        rational = v.has_value();
+      for (size_t k = 0; k < 3 && exact; ++k) {
+        const auto v = core::Rational::from_string(pt.direction[k]);
+        exact = v.has_value();
         if (v) d[k] = *v;
       }
       dirs.push_back(d);
     }
-    if (rational) {
+    if (exact) {
       std::array<core::Rational, 3> lo, hi;
       for (size_t k = 0; k < 3; ++k) {
         lo[k] = core::Rational::exact_from_double(box.min[k]);
         hi[k] = core::Rational::exact_from_double(box.max[k]);
       }
-      return certify::lines_box_exits(*af.apex, dirs, lo, hi);
+      return algebraic.empty() ? certify::lines_box_exits(*af.apex, dirs, lo, hi)
+                               : certify::lines_box_exits(*af.apex, dirs, algebraic, lo, hi);
     }
   }
   if (af.certified() && af.ruling) {

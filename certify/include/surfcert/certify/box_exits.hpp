@@ -48,9 +48,11 @@
 // cone's tangent plane). The curve is then that rational line counted twice; as a set it is a
 // line, and its crossings with the faces (rational points, transversal unless the line lies in a
 // face's plane, which is not certified) are the points, with an edge crossing not certified.
-// lines_box_exits reads a union of rational lines through one point the same way.
+// lines_box_exits reads a union of rational lines through one point the same way, and lines of
+// algebraic directions through it by signs at their roots (algebraic_lines_box_exits.cpp).
 #pragma once
 
+#include "surfcert/algebra/upoly.hpp"
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/rational.hpp"
 
@@ -95,6 +97,28 @@ BoxExits box_exits(const core::Mat4& a, const core::Mat4& b,
 /// A flat or empty box is not certified, as for box_exits.
 BoxExits lines_box_exits(const std::array<core::Rational, 3>& p,
                          const std::vector<std::array<core::Rational, 3>>& directions,
+                         const std::array<core::Rational, 3>& lo,
+                         const std::array<core::Rational, 3>& hi);
+
+/// A direction (d_0(t*) : d_1(t*) : d_2(t*)) at the root t* of the irreducible `polynomial`
+/// (degree >= 2) isolated in (lo, hi): a point at infinity that is not rational
+/// (AffineTopology's points_at_infinity give them so).
+struct AlgebraicDirection {
+  algebra::UPolyZ polynomial;
+  core::Rational lo, hi;
+  std::array<algebra::UPolyQ, 3> dir;
+};
+
+/// lines_box_exits with lines of algebraic directions besides the rational ones (two cones with
+/// a common apex meeting in a double rational line and two conjugate ones: there the pair's
+/// crossings are double on the double line and box_exits is never certified). Each
+/// comparison of a crossing with a face's bounds is the sign at t* of a polynomial: zero
+/// exactly when `polynomial` divides it, otherwise read by Arb on the narrowed bracket; a sign
+/// Arb does not separate from 0 is answered not certified. The crossings of algebraic lines
+/// carry a rigorous radius.
+BoxExits lines_box_exits(const std::array<core::Rational, 3>& p,
+                         const std::vector<std::array<core::Rational, 3>>& rational_directions,
+                         const std::vector<AlgebraicDirection>& algebraic_directions,
                          const std::array<core::Rational, 3>& lo,
                          const std::array<core::Rational, 3>& hi);
 
