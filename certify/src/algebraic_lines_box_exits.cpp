@@ -45,14 +45,12 @@ std::optional<int> sign_at(const UPolyQ& e, const AlgebraicDirection& d, const U
   return s;
 }
 
-// e(t) on the ball t (Horner).
+// e(t) on the ball t.
 Ball evaluate(const UPolyQ& e, const Ball& t, long prec) {
-  Ball v, c;
-  for (long k = e.degree(); k >= 0; --k) {
-    arb_mul(v.v, v.v, t.v, prec);
-    arb_set_fmpq(c.v, e.coeff(k).raw(), prec);
-    arb_add(v.v, v.v, c.v, prec);
-  }
+  algebra::BallPoly q;
+  arb_poly_set_fmpq_poly(q.v, e.raw(), prec);
+  Ball v;
+  arb_poly_evaluate(v.v, q.v, t.v, prec);
   return v;
 }
 
