@@ -116,9 +116,22 @@ struct Slab {
   Rational lo, hi;
 };
 
+// Res_u(f, g) for each variable u, computed when first wanted (every axis's elimination uses
+// two of them: computed once, not once per axis).
+struct CurveResultants {
+  const Poly3& f;
+  const Poly3& g;
+  std::array<std::optional<Poly3>, 3> of{};
+  const Poly3& operator()(int u) {
+    auto& r = of[static_cast<size_t>(u)];
+    if (!r) r = algebra::resultant(f, g, u);
+    return *r;
+  }
+};
+
 std::optional<Slab> critical_slab(const Poly3& f, const Poly3& g,
                                   const std::array<Poly3, 3>& grad_f,
-                                  const std::array<Poly3, 3>& grad_g, int k) {
+                                  const std::array<Poly3, 3>& grad_g, CurveResultants& fg, int k) {
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const Poly3 h = grad_f[static_cast<size_t>(i)] * grad_g[static_cast<size_t>(j)] -
                   grad_f[static_cast<size_t>(j)] * grad_g[static_cast<size_t>(i)];
@@ -129,24 +142,33 @@ std::optional<Slab> critical_slab(const Poly3& f, const Poly3& g,
   };
   for (const auto& [u, v] : {std::pair<int, int>{i, j}, std::pair<int, int>{j, i}}) {
     if (!occurs(f, g, u) || !occurs(f, h, u)) continue;
-    const Poly3 r1 = algebra::resultant(f, g, u), r2 = algebra::resultant(f, h, u);
+    const Poly3& r1 = fg(u);
+    const Poly3 r2 = algebra::resultant(f, h, u);
     if (r1.is_zero() || r2.is_zero() || !occurs(r1, r2, v)) continue;
     const Poly3 p = algebra::resultant(r1, r2, v);
     if (p.is_zero()) continue;
     Slab out;
     if (p.is_constant()) return out; // a nonzero constant: no solution at all
-    const algebra::UPolyZ pz = algebra::to_univariate(algebra::squarefree_part(p), k);
     // Only the range of the real roots is wanted, proved by Descartes' rule beyond the float
     // roots (real_root_range); isolating them (Arb's complex roots of a degree-16 eliminant
     // with coefficients of hundreds of bits) took 10 ms on one cone pair, 6% of the intersect
-    // bench. Isolation only when the range does not prove out.
-    if (const auto range = algebra::real_root_range(pz)) {
+    // bench. The range is tried on P_k itself first (real_root_range takes any polynomial):
+    // its square-free part (a multivariate factorisation of the content and a gcd) was a
+    // quarter of a cone pair's bound posed in doubles. Isolation, square-free, only when the
+    // range does not prove out.
+    auto range_of = [&out](const algebra::UPolyZ& q) -> std::optional<Slab> {
+      const auto range = algebra::real_root_range(q);
+      if (!range) return std::nullopt;
       if (!range->any) return out;
-      out.roots = true;
-      out.lo = range->lo;
-      out.hi = range->hi;
-      return out;
-    }
+      Slab s;
+      s.roots = true;
+      s.lo = range->lo;
+      s.hi = range->hi;
+      return s;
+    };
+    if (const auto s = range_of(algebra::to_univariate(p, k))) return s;
+    const algebra::UPolyZ pz = algebra::to_univariate(algebra::squarefree_part(p), k);
+    if (const auto s = range_of(pz)) return s;
     const algebra::RootSeparation sep = algebra::isolate_real_roots(pz);
     if (sep.num_roots() == 0) return out;
     out.roots = true;
@@ -184,8 +206,9 @@ LoopUpperBound loops_upper_bound(const core::Mat4& a, const core::Mat4& b, int w
     grad_g[k] = g.derivative(static_cast<int>(k));
   }
   std::array<double, 3> lo{}, hi{};
+  CurveResultants fg{f, g};
   for (int k = 0; k < 3; ++k) {
-    const auto slab = critical_slab(f, g, grad_f, grad_g, k);
+    const auto slab = critical_slab(f, g, grad_f, grad_g, fg, k);
     if (!slab) {
       out.reason = "the critical points of axis " + std::to_string(k) +
                    " are not a finite set (the eliminant vanishes identically)";

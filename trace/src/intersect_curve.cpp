@@ -989,14 +989,18 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   // Closed loops traced whole, so that the automatic box contains them. A walk on an unbounded
   // branch runs until it is 100 scene sizes out (5,000 points, then dropped: 90% of a random
   // cone pair's time), so the walks first stop 4 scene sizes out, and go the whole way only
-  // when that misses a loop.
+  // when that misses a certified loop. Not when the number of loops is not known yet (points at
+  // infinity shared among ovals in several ways, settled later by settle_by_traced_loops):
+  // every compact loop stays within a scene size of its extreme points, so the far walks only
+  // drew unbounded branches, to be dropped (5,000 points each: 4-10 ms of a cone pair posed in
+  // doubles).
   auto size_by_loops = [&]() {
     TraceOptions near = opt;
     near.escape_scenes = 4;
     std::vector<Branch> found = march(q, starts, stops, near);
     const auto closed =
         std::count_if(found.begin(), found.end(), [](const Branch& br) { return br.closed; });
-    if (!af.loops || closed < *af.loops) found = march(q, starts, stops, opt);
+    if (af.loops && closed < *af.loops) found = march(q, starts, stops, opt);
     for (const auto& br : found)
       if (br.closed) sizing.insert(sizing.end(), br.points.begin(), br.points.end());
   };
