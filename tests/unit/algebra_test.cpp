@@ -155,6 +155,54 @@ TEST(RealRoots, CloseRootsAndNearRealPairsWithBigCoefficients) {
       }
 }
 
+// The float-guess route itself (no CGAL fallback) on what it used to hand over: two roots
+// closer than doubles resolve, (x - c)^2 -+ e with e = 1e-10, 1e-20, 1e-30, 2^-100 (a real
+// pair split exactly through the root of p' between them, or a complex pair proved rootless),
+// at a short dyadic c and at c = 7/3; and a pencil-like quartic with real roots near 2^-58 and
+// 3 * 2^56 and a complex pair 1/8 +- 0.484i, where a wide interval's Descartes count saw the
+// pair. Checked against Sturm's count and Arb's roots, separators alternating in sign.
+TEST(RealRoots, CloseRootPairsAndWideRangesDecidedByTheFloatGuess) {
+  const Rational e10(1, 10000000000UL);
+  const auto times = [](UPolyZ a, const UPolyZ& b) {
+    fmpz_poly_mul(a.raw_mut(), a.raw(), b.raw());
+    return a;
+  };
+  const auto check = [](const UPolyZ& p, const std::string& ctx) {
+    const auto sep = algebra::isolate_real_roots(p);
+    EXPECT_FALSE(sep.used_fallback) << ctx;
+    EXPECT_EQ(static_cast<long>(sep.num_roots()), algebra::count_real_roots(p)) << ctx;
+    for (size_t i = 0; i + 1 < sep.separators.size(); ++i)
+      EXPECT_NE(p.sign_at(sep.separators[i]), p.sign_at(sep.separators[i + 1])) << ctx;
+    check_against_arb(p, sep, ctx);
+    return sep.num_roots();
+  };
+  for (const Rational& e :
+       {e10, e10 * e10, e10 * e10 * e10, Rational::exact_from_double(std::ldexp(1.0, -100))})
+    for (int sign : {1, -1})
+      for (const Rational& c : {Rational(1), Rational(7, 3)}) {
+        const Rational c1 = -Rational(2) * c, c0 = c * c - Rational(sign) * e;
+        Integer l;
+        fmpz_lcm(l.raw_mut(), fmpq_denref(c1.raw()), fmpq_denref(c0.raw()));
+        UPolyZ p = UPolyZ::from_coeffs({(c0 * Rational(l)).num(), (c1 * Rational(l)).num(), l});
+        p = times(p, UPolyZ::from_coeffs({Integer(3), Integer(-5)}));            // 3/5
+        p = times(p, UPolyZ::from_coeffs({Integer(1), Integer(1), Integer(1)})); // complex
+        const std::string ctx = "e " + e.to_string() + " c " + c.to_string() +
+                                (sign > 0 ? " real pair" : " complex pair");
+        EXPECT_EQ(check(p, ctx), sign > 0 ? 3u : 1u) << ctx;
+      }
+  // (2^58 x - 1)(x - 3 * 2^56)(x^2 - x / 4 + 1/64 + 0.484^2), over Z.
+  Integer two58, far;
+  fmpz_one(two58.raw_mut());
+  fmpz_mul_2exp(two58.raw_mut(), two58.raw(), 58);
+  fmpz_set_ui(far.raw_mut(), 3);
+  fmpz_mul_2exp(far.raw_mut(), far.raw(), 56);
+  UPolyZ wide = UPolyZ::from_coeffs({Integer(-1), two58});
+  wide = times(wide, UPolyZ::from_coeffs({-far, Integer(1)}));
+  // 1/64 + 0.2342560 = 15617/62500 (0.484^2 = 0.234256): 62500 x^2 - 15625 x + 15617.
+  wide = times(wide, UPolyZ::from_coeffs({Integer(15617), Integer(-15625), Integer(62500)}));
+  EXPECT_EQ(check(wide, "wide"), 2u);
+}
+
 // real_root_range (the range of the real roots, proved by Descartes' rule beyond the float
 // roots) against the exact isolation and Sturm count, on degree-16 products with coefficients
 // of hundreds of bits: the big-rational linear factor above, complex pairs (x - c)^2 + e and

@@ -9,9 +9,12 @@
 // How: from degree 12, Arb's complex root finder at 64, 128, ... bits, at most 8192 and no
 // further after a slow round (its balls, validated by Arb, each hold one root; the real ones
 // are proven real by conjugate symmetry); below degree 12 or when those rounds give up, a
-// float guess first (Aberth iteration on the complex roots, separators at midpoints of
-// the k real-most guesses, converted exactly to dyadic rationals), checked with exact signs;
-// if the check fails (clustered roots, a separator landing on a root), CGAL's Descartes
+// float guess first (Aberth iteration on the complex roots; cuts between the real-looking
+// guesses and at the real part of each non-real pair, converted exactly to short dyadic
+// rationals; each gap's count proved by Descartes' rule, 0 or 1; two guesses closer than
+// doubles resolve, a double root split by rounded input, decided exactly through the root of
+// p' between them: two real roots and a separator, or none), checked with exact signs;
+// if the check fails (three close roots, a separator landing on a root), CGAL's Descartes
 // isolator (Algebraic_kernel_d_1, one translation unit) supplies the separators instead, or,
 // for coefficients beyond kCgalMaxBits bits, isolate_real_roots_descartes (a loop: CGAL's
 // recursion overflowed the stack there).
