@@ -345,6 +345,14 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   // (the exact rationals are not formed unless this filter fails).
   Mat4T<I> a = enclose(qa), b = enclose(qb);
   auto f = algebra::pencil_char_coeffs(a, b);
+  // det A's enclosure straddling 0 while det A != 0 exactly: a cone, a cylinder posed in
+  // doubles, whose rounding leaves det A tiny (1e-17 of its entries' scale) but nonzero. The
+  // exact path does not re-base then (its pencil has a root near infinity, simple); the exact
+  // determinant, enclosed, gives f[4] its certain sign, and the analysis below proceeds as for
+  // any quartic (every such pair once went to the exact path: ~60% of a cone-plane pair posed in
+  // doubles). The same for det B = f[0] (a root near 0).
+  if (isign(f[4]) == 2 && !qa.singular()) f[4] = enclose(core::det(qa.matrix()));
+  if (isign(f[0]) == 2 && !qb.singular()) f[0] = enclose(core::det(qb.matrix()));
   if (isign(f[4]) == 2 || isign(f[4]) == 0) {
     // det A = 0 (a cone, a cylinder, a plane ...: most natural quadrics; every such pair once
     // went to the exact path): re-based here as the exact path does, to a' = t A - B, b' = -A
@@ -371,6 +379,11 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
         a[i][j] = ta;
       }
     f = algebra::pencil_char_coeffs(a, b);
+    // Re-based at t = 0 with det B != 0 exactly (a plane or a cone against a cone posed in
+    // doubles, whose det B is tiny): the new leading coefficient is det(-B) = det B, the new
+    // constant det(A) = 0 (A singular: the re-basing's premise), both exact.
+    if (*base == 0 && isign(f[4]) == 2) f[4] = enclose(core::det(qb.matrix()));
+    if (isign(f[0]) == 2) f[0] = I(0);
     if (isign(f[4]) == 2 || isign(f[4]) == 0) return false; // f(t) != 0 was certain; wider now
     out.rebased = true;
     out.rebase_t = *base;
@@ -414,17 +427,43 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   for (size_t i = 0; i < 5; ++i)
     fd[i] = CGAL::to_double(f[i]);
   double seps[5];
-  size_t nsep = separator_candidates(fd, k, seps);
-  if (nsep == 0) return false;
-  int prev = 0;
   int fsign[5] = {0, 0, 0, 0, 0};
-  for (size_t i = 0; i < nsep; ++i) {
-    if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return false;
-    int sg = isign(horner(f, seps[i]));
-    if (sg == 0 || sg == 2 || (i > 0 && sg == prev)) return false;
-    fsign[i] = sg; // = sign det(s*A - B), reused by Jacobi's rule below
-    prev = sg;
-  }
+  // k + 1 candidates with certain, alternating signs of f (and fsign set), else false.
+  auto proves = [&](size_t n) {
+    if (n != static_cast<size_t>(k) + 1) return false;
+    int prev = 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return false;
+      const int sg = isign(horner(f, seps[i]));
+      if (sg == 0 || sg == 2 || (i > 0 && sg == prev)) return false;
+      fsign[i] = sg; // = sign det(s*A - B), reused by Jacobi's rule below
+      prev = sg;
+    }
+    return true;
+  };
+  // Second candidates: midpoints between the k real-looking roots (Aberth, in doubles) and the
+  // bound. The closed-form cubic of f' loses its small roots when f's leading coefficient is
+  // tiny (a cone posed in doubles: a root of f near 1e17 beside roots near 1).
+  auto from_roots = [&]() -> size_t {
+    std::vector<double> r;
+    for (const auto& z : algebra::approx_complex_roots(std::vector<double>(fd, fd + 5)))
+      if (std::isfinite(z.real()) && std::fabs(z.imag()) <= 1e-7 * (1 + std::abs(z)))
+        r.push_back(z.real());
+    if (r.size() != static_cast<size_t>(k) || k == 0) return 0;
+    std::sort(r.begin(), r.end());
+    double bound = 0;
+    for (int i = 0; i < 4; ++i)
+      bound = std::max(bound, std::fabs(fd[i] / fd[4]));
+    bound = 2 * (1 + bound);
+    size_t n = 0;
+    seps[n++] = -bound;
+    for (size_t i = 0; i + 1 < r.size(); ++i)
+      seps[n++] = 0.5 * r[i] + 0.5 * r[i + 1];
+    seps[n++] = bound;
+    return n;
+  };
+  if (!proves(separator_candidates(fd, k, seps)) && !proves(from_roots())) return false;
+  const size_t nsep = static_cast<size_t>(k) + 1;
   // Indices: Descartes on the interval charpoly of s*A - B (all signs must be certain).
   // The caller holds a and b: the facts of a filtered answer do not copy them (see
   // complete_report_data), to keep the fast path free of big-number copies.
