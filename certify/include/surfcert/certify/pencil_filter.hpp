@@ -8,7 +8,12 @@
 // sign it needs is certain: the discriminant D4 != 0 (all roots simple), the root count from
 // D2, D3, D4, separators whose f-signs alternate (k exact roots, k+1 alternating signs: one
 // root per gap), and nonzero charpoly coefficients or a certain determinant for the indices.
-// Otherwise it returns nullopt and the caller falls back to exact arithmetic. A pencil whose A
+// Otherwise it returns nullopt and the caller falls back to exact arithmetic. Where the
+// enclosure of det A (f's leading coefficient) or det B (its constant) contains 0 but the
+// determinant is not 0 exactly (a cone or cylinder posed in doubles: the rounding leaves it
+// ~1e-17 of the entries), the exact determinant, enclosed, takes its place (no re-basing, as on
+// the exact path); separators then come from f' in closed form or, failing that, from the float
+// roots (candidates either way). A pencil whose A
 // is singular (det A = 0 exactly: QuadricMatrix::singular) is re-based as the exact path does
 // (a' = t A - B, b' = -A, the same first t with det(tA - B) != 0; every t skipped a proven
 // zero), so its facts are the exact path's; rebased and rebase_t are set, facts.a / facts.b
