@@ -222,9 +222,7 @@ static_assert(inverses_hold(), "p * p^-1 == 1 mod 2^64 for every odd prime below
 
 } // namespace
 
-QuadraticNumber QuadraticNumber::normalized() const {
-  QuadraticNumber r = *this;
-  if (r.b.is_zero() || r.d.sign() <= 0) return r;
+QuadraticNumber::SquareSplit square_split(const core::Integer& d) {
   // The square factors p^2 of d for the primes p < 2000 moved out of the root (a composite's
   // square divides no more once its primes' are out), then a perfect square rest. Only the
   // primes dividing d are tried, found from one remainder of d per run of primes (a word) by
@@ -233,7 +231,7 @@ QuadraticNumber QuadraticNumber::normalized() const {
   static constexpr auto primes = small_primes();
   static constexpr auto runs = prime_runs();
   static constexpr auto divisors = word_divisors();
-  core::Integer out(1), rest = r.d;
+  core::Integer out(1), rest = d;
   for (size_t k = 0; k < runs.size(); ++k) {
     // p divides d exactly when it divides d mod (the run's product).
     const unsigned long m = fmpz_fdiv_ui(rest.raw(), runs[k].product);
@@ -254,9 +252,20 @@ QuadraticNumber QuadraticNumber::normalized() const {
     out = out * s;
     rest = core::Integer(1);
   }
-  r.b = r.b * Rational(out);
-  r.d = rest;
-  if (rest == core::Integer(1)) {
+  return {out, rest};
+}
+
+QuadraticNumber QuadraticNumber::normalized() const {
+  if (b.is_zero() || d.sign() <= 0) return *this;
+  return normalized(square_split(d));
+}
+
+QuadraticNumber QuadraticNumber::normalized(const SquareSplit& split) const {
+  QuadraticNumber r = *this;
+  if (r.b.is_zero() || r.d.sign() <= 0) return r;
+  r.b = r.b * Rational(split.square);
+  r.d = split.rest;
+  if (split.rest == core::Integer(1)) {
     r.a = r.a + r.b;
     r.b = Rational(0);
   }

@@ -1144,8 +1144,13 @@ std::vector<PointAtInfinity> section_directions(const M3& cm,
         ap[i] = r[i].to_double_approx();
       }
     } else {
+      // One field for the three coordinates: d's square factors found once.
+      const auto split = s.d.sign() > 0 ? std::optional(algebra::square_split(s.d)) : std::nullopt;
       for (size_t i = 0; i < 3; ++i) {
-        pt.direction[i] = dir[i].normalized().to_string();
+        pt.direction[i] =
+            (split && !dir[i].b.is_zero() && dir[i].d == s.d ? dir[i].normalized(*split)
+                                                             : dir[i].normalized())
+                .to_string();
         ap[i] = dir[i].to_double_approx();
       }
     }

@@ -721,6 +721,17 @@ TEST(QuadraticNumbers, NormalizedMovesSmallPrimeSquaresOut) {
     const QuadraticNumber z{Rational(2), Rational(3, 5), d};
     const auto nz = z.normalized();
     const std::string ctx = "trial " + std::to_string(trial) + ", d = " + d.to_string();
+    // The split found once and applied to several numbers of the field (special points'
+    // coordinates): the same as each one's own normalized(), and the split's own identity.
+    const auto split = algebra::square_split(d);
+    EXPECT_EQ(split.square * split.square * split.rest, d) << ctx;
+    for (const QuadraticNumber& w : {z, QuadraticNumber{Rational(-7, 3), Rational(11), d},
+                                     QuadraticNumber{Rational(1), Rational(0), d}}) {
+      const auto a = w.normalized(), b = w.normalized(split);
+      EXPECT_EQ(a.a, b.a) << ctx;
+      EXPECT_EQ(a.b, b.b) << ctx;
+      EXPECT_EQ(a.d, b.d) << ctx;
+    }
     if (free == Integer(1)) {
       EXPECT_TRUE(nz.b.is_zero()) << ctx;
       EXPECT_EQ(nz.a, Rational(2) + Rational(3, 5) * Rational(root)) << ctx;

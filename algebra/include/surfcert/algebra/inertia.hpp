@@ -52,6 +52,14 @@ struct QuadraticNumber {
   /// The same number with square factors moved out of d (trial division by small primes and
   /// a perfect-square test of the rest; d stays correct if a large square factor survives).
   QuadraticNumber normalized() const;
+  /// d = square^2 * rest, the split normalized() makes (rest free of the squares of the primes
+  /// below 2000; 1 when d is a perfect square). Numbers of one field share it: coordinates of
+  /// one point, computed once (square_split) and applied to each (normalized(split)).
+  struct SquareSplit {
+    core::Integer square, rest;
+  };
+  /// normalized() with d's split given (split must be square_split(d)).
+  QuadraticNumber normalized(const SquareSplit& split) const;
   /// "a + b*sqrt(d)" in exact text.
   std::string to_string() const;
 };
@@ -59,6 +67,8 @@ struct QuadraticNumber {
 /// Field operations in Q(sqrt d), exact, on numbers written over the same d (the result
 /// carries d): x + s y (s = +-1), x y, x / y (y != 0).
 QuadraticNumber quadratic_add(const QuadraticNumber& x, const QuadraticNumber& y, int s = 1);
+/// The split of d > 0 that normalized() uses (QuadraticNumber::SquareSplit).
+QuadraticNumber::SquareSplit square_split(const core::Integer& d);
 QuadraticNumber quadratic_mul(const QuadraticNumber& x, const QuadraticNumber& y);
 QuadraticNumber quadratic_div(const QuadraticNumber& x, const QuadraticNumber& y);
 
