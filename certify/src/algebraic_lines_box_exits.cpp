@@ -84,11 +84,12 @@ BoxExits lines_box_exits(const std::array<Rational, 3>& p,
       arb_set_fmpq(r.v, ((thi - tlo) * Rational(1, 2)).raw(), prec);
       arb_add_error(t.v, r.v);
     }
-    for (size_t k = 0; k < 3; ++k)
+    for (size_t k = 0; k < 3; ++k) {
+      // The sign of d_k at the root, once for the axis's two faces.
+      const auto sk = sign_at(d.dir[k], d, fq);
+      if (!sk) return fail("a line's direction not decided against a face");
       for (int side = 0; side < 2; ++side) {
         const Rational& c = side ? hi[k] : lo[k];
-        const auto sk = sign_at(d.dir[k], d, fq);
-        if (!sk) return fail("a line's direction not decided against a face");
         if (*sk == 0) {
           if (p[k] == c) return fail("a line of the curve lies in the plane of a face");
           continue; // parallel to the face
@@ -139,6 +140,7 @@ BoxExits lines_box_exits(const std::array<Rational, 3>& p,
         bc.radius = radius;
         out.points.push_back(bc);
       }
+    }
   }
   return out;
 }
