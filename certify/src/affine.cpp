@@ -1015,6 +1015,14 @@ AffineTopology plane_plane_route(const core::QuadricMatrix& a, const core::Quadr
   const V3 na{pa[0][3], pa[1][3], pa[2][3]}, nb{pb[0][3], pb[1][3], pb[2][3]};
   auto zero = [](const V3& v) { return v[0].is_zero() && v[1].is_zero() && v[2].is_zero(); };
   if (zero(na) || zero(nb)) {
+    // One of them c w^2 with c != 0 (no linear part): no affine point at all (see plane_route);
+    // the common part at infinity is not listed, as for two planes.
+    if ((zero(na) && !pa[3][3].is_zero()) || (zero(nb) && !pb[3][3].is_zero())) {
+      out.computed = true;
+      out.points_at_infinity_complete = true;
+      out.loops = out.unbounded_branches = out.isolated_points = out.lines = out.conics = 0;
+      return out;
+    }
     out.reason = "a plane quadric has no affine plane";
     return out;
   }
@@ -1205,6 +1213,18 @@ AffineTopology plane_route(const core::QuadricMatrix& plane, const core::Quadric
   // Columns of M (4x3): X = M (s, t, 1).
   const auto chart = algebra::plane_chart(p);
   if (!chart) {
+    // No linear part: the "plane" is c w^2 = 0 (c = p_33), the plane at infinity counted
+    // twice. Its affine equation c = 0 has no solution when c != 0, so the affine curve is
+    // empty and the whole curve lies at infinity (w = 0 on the other quadric: its conic at
+    // infinity, listed apart). Generated pencils of Tu 33 (a point and two imaginary double
+    // lines) pose exactly this (generate --case 33 --seed 35, pair 18: undecided before).
+    if (!p[3][3].is_zero()) {
+      out.computed = true;
+      out.points_at_infinity_complete = true;
+      out.loops = out.unbounded_branches = out.isolated_points = out.lines = out.conics = 0;
+      if (auto inf = conic_at_infinity(top_left(q))) out.at_infinity_only.push_back(*inf);
+      return out;
+    }
     out.reason = "the plane quadric has no affine plane";
     return out;
   }

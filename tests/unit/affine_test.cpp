@@ -297,3 +297,57 @@ TEST(Affine, PlanePairWhoseLineAtInfinityLiesOnTheOther) {
     EXPECT_EQ(t.at_infinity_only[0].kind, "line");
   }
 }
+
+// A quadric against c w^2 (a matrix whose only nonzero entry is the constant: the plane at
+// infinity counted twice, Tu 33's pencils as generated): the affine equation c = 0 has no
+// solution, so the affine curve is empty (certified zeros, no point at infinity on it), and the
+// whole curve lies at infinity: the other quadric's conic at infinity, whose real part is
+// listed apart (generate --case 33 --seed 35 pair 18: a point, undecided before). Checked by
+// substitution: a listed point's direction is a zero of the quadratic block. Both orders, and a
+// plane against it (plane_plane route).
+TEST(Affine, QuadricAgainstANonzeroConstantHasNoAffinePoint) {
+  core::Mat4 c8{};
+  c8[3][3] = Rational(-8);
+  const core::QuadricMatrix k(c8);
+  core::Mat4 tu33{};
+  const long e[4][4] = {{-2, -2, 4, 10}, {-2, -4, 8, 2}, {4, 8, -16, -16}, {10, 2, -16, -10}};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      tu33[i][j] = Rational(e[i][j]);
+  struct Case {
+    core::QuadricMatrix a;
+    const char* at_infinity; // the expected kind of the listed component, "" for none
+  };
+  const Case cases[] = {{core::QuadricMatrix(tu33), "point"},
+                        {q("x^2 + y^2 + z^2 = 1"), ""}, // imaginary conic at infinity
+                        {q("x^2 + y^2 - z^2 = 1"), "conic"},
+                        {q("x = 1/3"), ""}};
+  for (const auto& cs : cases)
+    for (bool swap : {false, true}) {
+      const std::string ctx = std::string(cs.at_infinity) + (swap ? " swapped" : "");
+      const auto t = swap ? affine(k, cs.a) : affine(cs.a, k);
+      ASSERT_TRUE(t.certified()) << ctx << ": " << t.reason;
+      EXPECT_EQ(*t.loops, 0) << ctx;
+      EXPECT_EQ(*t.unbounded_branches, 0) << ctx;
+      EXPECT_EQ(*t.isolated_points, 0) << ctx;
+      EXPECT_EQ(*t.lines, 0) << ctx;
+      EXPECT_EQ(*t.conics, 0) << ctx;
+      EXPECT_TRUE(t.points_at_infinity.empty()) << ctx;
+      if (*cs.at_infinity == 0) {
+        EXPECT_TRUE(t.at_infinity_only.empty()) << ctx;
+        continue;
+      }
+      ASSERT_EQ(t.at_infinity_only.size(), 1u) << ctx;
+      EXPECT_EQ(t.at_infinity_only[0].kind, cs.at_infinity) << ctx;
+      if (t.at_infinity_only[0].kind == "point") {
+        std::array<Rational, 3> d;
+        for (size_t i = 0; i < 3; ++i)
+          d[i] = *Rational::from_string(t.at_infinity_only[0].direction[i]);
+        Rational v(0);
+        for (size_t i = 0; i < 3; ++i)
+          for (size_t j = 0; j < 3; ++j)
+            v = v + d[i] * cs.a.matrix()[i][j] * d[j];
+        EXPECT_TRUE(v.is_zero()) << ctx << ": the point is not on the conic at infinity";
+      }
+    }
+}
