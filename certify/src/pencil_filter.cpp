@@ -441,9 +441,12 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
     }
     return true;
   };
-  // Second candidates: midpoints between the k real-looking roots (Aberth, in doubles) and the
-  // bound. The closed-form cubic of f' loses its small roots when f's leading coefficient is
-  // tiny (a cone posed in doubles: a root of f near 1e17 beside roots near 1).
+  // Second candidates, from the k real-looking roots (Aberth, in doubles): in each gap the
+  // point nearer the root of smaller magnitude (within half of 1 + its magnitude), and the
+  // same just outside the extreme roots. The closed-form cubic of f' loses its small roots
+  // when f's leading coefficient is tiny, and a critical point between a root near 1 and one
+  // near 1e17 (a cone or cylinder posed in doubles) lies at ~1e17, where the index of
+  // s A - B is not certain in intervals beside A's tiny eigenvalue.
   auto from_roots = [&]() -> size_t {
     std::vector<double> r;
     for (const auto& z : algebra::approx_complex_roots(std::vector<double>(fd, fd + 5)))
@@ -451,30 +454,53 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
         r.push_back(z.real());
     if (r.size() != static_cast<size_t>(k) || k == 0) return 0;
     std::sort(r.begin(), r.end());
-    double bound = 0;
-    for (int i = 0; i < 4; ++i)
-      bound = std::max(bound, std::fabs(fd[i] / fd[4]));
-    bound = 2 * (1 + bound);
     size_t n = 0;
-    seps[n++] = -bound;
-    for (size_t i = 0; i + 1 < r.size(); ++i)
-      seps[n++] = 0.5 * r[i] + 0.5 * r[i + 1];
-    seps[n++] = bound;
+    seps[n++] = r.front() - 0.5 * (1 + std::fabs(r.front()));
+    for (size_t i = 0; i + 1 < r.size(); ++i) {
+      const double gap = r[i + 1] - r[i];
+      if (r[i] < 0 && r[i + 1] > 0)
+        seps[n++] = std::min(std::max(0.0, r[i] + 0.25 * gap), r[i + 1] - 0.25 * gap);
+      else if (std::fabs(r[i]) <= std::fabs(r[i + 1]))
+        seps[n++] = r[i] + 0.5 * std::min(gap, 1 + std::fabs(r[i]));
+      else
+        seps[n++] = r[i + 1] - 0.5 * std::min(gap, 1 + std::fabs(r[i + 1]));
+    }
+    seps[n++] = r.back() + 0.5 * (1 + std::fabs(r.back()));
     return n;
   };
-  if (!proves(separator_candidates(fd, k, seps)) && !proves(from_roots())) return false;
   const size_t nsep = static_cast<size_t>(k) + 1;
   // Indices: Descartes on the interval charpoly of s*A - B (all signs must be certain).
   // The caller holds a and b: the facts of a filtered answer do not copy them (see
   // complete_report_data), to keep the fast path free of big-number copies.
-  out.indices.reserve(nsep);
-  out.samples.reserve(nsep);
-  for (size_t si = 0; si < nsep; ++si) {
-    int index = 0;
-    if (!index_at(a, b, seps[si], fsign[si], index)) return false;
-    out.indices.push_back(index);
-    out.samples.push_back(Rational::exact_from_double(seps[si]));
-  }
+  std::optional<Inertia> inertia_a; // A's, exact, when an outer index needs it
+  auto indices = [&]() {
+    out.indices.clear();
+    out.samples.clear();
+    out.indices.reserve(nsep);
+    out.samples.reserve(nsep);
+    for (size_t si = 0; si < nsep; ++si) {
+      int index = 0;
+      if (!index_at(a, b, seps[si], fsign[si], index)) {
+        // Beyond every root (the outer candidates: k roots and k + 1 alternating signs put all
+        // of them in between), s A - B has A's inertia above the roots and -A's below (no root
+        // is crossed on the way to infinity, where (s A - B) / s tends to A, nonsingular: not
+        // re-based, f[4] = det A is certainly nonzero). Read exactly when the intervals cannot
+        // tell: a cone or cylinder posed in doubles, s ~ 1e17 beyond its near-infinite root
+        // beside A's tiny eigenvalue.
+        const bool outer = k > 0 && (si == 0 || si + 1 == nsep);
+        if (!outer || out.rebased) return false;
+        if (!inertia_a) inertia_a = algebra::inertia_ldlt(qa.matrix());
+        if (inertia_a->p + inertia_a->n != 4) return false; // never: det A != 0
+        index = si == 0 ? inertia_a->n : inertia_a->p;
+      }
+      out.indices.push_back(index);
+      out.samples.push_back(Rational::exact_from_double(seps[si]));
+    }
+    return true;
+  };
+  if (!(proves(separator_candidates(fd, k, seps)) && indices()) &&
+      !(proves(from_roots()) && indices()))
+    return false;
   for (int idx : out.indices)
     if (idx == 0 || idx == 4) out.definite_member = true;
   out.real_roots.reserve(static_cast<size_t>(k));
