@@ -12,8 +12,10 @@
 // enclosure of det A (f's leading coefficient) or det B (its constant) contains 0 but the
 // determinant is not 0 exactly (a cone or cylinder posed in doubles: the rounding leaves it
 // ~1e-17 of the entries), the exact determinant, enclosed, takes its place (no re-basing, as on
-// the exact path); separators then come from f' in closed form or, failing that, from the float
-// roots (candidates either way). A pencil whose A
+// the exact path); separators then come from f' in closed form or, failing that (or where the
+// indices there are not certain), from the float roots, each inner one near the root of
+// smaller magnitude (candidates either way); beyond every root the index is A's exact inertia
+// (above the roots) or -A's (below), where the intervals cannot tell. A pencil whose A
 // is singular (det A = 0 exactly: QuadricMatrix::singular) is re-based as the exact path does
 // (a' = t A - B, b' = -A, the same first t with det(tA - B) != 0; every t skipped a proven
 // zero), so its facts are the exact path's; rebased and rebase_t are set, facts.a / facts.b
