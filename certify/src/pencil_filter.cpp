@@ -254,8 +254,8 @@ bool two_double_roots_facts(const Mat4T<I>& a, const Mat4T<I>& b, const I& g2, c
 // root's rank is 2 and its inertia (1, 1) (a plane's matrix [[0, n/2], [n^T/2, d]], n != 0, has
 // one positive and one negative eigenvalue; so has any nonzero multiple). False: the exact path.
 bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I, 5>& f,
-                        const Rational& theta, const std::optional<Rational>& phi,
-                        PencilFacts& out) {
+                        const Rational& theta, const std::optional<Rational>& phi, PencilFacts& out,
+                        const core::QuadricMatrix* a_exact = nullptr) {
   const I th = enclose(theta);
   const I g2 = f[4], g1 = f[3] + I(2) * th * g2, g0 = f[2] + I(2) * th * g1 - th * th * g2;
   const int s2 = isign(g2);
@@ -282,9 +282,19 @@ bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I
   double w = 1;
   for (double x : pts)
     w = std::max(w, 1 + std::fabs(x));
+  // Between two points, the one of smaller magnitude's side (within half of 1 + its size), or
+  // 0 when it lies between them: a cylinder posed in doubles puts a root of g near 1e17, and a
+  // midpoint at ~5e16 left the index of s A - B uncertain beside A's tiny eigenvalue.
   std::vector<double> seps{pts.front() - w};
-  for (size_t i = 1; i < pts.size(); ++i)
-    seps.push_back(0.5 * pts[i - 1] + 0.5 * pts[i]);
+  for (size_t i = 1; i < pts.size(); ++i) {
+    const double lo = pts[i - 1], hi = pts[i], gap = hi - lo;
+    if (lo < 0 && hi > 0)
+      seps.push_back(std::min(std::max(0.0, lo + 0.25 * gap), hi - 0.25 * gap));
+    else if (std::fabs(lo) <= std::fabs(hi))
+      seps.push_back(lo + 0.5 * std::min(gap, 1 + std::fabs(lo)));
+    else
+      seps.push_back(hi - 0.5 * std::min(gap, 1 + std::fabs(hi)));
+  }
   seps.push_back(pts.back() + w);
   for (size_t i = 0; i < seps.size(); ++i)
     if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return false;
@@ -307,9 +317,19 @@ bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I
     if ((gsign[i] != gsign[i + 1]) != (i != theta_gap)) return false;
   out.indices.reserve(seps.size());
   out.samples.reserve(seps.size());
+  std::optional<Inertia> inertia_a;
   for (size_t i = 0; i < seps.size(); ++i) {
     int index = 0;
-    if (!index_at(a, b, seps[i], gsign[i], index)) return false;
+    if (!index_at(a, b, seps[i], gsign[i], index)) {
+      // Beyond every root (theta and g's roots are proved inside the outer separators), A's
+      // inertia above and -A's below (A nonsingular: given only when not re-based), as in
+      // analyze_pencil_filtered.
+      const bool outer = i == 0 || i + 1 == seps.size();
+      if (!outer || !a_exact) return false;
+      if (!inertia_a) inertia_a = algebra::inertia_ldlt(a_exact->matrix());
+      if (inertia_a->p + inertia_a->n != 4) return false; // never: det A != 0
+      index = i == 0 ? inertia_a->n : inertia_a->p;
+    }
     out.indices.push_back(index);
     out.samples.push_back(Rational::exact_from_double(seps[i]));
   }
@@ -396,7 +416,7 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   // so the pencil is re-based), its own parameter is a second double root: 0 for A, -1/t for B
   // (t != 0 only when det B = 0 was proved).
   if (!out.rebased && proper_plane(qb))
-    return plane_member_facts(a, b, f, Rational(0), std::nullopt, out);
+    return plane_member_facts(a, b, f, Rational(0), std::nullopt, out, &qa);
   if (out.rebased && proper_plane(qa)) {
     std::optional<Rational> phi;
     if (out.rebase_t != 0 && singular_at_infinity(qb)) phi = Rational(-1) / Rational(out.rebase_t);
