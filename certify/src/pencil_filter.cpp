@@ -245,6 +245,38 @@ bool two_double_roots_facts(const Mat4T<I>& a, const Mat4T<I>& b, const I& g2, c
   return true;
 }
 
+// A separator candidate between consecutive roots lo < hi of a pencil's polynomial: 0 when it
+// lies between them (kept a quarter of the gap from each), else on the side of the root of
+// smaller magnitude, within half of 1 + its size. A midpoint or critical point beside a root
+// near 1e17 (a cone or cylinder posed in doubles) lies at ~1e17, where the index of s A - B is
+// not certain in intervals beside A's tiny eigenvalue. A candidate only: the callers prove it.
+double moderate_separator(double lo, double hi) {
+  const double gap = hi - lo;
+  if (lo < 0 && hi > 0) return std::min(std::max(0.0, lo + 0.25 * gap), hi - 0.25 * gap);
+  if (std::fabs(lo) <= std::fabs(hi)) return lo + 0.5 * std::min(gap, 1 + std::fabs(lo));
+  return hi - 0.5 * std::min(gap, 1 + std::fabs(hi));
+}
+
+// The index of s A - B at s beyond every root of det(l A - B) (above them, or below), A
+// nonsingular exactly: A's inertia above and -A's below (no root is crossed on the way to
+// infinity, where (s A - B) / s tends to A). Read exactly (LDL^T), once, where the intervals
+// cannot tell at such an s. The caller must have proved every root lies on the other side.
+class IndexBeyondRoots {
+public:
+  explicit IndexBeyondRoots(const core::QuadricMatrix& a) : a_(a) {}
+  bool index(bool above, int& out) {
+    if (!read_) inertia_ = algebra::inertia_ldlt(a_.matrix()), read_ = true;
+    if (inertia_.p + inertia_.n != 4) return false; // never: det A != 0
+    out = above ? inertia_.p : inertia_.n;
+    return true;
+  }
+
+private:
+  const core::QuadricMatrix& a_;
+  Inertia inertia_{};
+  bool read_ = false;
+};
+
 // The pencil l*a - b with a plane among its members, at l = theta (rational, exact): that
 // member has rank 2, so f = (l - theta)^2 g(l) exactly, g = f / (l - theta)^2 a quadratic
 // (synthetic division in intervals, theta enclosed). The facts follow when these signs are
@@ -282,19 +314,11 @@ bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I
   double w = 1;
   for (double x : pts)
     w = std::max(w, 1 + std::fabs(x));
-  // Between two points, the one of smaller magnitude's side (within half of 1 + its size), or
-  // 0 when it lies between them: a cylinder posed in doubles puts a root of g near 1e17, and a
-  // midpoint at ~5e16 left the index of s A - B uncertain beside A's tiny eigenvalue.
+  // (moderate_separator: a cylinder posed in doubles puts a root of g near 1e17, and a
+  // midpoint at ~5e16 left the index uncertain.)
   std::vector<double> seps{pts.front() - w};
-  for (size_t i = 1; i < pts.size(); ++i) {
-    const double lo = pts[i - 1], hi = pts[i], gap = hi - lo;
-    if (lo < 0 && hi > 0)
-      seps.push_back(std::min(std::max(0.0, lo + 0.25 * gap), hi - 0.25 * gap));
-    else if (std::fabs(lo) <= std::fabs(hi))
-      seps.push_back(lo + 0.5 * std::min(gap, 1 + std::fabs(lo)));
-    else
-      seps.push_back(hi - 0.5 * std::min(gap, 1 + std::fabs(hi)));
-  }
+  for (size_t i = 1; i < pts.size(); ++i)
+    seps.push_back(moderate_separator(pts[i - 1], pts[i]));
   seps.push_back(pts.back() + w);
   for (size_t i = 0; i < seps.size(); ++i)
     if (!std::isfinite(seps[i]) || (i > 0 && !(seps[i - 1] < seps[i]))) return false;
@@ -317,19 +341,16 @@ bool plane_member_facts(const Mat4T<I>& a, const Mat4T<I>& b, const std::array<I
     if ((gsign[i] != gsign[i + 1]) != (i != theta_gap)) return false;
   out.indices.reserve(seps.size());
   out.samples.reserve(seps.size());
-  std::optional<Inertia> inertia_a;
+  std::optional<IndexBeyondRoots> beyond;
+  if (a_exact) beyond.emplace(*a_exact);
   for (size_t i = 0; i < seps.size(); ++i) {
     int index = 0;
-    if (!index_at(a, b, seps[i], gsign[i], index)) {
-      // Beyond every root (theta and g's roots are proved inside the outer separators), A's
-      // inertia above and -A's below (A nonsingular: given only when not re-based), as in
-      // analyze_pencil_filtered.
-      const bool outer = i == 0 || i + 1 == seps.size();
-      if (!outer || !a_exact) return false;
-      if (!inertia_a) inertia_a = algebra::inertia_ldlt(a_exact->matrix());
-      if (inertia_a->p + inertia_a->n != 4) return false; // never: det A != 0
-      index = i == 0 ? inertia_a->n : inertia_a->p;
-    }
+    // At an outer separator (theta and g's roots are proved inside them) A's inertia decides
+    // when the intervals cannot (A nonsingular: given only when not re-based).
+    const bool outer = i == 0 || i + 1 == seps.size();
+    if (!index_at(a, b, seps[i], gsign[i], index) &&
+        !(outer && beyond && beyond->index(i != 0, index)))
+      return false;
     out.indices.push_back(index);
     out.samples.push_back(Rational::exact_from_double(seps[i]));
   }
@@ -476,15 +497,8 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
     std::sort(r.begin(), r.end());
     size_t n = 0;
     seps[n++] = r.front() - 0.5 * (1 + std::fabs(r.front()));
-    for (size_t i = 0; i + 1 < r.size(); ++i) {
-      const double gap = r[i + 1] - r[i];
-      if (r[i] < 0 && r[i + 1] > 0)
-        seps[n++] = std::min(std::max(0.0, r[i] + 0.25 * gap), r[i + 1] - 0.25 * gap);
-      else if (std::fabs(r[i]) <= std::fabs(r[i + 1]))
-        seps[n++] = r[i] + 0.5 * std::min(gap, 1 + std::fabs(r[i]));
-      else
-        seps[n++] = r[i + 1] - 0.5 * std::min(gap, 1 + std::fabs(r[i + 1]));
-    }
+    for (size_t i = 0; i + 1 < r.size(); ++i)
+      seps[n++] = moderate_separator(r[i], r[i + 1]);
     seps[n++] = r.back() + 0.5 * (1 + std::fabs(r.back()));
     return n;
   };
@@ -492,7 +506,7 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
   // Indices: Descartes on the interval charpoly of s*A - B (all signs must be certain).
   // The caller holds a and b: the facts of a filtered answer do not copy them (see
   // complete_report_data), to keep the fast path free of big-number copies.
-  std::optional<Inertia> inertia_a; // A's, exact, when an outer index needs it
+  IndexBeyondRoots beyond(qa);
   auto indices = [&]() {
     out.indices.clear();
     out.samples.clear();
@@ -500,19 +514,13 @@ bool analyze_pencil_filtered(const core::QuadricMatrix& qa, const core::QuadricM
     out.samples.reserve(nsep);
     for (size_t si = 0; si < nsep; ++si) {
       int index = 0;
-      if (!index_at(a, b, seps[si], fsign[si], index)) {
-        // Beyond every root (the outer candidates: k roots and k + 1 alternating signs put all
-        // of them in between), s A - B has A's inertia above the roots and -A's below (no root
-        // is crossed on the way to infinity, where (s A - B) / s tends to A, nonsingular: not
-        // re-based, f[4] = det A is certainly nonzero). Read exactly when the intervals cannot
-        // tell: a cone or cylinder posed in doubles, s ~ 1e17 beyond its near-infinite root
-        // beside A's tiny eigenvalue.
-        const bool outer = k > 0 && (si == 0 || si + 1 == nsep);
-        if (!outer || out.rebased) return false;
-        if (!inertia_a) inertia_a = algebra::inertia_ldlt(qa.matrix());
-        if (inertia_a->p + inertia_a->n != 4) return false; // never: det A != 0
-        index = si == 0 ? inertia_a->n : inertia_a->p;
-      }
+      // Beyond every root (the outer candidates: k roots and k + 1 alternating signs put all
+      // of them in between) A's inertia decides when the intervals cannot (not re-based:
+      // f[4] = det A is certainly nonzero).
+      const bool outer = k > 0 && (si == 0 || si + 1 == nsep);
+      if (!index_at(a, b, seps[si], fsign[si], index) &&
+          !(outer && !out.rebased && beyond.index(si != 0, index)))
+        return false;
       out.indices.push_back(index);
       out.samples.push_back(Rational::exact_from_double(seps[si]));
     }
