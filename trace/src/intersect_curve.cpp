@@ -1055,6 +1055,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
         for (auto& piece : br.closed ? clip_closed_to_box(q, br, in) : clip_to_box(q, br, in))
           out.branches.push_back(std::move(piece));
     } else {
+      int unresolved = 0; // walks of the last run that stopped on the noise test
       auto run = [&](std::vector<V> st) {
         const auto faces = box_face_points(q, in);
         st.insert(st.end(), faces.begin(), faces.end());
@@ -1070,14 +1071,27 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
             p[k] = x.at_max ? in.max[k] : in.min[k];
             st.push_back(p);
           }
-        return march(q, st, stops, bopt);
+        return march(q, st, stops, bopt, &unresolved);
       };
       out.branches = run(starts);
+      auto count_closed = [&out] {
+        return static_cast<int>(std::count_if(out.branches.begin(), out.branches.end(),
+                                              [](const Branch& br) { return br.closed; }));
+      };
+      int closed = count_closed();
+      // Walks that stopped where the rounded pair cannot tell two pieces of curve apart (the
+      // neck of two pipes posed in doubles) are not missing a start: the pair evaluated on its
+      // exact coefficients in double-double passes there (as settle_box's retry below would,
+      // after the exact extreme points had been computed and walked in vain: 3 of the bench's
+      // 20 Steinmetz pairs posed in doubles, ~3 ms each).
+      if (af.loops && closed != *af.loops && unresolved > 0 && !q.refined_form)
+        if (auto r = q.refined(a, b)) {
+          q = std::move(*r);
+          out.branches = run(starts);
+          closed = count_closed();
+        }
       // The float extreme points may miss a small loop: the exact ones then (not while the
       // box is placed without the loops: a loop it cuts first moves the box).
-      int closed = 0;
-      for (const auto& br : out.branches)
-        closed += br.closed ? 1 : 0;
       if (exact_starts_allowed && af.loops && closed != *af.loops) {
         out.branches = run(extreme_points(a, b));
         out.exact_start_points = true;
@@ -1872,13 +1886,23 @@ void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
   if (quartic_case(c)) {
     // Float start points first (cheap); if the branches traced from them do not reproduce the
     // certified topology (a small loop missed), the exact extreme points are used instead.
-    out.branches = march(q, extreme_points_float(q), singular, opt);
+    int unresolved = 0;
+    const std::vector<Point3> float_starts = extreme_points_float(q);
+    out.branches = march(q, float_starts, singular, opt, &unresolved);
     // Every branch of a quartic case is a closed loop here (one surface is an ellipsoid): an
     // open one is a walk that died.
     auto whole = [c](const std::vector<Branch>& brs) {
       return branches_match(brs, c) &&
              std::all_of(brs.begin(), brs.end(), [](const Branch& br) { return br.closed; });
     };
+    // Walks stopped by the noise test (a cylinder rounded into a long ellipsoid, crossing
+    // another pipe at a neck): the float starts on the pair evaluated in double-double first
+    // (see trace_in_box), before the exact extreme points.
+    if (!whole(out.branches) && unresolved > 0)
+      if (const auto r = q.refined(a, b)) {
+        std::vector<Branch> again = march(*r, float_starts, singular, opt);
+        if (whole(again)) out.branches = std::move(again);
+      }
     if (!whole(out.branches)) {
       const std::vector<Point3> starts = extreme_points(a, b);
       out.branches = march(q, starts, singular, opt);

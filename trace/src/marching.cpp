@@ -261,6 +261,7 @@ struct Walk {
   bool dead = false;       // stopped where it could not continue (an end or a failure)
   bool capped = false;     // hit max_points_per_branch
   bool exited = false;     // left the box: the last point lies on one of its faces
+  bool unresolved = false; // dead where the rounded pair cannot tell the curve's pieces apart
   std::vector<int> passes; // per singular point: number of times walked through
 };
 
@@ -545,9 +546,11 @@ public:
       if ((w.pts.size() & 63) == 0) core::check_budget();
       // Predictor-corrector step.
       bool ok = false;
+      bool noisy = false; // a step of this point was refused by the noise test
       while (!ok) {
         if (!(h >= hmin(p))) { // NaN too (a scene beyond the doubles): never a step
           w.dead = true;
+          w.unresolved = noisy;
           return w;
         }
         const V pp = add(p, mul(h, t));
@@ -577,6 +580,7 @@ public:
             // until the walk ends (undecided).
             const bool resolved = !(q_.noise_radius(x) > 0.25 * sep_x);
             if (!resolved) {
+              noisy = true;
               h *= 0.5;
               continue;
             }
@@ -669,7 +673,12 @@ struct Traced {
 // grows like 1/sin(angle between the surfaces)), and with its tangent running the same way as
 // the segment. The orientation test is what tells apart two pieces of curve closer than the
 // steps: next to each other the field grad f x grad g runs in opposite directions on them.
-bool on_branch(const Tracer& tr, const QuadricPair& q, const V& x, const Traced& t, double eps) {
+// `hint`, when given, is the segment to try first (the answer does not depend on it) and
+// receives the one that matched: consecutive points of another walk along this branch match
+// consecutive segments (a dead arc checked point by point against the branch it doubles: 117,000
+// segment tests, half of a Steinmetz pair posed in doubles, scanning from the first each time).
+bool on_branch(const Tracer& tr, const QuadricPair& q, const V& x, const Traced& t, double eps,
+               size_t* hint = nullptr) {
   const auto& pts = t.br.points;
   const size_t n = pts.size();
   const double sa = sin_angle(q, x);
@@ -686,14 +695,19 @@ bool on_branch(const Tracer& tr, const QuadricPair& q, const V& x, const Traced&
   const V rx = tr.raw_tangent(x);
   const double kappa = std::min(tr.curvature(x, rx), 1e300);
   const size_t segs = t.br.closed ? n : n - 1;
-  for (size_t i = 0; i < segs; ++i) {
+  const size_t first = hint && *hint < segs ? *hint : 0;
+  for (size_t m = 0; m < segs; ++m) {
+    const size_t i = first + m < segs ? first + m : first + m - segs;
     const V& a = pts[i];
     const V& b = pts[(i + 1) % n];
     const double len = dist(a, b);
     const double thr = std::min(0.05 * len, kappa * len * len / 4) + noise + eps;
     if (seg_dist(x, a, b) > thr) continue;
     double sg = t.sg[i] != 0 ? t.sg[i] : t.sg[(i + 1) % n];
-    if (sg * dot(rx, sub(b, a)) > 0.5 * len) return true;
+    if (sg * dot(rx, sub(b, a)) > 0.5 * len) {
+      if (hint) *hint = i;
+      return true;
+    }
   }
   return false;
 }
@@ -701,8 +715,13 @@ bool on_branch(const Tracer& tr, const QuadricPair& q, const V& x, const Traced&
 } // namespace
 
 std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& starts,
-                          const std::vector<Point3>& singular_points, const TraceOptions& opt) {
+                          const std::vector<Point3>& singular_points, const TraceOptions& opt,
+                          int* unresolved_walks) {
   std::vector<Branch> out;
+  if (unresolved_walks) *unresolved_walks = 0;
+  auto count = [unresolved_walks](const Walk& w) {
+    if (unresolved_walks && w.unresolved) ++*unresolved_walks;
+  };
   // Scene size: the bounding box of everything we were given.
   V lo{}, hi{};
   bool any = false;
@@ -756,6 +775,7 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
     if (known) continue;
     if (norm(tr.raw_tangent(p0)) == 0) continue;
     Walk fw = tr.walk(p0, 1.0);
+    count(fw);
     Traced tb;
     Branch& br = tb.br;
     std::vector<int> passes = fw.passes;
@@ -765,6 +785,7 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
       br.closed = fw.closed;
     } else {
       Walk bw = tr.walk(p0, -1.0);
+      count(bw);
       if (fw.pts.size() + bw.pts.size() <= 2) continue; // no curve through p0 to follow
       for (size_t i = 0; i < passes.size(); ++i)
         passes[i] += bw.passes[i];
@@ -807,8 +828,9 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
     if (traced[i].br.closed || pts.empty() || on_face(pts.front()) || on_face(pts.back())) continue;
     for (size_t j = 0; j < traced.size() && !dropped[i]; ++j) {
       if (j == i || dropped[j]) continue;
+      size_t hint = 0;
       dropped[i] = std::all_of(pts.begin(), pts.end(), [&](const V& p) {
-        return on_branch(tr, q, p, traced[j], 1e-12 * scene);
+        return on_branch(tr, q, p, traced[j], 1e-12 * scene, &hint);
       });
     }
   }

@@ -200,7 +200,12 @@ bool face_crossing(const QuadricPair& q, const Box& box, const Point3& in, const
 /// skipped, and so is each start within 1e-7 of the scene of a given singular point (isolated
 /// points, acnodes, may be given too: no walk starts at them). With opt.box, walks end on the
 /// box's faces (open branches, closed = false) and start points outside the box are ignored.
+/// `unresolved_walks`, when given, receives the number of walks that ended where the pair's
+/// evaluation noise exceeds the gap to the next piece of curve (QuadricPair::noise_radius: the
+/// neck of two pipes rounded to doubles): a walk there stops rather than guess, and the pair
+/// evaluated more precisely (QuadricPair::refined) may pass.
 std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& starts,
-                          const std::vector<Point3>& singular_points, const TraceOptions& opt);
+                          const std::vector<Point3>& singular_points, const TraceOptions& opt,
+                          int* unresolved_walks = nullptr);
 
 } // namespace surfcert::trace
