@@ -105,6 +105,55 @@ ProvenLoops proven_loops(const core::Mat4& a, const core::Mat4& b,
   return out;
 }
 
+// (See the header.) The conics are read in the plane's coordinates (x_i, x_j, 1).
+algebra::UPolyZ critical_value_polynomial(const core::Mat4& a, const core::Mat4& b, int k) {
+  using algebra::UPolyQ;
+  const size_t ku = static_cast<size_t>(k), i = (ku + 1) % 3, j = (ku + 2) % 3;
+  // The conic in the plane's coordinates (x_i, x_j, 1).
+  auto conic = [&](const core::Mat4& m) {
+    const std::array<size_t, 2> in{i, j};
+    std::array<std::array<UPolyQ, 3>, 3> c;
+    for (size_t r = 0; r < 2; ++r) {
+      for (size_t s = 0; s < 2; ++s)
+        c[r][s] = UPolyQ(m[in[r]][in[s]]);
+      c[r][2] = c[2][r] = UPolyQ::linear(m[in[r]][ku], m[in[r]][3]);
+    }
+    c[2][2] = UPolyQ::from_coeffs({m[3][3], Rational(2) * m[ku][3], m[ku][ku]});
+    return c;
+  };
+  // Integer multiples of both (the discriminant only scales by a positive constant): integer
+  // polynomial arithmetic, no gcd per product.
+  const auto fc = conic(core::integer_multiple(a)), gc = conic(core::integer_multiple(b));
+  using M3 = std::array<std::array<UPolyQ, 3>, 3>;
+  auto adj = [](const M3& m) {
+    M3 r;
+    for (size_t p = 0; p < 3; ++p)
+      for (size_t q = 0; q < 3; ++q) {
+        const size_t p1 = (p + 1) % 3, p2 = (p + 2) % 3, q1 = (q + 1) % 3, q2 = (q + 2) % 3;
+        r[q][p] = m[p1][q1] * m[p2][q2] - m[p1][q2] * m[p2][q1]; // cofactor (p, q), transposed
+      }
+    return r;
+  };
+  auto pair_trace = [](const M3& x, const M3& y) { // tr(x y)
+    UPolyQ t(0);
+    for (size_t p = 0; p < 3; ++p)
+      for (size_t q = 0; q < 3; ++q)
+        t = t + x[p][q] * y[q][p];
+    return t;
+  };
+  const M3 af = adj(fc), ag = adj(gc);
+  // det(l F + m G) = al l^3 + be l^2 m + ga l m^2 + de m^3.
+  auto det = [](const M3& m, const M3& adj_m) { // by the first row
+    return m[0][0] * adj_m[0][0] + m[0][1] * adj_m[1][0] + m[0][2] * adj_m[2][0];
+  };
+  const UPolyQ al = det(fc, af), be = pair_trace(af, gc), ga = pair_trace(fc, ag), de = det(gc, ag);
+  const UPolyQ d = be * be * ga * ga - UPolyQ(4) * al * ga * ga * ga -
+                   UPolyQ(4) * be * be * be * de - UPolyQ(27) * al * al * de * de +
+                   UPolyQ(18) * al * be * ga * de;
+  if (d.is_zero()) return algebra::UPolyZ();
+  return d.primitive_integer();
+}
+
 namespace {
 
 using core::Poly3;
@@ -128,6 +177,22 @@ struct CurveResultants {
     return *r;
   }
 };
+
+// The slab of D_k's real roots (critical_value_polynomial); nullopt when D_k is zero or its
+// range does not prove out (the caller eliminates instead).
+std::optional<Slab> discriminant_slab(const core::Mat4& a, const core::Mat4& b, int k) {
+  const algebra::UPolyZ d = critical_value_polynomial(a, b, k);
+  if (d.is_zero()) return std::nullopt;
+  if (d.degree() == 0) return Slab{}; // a nonzero constant: no critical value at all
+  const auto range = algebra::real_root_range(d);
+  if (!range) return std::nullopt;
+  Slab s;
+  if (!range->any) return s;
+  s.roots = true;
+  s.lo = range->lo;
+  s.hi = range->hi;
+  return s;
+}
 
 std::optional<Slab> critical_slab(const Poly3& f, const Poly3& g,
                                   const std::array<Poly3, 3>& grad_f,
@@ -208,7 +273,8 @@ LoopUpperBound loops_upper_bound(const core::Mat4& a, const core::Mat4& b, int w
   std::array<double, 3> lo{}, hi{};
   CurveResultants fg{f, g};
   for (int k = 0; k < 3; ++k) {
-    const auto slab = critical_slab(f, g, grad_f, grad_g, fg, k);
+    auto slab = discriminant_slab(a, b, k);
+    if (!slab) slab = critical_slab(f, g, grad_f, grad_g, fg, k);
     if (!slab) {
       out.reason = "the critical points of axis " + std::to_string(k) +
                    " are not a finite set (the eliminant vanishes identically)";

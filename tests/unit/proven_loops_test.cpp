@@ -34,6 +34,8 @@
 #include <flint/fmpz_poly_factor.h>
 #include <gtest/gtest.h>
 
+#include <random>
+
 using namespace surfcert;
 using certify::Mode;
 using core::Mat4;
@@ -234,4 +236,101 @@ TEST(ProvenLoops, SettleKeepsOnlyReadingsTheBoundsAllow) {
   u.bound = 1;
   certify::AffineTopology t4 = t;
   EXPECT_FALSE(certify::settle_by_proven_loops(t4, none, &u));
+}
+
+namespace {
+
+// A quadric x^T M3 x + 2 l.x + c through the rational point p with gradient grad at p: M3 given,
+// l = grad / 2 - M3 p, c from f(p) = 0.
+Mat4 through(const std::array<std::array<long, 3>, 3>& m3, const std::array<Rational, 3>& p,
+             const std::array<Rational, 3>& grad) {
+  Mat4 m;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      m[i][j] = Rational(m3[i][j]);
+  Rational c(0);
+  for (size_t i = 0; i < 3; ++i) {
+    Rational mp(0);
+    for (size_t j = 0; j < 3; ++j)
+      mp += m[i][j] * p[j];
+    m[i][3] = m[3][i] = grad[i] / Rational(2) - mp;
+  }
+  for (size_t i = 0; i < 3; ++i) { // f(p) = p^T M3 p + 2 l.p + c = 0
+    for (size_t j = 0; j < 3; ++j)
+      c -= m[i][j] * p[i] * p[j];
+    c -= Rational(2) * m[i][3] * p[i];
+  }
+  m[3][3] = c;
+  return m;
+}
+
+} // namespace
+
+// critical_value_polynomial (the slab of loops_upper_bound): its real roots must include every
+// critical value of x_k on the curve. Independent route: pairs built through a rational point P
+// with grad g(P) = grad f(P) + t e_k, so that the tangent grad f x grad g is perpendicular to
+// e_k there: P is a critical point of x_k and D_k(P_k) must vanish exactly. The same pairs with
+// t e_j (j != k) instead: P is not critical for x_k and D_k(P_k) is nonzero for almost every
+// draw (a wrong polynomial that vanished everywhere, or nowhere, fails one side). A cone with
+// apex P against a quadric through P: the curve is singular at P, a root for every axis.
+TEST(ProvenLoops, CriticalValuePolynomialVanishesAtEveryCriticalValue) {
+  std::mt19937 rng(36);
+  std::uniform_int_distribution<long> e(-5, 5), num(-40, 40), den(1, 9);
+  auto sym = [&] {
+    std::array<std::array<long, 3>, 3> m{};
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = i; j < 3; ++j)
+        m[i][j] = m[j][i] = e(rng);
+    return m;
+  };
+  auto rat = [&] { return Rational(num(rng), den(rng)); };
+  int critical = 0, not_critical_nonzero = 0, draws = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const std::array<Rational, 3> p{rat(), rat(), rat()};
+    std::array<Rational, 3> gf{rat(), rat(), rat()};
+    const size_t k = static_cast<size_t>(trial % 3), j = (k + 1) % 3;
+    const Rational t(1 + trial % 4);
+    std::array<Rational, 3> gk = gf, gj = gf;
+    gk[k] += t;
+    gj[j] += t;
+    const Mat4 a = through(sym(), p, gf);
+    const auto m3 = sym();
+    const Mat4 bk = through(m3, p, gk), bj = through(m3, p, gj);
+    const auto dk = certify::critical_value_polynomial(a, bk, static_cast<int>(k));
+    ASSERT_FALSE(dk.is_zero()) << trial;
+    EXPECT_LE(dk.degree(), 8) << trial;
+    EXPECT_EQ(dk.sign_at(p[k]), 0) << "trial " << trial << ": P is critical for x_" << k;
+    critical += dk.sign_at(p[k]) == 0 ? 1 : 0;
+    const auto dj = certify::critical_value_polynomial(a, bj, static_cast<int>(k));
+    if (!dj.is_zero()) {
+      ++draws;
+      not_critical_nonzero += dj.sign_at(p[k]) != 0 ? 1 : 0;
+    }
+    // A positive factor on either quadric, and the order of the two, change nothing.
+    Mat4 a2 = a, b3 = bk;
+    for (auto& row : a2)
+      for (auto& x : row)
+        x *= Rational(2);
+    for (auto& row : b3)
+      for (auto& x : row)
+        x *= Rational(3, 7);
+    EXPECT_EQ(certify::critical_value_polynomial(a2, b3, static_cast<int>(k)), dk) << trial;
+    EXPECT_EQ(certify::critical_value_polynomial(bk, a, static_cast<int>(k)), dk) << trial;
+  }
+  EXPECT_EQ(critical, 60);
+  EXPECT_GE(draws, 55);
+  EXPECT_GE(not_critical_nonzero, draws - 2);
+  // Singular point: the cone (x - 1)^2 + (y + 2)^2 - (z - 3/2)^2 = 0 (apex (1, -2, 3/2)) against
+  // quadrics through the apex.
+  const std::array<Rational, 3> apex{Rational(1), Rational(-2), Rational(3, 2)};
+  const Mat4 cone =
+      through({{{1, 0, 0}, {0, 1, 0}, {0, 0, -1}}}, apex, {Rational(0), Rational(0), Rational(0)});
+  for (int trial = 0; trial < 10; ++trial) {
+    const Mat4 other = through(sym(), apex, {rat(), rat(), rat()});
+    for (int k = 0; k < 3; ++k) {
+      const auto d = certify::critical_value_polynomial(cone, other, k);
+      ASSERT_FALSE(d.is_zero()) << trial;
+      EXPECT_EQ(d.sign_at(apex[static_cast<size_t>(k)]), 0) << trial << " axis " << k;
+    }
+  }
 }

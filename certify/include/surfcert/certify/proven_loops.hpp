@@ -32,13 +32,16 @@
 // vanishes at every common zero, whatever the leading coefficients do; P_k == 0 identically,
 // in both elimination orders, gives no bound). A compact component of the real affine curve
 // attains its maximum and minimum of x_k, at solutions of that system: so it lies in the
-// open slab between the least and the largest real root of P_k (isolated exactly), and every
+// open slab between the least and the largest real root of P_k (isolated exactly); the slab is
+// taken from critical_value_polynomial's D_k first (degree <= 8, same argument), P_k only when
+// D_k is zero or its root range does not prove out. Every
 // compact component lies inside the box B of the three slabs (widened to dyadic doubles; no
 // root at all: no compact component). certify/inner_loops.hpp then bounds the compact
 // components wholly inside B (box_exits of B certified, B nudged outwards when not), i.e. all
 // of them.
 #pragma once
 
+#include "surfcert/algebra/upoly.hpp"
 #include "surfcert/certify/affine.hpp"
 #include "surfcert/core/quadric.hpp"
 #include "surfcert/core/rational.hpp"
@@ -79,6 +82,20 @@ struct ProvenLoops {
 /// already proven (as closed boxes) is not tried. Proposals are taken in order.
 ProvenLoops proven_loops(const core::Mat4& a, const core::Mat4& b,
                          const std::vector<std::vector<RationalBox>>& proposals);
+
+/// D_k(c), a polynomial whose real roots include every critical value of x_k on the real
+/// curve (k = 0, 1, 2): the discriminant of the binary cubic det(l F_c + m G_c), F_c and G_c
+/// the conics the two quadrics cut from the plane x_k = c (entries of degree <= 2 in c, so
+/// degree <= 8, against 16 for the resultant P_k above, and no multivariate elimination). Where
+/// x_k is critical at a smooth point P of the curve, the plane x_k = c is tangent to it there:
+/// the two conics meet at P with multiplicity >= 2 (the plane's intersection multiplicity with
+/// the complete intersection), the pencil's base is not four distinct points, and the cubic has
+/// a repeated root or vanishes identically, so D_k(c) = 0. A singular point of the curve, and a
+/// conic of the curve lying in such a plane, are roots too. Other roots (tangency at complex
+/// points or on the plane's line at infinity) only widen the slab. Primitive over Z; the zero
+/// polynomial when the discriminant vanishes identically (no information: loops_upper_bound
+/// then eliminates with P_k).
+algebra::UPolyZ critical_value_polynomial(const core::Mat4& a, const core::Mat4& b, int k);
 
 struct LoopUpperBound {
   std::optional<int> bound; ///< proven: the curve has at most this many compact components
