@@ -743,6 +743,26 @@ TEST(QuadraticNumbers, NormalizedMovesSmallPrimeSquaresOut) {
   }
 }
 
+// square_split on radicands with a large power of 2 (sqrt(p / q) = sqrt(p q) / q with q = 2^k:
+// a surface posed in doubles): d = 2^k * 9 * 5 * 7^3 for k = 0 .. 300, against the closed form
+// square = 2^(k / 2) * 3 * 7, rest = 2^(k mod 2) * 35; also with a big square-free odd tail.
+TEST(Pencil, SquareSplitTakesPowersOfTwoAtOnce) {
+  const Integer odd_tail = Integer(1000003) * Integer(998244353); // two primes beyond 2000
+  for (int tail = 0; tail < 2; ++tail)
+    for (unsigned long k = 0; k <= 300; ++k) {
+      Integer two_k(1);
+      fmpz_mul_2exp(two_k.raw_mut(), two_k.raw(), k);
+      const Integer t = tail ? odd_tail : Integer(1);
+      const Integer d = two_k * Integer(9 * 5 * 343) * t;
+      Integer sq(1);
+      fmpz_mul_2exp(sq.raw_mut(), sq.raw(), k / 2);
+      const auto s = algebra::square_split(d);
+      EXPECT_EQ(s.square, sq * Integer(21)) << k;
+      EXPECT_EQ(s.rest, Integer(k % 2 ? 2 : 1) * Integer(35) * t) << k;
+      EXPECT_EQ(s.square * s.square * s.rest, d) << k;
+    }
+}
+
 // simplest_root_form: a root of a square-free factor that still splits over Q is given by its
 // own irreducible factor. f = (p1 l - q1)(p2 l - q2)(l^2 + c l + e) (random, known roots): the
 // two rational roots come back as those rationals, the two others as a + b sqrt(d) with

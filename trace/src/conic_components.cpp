@@ -44,6 +44,21 @@ M4 to_double(const core::Mat4& m) {
   return r;
 }
 
+// The quadric's matrix in doubles: a matrix posed in doubles as given (its symmetric part),
+// without converting its exact rationals back (a correctly rounded conversion of each of the 16
+// entries through MPFR was a quarter of a cone-plane pair's conic tracing).
+M4 to_double(const core::QuadricMatrix& q) {
+  const core::DoubleMat4* d = q.shape() ? nullptr : q.double_matrix();
+  if (!d) return to_double(q.matrix());
+  M4 r{};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      const double x = (*d)[i][j], y = (*d)[j][i];
+      r[i][j] = x == y ? x : 0.5 * x + 0.5 * y;
+    }
+  return r;
+}
+
 double max_abs(const M4& m) {
   double s = 0;
   for (const auto& row : m)
@@ -555,7 +570,7 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
                                    bool lines_only) {
   std::vector<Branch> out;
   if (facts.kind != algebra::PencilKind::Regular) return out;
-  const M4 qa = normalised(to_double(a.matrix())), qb = normalised(to_double(b.matrix()));
+  const M4 qa = normalised(to_double(a)), qb = normalised(to_double(b));
 
   std::vector<V4> planes_used;
   std::vector<PlaneConic> conics;
@@ -634,7 +649,7 @@ std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::Qua
 
 std::vector<Branch> section_branches(const core::Mat4& plane, const core::QuadricMatrix& other,
                                      const TraceOptions& opt) {
-  const M4 q = normalised(to_double(other.matrix()));
+  const M4 q = normalised(to_double(other));
   // The plane n . x + d = 0 written as a quadric holds n / 2 in its last column.
   const V4 p{(core::Rational(2) * plane[0][3]).to_double_approx(),
              (core::Rational(2) * plane[1][3]).to_double_approx(),
