@@ -52,23 +52,29 @@ namespace {
 
 // The filter does not copy the matrices (no big-number copies on its fast path): the facts'
 // a and b, in their basis (re-based like the exact path's: a' = t A - B, b' = -A), on first need.
-void fill_filtered_matrices(QsicResult& r, const core::QuadricMatrix& a,
-                            const core::QuadricMatrix& b) {
-  if (r.mode != Mode::Filtered || r.exact_fallback || r.matrices_filled) return;
-  if (r.facts.rebased) {
-    const Rational t(r.facts.rebase_t);
+// The pencil basis of the facts from the pair's matrices, under the facts' re-basing.
+void set_basis(algebra::PencilFacts& f, const core::QuadricMatrix& a,
+               const core::QuadricMatrix& b) {
+  if (f.rebased) {
+    const Rational t(f.rebase_t);
     core::Mat4 ra, rb;
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = 0; j < 4; ++j) {
         ra[i][j] = t * a.matrix()[i][j] - b.matrix()[i][j];
         rb[i][j] = -a.matrix()[i][j];
       }
-    r.facts.a = ra;
-    r.facts.b = rb;
+    f.a = ra;
+    f.b = rb;
   } else {
-    r.facts.a = a.matrix();
-    r.facts.b = b.matrix();
+    f.a = a.matrix();
+    f.b = b.matrix();
   }
+}
+
+void fill_filtered_matrices(QsicResult& r, const core::QuadricMatrix& a,
+                            const core::QuadricMatrix& b) {
+  if (r.mode != Mode::Filtered || r.exact_fallback || r.matrices_filled) return;
+  set_basis(r.facts, a, b);
   r.matrices_filled = true;
 }
 
@@ -108,6 +114,21 @@ QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix
     r.note = std::string("float analysis inconsistent: ") + e.what();
   }
   return r;
+}
+
+QsicResult translated_classification(const QsicResult& r, const core::QuadricMatrix& a2,
+                                     const core::QuadricMatrix& b2) {
+  if (r.mode == Mode::Float || r.pencil != PencilKind::Regular)
+    return classify_qsic(a2, b2, Mode::Filtered); // (as the tracer did before)
+  QsicResult out = r;
+  out.special_points.clear();
+  out.special_points_complete = true;
+  out.special_points_done = false;
+  // Filtered facts without their matrices get the moved pair's on demand
+  // (fill_filtered_matrices); matrices already present are replaced by the moved ones.
+  if (r.mode != Mode::Filtered || r.exact_fallback || r.matrices_filled)
+    set_basis(out.facts, a2, b2);
+  return out;
 }
 
 void complete_special_points(QsicResult& r, const core::QuadricMatrix& a,

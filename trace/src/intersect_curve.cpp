@@ -1775,12 +1775,12 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
     CurveResult local;
     if (k_there != 0) {
       CurveResult moved;
-      moved.topology = classify_qsic(a2, b2, Mode::Filtered);
+      moved.topology = certify::translated_classification(out.topology, a2, b2);
       moved.affine = out.affine; // read there through movable(); replaced below
       local = trace_rescaled(a2, b2, std::move(moved), o2, k_there, depth + 1);
     } else {
-      local = trace_curve_at(a2, b2, classify_qsic(a2, b2, Mode::Filtered), o2, depth + 1,
-                             movable(out.affine));
+      local = trace_curve_at(a2, b2, certify::translated_classification(out.topology, a2, b2), o2,
+                             depth + 1, movable(out.affine));
     }
     auto back = [&c](Point3& x) {
       for (size_t k = 0; k < 3; ++k)

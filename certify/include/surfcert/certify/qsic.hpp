@@ -63,6 +63,18 @@ struct QsicResult {
 /// Decision only (what the benchmark times): pencil facts, Tu case, Segre characteristic.
 QsicResult classify_qsic(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Mode mode);
 
+/// The classification of the pair moved by a translation T (a2 = T^T A T, b2 = T^T B T, with r
+/// the certified or undecided classification of (A, B)), without deciding anything again: a
+/// congruence of determinant 1 leaves det(l A - B) and every fact of the pencil (roots, ranks,
+/// inertias, indices, invariants, Segre symbol, Tu case, ellipsoid relation) unchanged. Only
+/// the basis matrices are coordinates: those of r (exact facts carry them) are replaced by the
+/// moved pair's, under the same re-basing; the special points are left to be recomputed there
+/// (complete_special_points). Float facts are classified again. The tracer moves far pairs
+/// so; classified again there, a pair needing exact arithmetic paid it twice (a coaxial cone
+/// and cylinder posed in doubles: 60% of its time).
+QsicResult translated_classification(const QsicResult& r, const core::QuadricMatrix& a2,
+                                     const core::QuadricMatrix& b2);
+
 /// What a report at `detail` shows beyond the decision (detail.hpp), and nothing more:
 /// - every level: the ellipsoid relation and containment (certified from certified facts, an
 ///   estimate from float facts; ellipsoid_relation.hpp);
