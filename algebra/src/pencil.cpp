@@ -357,7 +357,20 @@ PencilFacts analyze_pencil_exact(const Mat4& a0, const Mat4& b0) {
   }
   fmpz_poly_factor_clear(fac);
 
-  RootSeparation sep = isolate_real_roots(sqfree);
+  // Every square-free factor linear (the multiple roots of a degenerate pencil are rational,
+  // and so, often, is the rest): the roots are known exactly, no isolation (45% of an exact
+  // analysis of pipes posed in doubles, whose coefficients have hundreds of bits).
+  const bool all_linear =
+      std::all_of(parts.begin(), parts.end(), [](const UPolyZ& g) { return g.degree() == 1; });
+  RootSeparation sep;
+  if (all_linear) {
+    std::vector<Rational> roots;
+    for (const UPolyZ& g : parts)
+      roots.push_back(Rational(-g.coeff(0), g.coeff(1)));
+    sep = separate_rational_roots(std::move(roots));
+  } else {
+    sep = isolate_real_roots(sqfree);
+  }
   out.isolation_fallback = sep.used_fallback;
   out.samples = sep.separators;
   int real_with_mult = 0;

@@ -1341,4 +1341,28 @@ int sign_at_root(const UPolyQ& p, const UPolyZ& f, Rational lo, Rational hi) {
   return 0;
 }
 
+RootSeparation separate_rational_roots(std::vector<Rational> roots) {
+  RootSeparation out;
+  if (roots.empty()) {
+    out.separators = {Rational(0)};
+    return out;
+  }
+  std::sort(roots.begin(), roots.end());
+  out.separators.push_back(round_to_2exp(roots.front(), 0, Round::Down) - Rational(1));
+  for (size_t i = 0; i + 1 < roots.size(); ++i) {
+    const Rational w = roots[i + 1] - roots[i];
+    if (w.sign() <= 0) throw std::logic_error("separate_rational_roots: roots not distinct");
+    // 2^e < w / 2 (w > 2^(log2_upper(w) - 2)); the next multiple of 2^e above roots[i].
+    const slong e = log2_upper(w) - 3;
+    Rational step(1);
+    if (e >= 0)
+      fmpq_mul_2exp(step.raw_mut(), step.raw(), static_cast<ulong>(e));
+    else
+      fmpq_div_2exp(step.raw_mut(), step.raw(), static_cast<ulong>(-e));
+    out.separators.push_back(round_to_2exp(roots[i], e, Round::Down) + step);
+  }
+  out.separators.push_back(round_to_2exp(roots.back(), 0, Round::Up) + Rational(1));
+  return out;
+}
+
 } // namespace surfcert::algebra

@@ -44,6 +44,13 @@ bool has_real_root(const UPolyZ& p);
 /// Separators for a square-free, nonzero polynomial (degree >= 0). Exact.
 RootSeparation isolate_real_roots(const UPolyZ& squarefree);
 
+/// Separators for known distinct rational roots (any order): the integer floor(min) - 1 below,
+/// ceil(max) + 1 above, and in each gap the dyadic with the fewest bits that the gap's lower
+/// half holds (short numbers for the exact evaluations at the separators, where midpoints of
+/// the ~200-bit roots of a pencil posed in doubles would be as long as the roots). Exact; no
+/// polynomial involved. An empty list gives {0}.
+RootSeparation separate_rational_roots(std::vector<Rational> roots);
+
 /// The same from CGAL only (the fallback, and a second isolator for tests). Exact.
 RootSeparation isolate_real_roots_cgal(const UPolyZ& squarefree);
 
