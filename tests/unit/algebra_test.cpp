@@ -3,6 +3,7 @@
 // (Descartes vs exact LDL^T vs Sylvester's law on P^T D P), the closed-form pencil
 // determinant vs FLINT's fmpq_mat_det, D4 vs FLINT's discriminant, signs in Q(sqrt d).
 #include "surfcert/algebra/arb.hpp"
+#include "surfcert/algebra/conic_isotropy.hpp"
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/algebra/pencil_poly.hpp"
@@ -91,6 +92,107 @@ TEST(RealRoots, RandomPolynomialsThreeIsolators) {
     check_against_arb(p, b, ctx);
   }
   EXPECT_LT(fallbacks, 30); // the float guess should do almost all of the work
+}
+
+// separate_rational_roots (an exact analysis whose square-free factors are all linear): the
+// separators interleave the given roots strictly, also for roots 2^-100 apart, 10^40 apart and
+// near 0, checked exactly; and on polynomials with those roots the same count as isolation,
+// each separator gap holding exactly one root (sign change of the product of the factors).
+TEST(RealRoots, SeparatorsOfKnownRationalRoots) {
+  std::mt19937_64 rng(test_seed() + 5);
+  std::uniform_int_distribution<long> num(-1000000, 1000000), den(1, 1000);
+  const Rational tiny = core::pow2(-100);
+  for (int it = 0; it < 300; ++it) {
+    std::vector<Rational> roots;
+    const int n = 1 + static_cast<int>(rng() % 4);
+    for (int i = 0; i < n; ++i) {
+      Rational r(num(rng), den(rng));
+      if (it % 3 == 1 && i > 0) r = roots[0] + tiny * Rational(i);      // a cluster
+      if (it % 3 == 2 && i > 0) r = roots[0] * core::pow2(130 * i) + r; // far apart
+      if (std::find(roots.begin(), roots.end(), r) == roots.end()) roots.push_back(r);
+    }
+    const auto sep = algebra::separate_rational_roots(roots);
+    std::vector<Rational> sorted = roots;
+    std::sort(sorted.begin(), sorted.end());
+    ASSERT_EQ(sep.separators.size(), sorted.size() + 1) << it;
+    for (size_t i = 0; i < sorted.size(); ++i) {
+      EXPECT_LT(sep.separators[i], sorted[i]) << it;
+      EXPECT_GT(sep.separators[i + 1], sorted[i]) << it;
+    }
+    // The polynomial prod (den x - num): one sign change per gap, none beyond.
+    algebra::UPolyQ prod(1);
+    for (const Rational& r : roots)
+      prod = prod * algebra::UPolyQ::linear(Rational(1), -r);
+    const UPolyZ pz = prod.primitive_integer();
+    for (size_t i = 0; i + 1 < sep.separators.size(); ++i)
+      EXPECT_NE(pz.sign_at(sep.separators[i]), pz.sign_at(sep.separators[i + 1])) << it;
+    EXPECT_EQ(algebra::count_real_roots(pz), static_cast<long>(roots.size())) << it;
+  }
+  EXPECT_EQ(algebra::separate_rational_roots({}).separators.size(), 1u);
+}
+
+// conic_has_rational_point against closed forms and an independent brute-force search: x^2 +
+// y^2 = c z^2 has a point iff c is a sum of two squares (c = 2, 5, 13, 25: yes; 3, 7, 21: no);
+// x^2 + y^2 + z^2 has no real point; random integer conics: every one with a point of height
+// <= 12 found by search must answer true, and a false answer is checked by the search finding
+// nothing (both directions counted, so that a test that always says "unknown" fails).
+TEST(ConicIsotropy, HilbertSymbolsAgainstSearch) {
+  auto diag = [](long a, long b, long c) {
+    core::Mat4 m{};
+    m[0][0] = Rational(a), m[1][1] = Rational(b), m[2][2] = Rational(c);
+    return m;
+  };
+  for (long c : {2L, 5L, 13L, 25L, 1L})
+    EXPECT_EQ(algebra::conic_has_rational_point(diag(1, 1, -c)), std::optional<bool>(true)) << c;
+  for (long c : {3L, 7L, 21L, 6L, 11L})
+    EXPECT_EQ(algebra::conic_has_rational_point(diag(1, 1, -c)), std::optional<bool>(false)) << c;
+  EXPECT_EQ(algebra::conic_has_rational_point(diag(1, 1, 1)), std::optional<bool>(false));
+  EXPECT_EQ(algebra::conic_has_rational_point(diag(3, 5, -1)),
+            std::optional<bool>(false)); // mod 3, 5
+  EXPECT_EQ(algebra::conic_has_rational_point(diag(2, 0, 1)), std::optional<bool>(true));
+  // Scaled by rationals (the form up to a factor, an entry's denominator): the same answer.
+  core::Mat4 m = diag(1, 1, -7);
+  for (auto& row : m)
+    for (auto& x : row)
+      x *= Rational(-5, 12);
+  EXPECT_EQ(algebra::conic_has_rational_point(m), std::optional<bool>(false));
+  std::mt19937_64 rng(test_seed() + 9);
+  std::uniform_int_distribution<long> e(-9, 9);
+  int with_point = 0, without = 0;
+  for (int it = 0; it < 400; ++it) {
+    std::array<std::array<long, 3>, 3> q{};
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = i; j < 3; ++j)
+        q[i][j] = q[j][i] = e(rng);
+    core::Mat4 qm{};
+    for (size_t i = 0; i < 3; ++i)
+      for (size_t j = 0; j < 3; ++j)
+        qm[i][j] = Rational(q[i][j]);
+    const auto ans = algebra::conic_has_rational_point(qm);
+    if (!ans) continue; // degenerate
+    bool found = false;
+    for (long x = -12; x <= 12 && !found; ++x)
+      for (long y = -12; y <= 12 && !found; ++y)
+        for (long z = -12; z <= 12 && !found; ++z) {
+          if (x == 0 && y == 0 && z == 0) continue;
+          const std::array<long, 3> v{x, y, z};
+          long s = 0;
+          for (size_t i = 0; i < 3; ++i)
+            for (size_t j = 0; j < 3; ++j)
+              s += q[i][j] * v[i] * v[j];
+          found = s == 0;
+        }
+    if (found) {
+      EXPECT_TRUE(*ans) << it;
+      ++with_point;
+    }
+    if (!*ans) {
+      EXPECT_FALSE(found) << it;
+      ++without;
+    }
+  }
+  EXPECT_GE(with_point, 50);
+  EXPECT_GE(without, 50);
 }
 
 TEST(RealRoots, ClusteredAndDyadicRoots) {
