@@ -811,3 +811,76 @@ TEST(BoxTrace, ArmsStartingOnlyOnAFarFace) {
     EXPECT_GE(ends, 4u) << c.id;
   }
 }
+
+// Two unbounded branches that twist around each other within ~0.05-0.4 next to an acnode at
+// (-7/6, 2, 4/3), in a given box 24,000 wide (generate --case 6 --seed 36, pair 4, the first
+// box of bench/boxed_pairs.py --boxes 2 --seed 36). The walks' chord bound is relative to the
+// box: after the three refinements (tolerance / 64, then chords / 64) a walk still stepped
+// from one branch to the other there, and three pieces shared the four exact crossings
+// (undecided). Independent check of the pairing: points of each branch on the planes y = -30
+// and y = 10 / 11, solved offline (sympy: Res_x(f, g) on each plane, roots to 3 decimals), the
+// branches followed through the twist by continuity on 161 planes y = 1.55 .. 2.35 (steps of
+// 0.005 moved each point by < 0.05, the lanes 0.05 to 0.7 apart): the branch on the shallow
+// line below the twist leaves on the steep one. Both points of a branch must lie on one traced
+// piece, the other branch's on the other (the pieces drawn before had the lanes swapped).
+TEST(BoxTrace, BranchesTwistingNextToAnAcnodeInAVastBox) {
+  const core::Mat4 ma = {{{Rational(2), Rational(-1, 2), Rational(9), Rational(-37, 4)},
+                          {Rational(-1, 2), Rational(-7, 4), Rational(31, 4), Rational(-8)},
+                          {Rational(9), Rational(31, 4), Rational(-35, 4), Rational(29, 4)},
+                          {Rational(-37, 4), Rational(-8), Rational(29, 4), Rational(-19, 4)}}};
+  const core::Mat4 mb = {{{Rational(4), Rational(3), Rational(2), Rational(-9, 2)},
+                          {Rational(3), Rational(1, 2), Rational(3, 2), Rational(0)},
+                          {Rational(2), Rational(3, 2), Rational(-7, 2), Rational(9, 2)},
+                          {Rational(-9, 2), Rational(0), Rational(9, 2), Rational(-23, 2)}}};
+  const trace::Point3 lo{-9724.057219885768, -8380.201338390882, -8194.921775229095};
+  const trace::Point3 hi{14065.591473943869, 11290.024289997522, 5672.857558239962};
+  // (x, y, z) of each branch, from the offline slices.
+  const std::array<std::array<trace::Point3, 2>, 2> branch = {
+      {{{{3.433, -30, -2.85}, {-15.886, 11, 4.215}}},
+       {{{50.882, -29.5, -8.545}, {-2.174, 10, 2.467}}}}};
+  auto distance_to = [](const trace::Point3& x, const trace::Branch& br) {
+    double best = HUGE_VAL;
+    for (size_t i = 0; i + 1 < br.points.size(); ++i) {
+      const auto &p = br.points[i], &q = br.points[i + 1];
+      std::array<double, 3> d{q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+      const double l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      double t =
+          l2 > 0 ? ((x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1] + (x[2] - p[2]) * d[2]) / l2 : 0;
+      t = std::clamp(t, 0.0, 1.0);
+      double s = 0;
+      for (size_t k = 0; k < 3; ++k)
+        s += (p[k] + t * d[k] - x[k]) * (p[k] + t * d[k] - x[k]);
+      best = std::min(best, std::sqrt(s));
+    }
+    return best;
+  };
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    core::QuadricMatrix a(ma), b(mb);
+    if (swapped) std::swap(a, b);
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, given_box(lo, hi));
+    ASSERT_EQ(r.status, certify::Status::Certified) << swapped << ": " << r.note;
+    ASSERT_TRUE(r.affine.certified());
+    EXPECT_EQ(*r.affine.unbounded_branches, 2);
+    EXPECT_EQ(*r.affine.isolated_points, 1);
+    ASSERT_TRUE(r.box_exits && r.box_exits->certified);
+    ASSERT_EQ(r.box_exits->points.size(), 4u);
+    ASSERT_EQ(r.branches.size(), 2u);
+    std::vector<int> used;
+    for (const auto& br : r.branches) {
+      ASSERT_EQ(br.exits.size(), 2u);
+      used.insert(used.end(), br.exits.begin(), br.exits.end());
+    }
+    std::sort(used.begin(), used.end());
+    EXPECT_EQ(used, (std::vector<int>{0, 1, 2, 3}));
+    for (const auto& pts : branch) {
+      // Both points of a branch on one piece, and on no other.
+      int holders = 0;
+      for (const auto& br : r.branches) {
+        const bool first = distance_to(pts[0], br) < 1e-2, second = distance_to(pts[1], br) < 1e-2;
+        EXPECT_EQ(first, second) << swapped;
+        holders += first ? 1 : 0;
+      }
+      EXPECT_EQ(holders, 1) << swapped;
+    }
+  }
+}
