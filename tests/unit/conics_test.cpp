@@ -4,6 +4,7 @@
 // morphology's conic count (classify_qsic exact), the 21 ellipsoid fixtures (count, planarity,
 // residual, chord error measured by an independent projection, special points on the curve).
 #include "support/fixtures.hpp"
+#include "support/trace_boxes.hpp"
 
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/surface_reader.hpp"
@@ -428,4 +429,49 @@ TEST(Conics, EllipsoidFixtures) {
   EXPECT_EQ(with_conics, 7); // 13, 14, 17, 19, 21, 24, 27
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_LT(secs, 10.0);
+}
+
+// conic_with_tangency_point (Tu 27, Segre [(31)]) in a box: the real curve is a hyperbola
+// through the tangency point (0, 0, 0) (generate --case 27 --seed 38, pair 9). The other plane
+// of the singular member is tangent to a quadric at that point, and its section came out of
+// the float route as a closed "conic" of no size there: drawn as a loop, the picture did not
+// match the certified reading (0 loops, 2 unbounded) and the answer was undecided. Now: two
+// open pieces, each ending on two of the four exact crossings, every point on both surfaces;
+// swapped too.
+TEST(Conics, TangencyPointSectionIsNoLoop) {
+  auto ints = [](const std::array<std::array<long, 4>, 4>& m) {
+    core::Mat4 r;
+    for (size_t i = 0; i < 4; ++i)
+      for (size_t j = 0; j < 4; ++j)
+        r[i][j] = core::Rational(m[i][j]);
+    return core::QuadricMatrix(r);
+  };
+  const auto a0 =
+      ints({{{-20, -12, -14, -10}, {-12, 27, 23, 5}, {-14, 23, 44, 5}, {-10, 5, 5, 0}}});
+  const auto b0 =
+      ints({{{-44, -26, -30, -22}, {-26, 59, 50, 11}, {-30, 50, 96, 11}, {-22, 11, 11, 0}}});
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    const auto& a = swapped ? b0 : a0;
+    const auto& b = swapped ? a0 : b0;
+    const auto r = trace::intersect_curve(a, b, certify::Mode::Filtered, {});
+    ASSERT_EQ(r.topology.tu_case, 27);
+    ASSERT_EQ(r.status, certify::Status::Certified) << swapped << ": " << r.note;
+    EXPECT_EQ(*r.affine.loops, 0);
+    EXPECT_EQ(*r.affine.unbounded_branches, 2);
+    ASSERT_TRUE(r.box_exits && r.box_exits->certified);
+    EXPECT_EQ(r.box_exits->points.size(), 4u);
+    ASSERT_EQ(r.branches.size(), 2u);
+    std::vector<int> used;
+    for (const auto& br : r.branches) {
+      EXPECT_FALSE(br.closed);
+      ASSERT_EQ(br.exits.size(), 2u);
+      used.insert(used.end(), br.exits.begin(), br.exits.end());
+      for (const auto& p : br.points) {
+        EXPECT_LT(surfcert::testing::geometric_residual(a, p), 1e-12);
+        EXPECT_LT(surfcert::testing::geometric_residual(b, p), 1e-12);
+      }
+    }
+    std::sort(used.begin(), used.end());
+    EXPECT_EQ(used, (std::vector<int>{0, 1, 2, 3}));
+  }
 }

@@ -950,6 +950,30 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
       return brs;
     }
     brs = conic_branches(a, b, t.facts, o, lines_only(t));
+    // A plane of a singular member tangent to a quadric meets it in one real point (the
+    // crossing of two imaginary lines); in doubles that section comes out as a closed "conic"
+    // of no size there. It is no branch: dropped when it sits on an exact special or isolated
+    // point (the certified topology judges the rest; a conic_with_tangency_point pencil in a
+    // box drew its tangency point as a loop: generate --case 27 --seed 38 pair 9, undecided).
+    brs.erase(std::remove_if(brs.begin(), brs.end(),
+                             [&](const Branch& br) {
+                               if (!br.closed || br.points.empty()) return false;
+                               const Point3& c = br.points.front();
+                               const double scale =
+                                   1 + std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+                               if (!(diameter(br) <= 1e-9 * scale)) return false;
+                               auto near = [&](const Point3& x) {
+                                 double d = 0;
+                                 for (size_t k = 0; k < 3; ++k)
+                                   d = std::max(d, std::fabs(x[k] - c[k]));
+                                 return d <= 1e-9 * scale;
+                               };
+                               for (const auto& sp : t.special_points)
+                                 if (!sp.at_infinity && near(sp.approx)) return true;
+                               return std::any_of(out.isolated_points.begin(),
+                                                  out.isolated_points.end(), near);
+                             }),
+              brs.end());
     // Lines only, none drawn from the singular members (two real skew lines from a complex
     // conjugate pair of members, a real double line): each real point at infinity is the
     // direction of one real line (affine.cpp), the line through it found on both surfaces.
