@@ -1,6 +1,8 @@
 #include "surfcert/algebra/upoly.hpp"
 
 #include <flint/fmpz_poly_factor.h>
+#include <flint/nmod_poly.h>
+#include <flint/ulong_extras.h>
 
 #include <algorithm>
 
@@ -150,7 +152,66 @@ std::vector<Rational> rational_roots(const UPolyQ& p) {
   return out;
 }
 
+namespace {
+
+// Whether p (primitive, degree n >= 2) is proved irreducible over Q by its factorisations
+// modulo a few word-size primes: a factor of degree k over Z stays a factor of degree k modulo
+// every prime not dividing the leading coefficient, so k must be a sum of some of the modular
+// factors' degrees, for each prime; when no k in 1..n-1 is such a sum for every prime tried,
+// p is irreducible. Modulo a prime where p is not square-free the degrees say nothing (that
+// prime is skipped; a p not square-free over Q is never proved so). False: not proved (FLINT
+// then factors). Why: the points at infinity of two cones posed in doubles are the roots of a
+// quartic with coefficients of hundreds of bits, irreducible almost always; fmpz_poly_factor
+// spent ~40% of their exact affine reading getting there (its own prime selection, then
+// setting up the lifting).
+bool irreducible_by_primes(const UPolyZ& p) {
+  const slong n = p.degree();
+  if (n < 2 || n > 60) return false;
+  unsigned long long possible = ((1ULL << n) - 1) & ~1ULL; // bit k: degree k (1..n-1) possible
+  ulong prime = (1UL << 22) + 15;
+  nmod_poly_t q;
+  nmod_poly_factor_t fac;
+  for (int tried = 0; tried < 12 && possible; ++tried) {
+    prime = n_nextprime(prime, 1);
+    nmod_poly_init(q, prime);
+    fmpz_poly_get_nmod_poly(q, p.raw());
+    if (nmod_poly_degree(q) == n) {
+      nmod_poly_t dq, g;
+      nmod_poly_init(dq, prime);
+      nmod_poly_init(g, prime);
+      nmod_poly_derivative(dq, q);
+      nmod_poly_gcd(g, q, dq);
+      const bool squarefree = nmod_poly_degree(g) == 0;
+      nmod_poly_clear(dq);
+      nmod_poly_clear(g);
+      if (squarefree) {
+        nmod_poly_factor_init(fac);
+        nmod_poly_factor(fac, q);
+        unsigned long long sums = 1; // bit s: a sum s of some factors' degrees
+        for (slong i = 0; i < fac->num; ++i)
+          for (slong e = 0; e < fac->exp[i]; ++e)
+            sums |= sums << nmod_poly_degree(fac->p + i);
+        nmod_poly_factor_clear(fac);
+        possible &= sums;
+      }
+    }
+    nmod_poly_clear(q);
+  }
+  return possible == 0;
+}
+
+} // namespace
+
 std::vector<IrreducibleFactor> irreducible_factors(const UPolyZ& p) {
+  if (p.degree() >= 2) {
+    const UPolyZ g = p.primitive_part();
+    if (irreducible_by_primes(g)) {
+      IrreducibleFactor x;
+      x.poly = g;
+      x.exponent = 1;
+      return {x};
+    }
+  }
   // RAII for FLINT's factor structure (cleared on every path, exceptions included).
   struct Fac {
     fmpz_poly_factor_t f;

@@ -195,6 +195,64 @@ TEST(ConicIsotropy, HilbertSymbolsAgainstSearch) {
   EXPECT_GE(without, 50);
 }
 
+// irreducible_factors (a modular irreducibility proof first, FLINT's factorisation otherwise)
+// against FLINT's fmpz_poly_factor called directly: the same factors and exponents, on products
+// of random factors (linear, quadratic, quartic; repeated ones too; coefficients of 10 and of
+// 200 bits, as the points at infinity of cones posed in doubles have), and on random
+// polynomials (mostly irreducible).
+TEST(UPoly, IrreducibleFactorsMatchFlint) {
+  std::mt19937_64 rng(test_seed() + 21);
+  auto random_poly = [&](long deg, int bits) {
+    UPolyZ p;
+    for (long i = 0; i <= deg; ++i) {
+      Integer c;
+      fmpz_set_si(c.raw_mut(), static_cast<slong>(rng() % 2001) - 1000);
+      if (bits > 10) {
+        Integer big;
+        fmpz_set_ui(big.raw_mut(), rng());
+        fmpz_mul_2exp(big.raw_mut(), big.raw(), static_cast<ulong>(bits - 64));
+        c = c * big + Integer(static_cast<long>(rng() % 1000));
+      }
+      if (i == deg && c.is_zero()) c = Integer(1);
+      fmpz_poly_set_coeff_fmpz(p.raw_mut(), i, c.raw());
+    }
+    return p;
+  };
+  auto key = [](const std::vector<std::pair<std::string, int>>& v) {
+    auto w = v;
+    std::sort(w.begin(), w.end());
+    return w;
+  };
+  for (int it = 0; it < 300; ++it) {
+    const int bits = it % 2 ? 200 : 10;
+    UPolyZ p;
+    if (it % 3 == 0) {
+      p = random_poly(4, bits);
+    } else {
+      fmpz_poly_set_si(p.raw_mut(), 1);
+      const int parts = 1 + static_cast<int>(rng() % 3);
+      for (int k = 0; k < parts; ++k) {
+        const UPolyZ f = random_poly(static_cast<long>(1 + rng() % 4), bits);
+        fmpz_poly_mul(p.raw_mut(), p.raw(), f.raw());
+        if (rng() % 4 == 0) fmpz_poly_mul(p.raw_mut(), p.raw(), f.raw()); // a square
+      }
+    }
+    std::vector<std::pair<std::string, int>> ours, flint;
+    for (const auto& f : algebra::irreducible_factors(p))
+      ours.emplace_back(f.poly.to_string(), f.exponent);
+    fmpz_poly_factor_t fac;
+    fmpz_poly_factor_init(fac);
+    fmpz_poly_factor(fac, p.raw());
+    for (slong i = 0; i < fac->num; ++i) {
+      UPolyZ g;
+      fmpz_poly_set(g.raw_mut(), fac->p + i);
+      if (g.degree() >= 1) flint.emplace_back(g.to_string(), static_cast<int>(fac->exp[i]));
+    }
+    fmpz_poly_factor_clear(fac);
+    EXPECT_EQ(key(ours), key(flint)) << "it " << it << ": " << p.to_string();
+  }
+}
+
 TEST(RealRoots, ClusteredAndDyadicRoots) {
   // Mignotte-like x^8 - 2(2^20 x - 1)^2: two roots within 2^-40 of 2^-20 (forces the fallback).
   Integer a;

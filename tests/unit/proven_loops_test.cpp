@@ -158,6 +158,15 @@ TEST(ProvenLoops, UpperBoundNeverBelowTheLoops) {
     const auto u = certify::loops_upper_bound(a0, b0, 0);
     if (u.bound) {
       EXPECT_GE(*u.bound, 1);
+      // The box of the critical values (critical_value_polynomial's slabs) holds the loop the
+      // trace proved in its own box (prove_loop_in_box: an independent proof).
+      const auto r =
+          trace::intersect_curve(core::QuadricMatrix(a0), core::QuadricMatrix(b0), Mode::Exact, {});
+      ASSERT_EQ(r.affine.loop_boxes.size(), 1u);
+      for (size_t k = 0; k < 3; ++k) {
+        EXPECT_LE(u.box.lo[k], r.affine.loop_boxes[0][0][k]) << k;
+        EXPECT_GE(u.box.hi[k], r.affine.loop_boxes[0][1][k]) << k;
+      }
     }
   }
 }
