@@ -128,7 +128,10 @@ struct IrreducibleFactor {
   int exponent = 1;
 };
 /// The factorisation of p (nonzero) over Z by FLINT (fmpz_poly_factor): its irreducible factors
-/// with their exponents, in FLINT's order; the content (a constant) is left out.
+/// with their exponents, in FLINT's order; the content (a constant) is left out. A p of degree
+/// >= 2 with coefficients beyond 64 bits that factorisations modulo a few word-size primes prove
+/// irreducible comes back as its primitive part (positive leading coefficient), exponent 1,
+/// without FLINT's factorisation: the same answer.
 std::vector<IrreducibleFactor> irreducible_factors(const UPolyZ& p);
 
 } // namespace surfcert::algebra
