@@ -150,6 +150,17 @@ TEST(ConicIsotropy, HilbertSymbolsAgainstSearch) {
   EXPECT_EQ(algebra::conic_has_rational_point(diag(3, 5, -1)),
             std::optional<bool>(false)); // mod 3, 5
   EXPECT_EQ(algebra::conic_has_rational_point(diag(2, 0, 1)), std::optional<bool>(true));
+  // Beyond the factoring cap (default 62 bits): unknown; with the cap raised, the answer.
+  {
+    core::Mat4 big{};
+    big[0][0] = Rational(1), big[1][1] = Rational(1), big[2][2] = -core::pow2(80) * Rational(3);
+    EXPECT_FALSE(algebra::conic_has_rational_point(big).has_value());
+    EXPECT_EQ(algebra::conic_has_rational_point(big, 200), std::optional<bool>(false));
+    big[2][2] = -core::pow2(80) * Rational(2);
+    EXPECT_EQ(algebra::conic_has_rational_point(big, 200), std::optional<bool>(true));
+    big[2][2] = -core::pow2(40) * Rational(3); // 42 bits: below the cap
+    EXPECT_EQ(algebra::conic_has_rational_point(big), std::optional<bool>(false));
+  }
   // Scaled by rationals (the form up to a factor, an entry's denominator): the same answer.
   core::Mat4 m = diag(1, 1, -7);
   for (auto& row : m)
