@@ -280,7 +280,8 @@ double relative_residual(const TermSizes& t, double fv, double gv) {
 // surfaces meet at a small angle a the tolerance band around the curve is ~1/a times wider
 // than the rounding floor, so stopping at its edge would leave the point visibly off the
 // curve sideways.
-void polish(const QuadricPair& q, Point3& p) {
+// fv, gv: f and g at p, already evaluated by the caller (the acceptance test).
+void polish(const QuadricPair& q, Point3& p, double fv, double gv) {
   // Only needed where the surfaces meet at a small angle (sin^2 < 1/100); elsewhere the
   // tolerance band is already as narrow as the rounding floor allows.
   // For a pair evaluated beyond its doubles (traced exactly as posed, or refined) at every
@@ -289,9 +290,6 @@ void polish(const QuadricPair& q, Point3& p) {
   // noise radius there lets the walk in; walks stepped between the two sheets of a rounded
   // cone's waist and back (a cylinder through the apex posed in doubles: 2 of 40 such pictures
   // certified with stretches against the curve's orientation), or from one nappe to the other.
-  const Point3 gf = q.grad_f(p), gg = q.grad_g(p);
-  const double a11 = dot(gf, gf), a12 = dot(gf, gg), a22 = dot(gg, gg);
-  if (!(q.noise_unit < 0x1p-53) && a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
   if (q.noise_unit < 0x1p-53) {
     // Traced exactly as posed: the residuals are evaluated to ~1e-19, far below the ~1e-16 that
     // a double point on the curve leaves. The residual test accepts a band ~1e-16 / sin wide
@@ -303,14 +301,20 @@ void polish(const QuadricPair& q, Point3& p) {
     for (int k = 0; k < 6; ++k) {
       Point3 x{};
       double sn = 0;
-      if (!gauss_newton_step(q, p, q.f(p), q.g(p), x, sn) || !(sn < last)) return;
+      if (k > 0) fv = q.f(p), gv = q.g(p);
+      if (!gauss_newton_step(q, p, fv, gv, x, sn) || !(sn < last)) return;
       p = x;
       if (sn <= floor) return;
       last = 0.5 * sn;
     }
     return;
   }
-  double r = residual(q, p);
+  {
+    const Point3 gf = q.grad_f(p), gg = q.grad_g(p);
+    const double a11 = dot(gf, gf), a12 = dot(gf, gg), a22 = dot(gg, gg);
+    if (a11 * a22 - a12 * a12 > 1e-2 * a11 * a22) return;
+  }
+  double r = std::max(std::abs(fv), std::abs(gv));
   for (int k = 0; k < 2 && r > 0; ++k) {
     Point3 x{};
     double sn = 0;
@@ -364,7 +368,7 @@ bool project_onto_curve(const QuadricPair& q, Point3& p, int iterations) {
     const double fv = q.f(p), gv = q.g(p);
     if (!std::isfinite(fv) || !std::isfinite(gv)) return false;
     if (relative_residual(sizes(), fv, gv) <= 1e-15) {
-      polish(q, p);
+      polish(q, p, fv, gv);
       return true;
     }
     if (it == iterations) break;
