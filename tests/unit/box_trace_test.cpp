@@ -876,3 +876,69 @@ TEST(BoxTrace, BranchesTwistingNextToAnAcnodeInAVastBox) {
     }
   }
 }
+
+// An oval and an acnode (Tu 6; generate --case 6 --seed 42 pair 19) in a given box that holds
+// the acnode and none of the oval, which lies at x in [-46, -0.49] (the box starts at x =
+// -0.214): no face is crossed, and every direction's critical points in the box include the
+// acnode, where inner_component_bound's cover stops. One certified crossing of a small box
+// around a point of the oval outside decides it (lone_loop_outside): nothing drawn, the acnode
+// alone. Checked against the oval traced whole (an automatic box) and against boxes that hold
+// it too, cut it, or hold it without the acnode.
+TEST(BoxTrace, LoneLoopOutsideAGivenBoxHoldingItsAcnode) {
+  const core::Mat4 ma = {{{Rational(-30), Rational(-2), Rational(-18), Rational(0)},
+                          {Rational(-2), Rational(91, 2), Rational(125, 2), Rational(-15)},
+                          {Rational(-18), Rational(125, 2), Rational(203, 2), Rational(-9)},
+                          {Rational(0), Rational(-15), Rational(-9), Rational(22)}}};
+  const core::Mat4 mb = {{{Rational(-4), Rational(0), Rational(-2), Rational(0)},
+                          {Rational(0), Rational(8), Rational(8), Rational(-6)},
+                          {Rational(-2), Rational(8), Rational(18), Rational(0)},
+                          {Rational(0), Rational(-6), Rational(0), Rational(10)}}};
+  const trace::Point3 lo{-0.21422747759484517, -5.971931913859417, -1.410035045745412};
+  const trace::Point3 hi{7.254022983270152, 3.597563274372078, 5.13140266033472};
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    core::QuadricMatrix a(ma), b(mb);
+    if (swapped) std::swap(a, b);
+    // The oval, traced whole: one closed branch, every point left of the box.
+    const auto whole = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    ASSERT_EQ(whole.status, certify::Status::Certified) << whole.note;
+    ASSERT_EQ(whole.branches.size(), 1u);
+    double right = -HUGE_VAL;
+    for (const auto& p : whole.branches[0].points)
+      right = std::max(right, p[0]);
+    ASSERT_LT(right, lo[0] - 0.2);
+    ASSERT_GT(right, -1.0); // close to the box: a loop ~45 wide ends 0.27 from its face
+    // The box: certified, nothing drawn, the acnode (4/3, 5/3, -1/3) in it.
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, given_box(lo, hi));
+    ASSERT_EQ(r.status, certify::Status::Certified) << swapped << ": " << r.note;
+    EXPECT_EQ(*r.affine.loops, 1);
+    EXPECT_TRUE(r.branches.empty());
+    ASSERT_TRUE(r.box_exits && r.box_exits->certified);
+    EXPECT_TRUE(r.box_exits->points.empty());
+    ASSERT_EQ(r.isolated_points.size(), 1u);
+    EXPECT_NEAR(r.isolated_points[0][0], 4.0 / 3, 1e-15);
+    EXPECT_NEAR(r.isolated_points[0][1], 5.0 / 3, 1e-15);
+    EXPECT_NEAR(r.isolated_points[0][2], -1.0 / 3, 1e-15);
+    // The box stretched left past the oval: the oval in it, closed.
+    const auto held = trace::intersect_curve(a, b, Mode::Filtered,
+                                             given_box({-50, lo[1] - 12, lo[2]}, {hi[0], 20, 12}));
+    ASSERT_EQ(held.status, certify::Status::Certified) << held.note;
+    ASSERT_EQ(held.branches.size(), 1u);
+    EXPECT_TRUE(held.branches[0].closed);
+    EXPECT_EQ(held.isolated_points.size(), 1u);
+    // Stretched halfway: the oval cut (open pieces on exact crossings), the acnode in it.
+    const auto cut = trace::intersect_curve(a, b, Mode::Filtered,
+                                            given_box({-20, lo[1] - 12, lo[2]}, {hi[0], 20, 12}));
+    ASSERT_EQ(cut.status, certify::Status::Certified) << cut.note;
+    EXPECT_FALSE(cut.branches.empty());
+    for (const auto& br : cut.branches)
+      EXPECT_FALSE(br.closed);
+    EXPECT_EQ(cut.isolated_points.size(), 1u);
+    // Around the oval alone: closed, no isolated point.
+    const auto oval =
+        trace::intersect_curve(a, b, Mode::Filtered, given_box({-50, 0.5, -1}, {-0.3, 18, 12}));
+    ASSERT_EQ(oval.status, certify::Status::Certified) << oval.note;
+    ASSERT_EQ(oval.branches.size(), 1u);
+    EXPECT_TRUE(oval.branches[0].closed);
+    EXPECT_TRUE(oval.isolated_points.empty());
+  }
+}
