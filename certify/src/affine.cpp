@@ -793,6 +793,24 @@ std::optional<V3> common_apex(const core::Mat4& a, const core::Mat4& b) {
   return p;
 }
 
+// The one affine point where both quadrics are singular (the kernel of A^2 + B^2, which is
+// ker A ∩ ker B for symmetric A, B), when there is exactly one: two plane pairs whose axes meet
+// at P are cones with apex P too, every line through P in a direction common to their conics
+// at infinity lying on both (common_apex reads the apex off a cone's invertible block only).
+std::optional<V3> common_singular_point(const core::Mat4& a, const core::Mat4& b) {
+  core::Mat4 s;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      for (size_t k = 0; k < 4; ++k)
+        s[i][j] += a[i][k] * a[k][j] + b[i][k] * b[k][j];
+  const auto ker = algebra::kernel_basis(s);
+  if (ker.size() != 1 || ker[0][3].is_zero()) return std::nullopt;
+  V3 p;
+  for (size_t i = 0; i < 3; ++i)
+    p[i] = ker[0][i] / ker[0][3];
+  return p;
+}
+
 AffineTopology common_apex_route(const V3& apex, const Chart& ch) {
   AffineTopology out;
   out.route = "common_apex";
@@ -1717,6 +1735,10 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
         AffineTopology pc = parallel_cylinders_route(a, b, *d);
         if (pc.certified() || !pp) return pc;
       }
+    // Two plane pairs of irrational planes whose axes meet at an affine point (generate --case
+    // degenerate_pencil --seed 43, pair 10: four lines through (-3/2, 1/2, 1)).
+    if (t.pencil == algebra::PencilKind::Degenerate && co == ChartOutcome::Ok)
+      if (auto p = common_singular_point(a.matrix(), b.matrix())) return common_apex_route(*p, ch);
     if (pp) return *pp;
     out.reason = "no certified projective topology";
     return out;

@@ -942,3 +942,93 @@ TEST(BoxTrace, LoneLoopOutsideAGivenBoxHoldingItsAcnode) {
     EXPECT_TRUE(oval.isolated_points.empty());
   }
 }
+
+// Two pairs of irrational planes (A: inertia (1, 1), eigenvalues 24 +- 6 sqrt 41; B: rank 2
+// through the origin) whose axes meet at P = (-3/2, 1/2, 1), the kernel of both (a degenerate
+// pencil, generate --case degenerate_pencil --seed 43 pair 10; was "no certified projective
+// topology"): every line through P in a real direction common to the conics at infinity lies
+// on both, four here. Checked as the pairs' four plane-plane lines would be by hand: every
+// traced line through one common point (P, unmoved), its direction on both conics at infinity,
+// the four directions distinct; swapped, and after a rational rigid motion.
+TEST(BoxTrace, PlanePairsWithIrrationalPlanesMeetingAtAPoint) {
+  const core::Mat4 ma = {{{Rational(9), Rational(-21), Rational(18), Rational(6)},
+                          {Rational(-21), Rational(9), Rational(-22), Rational(-14)},
+                          {Rational(18), Rational(-22), Rational(26), Rational(12)},
+                          {Rational(6), Rational(-14), Rational(12), Rational(4)}}};
+  const core::Mat4 mb = {{{Rational(1), Rational(5), Rational(-1), Rational(0)},
+                          {Rational(5), Rational(5), Rational(5), Rational(0)},
+                          {Rational(-1), Rational(5), Rational(-4), Rational(0)},
+                          {Rational(0), Rational(0), Rational(0), Rational(0)}}};
+  const auto m = motion(2, 1, -1, 3, {Rational(1, 3), Rational(-2), Rational(5, 2)});
+  for (int moved = 0; moved < 2; ++moved)
+    for (int swapped = 0; swapped < 2; ++swapped) {
+      core::QuadricMatrix a(ma), b(mb);
+      if (moved) a = a.congruent(m), b = b.congruent(m);
+      if (swapped) std::swap(a, b);
+      const std::string ctx =
+          std::string(moved ? "moved" : "as given") + (swapped ? ", swapped" : "");
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      ASSERT_TRUE(r.affine.certified());
+      EXPECT_EQ(*r.affine.lines, 4) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, 4) << ctx;
+      EXPECT_EQ(*r.affine.loops, 0) << ctx;
+      EXPECT_EQ(*r.affine.isolated_points, 0) << ctx;
+      ASSERT_EQ(r.branches.size(), 4u) << ctx;
+      // The lines' common point: the first two lines' closest points (then every line passes it).
+      std::vector<std::array<double, 3>> dirs, pts;
+      for (const auto& br : r.branches) {
+        EXPECT_FALSE(br.closed);
+        const auto &p = br.points.front(), &e = br.points.back();
+        std::array<double, 3> d{e[0] - p[0], e[1] - p[1], e[2] - p[2]};
+        const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (double& x : d)
+          x /= n;
+        dirs.push_back(d);
+        pts.push_back(p);
+        for (const auto& x : br.points) {
+          EXPECT_LE(geometric_residual(a, x), 1e-12 * r.box->diagonal()) << ctx;
+          EXPECT_LE(geometric_residual(b, x), 1e-12 * r.box->diagonal()) << ctx;
+        }
+        // On both conics at infinity.
+        for (const auto* s : {&a, &b}) {
+          double v = 0, big = 0;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+              const double t = (*s)(i, j).to_double_approx() * d[static_cast<size_t>(i)] *
+                               d[static_cast<size_t>(j)];
+              v += t;
+              big += std::fabs(t);
+            }
+          EXPECT_LE(std::fabs(v), 1e-9 * big) << ctx;
+        }
+      }
+      for (size_t i = 0; i < 4; ++i)
+        for (size_t j = i + 1; j < 4; ++j) {
+          const double c = std::fabs(dirs[i][0] * dirs[j][0] + dirs[i][1] * dirs[j][1] +
+                                     dirs[i][2] * dirs[j][2]);
+          EXPECT_LT(c, 1 - 1e-6) << ctx << ": lines " << i << ", " << j << " coincide";
+        }
+      // Every line passes through P (unmoved: (-3/2, 1/2, 1)); moved: through the point where
+      // the first two meet, found by least squares.
+      std::array<double, 3> P{-1.5, 0.5, 1};
+      if (moved) {
+        const auto &p0 = pts[0], &d0 = dirs[0], &p1 = pts[1], &d1 = dirs[1];
+        const std::array<double, 3> w{p0[0] - p1[0], p0[1] - p1[1], p0[2] - p1[2]};
+        const double bb = d0[0] * d1[0] + d0[1] * d1[1] + d0[2] * d1[2];
+        const double dd = d0[0] * w[0] + d0[1] * w[1] + d0[2] * w[2];
+        const double ee = d1[0] * w[0] + d1[1] * w[1] + d1[2] * w[2];
+        const double s = (bb * ee - dd) / (1 - bb * bb);
+        for (size_t k = 0; k < 3; ++k)
+          P[k] = p0[k] + s * d0[k];
+      }
+      for (size_t i = 0; i < 4; ++i) {
+        const std::array<double, 3> w{P[0] - pts[i][0], P[1] - pts[i][1], P[2] - pts[i][2]};
+        const double along = w[0] * dirs[i][0] + w[1] * dirs[i][1] + w[2] * dirs[i][2];
+        double off = 0;
+        for (size_t k = 0; k < 3; ++k)
+          off += (w[k] - along * dirs[i][k]) * (w[k] - along * dirs[i][k]);
+        EXPECT_LE(std::sqrt(off), 1e-9 * r.box->diagonal()) << ctx << ": line " << i;
+      }
+    }
+}

@@ -42,30 +42,30 @@
 // listed. Two cones with one common affine apex p (a degenerate pencil, route "common_apex"):
 // the curve is the lines p + t d over the real points d at infinity (p alone when there is
 // none; the apex is read off whichever quadric is a cone, the other may be a plane pair or a
-// cylinder through it). A rational plane pair in a degenerate pencil (route "plane_pair": x y
-// = 0 or x^2 = 1/4 against a cylinder or a cone): the union of the two plane sections, when it
-// is read off them exactly (see plane_pair_route). Two cylinders (or plane pairs) along one
-// rational direction d, both matrices vanishing on (d, 0) (a degenerate pencil, route
-// "parallel_cylinders": an elliptic against a parabolic cylinder, pipes of unequal shapes with
-// parallel axes): f(x + t d) = f(x) on each, so the curve is the union of the lines b + t d
-// over the real common points b of the two sections by the plane x_k = 0 (d_k != 0), exactly
-// (the resultant of the two conics of that plane, roots isolated exactly); a common point of
-// the sections at infinity is a line at infinity (listed in at_infinity_only, kind "line"), and
-// every affine line meets infinity at d (one point at infinity, multiplicity the number of
-// affine lines over C with multiplicity; d alone at infinity, kind "point", when none of them
-// is real). The two sections sharing a line (the cylinders share a plane: part of the
-// intersection is a surface) is not certified. A twisted cubic and a line (cases 10-12,
-// route "cubic_line"): the counts come from
-// their exact parametrisations (certify/cubic_line.hpp): one unbounded branch per distinct
-// real point at infinity of the cubic, one for the line; when the line lies at infinity (the
-// conics at infinity then share it) the affine curve is the cubic alone, its points at
-// infinity are the real roots of X_3, and the line is listed in at_infinity_only (kind
-// "line"). Lines only with one real line at infinity (route "exact_lines"; the conics at
-// infinity share it, gcd of the two, and are not proportional): the other real lines are
-// affine, one unbounded branch each, found exactly (certify/curve_lines.hpp: kernel lines, the
-// line through the remaining common point P of the conics at infinity, lines in the planes of
-// rational singular members) and all required; a point at infinity's multiplicity is then the
-// number of those lines through it, and the line at infinity is listed apart. Requires a
+// cylinder through it; where neither is a cone, two plane pairs whose axes meet at one affine
+// point, that point, the kernel of A^2 + B^2, when no other route reads the pair). A rational plane
+// pair in a degenerate pencil (route "plane_pair": x y = 0 or x^2 = 1/4 against a cylinder or a
+// cone): the union of the two plane sections, when it is read off them exactly (see
+// plane_pair_route). Two cylinders (or plane pairs) along one rational direction d, both matrices
+// vanishing on (d, 0) (a degenerate pencil, route "parallel_cylinders": an elliptic against a
+// parabolic cylinder, pipes of unequal shapes with parallel axes): f(x + t d) = f(x) on each, so
+// the curve is the union of the lines b + t d over the real common points b of the two sections by
+// the plane x_k = 0 (d_k != 0), exactly (the resultant of the two conics of that plane, roots
+// isolated exactly); a common point of the sections at infinity is a line at infinity (listed in
+// at_infinity_only, kind "line"), and every affine line meets infinity at d (one point at infinity,
+// multiplicity the number of affine lines over C with multiplicity; d alone at infinity, kind
+// "point", when none of them is real). The two sections sharing a line (the cylinders share a
+// plane: part of the intersection is a surface) is not certified. A twisted cubic and a line (cases
+// 10-12, route "cubic_line"): the counts come from their exact parametrisations
+// (certify/cubic_line.hpp): one unbounded branch per distinct real point at infinity of the cubic,
+// one for the line; when the line lies at infinity (the conics at infinity then share it) the
+// affine curve is the cubic alone, its points at infinity are the real roots of X_3, and the line
+// is listed in at_infinity_only (kind "line"). Lines only with one real line at infinity (route
+// "exact_lines"; the conics at infinity share it, gcd of the two, and are not proportional): the
+// other real lines are affine, one unbounded branch each, found exactly (certify/curve_lines.hpp:
+// kernel lines, the line through the remaining common point P of the conics at infinity, lines in
+// the planes of rational singular members) and all required; a point at infinity's multiplicity is
+// then the number of those lines through it, and the line at infinity is listed apart. Requires a
 // certified topology, except on these plane and apex routes.
 #pragma once
 
@@ -120,7 +120,8 @@ struct AffineTopology {
   /// (a quadric, or the other plane). Route "plane_pair": the union of the sections of
   /// `plane` and `plane2` (the two planes of a rational plane pair) by `section_of`.
   std::optional<core::Mat4> plane, plane2, section_of;
-  /// Route "common_apex" (a degenerate pencil of two cones with one affine apex): the apex;
+  /// Route "common_apex" (a degenerate pencil of two quadrics singular at one affine point, two
+  /// cones or plane pairs with that apex): the apex;
   /// the curve is the lines from it along the points at infinity (the apex alone if none).
   std::optional<std::array<core::Rational, 3>> apex;
   /// Route "parallel_cylinders": the common ruling direction d and the lines' base points b in
