@@ -1847,8 +1847,12 @@ CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatr
   // every exact move, and the calls recursed until the stack overflowed (helper-26's probe;
   // a batch lost every later line). Past the limit the pair is traced where it is.
   constexpr int max_translation_depth = 16;
+  // A plane's section (one quadric a plane, the curve its conic) is sampled in its plane, where
+  // it lies: moved to a rounded cone's apex it gained nothing and paid the special points and
+  // the box's crossings twice, there and back (~30% of a cone-plane pair posed in doubles).
+  const bool plane_section = out.affine.certified() && out.affine.route == "plane_section";
   std::optional<Point3> far =
-      depth < max_translation_depth ? far_centre(a, b) : std::optional<Point3>{};
+      depth < max_translation_depth && !plane_section ? far_centre(a, b) : std::optional<Point3>{};
   if (!far && centre && depth < max_translation_depth) far = *centre;
   if (const auto& c = far) {
     // Traced on the pair translated exactly by -c (its classification re-done there: the same
