@@ -1032,3 +1032,80 @@ TEST(BoxTrace, PlanePairsWithIrrationalPlanesMeetingAtAPoint) {
       }
     }
 }
+
+// Cuspidal quartics (Tu 9) of generate --case 9 --seed 45, automatic boxes; both were undecided.
+// Pair 7: the cusp at (-1, -4/3, 1/3), where the surfaces are tangent to high order (the angle
+// between them ~1e-8 at 5e-5 from it): a float start 1e-4 from the cusp could not step and
+// its other half ran to a face along a piece already walked through the cusp (a duplicate
+// with a dead end). Pair 8: the cusp at infinity in direction (0, 1, 1) (a double point at
+// infinity) and a simple one 0.004 rad beside it, so the arc between them turns ~4,700 out
+// (its highest point near (8.8, -4689, -4684), found by tracing in a box 2e5 wide): three
+// unbounded branches, whose third a box showing only the other two must reach. Each certified
+// with every open piece on two exact crossings, swapped too.
+TEST(BoxTrace, CuspidalQuarticsNextToTheCuspAndFarOut) {
+  auto mat = [](std::initializer_list<std::initializer_list<Rational>> rows) {
+    core::Mat4 m;
+    size_t i = 0;
+    for (const auto& row : rows) {
+      size_t j = 0;
+      for (const auto& x : row)
+        m[i][j++] = x;
+      ++i;
+    }
+    return core::QuadricMatrix(m);
+  };
+  const core::QuadricMatrix a7 =
+      mat({{-11, -6, 2, 7}, {-6, 11, -14, 0}, {2, -14, 21, 3}, {7, 0, 3, 6}});
+  const core::QuadricMatrix b7 = mat({{-3, -1, 0, 1}, {-1, 6, 1, 4}, {0, 1, 8, 4}, {1, 4, 4, 5}});
+  const core::QuadricMatrix a8 =
+      mat({{Rational(63, 2), Rational(33, 2), Rational(-11, 2), Rational(89, 2)},
+           {Rational(33, 2), Rational(100, 3), Rational(-34, 3), Rational(86, 3)},
+           {Rational(-11, 2), Rational(-34, 3), Rational(-32, 3), Rational(-20, 3)},
+           {Rational(89, 2), Rational(86, 3), Rational(-20, 3), Rational(473, 6)}});
+  const core::QuadricMatrix b8 =
+      mat({{Rational(-23, 4), Rational(-9, 4), Rational(3, 4), Rational(-33, 4)},
+           {Rational(-9, 4), Rational(4, 3), Rational(-13, 3), Rational(-7, 3)},
+           {Rational(3, 4), Rational(-13, 3), Rational(22, 3), Rational(-2, 3)},
+           {Rational(-33, 4), Rational(-7, 3), Rational(-2, 3), Rational(-161, 12)}});
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    const std::string ctx = swapped ? "swapped" : "as given";
+    {
+      const auto& a = swapped ? b7 : a7;
+      const auto& b = swapped ? a7 : b7;
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      EXPECT_EQ(r.topology.tu_case, 9);
+      EXPECT_EQ(*r.affine.unbounded_branches, 4);
+      EXPECT_EQ(*r.affine.loops, 0);
+      // The cusp, exact, and a traced piece through it (within 1e-9 of the box).
+      ASSERT_EQ(r.topology.special_points.size(), 1u);
+      const auto& cusp = r.topology.special_points[0];
+      EXPECT_EQ(cusp.kind, "cusp");
+      EXPECT_EQ(cusp.coords[0], "-1");
+      EXPECT_EQ(cusp.coords[1], "-4/3");
+      EXPECT_EQ(cusp.coords[2], "1/3");
+      surfcert::testing::expect_open_pieces(r, a, b, 4, "arc", "pair 7, " + ctx);
+      double nearest = HUGE_VAL;
+      for (const auto& br : r.branches)
+        for (const auto& p : br.points)
+          nearest = std::min(nearest, std::hypot(p[0] + 1, p[1] + 4.0 / 3, p[2] - 1.0 / 3));
+      EXPECT_LE(nearest, 1e-9 * r.box->diagonal()) << ctx;
+    }
+    {
+      const auto& a = swapped ? b8 : a8;
+      const auto& b = swapped ? a8 : b8;
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      EXPECT_EQ(r.topology.tu_case, 9);
+      EXPECT_EQ(*r.affine.unbounded_branches, 3);
+      ASSERT_EQ(r.affine.points_at_infinity.size(), 3u);
+      surfcert::testing::expect_open_pieces(r, a, b, 3, "arc", "pair 8, " + ctx);
+      // The far arc is in the picture: a traced point near its highest point.
+      double nearest = HUGE_VAL;
+      for (const auto& br : r.branches)
+        for (const auto& p : br.points)
+          nearest = std::min(nearest, std::hypot(p[0] - 8.8, p[1] + 4689, p[2] + 4684));
+      EXPECT_LT(nearest, 50) << ctx;
+    }
+  }
+}

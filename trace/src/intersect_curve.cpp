@@ -594,6 +594,14 @@ std::string too_many_arms(const QsicResult& t, const std::vector<Branch>& branch
   return "";
 }
 
+// An automatic box is doubled, at most this many times, while it shows fewer open pieces than
+// the certified number of unbounded branches: a branch may pass outside the first box, far
+// outside (a cuspidal quartic's cusp at infinity with a simple point at infinity 0.004 rad
+// beside it: the arc between the two turns ~4,700 out, where the box placed around the rest of
+// the curve was 12 wide; six doublings missed it, generate --case 9 --seed 45 pair 8 swapped).
+// The steps scale with the box: a doubling costs about one trace.
+constexpr int kMaxBoxDoublings = 12;
+
 using ExactPoint = std::array<algebra::QuadraticNumber, 3>;
 
 // Whether an exact point lies in the closed box: each coordinate a + b sqrt(d) against each
@@ -957,7 +965,7 @@ void trace_cubic_line(const core::QuadricMatrix& a, const core::QuadricMatrix& b
   };
   out.box_automatic = !opt.box;
   Box box = opt.box ? *opt.box : box_around(sizing);
-  for (int attempt = 0; attempt < 7; ++attempt) {
+  for (int attempt = 0; attempt <= kMaxBoxDoublings; ++attempt) {
     trace_at(box);
     if (opt.box || !af.unbounded_branches ||
         static_cast<int>(out.branches.size()) >= *af.unbounded_branches)
@@ -1120,14 +1128,30 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
         }
   out.box_automatic = !opt.box;
   Box box = opt.box ? *opt.box : box_around(sizing);
+  // The open pieces the picture shows crossing the box: half the distinct points where open
+  // pieces end on its faces. A walk that died inside ends off the faces, and a walk that jumped
+  // from one branch to another (steps of ~170 in a box 3,000 wide) ends on crossings that
+  // other pieces end on too: counted as pieces, they stopped the doubling below one step
+  // short of an arc running 4,700 out (generate --case 9 --seed 45 pair 8).
   auto count_open = [&] {
-    int n = 0;
-    for (const auto& br : out.branches)
-      n += br.closed ? 0 : 1;
-    return n;
+    const double eps = 1e-7 * box.diagonal();
+    std::vector<Point3> ends;
+    for (const auto& br : out.branches) {
+      if (br.closed || br.points.size() < 2) continue;
+      for (const Point3* e : {&br.points.front(), &br.points.back()}) {
+        if (!on_face(box, *e, eps)) continue;
+        const bool seen = std::any_of(ends.begin(), ends.end(), [&](const Point3& x) {
+          return std::fabs(x[0] - (*e)[0]) + std::fabs(x[1] - (*e)[1]) +
+                     std::fabs(x[2] - (*e)[2]) <=
+                 eps;
+        });
+        if (!seen) ends.push_back(*e);
+      }
+    }
+    return static_cast<int>(ends.size() / 2);
   };
-  // An automatic box is doubled (at most 6 times) while it shows fewer open pieces than the
-  // certified number of unbounded branches: a branch may pass outside the first box.
+  // An automatic box is doubled (kMaxBoxDoublings) while count_open() is short of the
+  // certified number of unbounded branches.
   const bool all_closed =
       curve_by_conics && !conics.empty() &&
       std::all_of(conics.begin(), conics.end(), [](const Branch& br) { return br.closed; });
@@ -1190,7 +1214,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
     }
   };
   auto place = [&]() {
-    for (int attempt = 0; attempt < 7; ++attempt) {
+    for (int attempt = 0; attempt <= kMaxBoxDoublings; ++attempt) {
       trace_at(box);
       if (opt.box || !af.unbounded_branches || count_open() >= *af.unbounded_branches) break;
       for (size_t k = 0; k < 3; ++k) {

@@ -808,12 +808,14 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
     tb.bound();
     traced.push_back(std::move(tb));
   }
-  // A walk that ended off the box's faces at both ends (it died: next to a cusp, where the
-  // rounded pair's gradients are noise) is dropped when every point of it lies on another
-  // traced piece: a stretch of that piece walked twice (a start 6e-6 from the cusp of a cuspidal
-  // loop gave an 8-point arc beside the loop through it: undecided, "open branches do not end
-  // on the box's faces"; generate --case 9 --seed 32 pair 18). Anything else is kept, and the
-  // picture is judged as traced.
+  // A walk that ended off the box's faces (it died: next to a cusp, where the rounded pair's
+  // gradients are noise) is dropped when every point of it lies on another traced piece: a
+  // stretch of that piece walked twice (a start 6e-6 from the cusp of a cuspidal loop gave an
+  // 8-point arc beside the loop through it: undecided, "open branches do not end on the box's
+  // faces"; generate --case 9 --seed 32 pair 18). At one end or both: a start 1e-4 from a cusp
+  // whose surfaces are tangent to high order died there at once, and its other half ran to a
+  // face along a piece already walked through the cusp (generate --case 9 --seed 45 pair 7).
+  // Anything else is kept, and the picture is judged as traced.
   auto on_face = [&](const V& p) {
     if (!opt.box) return false;
     for (size_t k = 0; k < 3; ++k)
@@ -825,7 +827,8 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
   std::vector<bool> dropped(traced.size(), false);
   for (size_t i = 0; i < traced.size(); ++i) {
     const auto& pts = traced[i].br.points;
-    if (traced[i].br.closed || pts.empty() || on_face(pts.front()) || on_face(pts.back())) continue;
+    if (traced[i].br.closed || pts.empty() || (on_face(pts.front()) && on_face(pts.back())))
+      continue;
     for (size_t j = 0; j < traced.size() && !dropped[i]; ++j) {
       if (j == i || dropped[j]) continue;
       size_t hint = 0;
