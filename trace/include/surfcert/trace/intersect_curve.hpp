@@ -21,7 +21,10 @@
 // certified then only when the loops lying wholly inside it are exactly those traced closed —
 // decided exactly when the loops are conics of singular members' planes,
 // certify/ellipses_in_box.hpp — or when certify/inner_loops.hpp proves that no more lie inside,
-// or when the whole curve is one loop and it crosses the faces; the isolated points in a box
+// or when the whole curve is one loop and it crosses the faces, or when the affine curve is one
+// loop beside isolated points and crosses no face: a certified crossing of the faces of a
+// small box around one of its points, outside the given box or inside it, places it; the
+// isolated points in a box
 // are those of the exact special points lying in it, decided exactly; a curve of isolated
 // points only is not walked),
 // no crunode (cusp) has more than 4 (2) traced arms leaving it (a walk on another piece of
@@ -29,7 +32,8 @@
 // curve with the box's faces are certified (certify/box_exits.hpp: complete, transversal, off
 // the edges) and the traced open pieces are exactly half as many, their ends matched one to
 // one with those crossings (so a branch crossing the box twice is two certified pieces); an
-// automatic box must also show at least one piece per unbounded branch, and no point may stay
+// automatic box must also show at least one piece per unbounded branch (it is doubled, up to 12
+// times, while its pieces' distinct face crossings are fewer), and no point may stay
 // more than 1e-9 of the box's diagonal off the surfaces (a picture of another curve whose ends
 // happen to match). The automatic box has short dyadic faces, moved a little when a face meets
 // the curve non-generically. Pairs beyond 2^+-8 are traced at unit size (exact power-of-two
