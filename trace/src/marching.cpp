@@ -689,15 +689,25 @@ bool on_branch(const Tracer& tr, const QuadricPair& q, const V& x, const Traced&
   const double reach = 0.05 * t.max_len + noise + eps;
   for (size_t k = 0; k < 3; ++k)
     if (x[k] < t.lo[k] - reach || x[k] > t.hi[k] + reach) return false;
-  for (const V& p : pts)
-    if (dist(x, p) <= eps) return true;
-  if (n < 2) return false;
+  if (n == 0) return false;
+  if (n == 1) return dist(x, pts[0]) <= eps;
+  // x is on the branch when a point lies within eps of it or a segment passes the test below:
+  // both looked at together, from the hint on (where the previous point of a walk checked
+  // against this branch was found), so that a stretch lying on the branch is checked in time
+  // proportional to its own length. (All points first, then the segments from the hint: a
+  // dead walk of 200,000 points checked against a piece of 200,000 took 66 s, generate --case
+  // 9 --seed 46 pair 6 in a box 20,000 wide.)
   const V rx = tr.raw_tangent(x);
   const double kappa = std::min(tr.curvature(x, rx), 1e300);
   const size_t segs = t.br.closed ? n : n - 1;
-  const size_t first = hint && *hint < segs ? *hint : 0;
-  for (size_t m = 0; m < segs; ++m) {
-    const size_t i = first + m < segs ? first + m : first + m - segs;
+  const size_t first = hint && *hint < n ? *hint : 0;
+  for (size_t m = 0; m < n; ++m) {
+    const size_t i = first + m < n ? first + m : first + m - n;
+    if (dist(x, pts[i]) <= eps) {
+      if (hint) *hint = i;
+      return true;
+    }
+    if (i >= segs) continue;
     const V& a = pts[i];
     const V& b = pts[(i + 1) % n];
     const double len = dist(a, b);
