@@ -1109,3 +1109,58 @@ TEST(BoxTrace, CuspidalQuarticsNextToTheCuspAndFarOut) {
     }
   }
 }
+
+// An oval and an acnode at (0, -1, -1) (Tu 6; generate --case 6 --seed 48 pair 3): both
+// surfaces pass through it with parallel gradients (0, 12, -24) and (0, -32, 64) (checked here
+// by substitution). A float start 7e-7 from the acnode passed the residual test there (f and
+// g vanish to second order) and its walk circled a loop of rounding noise, an open piece ending
+// off the faces (undecided). Certified: the oval closed, the acnode as an isolated point, no
+// other piece; swapped too.
+TEST(BoxTrace, NoiseWalkNextToAnAcnodeIsNoBranch) {
+  const core::Mat4 ma = {{{Rational(-4), Rational(22), Rational(-32), Rational(-10)},
+                          {Rational(22), Rational(-21), Rational(15), Rational(6)},
+                          {Rational(-32), Rational(15), Rational(12), Rational(3)},
+                          {Rational(-10), Rational(6), Rational(3), Rational(-3)}}};
+  const core::Mat4 mb = {{{Rational(-8), Rational(-44), Rational(72), Rational(28)},
+                          {Rational(-44), Rational(40), Rational(-24), Rational(-16)},
+                          {Rational(72), Rational(-24), Rational(-48), Rational(-8)},
+                          {Rational(28), Rational(-16), Rational(-8), Rational(8)}}};
+  // The acnode by substitution: both forms vanish, the gradients are parallel.
+  const std::array<Rational, 4> x{Rational(0), Rational(-1), Rational(-1), Rational(1)};
+  std::array<Rational, 4> ga{}, gb{};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      ga[i] += ma[i][j] * x[j];
+      gb[i] += mb[i][j] * x[j];
+    }
+  Rational fa, fb;
+  for (size_t i = 0; i < 4; ++i) {
+    fa += x[i] * ga[i];
+    fb += x[i] * gb[i];
+  }
+  ASSERT_TRUE(fa.is_zero() && fb.is_zero());
+  for (size_t i = 0; i < 3; ++i)
+    ASSERT_TRUE((ga[i] * Rational(-8, 3) - gb[i]).is_zero());
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    core::QuadricMatrix a(ma), b(mb);
+    if (swapped) std::swap(a, b);
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    ASSERT_EQ(r.status, certify::Status::Certified) << swapped << ": " << r.note;
+    EXPECT_EQ(r.topology.tu_case, 6);
+    EXPECT_EQ(*r.affine.loops, 1);
+    EXPECT_EQ(*r.affine.unbounded_branches, 0);
+    ASSERT_EQ(r.branches.size(), 1u);
+    EXPECT_TRUE(r.branches[0].closed);
+    ASSERT_EQ(r.isolated_points.size(), 1u);
+    EXPECT_EQ(r.isolated_points[0][0], 0.0);
+    EXPECT_EQ(r.isolated_points[0][1], -1.0);
+    EXPECT_EQ(r.isolated_points[0][2], -1.0);
+    const double size = r.box->diagonal();
+    for (const auto& p : r.branches[0].points) {
+      EXPECT_LE(geometric_residual(a, p), kGeo * size);
+      EXPECT_LE(geometric_residual(b, p), kGeo * size);
+      // The oval keeps away from the acnode.
+      EXPECT_GT(std::hypot(p[0], p[1] + 1, p[2] + 1), 0.1);
+    }
+  }
+}
