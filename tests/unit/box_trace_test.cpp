@@ -1067,46 +1067,47 @@ TEST(BoxTrace, CuspidalQuarticsNextToTheCuspAndFarOut) {
            {Rational(-9, 4), Rational(4, 3), Rational(-13, 3), Rational(-7, 3)},
            {Rational(3, 4), Rational(-13, 3), Rational(22, 3), Rational(-2, 3)},
            {Rational(-33, 4), Rational(-7, 3), Rational(-2, 3), Rational(-161, 12)}});
+  // Traced with an automatic box, certified, Tu 9, with `unbounded` branches on as many
+  // pieces; and the distance from the traced points to x.
+  auto traced = [](const core::QuadricMatrix& a, const core::QuadricMatrix& b, int unbounded,
+                   const std::string& ctx) {
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    EXPECT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+    EXPECT_EQ(r.topology.tu_case, 9) << ctx;
+    EXPECT_TRUE(r.affine.certified()) << ctx;
+    if (r.affine.certified()) {
+      EXPECT_EQ(*r.affine.unbounded_branches, unbounded) << ctx;
+      EXPECT_EQ(*r.affine.loops, 0) << ctx;
+    }
+    surfcert::testing::expect_open_pieces(r, a, b, unbounded, "arc", ctx);
+    return r;
+  };
+  auto nearest = [](const trace::CurveResult& r, const trace::Point3& x) {
+    double best = HUGE_VAL;
+    for (const auto& br : r.branches)
+      for (const auto& p : br.points)
+        best = std::min(best, std::hypot(p[0] - x[0], p[1] - x[1], p[2] - x[2]));
+    return best;
+  };
   for (int swapped = 0; swapped < 2; ++swapped) {
     const std::string ctx = swapped ? "swapped" : "as given";
-    {
-      const auto& a = swapped ? b7 : a7;
-      const auto& b = swapped ? a7 : b7;
-      const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
-      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
-      EXPECT_EQ(r.topology.tu_case, 9);
-      EXPECT_EQ(*r.affine.unbounded_branches, 4);
-      EXPECT_EQ(*r.affine.loops, 0);
-      // The cusp, exact, and a traced piece through it (within 1e-9 of the box).
-      ASSERT_EQ(r.topology.special_points.size(), 1u);
-      const auto& cusp = r.topology.special_points[0];
-      EXPECT_EQ(cusp.kind, "cusp");
-      EXPECT_EQ(cusp.coords[0], "-1");
-      EXPECT_EQ(cusp.coords[1], "-4/3");
-      EXPECT_EQ(cusp.coords[2], "1/3");
-      surfcert::testing::expect_open_pieces(r, a, b, 4, "arc", "pair 7, " + ctx);
-      double nearest = HUGE_VAL;
-      for (const auto& br : r.branches)
-        for (const auto& p : br.points)
-          nearest = std::min(nearest, std::hypot(p[0] + 1, p[1] + 4.0 / 3, p[2] - 1.0 / 3));
-      EXPECT_LE(nearest, 1e-9 * r.box->diagonal()) << ctx;
-    }
-    {
-      const auto& a = swapped ? b8 : a8;
-      const auto& b = swapped ? a8 : b8;
-      const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
-      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
-      EXPECT_EQ(r.topology.tu_case, 9);
-      EXPECT_EQ(*r.affine.unbounded_branches, 3);
-      ASSERT_EQ(r.affine.points_at_infinity.size(), 3u);
-      surfcert::testing::expect_open_pieces(r, a, b, 3, "arc", "pair 8, " + ctx);
-      // The far arc is in the picture: a traced point near its highest point.
-      double nearest = HUGE_VAL;
-      for (const auto& br : r.branches)
-        for (const auto& p : br.points)
-          nearest = std::min(nearest, std::hypot(p[0] - 8.8, p[1] + 4689, p[2] + 4684));
-      EXPECT_LT(nearest, 50) << ctx;
-    }
+    // Pair 7: the cusp, exact, and a traced piece through it (within 1e-9 of the box).
+    const auto r7 =
+        swapped ? traced(b7, a7, 4, "pair 7, " + ctx) : traced(a7, b7, 4, "pair 7, " + ctx);
+    ASSERT_EQ(r7.topology.special_points.size(), 1u);
+    const auto& cusp = r7.topology.special_points[0];
+    EXPECT_EQ(cusp.kind, "cusp");
+    EXPECT_EQ(cusp.coords[0], "-1");
+    EXPECT_EQ(cusp.coords[1], "-4/3");
+    EXPECT_EQ(cusp.coords[2], "1/3");
+    ASSERT_TRUE(r7.box.has_value());
+    EXPECT_LE(nearest(r7, {-1, -4.0 / 3, 1.0 / 3}), 1e-9 * r7.box->diagonal()) << ctx;
+    // Pair 8: three points at infinity, and the far arc in the picture (a traced point near
+    // its highest point).
+    const auto r8 =
+        swapped ? traced(b8, a8, 3, "pair 8, " + ctx) : traced(a8, b8, 3, "pair 8, " + ctx);
+    EXPECT_EQ(r8.affine.points_at_infinity.size(), 3u);
+    EXPECT_LT(nearest(r8, {8.8, -4689, -4684}), 50) << ctx;
   }
 }
 
