@@ -9,6 +9,7 @@
 #include "surfcert/certify/ellipses_in_box.hpp"
 #include "surfcert/certify/enclosure.hpp"
 #include "surfcert/certify/inner_loops.hpp"
+#include "surfcert/certify/oval_chart.hpp"
 #include "surfcert/certify/proven_loops.hpp"
 #include "surfcert/certify/report.hpp"
 #include "surfcert/certify/special_points.hpp"
@@ -1676,6 +1677,126 @@ CurveResult trace_rescaled(const core::QuadricMatrix& a, const core::QuadricMatr
 
 namespace {
 
+// Boxes proposed around one loop the tracer drew closed, for certify::proven_loops: its points'
+// bounding box widened by 1/16, 1/4, then 1/64 of its largest extent, outwards to the grid of
+// dyadic_outward (empty when the points are not finite or all equal). Floats only choose them.
+std::vector<certify::RationalBox> loop_boxes(const std::vector<Point3>& points) {
+  Box bb;
+  bool finite = true;
+  for (size_t k = 0; k < 3; ++k)
+    bb.min[k] = HUGE_VAL, bb.max[k] = -HUGE_VAL;
+  for (const auto& p : points)
+    for (size_t k = 0; k < 3; ++k) {
+      finite = finite && std::isfinite(p[k]);
+      bb.min[k] = std::min(bb.min[k], p[k]);
+      bb.max[k] = std::max(bb.max[k], p[k]);
+    }
+  double extent = 0;
+  for (size_t k = 0; k < 3; ++k)
+    extent = std::max(extent, bb.max[k] - bb.min[k]);
+  std::vector<certify::RationalBox> boxes;
+  if (!finite || !(extent > 0) || !std::isfinite(extent)) return boxes;
+  for (double margin : {1.0 / 16, 1.0 / 4, 1.0 / 64}) {
+    Box m = bb;
+    for (size_t k = 0; k < 3; ++k) {
+      m.min[k] -= margin * extent;
+      m.max[k] += margin * extent;
+    }
+    m = dyadic_outward(m);
+    certify::RationalBox r;
+    bool ok = true;
+    for (size_t k = 0; k < 3; ++k) {
+      ok = ok && std::isfinite(m.min[k]) && std::isfinite(m.max[k]) && m.min[k] < m.max[k];
+      if (!ok) break;
+      r.lo[k] = core::Rational::exact_from_double(m.min[k]);
+      r.hi[k] = core::Rational::exact_from_double(m.max[k]);
+    }
+    if (ok) boxes.push_back(std::move(r));
+  }
+  return boxes;
+}
+
+// The loops the tracer drew closed, as proposals for certify::proven_loops (loop_boxes each).
+std::vector<std::vector<certify::RationalBox>> loop_proposals(const CurveResult& out) {
+  std::vector<std::vector<certify::RationalBox>> proposals;
+  for (const auto& br : out.branches) {
+    if (!br.closed || br.points.size() < 3) continue;
+    auto boxes = loop_boxes(br.points);
+    if (!boxes.empty()) proposals.push_back(std::move(boxes));
+  }
+  return proposals;
+}
+
+// A direction d (largest |d_k| = 1) along which the points of p and of q lie in disjoint
+// intervals, the one with the widest gap relative to the sets' extent among the centroids'
+// difference, the axes, the face and body diagonals and 2000 directions spread over a sphere;
+// nullopt when none separates them.
+// Floats: it only proposes the boxes' frame.
+std::optional<std::array<double, 3>> separating_direction(const std::vector<Point3>& p,
+                                                          const std::vector<Point3>& q) {
+  if (p.empty() || q.empty()) return std::nullopt;
+  auto centroid = [](const std::vector<Point3>& v) {
+    Point3 c{};
+    for (const auto& x : v)
+      for (size_t k = 0; k < 3; ++k)
+        c[k] += x[k] / static_cast<double>(v.size());
+    return c;
+  };
+  const Point3 cp = centroid(p), cq = centroid(q);
+  std::vector<std::array<double, 3>> tries{{cq[0] - cp[0], cq[1] - cp[1], cq[2] - cp[2]}};
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k)
+        if (i > 0 || (i == 0 && (j > 0 || (j == 0 && k > 0))))
+          tries.push_back({double(i), double(j), double(k)});
+  // Then 2000 directions spread evenly over a hemisphere (a Fibonacci lattice): ovals on the
+  // two sides of a cone's apex are often separated by no axis nor diagonal.
+  const int n = 2000;
+  for (int i = 0; i < n; ++i) {
+    const double z = (i + 0.5) / n, rho = std::sqrt(1 - z * z);
+    const double phi = 2.399963229728653 * i; // the golden angle
+    tries.push_back({rho * std::cos(phi), rho * std::sin(phi), z});
+  }
+  std::optional<std::array<double, 3>> best;
+  double best_gap = 0;
+  for (auto d : tries) {
+    const double big = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
+    if (!(big > 0) || !std::isfinite(big)) continue;
+    for (auto& e : d)
+      e /= big;
+    auto range = [&d](const std::vector<Point3>& v) {
+      double lo = HUGE_VAL, hi = -HUGE_VAL;
+      for (const auto& x : v) {
+        const double t = d[0] * x[0] + d[1] * x[1] + d[2] * x[2];
+        lo = std::min(lo, t), hi = std::max(hi, t);
+      }
+      return std::array<double, 2>{lo, hi};
+    };
+    const auto rp = range(p), rq = range(q);
+    const double gap = std::max(rq[0] - rp[1], rp[0] - rq[1]);
+    const double extent = std::max(rp[1] - rp[0], rq[1] - rq[0]);
+    if (gap > 0 && extent > 0 && gap / extent > best_gap) best_gap = gap / extent, best = d;
+  }
+  return best;
+}
+
+// The reading whose loops loops_in_oval_chart proves (see the header).
+std::optional<certify::AffineTopology> settle_in_oval_chart(const core::QuadricMatrix& a,
+                                                            const core::QuadricMatrix& b,
+                                                            const CurveResult& out,
+                                                            const TraceOptions& opt) {
+  const certify::Morphology* m = out.topology.morphology;
+  if (!m || !out.affine.points_at_infinity_complete) return std::nullopt;
+  const auto loops =
+      loops_in_oval_chart(a, b, *m, static_cast<int>(out.affine.points_at_infinity.size()), opt);
+  if (!loops) return std::nullopt;
+  certify::OvalsAtInfinity ov;
+  ov.loops = loops;
+  certify::AffineTopology af = out.affine;
+  if (certify::settle_by_oval_chart(af, ov)) return af;
+  return std::nullopt;
+}
+
 // The affine reading left undecided only by how the points at infinity are shared among the
 // ovals (AffineTopology::readings), settled by the loops the tracer drew closed: each closed
 // branch proposes tight dyadic boxes around it (its points' bounding box widened by 1/16,
@@ -1684,48 +1805,15 @@ namespace {
 // (no crossing with the box's faces, at least one with a plane splitting it). The floats only
 // choose the boxes; a loop the tracer missed proves nothing, so only the readings with fewer
 // loops than proven are dropped. When more than one remains, certify::loops_upper_bound may
-// drop those with more loops than it proves at most (nullopt when neither leaves one reading).
+// drop those with more loops than it proves at most. Still several: the ovals are asked which
+// of them meet infinity in a chart where all are bounded (settle_in_oval_chart). nullopt when
+// none of these leaves one reading.
 std::optional<certify::AffineTopology> settle_by_traced_loops(const core::QuadricMatrix& a,
                                                               const core::QuadricMatrix& b,
-                                                              const CurveResult& out) {
+                                                              const CurveResult& out,
+                                                              const TraceOptions& opt) {
   if (out.affine.readings.size() < 2 || out.affine.certified()) return std::nullopt;
-  std::vector<std::vector<certify::RationalBox>> proposals;
-  for (const auto& br : out.branches) {
-    if (!br.closed || br.points.size() < 3) continue;
-    Box bb;
-    bool finite = true;
-    for (size_t k = 0; k < 3; ++k)
-      bb.min[k] = HUGE_VAL, bb.max[k] = -HUGE_VAL;
-    for (const auto& p : br.points)
-      for (size_t k = 0; k < 3; ++k) {
-        finite = finite && std::isfinite(p[k]);
-        bb.min[k] = std::min(bb.min[k], p[k]);
-        bb.max[k] = std::max(bb.max[k], p[k]);
-      }
-    double extent = 0;
-    for (size_t k = 0; k < 3; ++k)
-      extent = std::max(extent, bb.max[k] - bb.min[k]);
-    if (!finite || !(extent > 0) || !std::isfinite(extent)) continue;
-    std::vector<certify::RationalBox> boxes;
-    for (double margin : {1.0 / 16, 1.0 / 4, 1.0 / 64}) {
-      Box m = bb;
-      for (size_t k = 0; k < 3; ++k) {
-        m.min[k] -= margin * extent;
-        m.max[k] += margin * extent;
-      }
-      m = dyadic_outward(m);
-      certify::RationalBox r;
-      bool ok = true;
-      for (size_t k = 0; k < 3; ++k) {
-        ok = ok && std::isfinite(m.min[k]) && std::isfinite(m.max[k]) && m.min[k] < m.max[k];
-        if (!ok) break;
-        r.lo[k] = core::Rational::exact_from_double(m.min[k]);
-        r.hi[k] = core::Rational::exact_from_double(m.max[k]);
-      }
-      if (ok) boxes.push_back(std::move(r));
-    }
-    if (!boxes.empty()) proposals.push_back(std::move(boxes));
-  }
+  const auto proposals = loop_proposals(out);
   const certify::ProvenLoops p = proposals.empty()
                                      ? certify::ProvenLoops{}
                                      : certify::proven_loops(a.matrix(), b.matrix(), proposals);
@@ -1736,10 +1824,79 @@ std::optional<certify::AffineTopology> settle_by_traced_loops(const core::Quadri
   // one reading when the tracer saw every loop.
   const certify::LoopUpperBound u = certify::loops_upper_bound(a.matrix(), b.matrix(), p.count);
   if (u.bound && certify::settle_by_proven_loops(af, p, &u)) return af;
-  return std::nullopt;
+  return settle_in_oval_chart(a, b, out, opt);
 }
 
 } // namespace
+
+std::optional<int> loops_in_oval_chart(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                       const certify::Morphology& m, int points_at_infinity,
+                                       const TraceOptions& opt) {
+  if (m.loops != 2 || m.connected_components != 2) return std::nullopt;
+  std::string why;
+  const auto chart = certify::oval_chart(a.matrix(), b.matrix(), why);
+  if (!chart) return std::nullopt;
+  const core::QuadricMatrix ca(chart->a), cb(chart->b);
+  QsicResult t = classify_qsic(ca, cb, Mode::Filtered);
+  if (t.status != Status::Certified || t.morphology != &m) return std::nullopt;
+  TraceOptions o;
+  o.tolerance = opt.tolerance;
+  o.max_points_per_branch = opt.max_points_per_branch;
+  const CurveResult there = trace_curve_at(ca, cb, std::move(t), o, 0);
+  std::vector<const std::vector<Point3>*> loops;
+  for (const auto& br : there.branches)
+    if (br.closed && br.points.size() >= 3) loops.push_back(&br.points);
+  if (loops.size() != 2) return std::nullopt;
+  // Boxes around the two loops, disjoint: along a direction d that separates the traced loops
+  // (floats propose it), made the chart's second coordinate (certify::oval_chart_along), each
+  // box cut at the middle of the gap; d = the first coordinate's axis needs no new chart.
+  const auto sep = separating_direction(*loops[0], *loops[1]);
+  if (!sep) return std::nullopt;
+  std::array<core::Rational, 3> d;
+  for (size_t k = 0; k < 3; ++k)
+    d[k] = core::Rational::exact_from_double(
+        std::ldexp(std::nearbyint(std::ldexp((*sep)[k], 12)), -12));
+  std::array<std::array<core::Rational, 3>, 3> r;
+  std::optional<certify::OvalChart> along = certify::oval_chart_along(*chart, d, r);
+  const size_t axis = along ? 1 : 0;
+  std::array<std::array<double, 3>, 3> rd{};
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      rd[i][j] = along ? r[i][j].to_double_approx() : (i == j ? 1.0 : 0.0);
+  if (!along) along = *chart;
+  std::array<std::vector<Point3>, 2> pts;
+  std::array<double, 2> lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (size_t l = 0; l < 2; ++l)
+    for (const Point3& y : *loops[l]) {
+      Point3 z{};
+      for (size_t i = 0; i < 3; ++i)
+        z[i] = rd[i][0] * y[0] + rd[i][1] * y[1] + rd[i][2] * y[2];
+      pts[l].push_back(z);
+      lo[l] = std::min(lo[l], z[axis]);
+      hi[l] = std::max(hi[l], z[axis]);
+    }
+  const size_t below = hi[0] < lo[1] ? 0 : 1;
+  if (!(hi[below] < lo[1 - below])) return std::nullopt;
+  // Cut a third of the gap from each side: closed boxes that touch are not disjoint.
+  const double gap = lo[1 - below] - hi[below];
+  const core::Rational cut_lo = core::Rational::exact_from_double(hi[below] + gap / 3),
+                       cut_hi = core::Rational::exact_from_double(lo[1 - below] - gap / 3);
+  if (!(cut_lo < cut_hi)) return std::nullopt;
+  std::vector<std::vector<certify::RationalBox>> proposals;
+  for (size_t l = 0; l < 2; ++l) {
+    std::vector<certify::RationalBox> boxes;
+    for (certify::RationalBox bx : loop_boxes(pts[l])) {
+      if (l == below && cut_lo < bx.hi[axis]) bx.hi[axis] = cut_lo;
+      if (l != below && bx.lo[axis] < cut_hi) bx.lo[axis] = cut_hi;
+      if (bx.lo[axis] < bx.hi[axis]) boxes.push_back(std::move(bx));
+    }
+    proposals.push_back(std::move(boxes));
+  }
+  const certify::ProvenLoops p = certify::proven_loops(along->a, along->b, proposals);
+  const certify::OvalsAtInfinity ov =
+      certify::ovals_at_infinity(*along, p, m.loops, points_at_infinity);
+  return ov.loops;
+}
 
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         QsicResult topology, const TraceOptions& opt) {
@@ -1759,7 +1916,7 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
     return out;
   }
   CurveResult out = trace_curve_at(a, b, std::move(topology), opt, 0);
-  if (auto settled = settle_by_traced_loops(a, b, out)) {
+  if (auto settled = settle_by_traced_loops(a, b, out, opt)) {
     // The affine reading is now certified: the picture is judged against it from the start
     // (the same routes, translated or rescaled copies included, with this reading carried).
     QsicResult t = out.topology;

@@ -45,7 +45,9 @@
 // pencil decides, certify/affine.hpp) are settled after a first trace: each traced closed
 // branch proposes tight dyadic boxes, certify/proven_loops.hpp proves exactly that a loop lies
 // in each (a lower bound) and bounds the compact components from above by the coordinates'
-// exact critical points; when one reading is left the pair is traced again against it.
+// exact critical points; when readings remain, loops_in_oval_chart (below) asks which ovals
+// meet infinity in a chart where all are bounded; when one reading is left the pair is traced
+// again against it.
 // Whatever the route, a certified picture has no straight-line branch where the affine reading
 // has no line, and every traced point lies within 1e-9 of the curve's own size (plus 16 ulps of
 // its coordinates) of both exact surfaces; otherwise it is undecided.
@@ -118,6 +120,18 @@ CurveResult intersect_curve(const core::QuadricMatrix& a, const core::QuadricMat
 /// missing).
 CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                         certify::QsicResult topology, const TraceOptions& opt);
+
+/// The curve's affine loops when it is two smooth ovals (`m`: loops == connected_components
+/// == 2) with `points_at_infinity` distinct real points at infinity: the ovals that miss the
+/// plane at infinity, decided in a chart whose plane at infinity misses the curve
+/// (certify/oval_chart.hpp). The pair is traced there (every oval a closed loop), a direction
+/// separating the two traced loops becomes a chart axis, certify::proven_loops boxes each
+/// oval, and the old plane at infinity's crossings inside each box are counted exactly. The
+/// floats choose the member, the plane, the direction and the boxes; nullopt when a step
+/// proves nothing.
+std::optional<int> loops_in_oval_chart(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                                       const certify::Morphology& m, int points_at_infinity,
+                                       const TraceOptions& opt = {});
 
 /// {"status", "mode", ..., "result": {classification fields..., "branches": [...],
 /// "isolated_points": [...], "max_residual", "tolerance", "branches_match_topology"}}; the
