@@ -1165,3 +1165,157 @@ TEST(BoxTrace, NoiseWalkNextToAnAcnodeIsNoBranch) {
     }
   }
 }
+
+namespace {
+
+core::Mat4 mat_of(std::initializer_list<std::initializer_list<Rational>> rows) {
+  core::Mat4 m;
+  size_t i = 0;
+  for (const auto& row : rows) {
+    size_t j = 0;
+    for (const auto& x : row)
+      m[i][j++] = x;
+    ++i;
+  }
+  return m;
+}
+
+// The curve's singular point at infinity (d, 0) by substitution: both quadratic forms vanish
+// at d and the two gradients (A (d, 0), B (d, 0)) are parallel 4-vectors.
+void expect_singular_at_infinity(const core::Mat4& a, const core::Mat4& b,
+                                 const std::array<Rational, 3>& d, const std::string& ctx) {
+  std::array<Rational, 4> ga{}, gb{};
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      ga[i] += a[i][j] * d[j];
+      gb[i] += b[i][j] * d[j];
+    }
+  Rational fa, fb;
+  for (size_t i = 0; i < 3; ++i) {
+    fa += d[i] * ga[i];
+    fb += d[i] * gb[i];
+  }
+  EXPECT_TRUE(fa.is_zero() && fb.is_zero()) << ctx;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i + 1; j < 4; ++j)
+      EXPECT_TRUE((ga[i] * gb[j] - ga[j] * gb[i]).is_zero()) << ctx << " " << i << j;
+}
+
+} // namespace
+
+// A singular point at infinity whose float extreme points lie ~1e7 out, automatic boxes; all
+// were undecided. Figure eights with the crunode at infinity (Tu 5: generate --case 5 --seed 46
+// pair 18 and --seed 47 pair 6 in doubles, --seed 54 pair 13 exact): two branches run out side
+// by side ~2 apart towards it; the box placed around the far float extreme points (5e7 across)
+// never showed four crossing pieces, and its doublings (to 2e11) only lengthened the steps. An
+// oval and an acnode at infinity (Tu 6, --seed 54 pair 10 in doubles): the box 2e7 across
+// showed the two branches and four pieces of rounding noise walked from the far points. Now the
+// box is placed around the sizing points without the far outliers: certified, each open piece
+// between two exact crossings, the box near the features, swapped too.
+TEST(BoxTrace, FarFloatExtremePointsNextToASingularPointAtInfinity) {
+  struct Case {
+    const char* name;
+    core::Mat4 a, b;
+    int tu, unbounded;
+  };
+  const Rational h(1, 2), q4(1, 4), q34(3, 4);
+  const std::vector<Case> cases{
+      {"case 5 seed 46 pair 18 (doubles)",
+       mat_of({{8, -h, h, 0}, {-h, -h, q34, h}, {h, q34, -1, -h}, {0, h, -h, 0}}),
+       mat_of({{2, 4, -4, 0}, {4, -6, 4, -6}, {-4, 4, -2, 6}, {0, -6, 6, -2}}), 5, 4},
+      {"case 5 seed 47 pair 6 (doubles)",
+       mat_of({{5, 10, 1, Rational(21, 2)},
+               {10, 20, 1, Rational(41, 2)},
+               {1, 1, 2, h},
+               {Rational(21, 2), Rational(41, 2), h, Rational(81, 4)}}),
+       mat_of({{14, 16, 19, Rational(9, 2)},
+               {16, 20, 19, Rational(17, 2)},
+               {19, 19, 26, h},
+               {Rational(9, 2), Rational(17, 2), h, Rational(45, 4)}}),
+       5, 4},
+      {"case 5 seed 54 pair 13 (exact)",
+       mat_of({{-3, -3, 3, 0},
+               {-3, 2, 3, Rational(-7, 2)},
+               {3, 3, -3, 0},
+               {0, Rational(-7, 2), 0, Rational(17, 4)}}),
+       mat_of({{-1, -1, 1, 0},
+               {-1, -6, -7, Rational(39, 2)},
+               {1, -7, -1, 8},
+               {0, Rational(39, 2), 8, -q4}}),
+       5, 4},
+      {"case 6 seed 54 pair 10 (doubles)",
+       mat_of({{-7, Rational(17, 4), Rational(5, 4), Rational(-5, 2)},
+               {Rational(17, 4), Rational(35, 2), 19, -18},
+               {Rational(5, 4), 19, Rational(41, 2), -21},
+               {Rational(-5, 2), -18, -21, Rational(45, 2)}}),
+       mat_of({{26, Rational(-35, 2), h, -1},
+               {Rational(-35, 2), -17, -26, 24},
+               {h, -26, -35, 42},
+               {-1, 24, 42, -54}}),
+       6, 2},
+  };
+  for (const Case& c : cases)
+    for (int swapped = 0; swapped < 2; ++swapped) {
+      const std::string ctx = std::string(c.name) + (swapped ? " swapped" : "");
+      core::QuadricMatrix a(c.a), b(c.b);
+      if (swapped) std::swap(a, b);
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      EXPECT_EQ(r.topology.tu_case, c.tu) << ctx;
+      ASSERT_TRUE(r.affine.certified()) << ctx;
+      EXPECT_EQ(*r.affine.loops, 0) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, c.unbounded) << ctx;
+      // The singular point: the one special point, at infinity, checked by substitution.
+      ASSERT_EQ(r.topology.special_points.size(), 1u) << ctx;
+      const auto& sp = r.topology.special_points[0];
+      EXPECT_TRUE(sp.at_infinity) << ctx;
+      std::array<Rational, 3> d;
+      for (size_t k = 0; k < 3; ++k)
+        d[k] = *Rational::from_string(sp.coords[k]);
+      expect_singular_at_infinity(c.a, c.b, d, ctx);
+      surfcert::testing::expect_open_pieces(r, a, b, c.unbounded, "arc", ctx);
+      ASSERT_TRUE(r.box.has_value()) << ctx;
+      EXPECT_LT(r.box->diagonal(), 1000) << ctx;
+    }
+}
+
+// A twisted cubic and a secant line (Tu 10, generate --case 10 --seed 53 pair 13): the line
+// x + y = 1, z = (x - 1) / 2 runs through the automatic box's edge x = max, y = min (a box placed
+// symmetrically around points of the line keeps x_max + y_min = 1), and each widening moved that
+// corner along the line: undecided. Now each nudge has its own ratios: certified, the line and
+// the cubic's pieces between exact crossings.
+TEST(BoxTrace, NudgedBoxLeavesALineThroughItsEdge) {
+  const core::Mat4 a = mat_of({{52, 60, 9, Rational(-151, 2)},
+                               {60, 76, 18, -87},
+                               {9, 18, 4, -16},
+                               {Rational(-151, 2), -87, -16, 99}});
+  const core::Mat4 b =
+      mat_of({{86, 96, 12, -124}, {96, 116, 24, -138}, {12, 24, 8, -20}, {-124, -138, -20, 162}});
+  // The line by substitution: (t, 1 - t, (t - 1) / 2) on both for t = 0, 1, 2.
+  for (int t = 0; t <= 2; ++t) {
+    const std::array<Rational, 4> x{Rational(t), Rational(1 - t), Rational(t - 1, 2), Rational(1)};
+    for (const core::Mat4* m : {&a, &b}) {
+      Rational s;
+      for (size_t i = 0; i < 4; ++i)
+        for (size_t j = 0; j < 4; ++j)
+          s += x[i] * (*m)[i][j] * x[j];
+      EXPECT_TRUE(s.is_zero()) << t;
+    }
+  }
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    core::QuadricMatrix qa(a), qb(b);
+    if (swapped) std::swap(qa, qb);
+    const auto r = trace::intersect_curve(qa, qb, Mode::Filtered, trace::TraceOptions{});
+    ASSERT_EQ(r.status, certify::Status::Certified) << swapped << ": " << r.note;
+    EXPECT_EQ(r.topology.tu_case, 10);
+    EXPECT_EQ(*r.affine.unbounded_branches, 2);
+    EXPECT_EQ(*r.affine.lines, 1);
+    ASSERT_TRUE(r.box_exits && r.box_exits->certified);
+    int lines = 0;
+    for (const auto& br : r.branches)
+      lines += br.kind == "line" ? 1 : 0;
+    EXPECT_EQ(lines, 1);
+    // The box's corner is off the line: x_max + y_min != 1.
+    EXPECT_NE(r.box->max[0] + r.box->min[1], 1.0);
+  }
+}

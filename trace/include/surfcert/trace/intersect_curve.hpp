@@ -33,10 +33,13 @@
 // the edges) and the traced open pieces are exactly half as many, their ends matched one to
 // one with those crossings (so a branch crossing the box twice is two certified pieces); an
 // automatic box must also show at least one piece per unbounded branch (it is doubled, up to 12
-// times, while its pieces' distinct face crossings are fewer), and no point may stay
+// times, while its pieces' distinct face crossings are fewer; when no doubling shows them, or
+// the picture does not match, it is placed once more without the sizing points lying 1000 times
+// farther out than their typical distance: float extreme points next to a singular point at
+// infinity), and no point may stay
 // more than 1e-9 of the box's diagonal off the surfaces (a picture of another curve whose ends
-// happen to match). The automatic box has short dyadic faces, moved a little when a face meets
-// the curve non-generically. Pairs beyond 2^+-8 are traced at unit size (exact power-of-two
+// happen to match). The automatic box has short dyadic faces, moved a little (unevenly, by
+// different ratios at each try) when a face meets the curve non-generically. Pairs beyond 2^+-8 are traced at unit size (exact power-of-two
 // scaling), or, when only their distance from the origin (up to 2^40) is large, where they are
 // first — on the pair translated exactly to its least-squares centre (a centre, an apex, a
 // vertex) — and at unit size when that is undecided (docs/methods.md). Points that far out
