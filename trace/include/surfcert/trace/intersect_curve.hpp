@@ -39,13 +39,13 @@
 // infinity), and no point may stay
 // more than 1e-9 of the box's diagonal off the surfaces (a picture of another curve whose ends
 // happen to match). The automatic box has short dyadic faces, moved a little (unevenly, by
-// different ratios at each try) when a face meets the curve non-generically. Pairs beyond 2^+-8 are traced at unit size (exact power-of-two
-// scaling), or, when only their distance from the origin (up to 2^40) is large, where they are
-// first — on the pair translated exactly to its least-squares centre (a centre, an apex, a
-// vertex) — and at unit size when that is undecided (docs/methods.md). Points that far out
-// are doubles: max_residual then includes their rounding (~2^-53 of the distance).
-// Two smooth ovals whose points at infinity leave the loop count open (no cone member of the
-// pencil decides, certify/affine.hpp) are settled after a first trace: each traced closed
+// different ratios at each try) when a face meets the curve non-generically. Pairs beyond 2^+-8 are
+// traced at unit size (exact power-of-two scaling), or, when only their distance from the origin
+// (up to 2^40) is large, where they are first — on the pair translated exactly to its least-squares
+// centre (a centre, an apex, a vertex) — and at unit size when that is undecided (docs/methods.md).
+// Points that far out are doubles: max_residual then includes their rounding (~2^-53 of the
+// distance). Two smooth ovals whose points at infinity leave the loop count open (no cone member of
+// the pencil decides, certify/affine.hpp) are settled after a first trace: each traced closed
 // branch proposes tight dyadic boxes, certify/proven_loops.hpp proves exactly that a loop lies
 // in each (a lower bound) and bounds the compact components from above by the coordinates'
 // exact critical points; when readings remain, loops_in_oval_chart (below) asks which ovals
