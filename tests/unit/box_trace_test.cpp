@@ -1319,3 +1319,28 @@ TEST(BoxTrace, NudgedBoxLeavesALineThroughItsEdge) {
     EXPECT_NE(r.box->max[0] + r.box->min[1], 1.0);
   }
 }
+
+// A figure eight with its crunode at infinity in direction (1, -1, 0) (Tu 5, generate --case 5
+// --seed 46 pair 5 in doubles) in a given box 25,000 wide: two branches run out side by side
+// ~0.5 apart towards the crunode, and a walk from one face crossing did not see that the start
+// at the other end lay on a piece already traced: the same stretch twice, five pieces on eight
+// crossings (undecided). Certified: four pieces, each between two exact crossings; swapped too.
+TEST(BoxTrace, SameStretchWalkedTwiceInAVastBox) {
+  const core::Mat4 a = mat_of({{8, 16, 0, 0}, {16, 24, 8, -4}, {0, 8, 2, -4}, {0, -4, -4, -10}});
+  const core::Mat4 b =
+      mat_of({{-28, -28, 20, 14}, {-28, -28, 20, 14}, {20, 20, -2, -8}, {14, 14, -8, -5}});
+  expect_singular_at_infinity(a, b, {Rational(1), Rational(-1), Rational(0)}, "crunode");
+  const auto opt = given_box({-7128.567353189085, -12686.584644252463, -9819.561480910705},
+                             {10691.958630476907, 11572.83014197773, 9289.971616917206});
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    core::QuadricMatrix qa(a), qb(b);
+    if (swapped) std::swap(qa, qb);
+    const std::string ctx = swapped ? "swapped" : "as given";
+    const auto r = trace::intersect_curve(qa, qb, Mode::Filtered, opt);
+    ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+    EXPECT_EQ(r.topology.tu_case, 5) << ctx;
+    ASSERT_TRUE(r.box_exits && r.box_exits->certified) << ctx;
+    EXPECT_EQ(r.box_exits->points.size(), 8u) << ctx;
+    surfcert::testing::expect_open_pieces(r, qa, qb, 4, "arc", ctx);
+  }
+}

@@ -862,6 +862,33 @@ std::vector<Branch> march(const QuadricPair& q, const std::vector<Point3>& start
       });
     }
   }
+  // And a piece between two face crossings that another kept piece joins too (its ends within
+  // 1e-9 of the scene of that piece's ends, either way round), every point of it on that piece:
+  // the same stretch walked twice. A transversal crossing ends one piece of the curve, so two
+  // pieces cannot share both (two branches running out side by side 0.5 apart towards a crunode
+  // at infinity, in a given box 25,000 wide: the walk from one crossing missed that the other
+  // start lay on a piece already traced; generate --case 5 --seed 46 pair 5 boxed).
+  auto same_ends = [&](const std::vector<V>& u, const std::vector<V>& v) {
+    const double e = 1e-9 * scene;
+    return (dist(u.front(), v.front()) <= e && dist(u.back(), v.back()) <= e) ||
+           (dist(u.front(), v.back()) <= e && dist(u.back(), v.front()) <= e);
+  };
+  for (size_t i = 0; i < traced.size(); ++i) {
+    const auto& pts = traced[i].br.points;
+    if (dropped[i] || traced[i].br.closed || pts.size() < 2 || !on_face(pts.front()) ||
+        !on_face(pts.back()))
+      continue;
+    for (size_t j = 0; j < i && !dropped[i]; ++j) {
+      const auto& other = traced[j].br.points;
+      if (dropped[j] || traced[j].br.closed || other.size() < 2 || !same_ends(pts, other)) continue;
+      // (The ends matched already: a face crossing found from two sides differs by ~1e-11 of
+      // the scene, beyond the last segment's reach.)
+      size_t hint = 0;
+      dropped[i] = std::all_of(pts.begin() + 1, pts.end() - 1, [&](const V& p) {
+        return on_branch(tr, q, p, traced[j], 1e-12 * scene, &hint);
+      });
+    }
+  }
   for (size_t i = 0; i < traced.size(); ++i)
     if (!dropped[i]) out.push_back(std::move(traced[i].br));
   return out;
