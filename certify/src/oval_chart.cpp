@@ -78,9 +78,60 @@ std::optional<std::array<Rational, 4>> point_of_sign(const core::Mat4& m, int s)
   return std::nullopt;
 }
 
+// The diagonal frame Y = F Z (F = [[diag(2^k), c], [0, 1]], c dyadic) that brings the ellipsoid
+// e (a chart member: 3x3 block definite up to sign) near the unit cube around the origin; its
+// centre and extents in floats (they only choose F; F is exact). nullopt when the floats fail.
+std::optional<core::Mat4> unit_frame(const core::Mat4& e) {
+  double q[3][3], bv[3];
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j)
+      q[i][j] = e[i][j].to_double_approx();
+    bv[i] = e[i][3].to_double_approx();
+  }
+  const double c33 = e[3][3].to_double_approx();
+  // Q^-1 by cofactors (3x3).
+  const double det = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) -
+                     q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+                     q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+  if (!std::isfinite(det) || det == 0) return std::nullopt;
+  double inv[3][3];
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j) {
+      const size_t r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      inv[i][j] = (q[r0][c0] * q[r1][c1] - q[r0][c1] * q[r1][c0]) / det;
+    }
+  double centre[3];
+  for (size_t i = 0; i < 3; ++i)
+    centre[i] = -(inv[i][0] * bv[0] + inv[i][1] * bv[1] + inv[i][2] * bv[2]);
+  // The ellipsoid (x - centre)^T Q (x - centre) = r, r = centre^T Q centre - c33; its
+  // half-extent along axis i is sqrt(r (Q^-1)_ii).
+  double r = -c33;
+  for (size_t i = 0; i < 3; ++i)
+    for (size_t j = 0; j < 3; ++j)
+      r += centre[i] * q[i][j] * centre[j];
+  core::Mat4 f;
+  for (auto& row : f)
+    for (auto& x : row)
+      x = Rational(0);
+  for (size_t i = 0; i < 3; ++i) {
+    const double ext2 = r * inv[i][i];
+    if (!(ext2 > 0) || !std::isfinite(ext2) || !std::isfinite(centre[i])) return std::nullopt;
+    const int k = std::ilogb(std::sqrt(ext2));
+    f[i][i] = Rational::exact_from_double(std::ldexp(1.0, k));
+    // The centre rounded to a multiple of 2^(k - 20): short, and within 2^-20 of an extent.
+    f[i][3] = Rational::exact_from_double(
+        std::ldexp(std::nearbyint(std::ldexp(centre[i], 20 - k)), k - 20));
+  }
+  f[3][3] = Rational(1);
+  return f;
+}
+
 } // namespace
 
-std::optional<OvalChart> oval_chart(const core::Mat4& a, const core::Mat4& b, std::string& why) {
+namespace {
+
+// Steps 1 and 2 in the coordinates given.
+std::optional<OvalChart> chart_of(const core::Mat4& a, const core::Mat4& b, std::string& why) {
   // The members tried: A, B, then l A - B at short dyadics between the float roots of
   // det(l A - B) and beyond them (each member's inertia is then decided exactly).
   std::vector<core::Mat4> members{a, b};
@@ -148,16 +199,59 @@ std::optional<OvalChart> oval_chart(const core::Mat4& a, const core::Mat4& b, st
     pm[k][1] = -h[rest[0]];
     pm[k][2] = -h[rest[1]];
     pm[k][3] = Rational(1);
+    // The member in the chart is an ellipsoid (it misses the chart's plane at infinity) that
+    // holds the curve; each chart axis is moved to its centre and scaled by a power of two to
+    // about its half-extent (Y_i = 2^k_i Z_i + c_i, c_i dyadic: exact), so the tracer sees a
+    // curve of unit size in every direction (a pair scaled by 2^-20 gave a chart curve 1e-6
+    // across in two axes and 1 in the third: nothing traced). The old plane at infinity
+    // Y_0 = 0 becomes Z_0 = -c_0 / 2^k_0.
+    core::Mat4 pm2 = pm;
+    if (const auto frame = unit_frame(core::congruence(pm, m))) pm2 = pm * *frame;
     OvalChart out;
-    out.a = core::congruence(pm, a);
-    out.b = core::congruence(pm, b);
-    out.from_chart = pm;
+    out.a = core::congruence(pm2, a);
+    out.b = core::congruence(pm2, b);
+    out.from_chart = pm2;
     out.plane = h;
     out.member = m;
+    // Y_0 = sum_j frame[0][j] Z_j with frame[0] = (2^k_0, 0, 0, c_0): Y_0 = 0 at Z_0 = -c_0/2^k_0.
+    out.infinity_at = pm2[3][0].sign() != 0 ? -pm2[3][3] / pm2[3][0] : Rational(0);
     return out;
   }
   why = "no member of the pencil tried has inertia (3,1) or (1,3)";
   return std::nullopt;
+}
+
+} // namespace
+
+std::optional<OvalChart> oval_chart(const core::Mat4& a, const core::Mat4& b, std::string& why,
+                                    const ChartFrame* frame) {
+  if (!frame || !(frame->size > 0) || !std::isfinite(frame->size)) return chart_of(a, b, why);
+  // x = F x0, F = [[2^k I, c], [0, 1]]: the pair at about unit size around the origin.
+  const int k = std::ilogb(frame->size);
+  core::Mat4 f = core::identity4(), finv = core::identity4();
+  const Rational s = Rational::exact_from_double(std::ldexp(1.0, k));
+  const Rational sinv = Rational::exact_from_double(std::ldexp(1.0, -k));
+  for (size_t i = 0; i < 3; ++i) {
+    if (!std::isfinite(frame->centre[i])) return chart_of(a, b, why);
+    const Rational c = Rational::exact_from_double(
+        std::ldexp(std::nearbyint(std::ldexp(frame->centre[i], 30 - k)), k - 30));
+    f[i][i] = s;
+    f[i][3] = c;
+    finv[i][i] = sinv;
+    finv[i][3] = -c * sinv;
+  }
+  auto out = chart_of(core::congruence(f, a), core::congruence(f, b), why);
+  if (!out) return out;
+  out->from_chart = f * out->from_chart;
+  std::array<Rational, 4> h;
+  for (size_t j = 0; j < 4; ++j) {
+    h[j] = Rational(0);
+    for (size_t i = 0; i < 4; ++i)
+      h[j] += finv[i][j] * out->plane[i];
+  }
+  out->plane = h;
+  out->member = core::congruence(finv, out->member);
+  return out;
 }
 
 std::optional<OvalChart> oval_chart_along(const OvalChart& c, const std::array<Rational, 3>& d,
@@ -201,12 +295,12 @@ OvalsAtInfinity ovals_at_infinity(const OvalChart& chart, const ProvenLoops& pro
   int loops = 0, total = 0;
   for (const RationalBox& box : proven.boxes) {
     int n = 0;
-    if (box.lo[0].sign() < 0 && box.hi[0].sign() > 0) {
+    if (box.lo[0] < chart.infinity_at && chart.infinity_at < box.hi[0]) {
       // The part of the box with Y_0 <= 0: its faces other than Y_0 = 0 lie on the box's
       // boundary, which the curve misses (proven_loops), so its crossings are the curve's
       // points on Y_0 = 0 inside the box.
       std::array<Rational, 3> hi = box.hi;
-      hi[0] = Rational(0);
+      hi[0] = chart.infinity_at;
       const BoxExits ex = box_exits(chart.a, chart.b, box.lo, hi);
       if (!ex.certified) {
         out.reason =

@@ -261,3 +261,26 @@ TEST(OvalChart, CountsNeedEveryComponentBoxed) {
   EXPECT_EQ(af.route, "oval_chart");
   EXPECT_TRUE(af.undecided.empty());
 }
+
+TEST(OvalChart, ShrunkAndMovedFarPairsKeepTheirLoops) {
+  // Every pair above shrunk to 2^-20 of its size around (1/3, -1/7, 1/5), and moved by
+  // (2^30 + 1/3, -2^31, 5): certified with the loops of the pair as given (exact congruences:
+  // the same curve). Before the chart was framed (the pair brought near unit size around its
+  // least-squares centre first), its member was ~3000 times longer than wide there and nothing
+  // was traced: of the 534 two-oval pairs of two_ovals_pairs.py --seed 46, 50, 51, 52, 146
+  // shrunk and 429 moved far were undecided.
+  const Mat4 shrink = scaling(Rational(1, 1 << 20)) *
+                      motion(1, 0, 0, 0, {Rational(1, 3), Rational(-1, 7), Rational(1, 5)});
+  const Mat4 far =
+      motion(1, 0, 0, 0, {Rational(3221225473) / Rational(3), Rational(-2147483648), Rational(5)});
+  for (const Truth& t : truths())
+    for (const auto& [name, p] : {std::pair<const char*, Mat4>{"shrunk", shrink}, {"far", far}}) {
+      const std::string ctx = std::string(t.name) + " " + name;
+      const core::QuadricMatrix a = core::QuadricMatrix(t.a).congruent(p);
+      const core::QuadricMatrix b = core::QuadricMatrix(t.b).congruent(p);
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, {});
+      ASSERT_TRUE(r.affine.certified()) << ctx << ": " << r.note;
+      EXPECT_EQ(*r.affine.loops, t.loops) << ctx;
+      EXPECT_EQ(*r.affine.unbounded_branches, 4) << ctx;
+    }
+}

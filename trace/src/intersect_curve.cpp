@@ -1858,8 +1858,23 @@ std::optional<certify::AffineTopology> settle_in_oval_chart(const core::QuadricM
                                                             const TraceOptions& opt) {
   const certify::Morphology* m = out.topology.morphology;
   if (!m || !out.affine.points_at_infinity_complete) return std::nullopt;
-  const auto loops =
-      loops_in_oval_chart(a, b, *m, static_cast<int>(out.affine.points_at_infinity.size()), opt);
+  // The pair's least-squares centre (far_centre) and the order of its features' lengths there
+  // frame it for the chart: a pair scaled by 2^-20 or moved 2^30 away is brought near unit
+  // size first (certify::oval_chart; floats choose the frame, which is exact).
+  certify::ChartFrame frame;
+  const certify::ChartFrame* framed = nullptr;
+  if (const auto c = far_centre(a, b, false)) {
+    const auto la = core::length_order(a.translated(*c)), lb = core::length_order(b.translated(*c));
+    if (la || lb) {
+      frame.centre = *c;
+      frame.size = std::ldexp(
+          1.0, static_cast<int>(std::clamp(std::max(la.value_or(LONG_MIN), lb.value_or(LONG_MIN)),
+                                           -900L, 900L)));
+      framed = &frame;
+    }
+  }
+  const auto loops = loops_in_oval_chart(
+      a, b, *m, static_cast<int>(out.affine.points_at_infinity.size()), opt, framed);
   if (!loops) return std::nullopt;
   certify::OvalsAtInfinity ov;
   ov.loops = loops;
@@ -1902,10 +1917,10 @@ std::optional<certify::AffineTopology> settle_by_traced_loops(const core::Quadri
 
 std::optional<int> loops_in_oval_chart(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                        const certify::Morphology& m, int points_at_infinity,
-                                       const TraceOptions& opt) {
+                                       const TraceOptions& opt, const certify::ChartFrame* frame) {
   if (m.loops != 2 || m.connected_components != 2) return std::nullopt;
   std::string why;
-  const auto chart = certify::oval_chart(a.matrix(), b.matrix(), why);
+  const auto chart = certify::oval_chart(a.matrix(), b.matrix(), why, frame);
   if (!chart) return std::nullopt;
   const core::QuadricMatrix ca(chart->a), cb(chart->b);
   QsicResult t = classify_qsic(ca, cb, Mode::Filtered);

@@ -20,14 +20,17 @@
 //     projective curve, every fact of the pencil kept). Its plane at infinity is H: in the
 //     affine coordinates Y = (y_0, y_1, y_2) / y_3 the whole real curve is compact, its
 //     components are the projective ones, and the old plane at infinity is the plane Y_0 = 0.
+//     Each chart axis is then moved to the member's centre there and scaled by a power of two
+//     to about its half-extent (Y_i = 2^k_i Z_i + c_i, c_i dyadic: exact), so the old plane at
+//     infinity is Z_0 = infinity_at.
 //  3. Boxes proven to hold a loop wholly inside (proven_loops on A', B', boxes proposed by the
 //     tracer in the chart), pairwise disjoint and as many as the curve has components: each box
 //     holds exactly one component, and every point of the curve lies in one of the boxes.
-//  4. The curve's points on Y_0 = 0 inside a box (the old points at infinity on that box's
-//     component): box_exits of the part of the box with Y_0 <= 0 (its other faces lie on the
+//  4. The curve's points on Z_0 = infinity_at inside a box (the old points at infinity on that
+//     box's component): box_exits of the part of the box below it (its other faces lie on the
 //     box's boundary, which the curve misses), certified, or none when the box lies on one side.
 // A component with no such point is an affine loop of the original pair; one with some is split
-// by them into unbounded branches. So loops = the number of boxes with no crossing of Y_0 = 0.
+// by them into unbounded branches. So loops = the number of boxes with no such crossing.
 // Nothing here is a guess: a member of the wrong inertia, a plane section not certified, fewer
 // proven boxes than components or crossings that do not add up to the real points at infinity
 // leave the reading undecided.
@@ -50,12 +53,24 @@ struct OvalChart {
   core::Mat4 from_chart;               ///< L^-1: x = L^-1 y (homogeneous coordinates)
   std::array<core::Rational, 4> plane; ///< h: the plane h . (x, y, z, w) = 0 sent to infinity
   core::Mat4 member;                   ///< the member of inertia (3,1) or (1,3) that H misses
+  /// The old plane at infinity is the chart's coordinate plane Z_0 = infinity_at.
+  core::Rational infinity_at;
 };
 
 /// Steps 1 and 2, or nullopt (with `why` set) when no member tried has inertia (3,1) or (1,3):
 /// A, B, then l A - B at short dyadics between the float roots of det(l A - B) and beyond them
 /// (the floats only propose; each member's inertia is decided exactly).
-std::optional<OvalChart> oval_chart(const core::Mat4& a, const core::Mat4& b, std::string& why);
+/// With `frame` (floats: the curve's centre and size, e.g. a traced picture's box), the pair is
+/// first brought to about unit size around the origin by the exact congruence x = 2^k x0 + c
+/// (2^k ~ size, c dyadic ~ centre): a pair scaled by 2^-20 or moved 2^30 away otherwise gives
+/// a chart member of axis ratio ~3000 where nothing is traced. Every field of the result is
+/// in the original coordinates (from_chart maps chart to original points).
+struct ChartFrame {
+  std::array<double, 3> centre{};
+  double size = 0;
+};
+std::optional<OvalChart> oval_chart(const core::Mat4& a, const core::Mat4& b, std::string& why,
+                                    const ChartFrame* frame = nullptr);
 
 /// The same chart with its affine coordinates Y changed to Y' = R Y, R = rows (e_0, d, e_o):
 /// Y'_0 = Y_0 stays the old plane at infinity's coordinate, Y'_1 = d . Y (a direction that

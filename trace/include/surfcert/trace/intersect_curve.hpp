@@ -76,6 +76,7 @@
 
 #include "surfcert/certify/affine.hpp"
 #include "surfcert/certify/box_exits.hpp"
+#include "surfcert/certify/oval_chart.hpp"
 #include "surfcert/certify/qsic.hpp"
 #include "surfcert/core/io/json.hpp"
 #include "surfcert/trace/curve.hpp"
@@ -131,10 +132,12 @@ CurveResult trace_curve(const core::QuadricMatrix& a, const core::QuadricMatrix&
 /// separating the two traced loops becomes a chart axis, certify::proven_loops boxes each
 /// oval, and the old plane at infinity's crossings inside each box are counted exactly. The
 /// floats choose the member, the plane, the direction and the boxes; nullopt when a step
-/// proves nothing.
+/// proves nothing. `frame` (the curve's centre and size in floats, e.g. a traced picture's
+/// box): see certify::oval_chart.
 std::optional<int> loops_in_oval_chart(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                        const certify::Morphology& m, int points_at_infinity,
-                                       const TraceOptions& opt = {});
+                                       const TraceOptions& opt = {},
+                                       const certify::ChartFrame* frame = nullptr);
 
 /// {"status", "mode", ..., "result": {classification fields..., "branches": [...],
 /// "isolated_points": [...], "max_residual", "tolerance", "branches_match_topology"}}; the
