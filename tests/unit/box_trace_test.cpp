@@ -1344,3 +1344,47 @@ TEST(BoxTrace, SameStretchWalkedTwiceInAVastBox) {
     surfcert::testing::expect_open_pieces(r, qa, qb, 4, "arc", ctx);
   }
 }
+
+// A cone and a cylinder posed in doubles (natural_pairs_doubles.py --seed 38 pair 239) meet in
+// two ovals, 0.013 apart in z and ~5 long; a given box (boxed_pairs.py, b1) cuts both. No
+// direction's critical points bounded the loops inside the box, and boxes around the ovals
+// with their margins met: undecided after five retraces (16,000 points a piece). Now each oval
+// is proven in a box of its own cut a third of the way into the gap, each of the four exact
+// crossings placed in one of them: both cut, none inside. Independently: the ovals traced whole
+// reach z = 3.9 and z = -6.8, beyond the box's z range [-5.08, 1.85]. Swapped too.
+TEST(BoxTrace, GivenBoxCuttingBothOvalsOfAConeAndACylinder) {
+  core::ShapeSpec cone, cyl;
+  cone.type = core::ShapeType::Cone;
+  cone.radii = {1.0, 1.0, 0.6958595795136985};
+  cone.center = {0.9666426455248327, 0.9655952368720686, -0.7682799188109191};
+  cone.rotated = true;
+  cone.quaternion = {0.9316139998228075, -0.3212856341001505, -0.15383340702623155,
+                     0.07215386017197088};
+  cyl.type = core::ShapeType::Cylinder;
+  cyl.radii = {0.5774396492000659, 0.5774396492000659, 0.5774396492000659};
+  cyl.center = {0.30389789921995813, 0.7925631648335811, -0.9095273370666399};
+  cyl.rotated = true;
+  cyl.quaternion = {0.37814630184246506, 0.2037789414107686, 0.14902817775480248,
+                    -0.8906571280102444};
+  const auto opt = given_box({-2.0131482283242628, -2.2700959356855765, -5.075198523024978},
+                             {6.145324726899845, 4.3745934673283, 1.8500035380823725});
+  for (int swapped = 0; swapped < 2; ++swapped) {
+    core::QuadricMatrix a(cone), b(cyl);
+    if (swapped) std::swap(a, b);
+    const std::string ctx = swapped ? "swapped" : "as given";
+    const auto whole = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    ASSERT_EQ(whole.status, certify::Status::Certified) << ctx << ": " << whole.note;
+    ASSERT_EQ(*whole.affine.loops, 2) << ctx;
+    ASSERT_EQ(*whole.affine.unbounded_branches, 0) << ctx;
+    // Each traced oval leaves the box's z range: neither lies wholly inside.
+    for (const auto& br : whole.branches) {
+      double lo = HUGE_VAL, hi = -HUGE_VAL;
+      for (const auto& p : br.points)
+        lo = std::min(lo, p[2]), hi = std::max(hi, p[2]);
+      EXPECT_TRUE(lo < -5.08 || hi > 1.86) << ctx;
+    }
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
+    ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+    surfcert::testing::expect_open_pieces(r, a, b, 2, "arc", ctx);
+  }
+}

@@ -743,6 +743,115 @@ std::optional<bool> lone_loop_outside(const core::QuadricMatrix& a, const core::
   return std::nullopt;
 }
 
+CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
+                           QsicResult topology, const TraceOptions& opt, int depth,
+                           const certify::AffineTopology* known = nullptr,
+                           const Point3* centre = nullptr, bool unit_size_there = false);
+
+std::vector<std::vector<certify::RationalBox>> loop_proposals(const CurveResult& out);
+std::vector<certify::RationalBox> loop_boxes(const std::vector<Point3>& points);
+
+// The loops lying wholly inside a given box when the affine curve is loops (and isolated points)
+// only: the pair traced whole (an automatic box), each loop proven in a box of its own
+// (certify::proven_loops, as many boxes as loops: every point of a loop lies in its box, none
+// on a box's faces), each exact crossing of the given box's faces placed in one loop box by its
+// enclosure (that loop is cut), and each loop crossing no face inside the given box when its
+// box is, outside when its box misses it. nullopt when a step proves nothing (a crossing in no
+// loop box, a loop box straddling a face of the given box). The floats choose the loop boxes.
+std::optional<int> loops_inside_by_loop_boxes(const core::QuadricMatrix& a,
+                                              const core::QuadricMatrix& b, const Box& box,
+                                              const certify::BoxExits& ex, const QsicResult& t,
+                                              const certify::AffineTopology& af) {
+  const int loops = *af.loops;
+  if (*af.unbounded_branches != 0 || loops < 1 || !ex.certified) return std::nullopt;
+  const CurveResult whole = trace_curve_at(a, b, t, TraceOptions{}, 0, &af);
+  const auto proposals = loop_proposals(whole);
+  if (static_cast<int>(proposals.size()) != loops) return std::nullopt;
+  certify::ProvenLoops p = certify::proven_loops(a.matrix(), b.matrix(), proposals);
+  if (p.count != loops && loops == 2) {
+    // Two loops whose boxes (with their margins) meet, but whose points lie apart along an
+    // axis (a cone and a cylinder: two ovals 0.013 apart in z, each ~5 long): each box cut
+    // a third of the way into the gap on that axis.
+    std::vector<const std::vector<Point3>*> pts;
+    for (const auto& br : whole.branches)
+      if (br.closed && br.points.size() >= 3) pts.push_back(&br.points);
+    if (pts.size() != 2) return std::nullopt;
+    size_t axis = 3;
+    double gap = 0, cut_lo = 0, cut_hi = 0;
+    size_t below = 0;
+    for (size_t k = 0; k < 3; ++k) {
+      std::array<double, 2> lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+      for (size_t l = 0; l < 2; ++l)
+        for (const Point3& x : *pts[l]) {
+          lo[l] = std::min(lo[l], x[k]);
+          hi[l] = std::max(hi[l], x[k]);
+        }
+      const size_t lower = hi[0] < lo[1] ? 0 : 1;
+      const double g = lo[1 - lower] - hi[lower];
+      if (g > gap) {
+        axis = k, gap = g, below = lower;
+        cut_lo = hi[lower] + g / 3;
+        cut_hi = lo[1 - lower] - g / 3;
+      }
+    }
+    if (axis == 3 || !(cut_lo < cut_hi)) return std::nullopt;
+    const core::Rational clo = core::Rational::exact_from_double(cut_lo),
+                         chi = core::Rational::exact_from_double(cut_hi);
+    std::vector<std::vector<certify::RationalBox>> clipped;
+    for (size_t l = 0; l < 2; ++l) {
+      std::vector<certify::RationalBox> boxes;
+      for (certify::RationalBox bx : loop_boxes(*pts[l])) {
+        if (l == below && clo < bx.hi[axis]) bx.hi[axis] = clo;
+        if (l != below && bx.lo[axis] < chi) bx.lo[axis] = chi;
+        if (bx.lo[axis] < bx.hi[axis]) boxes.push_back(std::move(bx));
+      }
+      clipped.push_back(std::move(boxes));
+    }
+    p = certify::proven_loops(a.matrix(), b.matrix(), clipped);
+  }
+  if (p.count != loops) return std::nullopt;
+  using core::Rational;
+  std::vector<int> crossings(p.boxes.size(), 0);
+  for (const auto& c : ex.points) {
+    if (!std::isfinite(c.radius)) return std::nullopt;
+    int in = -1;
+    for (size_t i = 0; i < p.boxes.size() && in < 0; ++i) {
+      bool inside = true;
+      for (size_t k = 0; k < 3 && inside; ++k) {
+        // The enclosure around the double midpoint, widened by 4 ulps of it (the midpoint was
+        // rounded to a double).
+        const double r = c.radius + 4 * std::ldexp(DBL_EPSILON, std::ilogb(c.approx[k])) + DBL_MIN;
+        const Rational lo =
+            Rational::exact_from_double(c.approx[k]) - Rational::exact_from_double(r);
+        const Rational hi =
+            Rational::exact_from_double(c.approx[k]) + Rational::exact_from_double(r);
+        inside = p.boxes[i].lo[k] < lo && hi < p.boxes[i].hi[k];
+      }
+      if (inside) in = static_cast<int>(i);
+    }
+    if (in < 0) return std::nullopt;
+    ++crossings[static_cast<size_t>(in)];
+  }
+  int inside = 0;
+  for (size_t i = 0; i < p.boxes.size(); ++i) {
+    if (crossings[i] > 0) continue; // cut by the faces
+    const auto& lb = p.boxes[i];
+    bool within = true, apart = false;
+    for (size_t k = 0; k < 3; ++k) {
+      const Rational lo = Rational::exact_from_double(box.min[k]),
+                     hi = Rational::exact_from_double(box.max[k]);
+      within = within && lo <= lb.lo[k] && lb.hi[k] <= hi;
+      apart = apart || lb.hi[k] < lo || hi < lb.lo[k];
+    }
+    if (within) {
+      ++inside;
+    } else if (!apart) {
+      return std::nullopt;
+    }
+  }
+  return inside;
+}
+
 // Whether `closed` traced loops are all the loops lying wholly inside a given box (which may
 // cut others): all `loops` of the affine topology, or as many as certify/inner_loops.hpp proves
 // at most (from the critical points of a direction in the box and the crossings `ex`, by
@@ -785,6 +894,16 @@ bool loops_in_given_box(const core::QuadricMatrix& a, const core::QuadricMatrix&
   const certify::InnerComponentBound p =
       certify::inner_component_bound(a.matrix(), b.matrix(), box.min, box.max, &ex, closed);
   if (p.bound && *p.bound == closed) return true;
+  // Loops only: each crossing placed on its loop by proven loop boxes (a box cutting both ovals
+  // of a cone and a cylinder, where no direction's critical points bounded the loops inside:
+  // natural_pairs_doubles.py --seed 38 pair 239 boxed).
+  if (const auto inside = loops_inside_by_loop_boxes(a, b, box, ex, t, af)) {
+    if (*inside == closed) return true;
+    why = "traced " + std::to_string(closed) + " closed branch(es) in the box; " +
+          std::to_string(*inside) + " of the curve's " + std::to_string(loops) +
+          " loop(s) lie wholly inside it (proven loop boxes)";
+    return false;
+  }
   why = "traced " + std::to_string(closed) + " closed branch(es) in the box; the certified " +
         "affine topology has " + std::to_string(loops) + " loop(s), which the box may cut or " +
         "hold: " +
@@ -1543,11 +1662,6 @@ void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, C
   local.status = why.empty() ? Status::Certified : Status::Undecided;
   local.note = why;
 }
-
-CurveResult trace_curve_at(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
-                           QsicResult topology, const TraceOptions& opt, int depth,
-                           const certify::AffineTopology* known = nullptr,
-                           const Point3* centre = nullptr, bool unit_size_there = false);
 
 // Two checks of a certified picture against what it must be, whatever route drew it: (1) no
 // branch drawn as a straight line when the certified affine reading has no line (a plane

@@ -21,6 +21,8 @@
 // certified then only when the loops lying wholly inside it are exactly those traced closed —
 // decided exactly when the loops are conics of singular members' planes,
 // certify/ellipses_in_box.hpp — or when certify/inner_loops.hpp proves that no more lie inside,
+// or, when the affine curve is loops only, when each loop is proven in a box of its own (the
+// pair traced whole) and every exact crossing of the faces lies in one of them,
 // or when the whole curve is one loop and it crosses the faces, or when the affine curve is one
 // loop beside isolated points and crosses no face: a certified crossing of the faces of a
 // small box around one of its points, outside the given box or inside it, places it; the
