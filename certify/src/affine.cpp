@@ -2008,6 +2008,20 @@ AffineTopology affine_topology(QsicResult& t, const core::QuadricMatrix& a,
   return out;
 }
 
+void keep_reading(AffineTopology& t, std::pair<int, int> r, const std::string& route) {
+  t.loops = r.first;
+  t.unbounded_branches = r.second;
+  t.undecided.erase(std::remove_if(t.undecided.begin(), t.undecided.end(),
+                                   [](const auto& u) {
+                                     return u.first == "loops" || u.first == "unbounded_branches";
+                                   }),
+                    t.undecided.end());
+  t.readings = {r};
+  t.route = route;
+  t.loop_boxes.clear();
+  t.all_loops_box.reset();
+}
+
 Json affine_json(const AffineTopology& t) {
   Json o = Json::object();
   o.set("status", Json::string(t.certified() ? "certified" : "undecided"));

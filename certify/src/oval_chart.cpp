@@ -331,17 +331,7 @@ bool settle_by_oval_chart(AffineTopology& t, const OvalsAtInfinity& o) {
   for (const auto& r : t.readings)
     if (r.first == *o.loops) keep.push_back(r);
   if (keep.size() != 1) return false;
-  t.loops = keep[0].first;
-  t.unbounded_branches = keep[0].second;
-  t.undecided.erase(std::remove_if(t.undecided.begin(), t.undecided.end(),
-                                   [](const auto& u) {
-                                     return u.first == "loops" || u.first == "unbounded_branches";
-                                   }),
-                    t.undecided.end());
-  t.readings = keep;
-  t.route = "oval_chart";
-  t.loop_boxes.clear();
-  t.all_loops_box.reset();
+  keep_reading(t, keep[0], "oval_chart");
   return true;
 }
 

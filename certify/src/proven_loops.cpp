@@ -340,19 +340,9 @@ bool settle_by_proven_loops(AffineTopology& t, const ProvenLoops& p, const LoopU
   for (const auto& r : t.readings)
     if (r.first >= p.count && (!has_upper || r.first <= *upper->bound)) keep.push_back(r);
   if (keep.size() != 1) return false;
-  t.loops = keep[0].first;
-  t.unbounded_branches = keep[0].second;
-  t.undecided.erase(std::remove_if(t.undecided.begin(), t.undecided.end(),
-                                   [](const auto& u) {
-                                     return u.first == "loops" || u.first == "unbounded_branches";
-                                   }),
-                    t.undecided.end());
-  t.readings = keep;
-  t.route = "proven_loops";
-  t.loop_boxes.clear();
+  keep_reading(t, keep[0], "proven_loops");
   for (const auto& bx : p.boxes)
     t.loop_boxes.push_back({bx.lo, bx.hi});
-  t.all_loops_box.reset();
   // (No box when the curve has no critical point at all: no compact component anywhere.)
   if (has_upper && upper->box.lo[0] < upper->box.hi[0])
     t.all_loops_box = std::array<std::array<Rational, 3>, 2>{upper->box.lo, upper->box.hi};

@@ -22,6 +22,7 @@
 // by det(P)^2), the compact curve by the chart's affine reading (no point at infinity, 2 loops).
 #include "support/distance_checks.hpp"
 #include "support/fixtures.hpp"
+#include "support/pair_variants.hpp"
 
 #include "surfcert/algebra/inertia.hpp"
 #include "surfcert/algebra/pencil.hpp"
@@ -122,23 +123,6 @@ std::vector<Truth> truths() {
   };
 }
 
-struct Variant {
-  std::string name;
-  core::QuadricMatrix a, b;
-};
-
-// As given, moved by a rational rigid motion, swapped, scaled (x -> 7/2 x).
-std::vector<Variant> variants(const Mat4& a0, const Mat4& b0) {
-  const Mat4 m = motion(2, -1, 1, 3, {Rational(-3, 4), Rational(1, 2), Rational(2)});
-  const core::QuadricMatrix a(a0), b(b0);
-  return {
-      {"as given", a, b},
-      {"moved", a.congruent(m), b.congruent(m)},
-      {"swapped", b, a},
-      {"scaled", a.congruent(scaling(Rational(7, 2))), b.congruent(scaling(Rational(7, 2)))},
-  };
-}
-
 const certify::Morphology& two_ovals() {
   return *certify::morphology_by_id("two_ovals");
 }
@@ -197,7 +181,7 @@ TEST(OvalChart, ChartMissesTheCurveAndKeepsThePencil) {
 
 TEST(OvalChart, LoopsAgreeWithTheIndependentCounts) {
   for (const Truth& t : truths())
-    for (const Variant& v : variants(t.a, t.b)) {
+    for (const auto& v : surfcert::testing::pair_variants(t.a, t.b)) {
       const auto l = trace::loops_in_oval_chart(v.a, v.b, two_ovals(), 4);
       ASSERT_TRUE(l) << t.name << " " << v.name;
       EXPECT_EQ(*l, t.loops) << t.name << " " << v.name;
@@ -214,7 +198,7 @@ TEST(OvalChart, SettlesWhatTheBoundsLeaveOpen) {
   for (const Truth& t : truths()) {
     const std::string name = t.name;
     if (name != "gen48_9" && name != "random1007" && name != "random536") continue;
-    for (const Variant& v : variants(t.a, t.b)) {
+    for (const auto& v : surfcert::testing::pair_variants(t.a, t.b)) {
       const std::string ctx = std::string(t.name) + " " + v.name;
       const auto r = trace::intersect_curve(v.a, v.b, Mode::Exact, {});
       ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;

@@ -25,6 +25,7 @@
 //    critical points of the unbounded arcs in the box): a direction with an entry +-2 does.
 #include "support/distance_checks.hpp"
 #include "support/fixtures.hpp"
+#include "support/pair_variants.hpp"
 
 #include "surfcert/algebra/pencil.hpp"
 #include "surfcert/certify/cone_ovals.hpp"
@@ -77,30 +78,9 @@ bool char_poly_irreducible(const Mat4& a, const Mat4& b) {
   return irreducible;
 }
 
-struct Variant {
-  std::string name;
-  core::QuadricMatrix a, b;
-};
-
-// The pair as given, moved by a rational rigid motion, swapped, scaled (x -> 7/2 x) and with
-// its matrices multiplied by -3 and 5/2 (the same surfaces).
-std::vector<Variant> variants(const Mat4& a0, const Mat4& b0) {
-  const Mat4 m = motion(2, -1, 1, 3, {Rational(-3, 4), Rational(1, 2), Rational(2)});
-  const core::QuadricMatrix a(a0), b(b0);
-  return {
-      {"as given", a, b},
-      {"moved", a.congruent(m), b.congruent(m)},
-      {"swapped", b, a},
-      {"moved swapped", b.congruent(m), a.congruent(m)},
-      {"scaled", a.congruent(scaling(Rational(7, 2))), b.congruent(scaling(Rational(7, 2)))},
-      {"multiplied", core::QuadricMatrix(core::scaled(a0, Rational(-3))),
-       core::QuadricMatrix(core::scaled(b0, Rational(5, 2)))},
-  };
-}
-
 void expect_settled(const Mat4& a0, const Mat4& b0, int loops, const std::string& what) {
   ASSERT_TRUE(char_poly_irreducible(a0, b0)) << what;
-  for (const auto& v : variants(a0, b0)) {
+  for (const auto& v : surfcert::testing::pair_variants(a0, b0)) {
     const std::string ctx = what + " " + v.name;
     // No cone member of the pencil decides (A, B themselves are no cones; no rational root).
     EXPECT_FALSE(certify::cone_oval_counts(v.a.matrix(), v.b.matrix(), 2, 4)) << ctx;

@@ -166,6 +166,10 @@ rational_plane_pair(const core::Mat4& m);
 std::vector<std::array<core::Rational, 4>> rational_member_planes(const core::Mat4& e, int rank);
 /// The plane n . (x, y, z, 1) = 0 written as a quadric (zero quadratic block).
 core::Mat4 plane_as_quadric(const std::array<core::Rational, 4>& n);
+/// Keeps only the reading `r` (one of t.readings, proven by the caller): loops and
+/// unbounded_branches set from it, their `undecided` entries removed, the route set, the loop
+/// boxes cleared (the caller records its own).
+void keep_reading(AffineTopology& t, std::pair<int, int> r, const std::string& route);
 
 /// The affine topology from a classification (special points are computed here when needed).
 AffineTopology affine_topology(QsicResult& topology, const core::QuadricMatrix& a,
