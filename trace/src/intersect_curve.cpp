@@ -818,9 +818,11 @@ std::optional<int> loops_inside_by_loop_boxes(const core::QuadricMatrix& a,
     for (size_t i = 0; i < p.boxes.size() && in < 0; ++i) {
       bool inside = true;
       for (size_t k = 0; k < 3 && inside; ++k) {
-        // The enclosure around the double midpoint, widened by 4 ulps of it (the midpoint was
-        // rounded to a double).
-        const double r = c.radius + 4 * std::ldexp(DBL_EPSILON, std::ilogb(c.approx[k])) + DBL_MIN;
+        // The crossing within twice the enclosure's half-width of the reported point (which
+        // the enclosure holds: Newton's point or its rounded midpoint), widened by 4 ulps of it
+        // and a relative 2^-50 (the half-width itself was rounded).
+        const double r = 2 * c.radius * (1 + 0x1p-50) +
+                         4 * std::ldexp(DBL_EPSILON, std::ilogb(c.approx[k])) + DBL_MIN;
         const Rational lo =
             Rational::exact_from_double(c.approx[k]) - Rational::exact_from_double(r);
         const Rational hi =
