@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 using namespace surfcert;
@@ -1372,5 +1373,147 @@ TEST(BoxTrace, GivenBoxCuttingBothOvalsOfAConeAndACylinder) {
     const auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
     ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
     surfcert::testing::expect_open_pieces(r, a, b, 2, "arc", ctx);
+  }
+}
+
+// A hyperbola and two lines at infinity (Tu 23; generate --case 23 --seed 55 pair 0): the
+// affine curve is the hyperbola alone, certified without lines. Shrunk to 2^-20 of its size
+// around (1/3, -1/7, 1/5) (and turned), the hyperbola's centre value is ~1e-11 of its terms,
+// which the float reading took for crossing lines: two "line" pieces against a reading without
+// lines, undecided. Certified down to 2^-20: two open conic pieces, four exact crossings of the
+// box, every point on both exact surfaces, each piece on one branch of the hyperbola (mapped
+// back to the unshrunk pair: one side of the plane halfway between its branches). At 2^-30 and
+// 2^-40 the centre value is within the rounding (1e-17 of its terms; its sign says which axis
+// is real): certified with those checks or undecided with a reason, never drawn from noise.
+TEST(BoxTrace, ShrunkHyperbolaBesideTwoLinesAtInfinity) {
+  const core::Mat4 ma =
+      mat_of({{Rational(15, 2), Rational(5, 2), Rational(5), Rational(-17, 2)},
+              {Rational(5, 2), Rational(-5, 2), Rational(0), Rational(-3, 2)},
+              {Rational(5), Rational(0), Rational(5, 2), Rational(-1)},
+              {Rational(-17, 2), Rational(-3, 2), Rational(-1), Rational(-5, 2)}});
+  const core::Mat4 mb = mat_of({{Rational(6), Rational(2), Rational(4), Rational(-14)},
+                                {Rational(2), Rational(-2), Rational(0), Rational(6)},
+                                {Rational(4), Rational(0), Rational(2), Rational(-8)},
+                                {Rational(-14), Rational(6), Rational(-8), Rational(14)}});
+  // The unshrunk pair's branches: the plane halfway between their means separates them.
+  const auto r0 = trace::intersect_curve(core::QuadricMatrix(ma), core::QuadricMatrix(mb),
+                                         Mode::Filtered, trace::TraceOptions{});
+  ASSERT_EQ(r0.status, certify::Status::Certified) << r0.note;
+  ASSERT_EQ(r0.branches.size(), 2u);
+  std::array<trace::Point3, 2> mean{};
+  for (size_t i = 0; i < 2; ++i) {
+    for (const auto& p : r0.branches[i].points)
+      for (size_t k = 0; k < 3; ++k)
+        mean[i][k] += p[k] / static_cast<double>(r0.branches[i].points.size());
+  }
+  auto side = [&mean](const trace::Point3& x) {
+    double s = 0;
+    for (size_t k = 0; k < 3; ++k)
+      s += (x[k] - 0.5 * (mean[0][k] + mean[1][k])) * (mean[1][k] - mean[0][k]);
+    return s;
+  };
+  const std::array<Rational, 3> centre{Rational(1, 3), Rational(-1, 7), Rational(1, 5)};
+  for (int k : {0, 10, 20, 30, 40}) {
+    const core::Mat4 m = scaled_motion(core::pow2(-k), centre);
+    const core::QuadricMatrix a = core::QuadricMatrix(ma).congruent(m),
+                              b = core::QuadricMatrix(mb).congruent(m);
+    const std::string ctx = "shrunk by 2^-" + std::to_string(k);
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    ASSERT_TRUE(r.affine.certified()) << ctx;
+    EXPECT_EQ(*r.affine.lines, 0) << ctx;
+    EXPECT_EQ(*r.affine.conics, 1) << ctx;
+    EXPECT_EQ(*r.affine.unbounded_branches, 2) << ctx;
+    if (k <= 20) {
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+    } else if (r.status != certify::Status::Certified) {
+      EXPECT_EQ(r.status, certify::Status::Undecided) << ctx;
+      EXPECT_FALSE(r.note.empty()) << ctx;
+      continue;
+    }
+    ASSERT_EQ(r.branches.size(), 2u) << ctx;
+    ASSERT_TRUE(r.box.has_value()) << ctx;
+    const double diag = r.box->diagonal();
+    for (const auto& br : r.branches) {
+      EXPECT_EQ(br.kind, "conic") << ctx;
+      EXPECT_FALSE(br.closed) << ctx;
+      int pos = 0, neg = 0;
+      for (const auto& p : br.points) {
+        const double far = std::hypot(p[0], p[1], p[2]);
+        EXPECT_LE(geometric_residual(a, p), kGeo * diag + 1e-15 * far) << ctx;
+        EXPECT_LE(geometric_residual(b, p), kGeo * diag + 1e-15 * far) << ctx;
+        // p moved back to the unshrunk pair (x = P (p, 1), P the congruence).
+        trace::Point3 x{};
+        for (size_t i = 0; i < 3; ++i) {
+          x[i] = m[i][3].to_double_approx();
+          for (size_t j = 0; j < 3; ++j)
+            x[i] += m[i][j].to_double_approx() * p[j];
+        }
+        (side(x) > 0 ? pos : neg) += 1;
+      }
+      EXPECT_TRUE(pos == 0 || neg == 0) << ctx << ": a piece on both branches";
+    }
+    ASSERT_TRUE(r.box_exits.has_value()) << ctx;
+    EXPECT_TRUE(r.box_exits->certified) << ctx;
+    EXPECT_EQ(r.box_exits->points.size(), 4u) << ctx;
+  }
+}
+
+// Two double lines crossing (Tu 32; generate --case 32 --seed 55 pair 15) and a double line
+// with two lines (Tu 35, pair 14), moved 2^31 from the origin: there the doubles are 2.4e-7
+// to 4.8e-7 apart, so the lines' rounded ends lie that far from their exact crossings with a
+// box 2.4 wide, beyond 1e-7 of its diagonal (undecided: "a traced end does not match exactly
+// one exact crossing"). The picture's tolerances keep 16 units in the last place of the box's
+// coordinates as their floor: certified, the unmoved pair's counts, every point within 1e-9
+// of the curve's size plus 16 ulps of both exact surfaces.
+TEST(BoxTrace, DoubleLinesTwoToTheThirtyOneOut) {
+  const core::Mat4 a32 = mat_of({{Rational(68, 3), Rational(0), Rational(-14), Rational(0)},
+                                 {Rational(0), Rational(7), Rational(-35, 3), Rational(-35, 3)},
+                                 {Rational(-14), Rational(-35, 3), Rational(7), Rational(7)},
+                                 {Rational(0), Rational(-35, 3), Rational(7), Rational(7)}});
+  const core::Mat4 b32 = mat_of({{Rational(-8), Rational(0), Rational(6), Rational(0)},
+                                 {Rational(0), Rational(-3), Rational(5), Rational(5)},
+                                 {Rational(6), Rational(5), Rational(-3), Rational(-3)},
+                                 {Rational(0), Rational(5), Rational(-3), Rational(-3)}});
+  const core::Mat4 a35 = mat_of({{Rational(-7, 3), Rational(-5), Rational(8, 3), Rational(1, 3)},
+                                 {Rational(-5), Rational(25, 3), Rational(4), Rational(-5)},
+                                 {Rational(8, 3), Rational(4), Rational(-13, 3), Rational(-2, 3)},
+                                 {Rational(1, 3), Rational(-5), Rational(-2, 3), Rational(3)}});
+  const core::Mat4 b35 = mat_of({{Rational(38, 3), Rational(10), Rational(-28, 3), Rational(10, 3)},
+                                 {Rational(10), Rational(-74, 3), Rational(-8), Rational(10)},
+                                 {Rational(-28, 3), Rational(-8), Rational(32, 3), Rational(7, 3)},
+                                 {Rational(10, 3), Rational(10), Rational(7, 3), Rational(-6)}});
+  const core::Mat4 far =
+      scaled_motion(Rational(1), {core::pow2(30) + Rational(1, 3), -core::pow2(31), Rational(5)});
+  for (const auto& [name, ma, mb] :
+       {std::tuple<const char*, core::Mat4, core::Mat4>{"two double lines", a32, b32},
+        {"a double line and two lines", a35, b35}}) {
+    const auto r0 = trace::intersect_curve(core::QuadricMatrix(ma), core::QuadricMatrix(mb),
+                                           Mode::Filtered, trace::TraceOptions{});
+    ASSERT_EQ(r0.status, certify::Status::Certified) << name << ": " << r0.note;
+    const core::QuadricMatrix a = core::QuadricMatrix(ma).congruent(far),
+                              b = core::QuadricMatrix(mb).congruent(far);
+    const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+    ASSERT_EQ(r.status, certify::Status::Certified) << name << ": " << r.note;
+    EXPECT_EQ(*r.affine.lines, *r0.affine.lines) << name;
+    EXPECT_EQ(*r.affine.unbounded_branches, *r0.affine.unbounded_branches) << name;
+    ASSERT_EQ(r.branches.size(), r0.branches.size()) << name;
+    ASSERT_TRUE(r.box.has_value() && r.box_exits && r.box_exits->certified) << name;
+    EXPECT_EQ(r.box_exits->points.size(), 2 * r.branches.size()) << name;
+    double size = 0, big = 0;
+    for (const auto& br : r.branches) {
+      EXPECT_EQ(br.kind, "line") << name;
+      size = std::max(size, std::hypot(br.points.back()[0] - br.points.front()[0],
+                                       br.points.back()[1] - br.points.front()[1],
+                                       br.points.back()[2] - br.points.front()[2]));
+      for (const auto& p : br.points)
+        big = std::max({big, std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
+    }
+    EXPECT_GT(big, 1e9) << name; // really out there
+    const double bound = 1e-9 * size + 16 * std::ldexp(1.0, std::ilogb(big) - 52);
+    for (const auto& br : r.branches)
+      for (const auto& p : br.points) {
+        EXPECT_LE(geometric_residual(a, p), bound) << name;
+        EXPECT_LE(geometric_residual(b, p), bound) << name;
+      }
   }
 }

@@ -3,6 +3,7 @@
 // within the chord tolerance of the polyline, points on both surfaces), the certified
 // morphology's conic count (classify_qsic exact), the 21 ellipsoid fixtures (count, planarity,
 // residual, chord error measured by an independent projection, special points on the curve).
+#include "support/distance_checks.hpp"
 #include "support/fixtures.hpp"
 #include "support/trace_boxes.hpp"
 
@@ -459,5 +460,43 @@ TEST(Conics, TangencyPointSectionIsNoLoop) {
     EXPECT_EQ(*r.affine.loops, 0);
     EXPECT_EQ(*r.affine.unbounded_branches, 2);
     surfcert::testing::expect_open_pieces(r, a, b, 2, "conic", swapped ? "swapped" : "as given");
+  }
+}
+
+// A conic with a tangency point (Tu 27; generate --case 27 --seed 58 pair 5): a hyperbola, and
+// the plane of the other singular member meets the quadrics in two imaginary parallel lines
+// (their real point at infinity is the tangency point). Read with SectionKinds::ProperOnly (the
+// affine reading has no line), that plane's linear term is rounding noise and must draw
+// nothing: a parabola drawn from it moved the automatic box. Every reading draws the two
+// branches of the hyperbola only, each point on both surfaces.
+TEST(Conics, NoParabolaFromImaginaryParallelLines) {
+  const core::QuadricMatrix a(core::Mat4{
+      {{core::Rational(-3), core::Rational(4), core::Rational(12), core::Rational(-33, 2)},
+       {core::Rational(4), core::Rational(11), core::Rational(15), core::Rational(-11, 2)},
+       {core::Rational(12), core::Rational(15), core::Rational(38), core::Rational(-22)},
+       {core::Rational(-33, 2), core::Rational(-11, 2), core::Rational(-22),
+        core::Rational(11, 2)}}});
+  const core::QuadricMatrix b(core::Mat4{
+      {{core::Rational(-5), core::Rational(-4), core::Rational(-12), core::Rational(9, 2)},
+       {core::Rational(-4), core::Rational(-3), core::Rational(-7), core::Rational(3, 2)},
+       {core::Rational(-12), core::Rational(-7), core::Rational(-22), core::Rational(6)},
+       {core::Rational(9, 2), core::Rational(3, 2), core::Rational(6), core::Rational(-3, 2)}}});
+  const auto any = run(a, b);
+  ASSERT_NE(any.r.morphology, nullptr);
+  EXPECT_EQ(any.r.morphology->conics, 1);
+  trace::TraceOptions opt;
+  for (auto kinds : {trace::SectionKinds::Any, trace::SectionKinds::ProperOnly}) {
+    const auto brs = trace::conic_branches(a, b, any.r.facts, opt, kinds);
+    EXPECT_EQ(brs.size(), 2u) << static_cast<int>(kinds);
+    for (const auto& br : brs) {
+      EXPECT_EQ(br.kind, "conic");
+      EXPECT_FALSE(br.closed);
+      for (const auto& p : br.points) {
+        EXPECT_LE(surfcert::testing::geometric_residual(a, p),
+                  1e-12 * (1 + std::hypot(p[0], p[1], p[2])));
+        EXPECT_LE(surfcert::testing::geometric_residual(b, p),
+                  1e-12 * (1 + std::hypot(p[0], p[1], p[2])));
+      }
+    }
   }
 }

@@ -213,6 +213,16 @@ bool lines_only(const QsicResult& t) {
   return t.morphology && t.morphology->conics == 0 && t.morphology->lines > 0;
 }
 
+// What the certified readings say the plane sections are: lines only (the morphology), or
+// proper conics only (the affine reading certified without lines: lines of the morphology at
+// infinity, as a conic and two lines at infinity, are no section drawn).
+SectionKinds section_kinds(const QsicResult& t, const certify::AffineTopology& af) {
+  if (lines_only(t)) return SectionKinds::LinesOnly;
+  if (af.certified() && af.lines && *af.lines == 0 && af.conics && *af.conics > 0)
+    return SectionKinds::ProperOnly;
+  return SectionKinds::Any;
+}
+
 void drop_point_sections(CurveResult& out, int expected_conics, double tol) {
   auto& br = out.branches;
   if (static_cast<int>(br.size()) <= expected_conics) return;
@@ -555,6 +565,17 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
     }
   ex.points.insert(ex.points.end(), ex2.points.begin(), ex2.points.end());
   return ex;
+}
+
+// The picture checks' tolerance in a box: `rel` of its diagonal, and never below 16 units in
+// the last place of its largest coordinate (a box 2.4 wide 2^31 from the origin holds its
+// points on a grid of 2.4e-7: its ends cannot be nearer their exact crossings than that).
+double picture_tolerance(const Box& box, double rel) {
+  double big = 0;
+  for (size_t k = 0; k < 3; ++k)
+    big = std::max({big, std::fabs(box.min[k]), std::fabs(box.max[k])});
+  const double ulp = big > 0 ? std::ldexp(1.0, std::ilogb(big) - 52) : 0.0;
+  return rel * box.diagonal() + 16 * ulp;
 }
 
 // Matches each end of each open piece with exactly one exact crossing (within tol) and each
@@ -962,7 +983,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, cons
   finish_points(a, b, q, out);
 
   int closed = 0, open = 0, open_off_face = 0;
-  const double eps = 1e-7 * box.diagonal();
+  const double eps = picture_tolerance(box, 1e-7);
   for (const auto& br : out.branches) {
     if (br.closed) {
       ++closed;
@@ -979,7 +1000,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, cons
     why = "the affine topology is not certified";
   } else if (!special_points_complete) {
     why = "special points not all computed exactly";
-  } else if (!(out.max_residual <= 1e-9 * box.diagonal())) {
+  } else if (!(out.max_residual <= picture_tolerance(box, 1e-9))) {
     // The points are corrected onto the exact surfaces to ~1e-13 of their extent; one that
     // stays off them (a hyperbola sampled through its centre at a far offset, its pieces
     // joining crossings on different halves: helper-11's audit) is no picture of the curve,
@@ -1012,7 +1033,7 @@ bool settle_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, cons
     why = std::to_string(out.isolated_points.size()) + " isolated point(s) drawn in the box; " +
           std::to_string(want) + " lie in it";
   } else {
-    why = match_exits(out.branches, *out.box_exits, 1e-7 * box.diagonal());
+    why = match_exits(out.branches, *out.box_exits, picture_tolerance(box, 1e-7));
     tracer_fault = !why.empty();
   }
   out.matches_topology = why.empty();
@@ -1181,7 +1202,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
       }
       return brs;
     }
-    brs = conic_branches(a, b, t.facts, o, lines_only(t));
+    brs = conic_branches(a, b, t.facts, o, section_kinds(t, af));
     // A plane of a singular member tangent to a quadric meets it in one real point (the
     // crossing of two imaginary lines); in doubles that section comes out as a closed "conic"
     // of no size there. It is no branch: dropped when it sits on an exact special or isolated
@@ -1291,7 +1312,7 @@ void trace_in_box(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Cu
   // other pieces end on too: counted as pieces, they stopped the doubling below one step
   // short of an arc running 4,700 out (generate --case 9 --seed 45 pair 8).
   auto count_open = [&] {
-    const double eps = 1e-7 * box.diagonal();
+    const double eps = picture_tolerance(box, 1e-7);
     std::vector<Point3> ends;
     for (const auto& br : out.branches) {
       if (br.closed || br.points.size() < 2) continue;
@@ -1659,7 +1680,7 @@ void rematch_exits(const core::QuadricMatrix& a, const core::QuadricMatrix& b, C
             std::to_string(want) + " lie in it";
   }
   if (why.empty() && local.box_exits->certified)
-    why = match_exits(local.branches, *local.box_exits, 1e-7 * local.box->diagonal());
+    why = match_exits(local.branches, *local.box_exits, picture_tolerance(*local.box, 1e-7));
   local.matches_topology = why.empty();
   local.status = why.empty() ? Status::Certified : Status::Undecided;
   local.note = why;
@@ -2398,7 +2419,8 @@ void trace_here(const core::QuadricMatrix& a, const core::QuadricMatrix& b, Curv
         }
     }
   } else if (t.morphology->conics > 0) {
-    out.branches = conic_branches(a, b, t.facts, opt, lines_only(t));
+    out.branches = conic_branches(a, b, t.facts, opt,
+                                  lines_only(t) ? SectionKinds::LinesOnly : SectionKinds::Any);
     drop_point_sections(out, t.morphology->conics, opt.tolerance);
   }
   finish_points(a, b, q, out);

@@ -61,15 +61,25 @@ std::vector<Branch> cubic_in_box(const certify::CubicAndLine& cl, const Box& box
 /// One point of each affine arc of that cubic (a sample near the origin), for sizing a box.
 std::vector<Point3> cubic_arc_points(const certify::CubicAndLine& cl);
 
+/// What the certified topology says of the plane sections, which the rounded section's
+/// reading (a centre value or a linear term against a float threshold) must follow.
+enum class SectionKinds {
+  Any,       ///< nothing known: the rounded section decides proper conic or lines
+  LinesOnly, ///< the curve has lines and no proper conic: every section drawn as lines
+  /// The affine curve has no lines (certified): a section with real crossing or parallel lines
+  /// in the rounding is a thin hyperbola or a parabola (a section 2^-20 across, 0.4 from the
+  /// origin: its centre value is 1e-11 of its terms, which read as crossing lines).
+  ProperOnly,
+};
+
 /// Conic branches (kind "conic" or "double_conic"; "line" for the lines of a plane's
 /// degenerate section: crossing, parallel, or one affine line and the line at infinity) for the
 /// exact pencil facts of a pair whose morphology has conic or line components; a line found in
-/// two planes is returned once. `lines_only`: the certified morphology has lines and no proper
-/// conic, so every section is drawn as lines whatever the rounding says. Empty when there are
-/// none.
+/// two planes is returned once. `kinds`: what the certified topology says the sections are.
+/// Empty when there are none.
 std::vector<Branch> conic_branches(const core::QuadricMatrix& a, const core::QuadricMatrix& b,
                                    const algebra::PencilFacts& facts, const TraceOptions& opt,
-                                   bool lines_only = false);
+                                   SectionKinds kinds = SectionKinds::Any);
 
 /// The section of `other` by one exact plane (written as a quadric: n / 2 in its last column,
 /// d in its corner) as branches, as conic_branches draws each plane's conic: for degenerate
