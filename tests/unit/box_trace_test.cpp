@@ -1517,3 +1517,34 @@ TEST(BoxTrace, DoubleLinesTwoToTheThirtyOneOut) {
       }
   }
 }
+
+// A cusp at infinity whose half-branches run together (Tu 9, a cuspidal loop; generate --case 9
+// --seed 46 pair 6 in doubles) in a given box 20,000 wide: walks stop at max_points_per_branch
+// there, and finer chords only shorten their steps (four refinements, 11 s at the default cap,
+// all ending as the first). Undecided, with the picture drawn at the tolerance asked (the
+// reported tolerance: not refined).
+TEST(BoxTrace, CappedWalkIsNotRefined) {
+  const core::Mat4 ma = mat_of({{Rational(75), Rational(40), Rational(69), Rational(53)},
+                                {Rational(40), Rational(8), Rational(40), Rational(50)},
+                                {Rational(69), Rational(40), Rational(75), Rational(47)},
+                                {Rational(53), Rational(50), Rational(47), Rational(11)}});
+  const core::Mat4 mb = mat_of({{Rational(-159), Rational(-84), Rational(-145), Rational(-113)},
+                                {Rational(-84), Rational(-16), Rational(-84), Rational(-106)},
+                                {Rational(-145), Rational(-84), Rational(-159), Rational(-99)},
+                                {Rational(-113), Rational(-106), Rational(-99), Rational(-24)}});
+  auto opt = given_box({-12292.486223445972, -13149.166003012899, -12873.035632343033},
+                       {6219.690913263682, 9950.134776405905, 7904.435620882493});
+  opt.max_points_per_branch = 5000;
+  const core::QuadricMatrix a(ma), b(mb);
+  const auto r = trace::intersect_curve(a, b, Mode::Filtered, opt);
+  ASSERT_TRUE(r.affine.certified());
+  EXPECT_EQ(*r.affine.unbounded_branches, 3);
+  ASSERT_NE(r.status, certify::Status::Certified) << "expected the capped picture to fail";
+  EXPECT_EQ(r.status, certify::Status::Undecided);
+  EXPECT_FALSE(r.note.empty());
+  bool capped = false;
+  for (const auto& br : r.branches)
+    capped = capped || static_cast<long>(br.points.size()) >= opt.max_points_per_branch;
+  EXPECT_TRUE(capped);
+  EXPECT_EQ(r.tolerance, opt.tolerance); // drawn at the tolerance asked: not refined
+}
