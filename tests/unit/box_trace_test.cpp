@@ -1548,3 +1548,35 @@ TEST(BoxTrace, CappedWalkIsNotRefined) {
   EXPECT_TRUE(capped);
   EXPECT_EQ(r.tolerance, opt.tolerance); // drawn at the tolerance asked: not refined
 }
+
+// A pipe of radius 1e-4 cut square by a plane, and a cone cut 1e-4 above its apex, both about
+// 1414 from the origin: each section is a circle 2e-4 across (radius 1e-4 and 5e-5), closed
+// form. The automatic box frames it: within 100 circle diameters (its margin's floors, 1e-3
+// and 1e-6 of the distance from the origin, made it 2,048 and 4,096 wide: the curve a dot in
+// the picture); every point at the closed-form radius from the axis, in the plane.
+TEST(BoxTrace, SmallSectionFarFromTheOriginIsFramed) {
+  struct Case {
+    const char *a, *b;
+    double z, r; // the circle: centre (1000, 0, z), radius r, in the plane z
+  };
+  for (const Case& c :
+       {Case{"(x - 1000)^2 + y^2 = 1/100000000", "z = 1000", 1000.0, 1e-4},
+        Case{"(x - 1000)^2 + y^2 = (z - 1000)^2 / 4", "z = 1000 + 1/10000", 1000.0001, 5e-5}}) {
+    for (bool swapped : {false, true}) {
+      auto a = q(c.a), b = q(c.b);
+      if (swapped) std::swap(a, b);
+      const std::string ctx = std::string(c.a) + " | " + c.b + (swapped ? " swapped" : "");
+      const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+      ASSERT_EQ(r.status, certify::Status::Certified) << ctx << ": " << r.note;
+      ASSERT_EQ(r.branches.size(), 1u) << ctx;
+      EXPECT_TRUE(r.branches[0].closed) << ctx;
+      ASSERT_TRUE(r.box.has_value() && r.box->contains({1000, 0, c.z})) << ctx;
+      EXPECT_LE(r.box->diagonal(), 100 * 2 * c.r) << ctx;
+      for (const auto& p : r.branches[0].points) {
+        EXPECT_NEAR(std::hypot(p[0] - 1000, p[1]), c.r, 1e-9 * c.r + 1e-13) << ctx;
+        EXPECT_NEAR(p[2], c.z, 1e-13) << ctx;
+        EXPECT_TRUE(r.box->contains(p)) << ctx;
+      }
+    }
+  }
+}

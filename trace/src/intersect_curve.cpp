@@ -263,7 +263,10 @@ Box dyadic_outward(Box b) {
 }
 
 // The automatic box: the bounding box of the given points, widened on every side by half its
-// diagonal (at least 1e-3 of the points' distance from the origin, and 1 for a single point).
+// diagonal (at least 2^-30 of the points' distance from the origin, and 1 for a single point,
+// up to 2^-40 of that distance). The floors were 1e-3 and 1e-6: a plane's circle 2e-4 across,
+// 1414 from the origin (a pipe of radius 1e-4 cut by a plane), got a box 2,048 wide, where it
+// is a dot; 2^-30 of the distance still leaves ~2^22 doubles across the box.
 Box box_around(const std::vector<V>& pts) {
   Box b;
   bool any = false;
@@ -279,8 +282,8 @@ Box box_around(const std::vector<V>& pts) {
   double far = 0;
   for (size_t k = 0; k < 3; ++k)
     far = std::max({far, std::fabs(b.min[k]), std::fabs(b.max[k])});
-  double m = std::max(0.5 * b.diagonal(), 1e-3 * far);
-  if (!(b.diagonal() > 1e-6 * (1 + far))) m = 1; // one point (up to rounding): no size
+  double m = std::max(0.5 * b.diagonal(), 0x1p-30 * far);
+  if (!(b.diagonal() > 0x1p-40 * (1 + far))) m = 1; // one point (up to rounding): no size
   for (size_t k = 0; k < 3; ++k) {
     b.min[k] -= m;
     b.max[k] += m;
