@@ -464,3 +464,49 @@ TEST(Export, EmptyPictureIsValid) {
   EXPECT_EQ(count(svg, "outline-a\" d="), 3u);
   EXPECT_EQ(trace::to_obj({}, {}).find("\nv "), std::string::npos);
 }
+
+// A circle 2e-4 across, 1000 from the origin (a pipe of radius 1e-4 cut by the plane
+// z = 1000): with %g's six digits every tick of the x axis read "1000". The labels are now
+// taken from an offset named with the axis ("x - 1000"): in each view, the horizontal ticks
+// are distinct numbers in arithmetic progression, and offset + label lies in the box.
+TEST(Export, TickLabelsOfASmallCurveFarFromTheOrigin) {
+  auto a = q("(x - 1000)^2 + y^2 - 1/100000000"), b = q("z - 1000");
+  auto r = trace::intersect_curve(a, b, certify::Mode::Filtered, {});
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  ASSERT_TRUE(r.box.has_value());
+  trace::Picture pic;
+  pic.branches = r.branches;
+  pic.caption = trace::curve_caption(r);
+  pic.box = r.box;
+  const auto svg = trace::to_svg(a, b, pic);
+  EXPECT_EQ(xml_problem(svg), "");
+  const std::regex tick_re("<text class=\"tick\" text-anchor=\"middle\"[^>]*>([^<]*)</text>");
+  const std::regex axis_re(
+      "<text class=\"axis\" text-anchor=\"end\"[^>]*>([xyz])( - ([^<]*))?</text>");
+  size_t views = 0;
+  for (size_t at = svg.find("<g class=\"view\""); at != std::string::npos;
+       at = svg.find("<g class=\"view\"", at + 1)) {
+    const size_t end = svg.find("<g class=\"view\"", at + 1);
+    const std::string view =
+        svg.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    std::vector<double> ticks;
+    for (auto it = std::sregex_iterator(view.begin(), view.end(), tick_re);
+         it != std::sregex_iterator(); ++it)
+      ticks.push_back(std::stod((*it)[1].str()));
+    std::smatch axis;
+    ASSERT_TRUE(std::regex_search(view, axis, axis_re)) << view.substr(0, 200);
+    const size_t k = static_cast<size_t>(axis[1].str()[0] - 'x');
+    const double offset = axis[3].matched ? std::stod(axis[3].str()) : 0.0;
+    ASSERT_GE(ticks.size(), 3u);
+    const double step = ticks[1] - ticks[0];
+    EXPECT_GT(step, 0);
+    for (size_t i = 1; i < ticks.size(); ++i)
+      EXPECT_NEAR(ticks[i] - ticks[i - 1], step, 1e-9 * std::fabs(step)) << "view " << views;
+    for (double t : ticks) {
+      EXPECT_GE(offset + t, r.box->min[k] - 2 * step) << "view " << views;
+      EXPECT_LE(offset + t, r.box->max[k] + 2 * step) << "view " << views;
+    }
+    ++views;
+  }
+  EXPECT_EQ(views, 3u);
+}

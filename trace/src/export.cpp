@@ -2,7 +2,8 @@
 //
 // SVG layout: a fixed viewBox with three square panels (views along z, y and x, i.e. the
 // planes x-y, x-z, y-z), all drawn at the same scale so that lengths compare across views.
-// Each panel has a light grid with tick labels, axis names, the silhouettes of the quadrics
+// Each panel has a light grid with tick labels (from an offset named with the axis where six
+// digits cannot tell the ticks apart), axis names, the silhouettes of the quadrics
 // (the projection of a quadric's contour along axis k is the conic of the Schur complement of
 // its 4x4 matrix with respect to k: an ellipsoid's is drawn whole as an ellipse; any other
 // quadric's is traced by marching squares inside the box's projection, or its cross-section
@@ -387,11 +388,34 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
                 : raw / p10 < 3.5 ? 2 * p10
                 : raw / p10 < 7.5 ? 5 * p10
                                   : 10 * p10;
-  auto label = [&](double t) {
+  // Per axis, an offset subtracted from its tick labels (and named with the axis) where %g's
+  // six digits cannot tell the ticks apart: a circle 2e-4 across 1000 from the origin had
+  // every tick labelled "1000". The offset is the middle rounded to 10 steps.
+  std::array<double, 3> offset{0, 0, 0};
+  for (size_t k = 0; k < 3; ++k) {
+    const double mid = 0.5 * lo[k] + 0.5 * hi[k],
+                 big = std::max(std::fabs(lo[k]), std::fabs(hi[k]));
+    if (big > 1e4 * step) offset[k] = std::round(mid / (10 * step)) * (10 * step);
+  }
+  auto label = [&](double t, size_t k) {
+    // A whole number of steps from the offset (the ticks' running sums, t - offset, drift by
+    // a few ulps of t: "-1.11022e-16" for 0 beside an offset of -1).
+    t = std::round((t - offset[k]) / step) * step;
     if (std::fabs(t) < 1e-9 * step) t = 0;
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", t);
     return std::string(buf);
+  };
+  // "x", or "x - 1000.0001" with enough digits to tell the offset from its neighbours.
+  auto axis_label = [&](size_t k) {
+    std::string name = axis_name[k];
+    if (offset[k] == 0) return name;
+    const int digits =
+        std::clamp(static_cast<int>(std::ceil(std::log10(std::fabs(offset[k]) / step))) + 2, 1, 17);
+    char buf[48];
+    std::snprintf(buf, sizeof buf, " %s %.*g", offset[k] < 0 ? "+" : "-", digits,
+                  std::fabs(offset[k]));
+    return name + buf;
   };
 
   std::ostringstream o;
@@ -445,14 +469,14 @@ std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, c
     o << "</g>\n";
     for (double t = std::ceil(lo[ku] / step) * step; t <= hi[ku] + 1e-9 * step; t += step)
       o << "<text class=\"tick\" text-anchor=\"middle\" x=\"" << num2(px(v, t)) << "\" y=\""
-        << num2(top + panel - 6) << "\">" << label(t) << "</text>\n";
+        << num2(top + panel - 6) << "\">" << label(t, ku) << "</text>\n";
     for (double t = std::ceil(lo[kv] / step) * step; t <= hi[kv] + 1e-9 * step; t += step)
       o << "<text class=\"tick\" x=\"" << num2(x0 + 4) << "\" y=\"" << num2(py(v, t) + 3) << "\">"
-        << label(t) << "</text>\n";
+        << label(t, kv) << "</text>\n";
     o << "<text class=\"axis\" text-anchor=\"end\" x=\"" << num2(x0 + panel - 6) << "\" y=\""
-      << num2(top + panel - 18) << "\">" << axis_name[ku] << "</text>\n";
+      << num2(top + panel - 18) << "\">" << axis_label(ku) << "</text>\n";
     o << "<text class=\"axis\" x=\"" << num2(x0 + 22) << "\" y=\"" << num2(top + 16) << "\">"
-      << axis_name[kv] << "</text>\n";
+      << axis_label(kv) << "</text>\n";
     // Outlines.
     o << "<g clip-path=\"url(#panel" << v << ")\">\n";
     for (const auto& ol : outlines) {

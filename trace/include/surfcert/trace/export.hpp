@@ -31,7 +31,9 @@ std::string to_ply(const std::vector<Branch>& branches, const std::vector<Point3
 /// conic, or its cross-section when it is a cylinder along the view, traced inside the
 /// panel: the box's projection when pic.box is set), one <path class="curve"> per branch, one
 /// <circle class="special"> per special point, a zoomed inset (<g class="inset">) for each
-/// branch smaller than 6 pixels in every view, the caption as <text>.
+/// branch smaller than 6 pixels in every view, the caption as <text>. Tick labels are whole
+/// steps of a 1-2-5 grid; on an axis whose values are beyond 10^4 steps from 0 they are
+/// measured from an offset named with the axis ("x - 1000": label + offset is the value).
 std::string to_svg(const core::QuadricMatrix& a, const core::QuadricMatrix& b, const Picture& pic);
 
 } // namespace surfcert::trace
