@@ -1580,3 +1580,56 @@ TEST(BoxTrace, SmallSectionFarFromTheOriginIsFramed) {
     }
   }
 }
+
+// Two double lines (Tu 32; generate --case 32 --seed 60 pair 9): the double plane
+// (y - 2z - 2)^2 = 0 against a quadric, one double line affine, (x, x/2 + 1, x/4 - 1/2), and
+// one at infinity. Shrunk to 2^-30 of its size around (1/3, -1/7, 1/5), the line drawn in its
+// box 6e-5 wide ended 2e-10 from its exact crossings, undecided: the final Newton correction
+// onto the exact surfaces, which are tangent along the line (their normals 2.7e-8 apart 1e-17
+// off it), slid its points sideways (refine now refuses a step 64 times longer than the
+// distance it corrects). Certified: the ends on the exact crossings to an ulp, and every point,
+// moved back exactly, on the line to the doubles' spacing there.
+TEST(BoxTrace, ShrunkDoubleLineKeepsItsExactPoints) {
+  const core::Mat4 ma = mat_of({{Rational(0), Rational(0), Rational(0), Rational(0)},
+                                {Rational(0), Rational(-1), Rational(2), Rational(2)},
+                                {Rational(0), Rational(2), Rational(-4), Rational(-4)},
+                                {Rational(0), Rational(2), Rational(-4), Rational(-4)}});
+  const core::Mat4 mb = mat_of({{Rational(0), Rational(0), Rational(0), Rational(8)},
+                                {Rational(0), Rational(8), Rational(-12), Rational(-14)},
+                                {Rational(0), Rational(-12), Rational(16), Rational(-12)},
+                                {Rational(8), Rational(-14), Rational(-12), Rational(-8)}});
+  const Rational s = core::pow2(-30);
+  const std::array<Rational, 3> t{Rational(1, 3), Rational(-1, 7), Rational(1, 5)};
+  core::Mat4 p; // x_old = (x - t) / s
+  for (size_t i = 0; i < 3; ++i) {
+    p[i][i] = Rational(1) / s;
+    p[i][3] = -t[i] / s;
+  }
+  p[3][3] = Rational(1);
+  const core::QuadricMatrix a = core::QuadricMatrix(ma).congruent(p),
+                            b = core::QuadricMatrix(mb).congruent(p);
+  const auto r = trace::intersect_curve(a, b, Mode::Filtered, trace::TraceOptions{});
+  ASSERT_EQ(r.status, certify::Status::Certified) << r.note;
+  EXPECT_EQ(*r.affine.lines, 1);
+  ASSERT_EQ(r.branches.size(), 1u);
+  ASSERT_TRUE(r.box_exits && r.box_exits->certified);
+  ASSERT_EQ(r.box_exits->points.size(), 2u);
+  const auto& br = r.branches[0];
+  EXPECT_EQ(br.kind, "line");
+  for (const auto* e : {&br.points.front(), &br.points.back()}) {
+    double nearest = HUGE_VAL;
+    for (const auto& x : r.box_exits->points)
+      nearest = std::min(
+          nearest, std::max({std::fabs(x.approx[0] - (*e)[0]), std::fabs(x.approx[1] - (*e)[1]),
+                             std::fabs(x.approx[2] - (*e)[2])}));
+    EXPECT_LE(nearest, 2 * std::ldexp(1.0, -53)) << "an end off its exact crossing";
+  }
+  for (const auto& q : br.points) {
+    std::array<Rational, 3> x;
+    for (size_t k = 0; k < 3; ++k)
+      x[k] = (Rational::exact_from_double(q[k]) - t[k]) / s;
+    // Half an ulp of each coordinate (< 2^-54), moved back: 2^-54 / 2^-30 = 2^-24 (6e-8).
+    EXPECT_LE(std::fabs((x[1] - x[0] / Rational(2) - Rational(1)).to_double_approx()), 0x1p-22);
+    EXPECT_LE(std::fabs((x[2] - x[0] / Rational(4) + Rational(1, 2)).to_double_approx()), 0x1p-22);
+  }
+}

@@ -95,8 +95,17 @@ double RefinedPair::refine(Point3& p, double target, int face_axis) const {
     const double det = a11 * a22 - a12 * a12;
     if (!(det > 1e-30 * a11 * a22) || !std::isfinite(det)) break;
     const double m1 = (a22 * fv - a12 * gv) / det, m2 = (a11 * gv - a12 * fv) / det;
+    // A step far longer than the distance it corrects (64 times, plus 4 ulps of the point) is
+    // refused: there the surfaces are nearly tangent (along a double line or conic, sin ~1e-8)
+    // and {f = g = 0} barely constrains the point sideways; such steps moved a double line's
+    // exact points rounded (within 1e-17 of both surfaces) 2e-10 off the line.
+    Point3 step{};
     for (size_t i = 0; i < 3; ++i)
-      x[i] -= m1 * gf[i] + m2 * gg[i];
+      step[i] = m1 * gf[i] + m2 * gg[i];
+    const double big = std::max({std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])});
+    if (!(std::sqrt(dot3(step, step)) <= 64 * best + 0x1p-50 * big)) break;
+    for (size_t i = 0; i < 3; ++i)
+      x[i] -= step[i];
     const double d = distance(x);
     if (!(d < best)) break;
     best = d;

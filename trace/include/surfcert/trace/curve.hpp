@@ -140,7 +140,9 @@ public:
   double distance(const Point3& p) const;
   /// Gauss-Newton steps on the exact pair while they reduce distance(p) and it is above
   /// `target`; p is left at the best point found. Returns distance(p). With face_axis k in
-  /// 0..2 the coordinate p[k] is kept (a point on a face of a box stays on it).
+  /// 0..2 the coordinate p[k] is kept (a point on a face of a box stays on it). A step longer
+  /// than 64 times the distance it corrects (plus 4 ulps of p) is not taken: there the
+  /// surfaces are nearly tangent and the step slides p along them, off the curve.
   double refine(Point3& p, double target, int face_axis = -1) const;
 
 private:
