@@ -97,8 +97,8 @@ double RefinedPair::refine(Point3& p, double target, int face_axis) const {
     const double m1 = (a22 * fv - a12 * gv) / det, m2 = (a11 * gv - a12 * fv) / det;
     // A step far longer than the distance it corrects (64 times, plus 4 ulps of the point) is
     // refused: there the surfaces are nearly tangent (along a double line or conic, sin ~1e-8)
-    // and {f = g = 0} barely constrains the point sideways; such steps moved a double line's
-    // exact points rounded (within 1e-17 of both surfaces) 2e-10 off the line.
+    // and {f = g = 0} barely constrains the point sideways; such steps moved the points of a
+    // double line shrunk to 2^-30 (each within 1e-17 of both surfaces) 2e-10 off the line.
     Point3 step{};
     for (size_t i = 0; i < 3; ++i)
       step[i] = m1 * gf[i] + m2 * gg[i];
