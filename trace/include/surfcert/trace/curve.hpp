@@ -47,7 +47,11 @@ struct Box {
 };
 
 struct TraceOptions {
-  double tolerance = 2e-4; ///< bound on chord error and on the step (relative to the scene size)
+  /// Bound on chord error and on the step, relative to the scene size: the box's diagonal for
+  /// a walk in a box; for conics drawn in closed form, the extent they are sampled over (an
+  /// open conic in a box is sampled out past the box, so its chords there may be ~10 times
+  /// coarser relative to the box).
+  double tolerance = 2e-4;
   /// The chord error's bound alone is tolerance * chord_scale (the step's stays tolerance): a
   /// retrace in a box far larger than the curve's features refines the chords near them
   /// without shortening the steps along the straight stretches far out.
