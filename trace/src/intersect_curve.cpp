@@ -570,6 +570,11 @@ certify::BoxExits curve_exits(const core::QuadricMatrix& a, const core::QuadricM
   return ex;
 }
 
+// One unit in the last place of a double of magnitude |x| (0 for x = 0).
+double ulp_of(double x) {
+  return x != 0 ? std::ldexp(1.0, std::ilogb(x) - 52) : 0.0;
+}
+
 // The picture checks' tolerance in a box: `rel` of its diagonal, and never below 16 units in
 // the last place of its largest coordinate (a box 2.4 wide 2^31 from the origin holds its
 // points on a grid of 2.4e-7: its ends cannot be nearer their exact crossings than that).
@@ -577,8 +582,7 @@ double picture_tolerance(const Box& box, double rel) {
   double big = 0;
   for (size_t k = 0; k < 3; ++k)
     big = std::max({big, std::fabs(box.min[k]), std::fabs(box.max[k])});
-  const double ulp = big > 0 ? std::ldexp(1.0, std::ilogb(big) - 52) : 0.0;
-  return rel * box.diagonal() + 16 * ulp;
+  return rel * box.diagonal() + 16 * ulp_of(big);
 }
 
 // Matches each end of each open piece with exactly one exact crossing (within tol) and each
@@ -1542,7 +1546,7 @@ void keep_shapes_lazy(const core::QuadricMatrix& a, const core::QuadricMatrix& b
       const double reach = std::ldexp(1.0, std::ilogb(x));
       lo = std::max(lo, x - reach);
       hi = std::min(hi, x + reach);
-      grid = std::max(grid, std::ldexp(1.0, std::ilogb(x) - 52)); // x's ulp
+      grid = std::max(grid, ulp_of(x));
     }
     if (!(grid > 0)) continue;
     if (!(lo <= hi)) { // no common range: no translation in this coordinate
@@ -1723,8 +1727,7 @@ void check_picture(CurveResult& out) {
   if (why.empty()) {
     double big = 0;
     const double size = points_size(out, false, &big);
-    const double ulp = big > 0 ? std::ldexp(1.0, std::ilogb(big) - 52) : 0.0;
-    const double bound = 1e-9 * size + 16 * ulp + 0x1p-1070;
+    const double bound = 1e-9 * size + 16 * ulp_of(big) + 0x1p-1070;
     if (!(out.branch_residual <= bound)) {
       char buf[200];
       std::snprintf(buf, sizeof buf,
